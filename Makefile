@@ -1,0 +1,67 @@
+# shapelab: the course's commands.  Everything runs inside .venv, made on first use.
+#   make test     library tests + strict nbval on every lesson (what CI runs)
+#   make course   execute every lesson, build the book, slides, figures, student edition
+#   make lab      JupyterLab on 127.0.0.1 with a printed token
+#   make bench    benchmarks against the peer libraries (CASE=name for one)
+
+PYTHON ?= python3
+VENV   := .venv
+PY     := $(VENV)/bin/python
+PIP    := $(PY) -m pip
+CONSTRAINTS := requirements/constraints.txt
+JOBS   ?= 2
+CASE   ?=
+
+.PHONY: test course lab bench lessons book slides figures student env clean help
+
+help:
+	@sed -n '2,6p' Makefile | sed 's/^# //'
+
+$(PY):
+	$(PYTHON) -m venv $(VENV)
+	$(PIP) install -q --upgrade pip
+
+# one stamp per set of extras; reinstalled when pyproject.toml or the pins change
+$(VENV)/.installed-%: pyproject.toml $(CONSTRAINTS) | $(PY)
+	@echo "installing shapelab[$*] into $(VENV) (pinned by $(CONSTRAINTS)) ..."
+	$(PIP) install -q -c $(CONSTRAINTS) -e ".[$*]"
+	@touch $@
+
+book/node_modules/.installed: book/package.json book/package-lock.json
+	@echo "installing the book's JavaScript (MathJax, require.js, widgets, reveal.js) from the npm registry ..."
+	cd book && npm ci --no-audit --no-fund --loglevel=error
+	@touch $@
+
+env: $(VENV)/.installed-test
+
+test: $(VENV)/.installed-test $(VENV)/.installed-book book/node_modules/.installed
+	$(PY) -m pytest -n $(JOBS) --dist loadscope \
+	    --nbval --nbval-current-env --nbval-sanitize-with tests/nbval_sanitize.cfg \
+	    --nbval-cell-timeout 120 tests lessons
+
+lessons: $(VENV)/.installed-book
+	$(PY) scripts/execute_lessons.py
+
+course: $(VENV)/.installed-book book/node_modules/.installed
+	$(PY) scripts/build_course.py
+
+book: $(VENV)/.installed-book book/node_modules/.installed
+	$(PY) scripts/build_course.py --only book
+
+slides: $(VENV)/.installed-book book/node_modules/.installed
+	$(PY) scripts/build_course.py --only slides
+
+figures: $(VENV)/.installed-book
+	$(PY) -m shapelab.figures --out book/_build/figures --format svg
+
+student: $(VENV)/.installed-book
+	$(PY) scripts/build_course.py --only student
+
+lab: $(VENV)/.installed-lab
+	@$(PY) scripts/lab.py
+
+bench: $(VENV)/.installed-bench
+	$(PY) -m benchmarks $(CASE)
+
+clean:
+	rm -rf book/_build book/lessons book/_vendor dist .pytest_cache

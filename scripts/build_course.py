@@ -1,0 +1,151 @@
+"""Build the course: execute the lessons, then the book, slides, figures and student edition.
+
+    python scripts/build_course.py                 # everything (make course)
+    python scripts/build_course.py --only book     # one artefact: book | slides | figures | student
+    python scripts/build_course.py --no-execute    # render the committed outputs as they are
+
+Progress is printed as it goes, and a summary at the end says what was built,
+how long it took, how large it is and where it went.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+BOOK = ROOT / "book"
+BUILD = BOOK / "_build"
+VENDOR = BOOK / "_extra" / "vendor"
+NODE = BOOK / "node_modules"
+
+# what the offline site and slides need from the npm packages, and where it goes
+ASSETS = {
+    "requirejs/require.js": "require.min.js",
+    "@jupyter-widgets/html-manager/dist": "html-manager",
+    "mathjax/es5": "mathjax",
+    "reveal.js/dist": "reveal.js/dist",
+    "reveal.js/plugin": "reveal.js/plugin",
+}
+
+
+def size(path: Path) -> str:
+    if not path.exists():
+        return "missing"
+    total = path.stat().st_size if path.is_file() else sum(p.stat().st_size for p in path.rglob("*") if p.is_file())
+    return f"{total / 2**20:.1f} MiB"
+
+
+def step(title: str):
+    print(f"\n== {title}", flush=True)
+    return time.perf_counter()
+
+
+def vendor_assets() -> Path:
+    """Copy the JavaScript the site needs from book/node_modules (npm ci) to book/_extra/vendor."""
+    missing = [src for src in ASSETS if not (NODE / src).exists()]
+    if missing:
+        raise SystemExit(
+            f"book/node_modules lacks {', '.join(missing)}: run `cd book && npm ci` (make does this for you)"
+        )
+    for src, dst in ASSETS.items():
+        target = VENDOR / dst
+        if target.exists():
+            shutil.rmtree(target) if target.is_dir() else target.unlink()
+        target.parent.mkdir(parents=True, exist_ok=True)
+        if (NODE / src).is_dir():
+            ignore = shutil.ignore_patterns("*.map", "sre", "*.md", "*.d.ts")
+            shutil.copytree(NODE / src, target, ignore=ignore)
+        else:
+            shutil.copy2(NODE / src, target)
+    return VENDOR
+
+
+def lessons_into_book(execute: bool) -> None:
+    out = BOOK / "lessons"
+    out.mkdir(parents=True, exist_ok=True)
+    for old in out.glob("*.ipynb"):
+        old.unlink()
+    if execute:
+        rc = subprocess.call([sys.executable, str(ROOT / "scripts" / "execute_lessons.py"), "--out", str(out)])
+        if rc:
+            raise SystemExit("some lessons failed to execute; see above")
+    else:
+        for nb in sorted((ROOT / "lessons").glob("[0-9][0-9]_*.ipynb")):
+            shutil.copy2(nb, out / nb.name)
+            print(f"  copied {nb.name} (committed outputs)")
+
+
+def build_book(path_output: Path | None = None) -> Path:
+    vendor_assets()
+    cmd = [sys.executable, "-m", "jupyter_book", "build", str(BOOK), "--keep-going"]
+    if path_output is not None:
+        cmd += ["--path-output", str(path_output)]
+    env = dict(os.environ, PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    rc = subprocess.call(cmd, cwd=ROOT, env=env)
+    html = (path_output or BOOK) / "_build" / "html"
+    if rc or not (html / "index.html").exists():
+        raise SystemExit("the book failed to build; see above")
+    return html
+
+
+def run_optional(title: str, argv: list[str]) -> bool:
+    """Run an artefact's builder (slides, figures, student edition)."""
+    env = dict(os.environ, PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    rc = subprocess.call([sys.executable, *argv], cwd=ROOT, env=env)
+    if rc:
+        raise SystemExit(f"{title} failed; see above")
+    return True
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--only", choices=["book", "slides", "figures", "student"], action="append")
+    ap.add_argument("--no-execute", action="store_true", help="use the committed outputs")
+    args = ap.parse_args(argv)
+    want = set(args.only or ["book", "slides", "figures", "student"])
+    summary = []
+    t_all = time.perf_counter()
+
+    if want & {"book", "slides"}:
+        t = step("lessons: " + ("copying committed outputs" if args.no_execute else "executing every lesson"))
+        lessons_into_book(execute=not args.no_execute)
+        summary.append(("executed lessons", BOOK / "lessons", time.perf_counter() - t))
+    if "figures" in want:
+        t = step("figures for slides (python -m shapelab.figures)")
+        out = BUILD / "figures"
+        run_optional("figure export", ["-m", "shapelab.figures", "--out", str(out), "--format", "svg"])
+        summary.append(("figures", out, time.perf_counter() - t))
+    if "book" in want:
+        t = step("book (Jupyter Book, offline)")
+        html = build_book()
+        summary.append(("course site", html, time.perf_counter() - t))
+    if "slides" in want:
+        t = step("slides (reveal.js, offline)")
+        out = BUILD / "slides"
+        vendor_assets()
+        run_optional("slides", [str(ROOT / "scripts" / "slides.py"), "--out", str(out)])
+        summary.append(("slides", out, time.perf_counter() - t))
+    if "student" in want:
+        t = step("student edition (solutions removed, outputs cleared)")
+        out = ROOT / "dist" / "student"
+        run_optional("student edition", [str(ROOT / "scripts" / "student_edition.py"), "--out", str(out)])
+        summary.append(("student edition", out, time.perf_counter() - t))
+
+    print("\n== summary")
+    for name, path, dt in summary:
+        print(f"  {name:18s} {dt:7.1f} s  {size(path):>10s}  {path.relative_to(ROOT)}")
+    print(f"  {'total':18s} {time.perf_counter() - t_all:7.1f} s")
+    if "book" in want:
+        print(f"\nOpen the course site: {BUILD / 'html' / 'index.html'}")
+    if "slides" in want:
+        print(f"Open a lecture deck:  {BUILD / 'slides'}/<lesson>.slides.html")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

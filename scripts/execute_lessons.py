@@ -1,0 +1,106 @@
+"""Execute lessons top to bottom in a fresh kernel, with progress and timings.
+
+Used by ``make lessons`` (refresh the committed outputs in place, see
+CONTRIBUTING.md) and by ``make course`` (execute into the book's build tree).
+
+    python scripts/execute_lessons.py                      # all lessons, in place
+    python scripts/execute_lessons.py lessons/03_*.ipynb   # some, in place
+    python scripts/execute_lessons.py --out book/lessons   # copies, for the book
+
+A lesson fails if any cell raises, writes to stderr, or the whole notebook takes
+longer than ``--limit`` seconds (default 60, the course's budget on 2 cores).
+Widget state is stored in the notebook so sliders render on the static site.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import time
+from pathlib import Path
+
+import nbformat
+from nbclient import NotebookClient
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def problems(nb) -> list[str]:
+    """Error outputs and stderr streams of an executed notebook, as messages."""
+    out = []
+    for i, cell in enumerate(nb.cells):
+        if cell.cell_type != "code":
+            continue
+        for o in cell.get("outputs", []):
+            if o.get("output_type") == "error":
+                out.append(f"cell {i}: {o.get('ename')}: {o.get('evalue')}")
+            elif o.get("output_type") == "stream" and o.get("name") == "stderr":
+                out.append(f"cell {i}: wrote to stderr: {''.join(o.get('text', ''))[:300]!r}")
+    return out
+
+
+def execute(path: Path, out_dir: Path | None, timeout: int, limit: float) -> float:
+    nb = nbformat.read(path, as_version=4)
+    env_cwd = path.parent
+    client = NotebookClient(
+        nb,
+        timeout=timeout,
+        kernel_name="python3",
+        resources={"metadata": {"path": str(env_cwd)}},
+        store_widget_state=True,
+        record_timing=False,
+        allow_errors=True,
+    )
+    t0 = time.perf_counter()
+    client.execute()
+    elapsed = time.perf_counter() - t0
+    found = problems(nb)
+    if elapsed > limit:
+        found.append(f"took {elapsed:.1f} s, over the {limit:.0f} s budget")
+    target = (out_dir / path.name) if out_dir else path
+    target.parent.mkdir(parents=True, exist_ok=True)
+    if found and out_dir is None:
+        # never overwrite a good committed lesson with a broken run
+        bad = target.with_suffix(".failed.ipynb")
+        nbformat.write(nb, bad)
+        raise RuntimeError(f"{path.name}: " + "; ".join(found) + f" (executed copy in {bad})")
+    if found:
+        raise RuntimeError(f"{path.name}: " + "; ".join(found))
+    nbformat.write(nb, target)
+    return elapsed
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("notebooks", nargs="*", type=Path, help="default: lessons/*.ipynb")
+    ap.add_argument("--out", type=Path, default=None, help="write executed copies here instead of in place")
+    ap.add_argument("--timeout", type=int, default=120, help="per-cell timeout in seconds")
+    ap.add_argument("--limit", type=float, default=60.0, help="whole-notebook budget in seconds")
+    args = ap.parse_args(argv)
+    os.environ.setdefault("PYTHONHASHSEED", "0")
+    os.environ.setdefault("PYDEVD_DISABLE_FILE_VALIDATION", "1")
+    os.environ["PYTHONPATH"] = str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")
+    paths = args.notebooks or sorted((ROOT / "lessons").glob("[0-9][0-9]_*.ipynb"))
+    paths = [p for p in paths if not p.name.endswith(".failed.ipynb")]
+    if not paths:
+        print("no lessons found", file=sys.stderr)
+        return 1
+    failures, total = [], 0.0
+    for i, path in enumerate(paths, 1):
+        print(f"[{i}/{len(paths)}] executing {path.name} ...", end="", flush=True)
+        try:
+            dt = execute(path, args.out, args.timeout, args.limit)
+        except Exception as exc:  # keep going, report all at the end
+            print(" FAILED")
+            failures.append(str(exc))
+            continue
+        total += dt
+        print(f" {dt:.1f} s")
+    print(f"executed {len(paths) - len(failures)}/{len(paths)} lessons in {total:.1f} s")
+    for f in failures:
+        print("  " + f, file=sys.stderr)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

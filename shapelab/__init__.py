@@ -1,0 +1,87 @@
+"""shapelab: biogeometric shape analysis for the course "Shape Analysis" (Lecture 23).
+
+The public API is re-exported here and nothing else lives in this file.  Names are
+imported lazily so that ``import shapelab`` stays fast and a notebook only pays for
+the modules it uses.
+
+Modules, one per concept of the notes:
+
+========================  =====================================================
+``shapelab.balls``        :class:`Balls`, :func:`power_distance` (§23.1)
+``shapelab.power``        :func:`power_diagram`, :func:`regular_triangulation`
+``shapelab.filtration``   :func:`alpha_filtration`, :func:`dual_complex`
+``shapelab.topology``     Betti numbers and persistence of a filtration
+``shapelab.cavities``     :func:`voids`, :func:`pockets`, :func:`tunnels`
+``shapelab.measure``      :func:`union_measure` (area/volume of a union)
+``shapelab.quaternion``   :class:`Quaternion` (§23.2, rotations)
+``shapelab.registration`` :func:`optimal_rotation`, :func:`register`, :func:`icp`
+``shapelab.hausdorff``    :func:`directed_hausdorff`, :func:`hausdorff`, ...
+``shapelab.critical``     :func:`critical_points` on curves and surfaces
+``shapelab.io``           :func:`read_pdb`
+``shapelab.datasets``     generated molecules and the inputs of the figures
+``shapelab.plot``         one function per kind of figure, a shared style
+``shapelab.widgets``      ipywidgets explorers built on :mod:`shapelab.plot`
+``shapelab.check``        self-checks for exercises
+``shapelab.figures``      ``python -m shapelab.figures``: figure export
+========================  =====================================================
+"""
+from __future__ import annotations
+
+import importlib
+
+__version__ = "0.1.0"
+
+_EXPORTS = {
+    "Balls": "balls",
+    "power_distance": "balls",
+    "power_diagram": "power",
+    "PowerDiagram": "power",
+    "regular_triangulation": "power",
+    "alpha_filtration": "filtration",
+    "dual_complex": "filtration",
+    "Filtration": "filtration",
+    "Complex": "filtration",
+    "union_measure": "measure",
+    "UnionMeasure": "measure",
+    "voids": "cavities",
+    "pockets": "cavities",
+    "tunnels": "cavities",
+    "Void": "cavities",
+    "Pocket": "cavities",
+    "Tunnel": "cavities",
+    "Quaternion": "quaternion",
+    "optimal_rotation": "registration",
+    "register": "registration",
+    "RigidMotion": "registration",
+    "icp": "registration",
+    "ICPResult": "registration",
+    "directed_hausdorff": "hausdorff",
+    "hausdorff": "hausdorff",
+    "hausdorff_under_translation": "hausdorff",
+    "TranslationMatch": "hausdorff",
+    "critical_points": "critical",
+    "CriticalPoints": "critical",
+    "read_pdb": "io",
+}
+_SUBMODULES = {
+    "balls", "power", "filtration", "topology", "cavities", "measure", "quaternion",
+    "registration", "hausdorff", "critical", "io", "datasets", "plot", "widgets",
+    "check", "figures",
+}
+
+__all__ = sorted(_EXPORTS) + ["__version__"]
+
+
+def __getattr__(name: str):
+    if name in _EXPORTS:
+        module = importlib.import_module(f"shapelab.{_EXPORTS[name]}")
+        value = getattr(module, name)
+        globals()[name] = value
+        return value
+    if name in _SUBMODULES:
+        return importlib.import_module(f"shapelab.{name}")
+    raise AttributeError(f"module 'shapelab' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__) | _SUBMODULES)

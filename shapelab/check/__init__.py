@@ -1,0 +1,42 @@
+"""Self-checks for the exercises.
+
+Call a check with *your* function, e.g. ``check.quaternion_product(my_product)``.
+It runs your function on random and edge cases against the library and prints
+"correct" or the first failing input with the expected and received values.
+
+One module per topic holds the checks; all are re-exported here.
+"""
+from __future__ import annotations
+
+import importlib
+
+from ._runner import CheckResult, allclose, run_check
+
+_EXPORTS = {
+    # balls.py: power distance, dual complex, union measure
+    "power_distance": "balls",
+    "orthogonal_radius": "balls",
+    "union_area": "balls",
+    # topology.py
+    "euler_characteristic": "topology",
+    "betti_numbers": "topology",
+    # matching.py
+    "hausdorff": "matching",
+    "directed_hausdorff": "matching",
+    "critical_points": "matching",
+    # rotation.py
+    "quaternion_product": "rotation",
+    "rotation_matrix": "rotation",
+    "optimal_rotation": "rotation",
+    "centroid_alignment": "rotation",
+}
+__all__ = ["CheckResult", "allclose", "run_check", *sorted(_EXPORTS)]
+
+
+def __getattr__(name: str):
+    if name in _EXPORTS:
+        module = importlib.import_module(f"shapelab.check.{_EXPORTS[name]}")
+        value = getattr(module, name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'shapelab.check' has no attribute {name!r}")

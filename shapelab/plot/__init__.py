@@ -1,0 +1,55 @@
+"""Plotting: one function per kind of figure, one shared style.
+
+Every function returns a :class:`matplotlib.figure.Figure` (or draws into a given
+``ax`` and returns its figure).  None recomputes geometry: they draw results from
+the rest of the library.
+
+================  ==============================================================
+``balls``         disks, power diagrams, dual complexes, filtrations, 3D views
+``topology``      persistence diagrams, barcodes, Betti curves, voids, pockets
+``matching``      critical points, Hausdorff witnesses
+``rotation``      point sets, ICP steps and convergence, rotations in 3D
+================  ==============================================================
+"""
+from __future__ import annotations
+
+import importlib
+
+from ._style import COLORS, PAGE, PALETTE, SLIDE, new_figure, style
+
+_EXPORTS = {
+    # balls.py
+    "disks": "balls",
+    "power_diagram": "balls",
+    "dual_complex": "balls",
+    "filtration": "balls",
+    "balls3d": "balls",
+    "complex3d": "balls",
+    # topology.py
+    "persistence_diagram": "topology",
+    "barcode": "topology",
+    "betti_curve": "topology",
+    "voids": "topology",
+    "pockets": "topology",
+    "tunnels": "topology",
+    # matching.py
+    "critical_points": "matching",
+    "critical_surface": "matching",
+    "hausdorff": "matching",
+    # rotation.py
+    "icp_step": "rotation",
+    "icp_convergence": "rotation",
+    "rotation_axis": "rotation",
+    "point_sets": "rotation",
+}
+
+__all__ = ["COLORS", "PALETTE", "PAGE", "SLIDE", "new_figure", "style", *sorted(_EXPORTS)]
+
+
+def __getattr__(name: str):
+    if name in _EXPORTS:
+        module = importlib.import_module(f"shapelab.plot.{_EXPORTS[name]}")
+        value = getattr(module, name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'shapelab.plot' has no attribute {name!r}")

@@ -1,0 +1,33 @@
+"""ipywidgets explorers, built on :mod:`shapelab.plot`.
+
+Each explorer returns an ``ipywidgets`` widget.  In a running notebook it recomputes
+and redraws; on the static course site the widget state is embedded so the controls
+still show and move.
+
+================  ==========================================================
+``balls``         :func:`alpha_explorer`: the growth model, a slider in τ
+``matching``      :func:`critical_points_explorer`: move the viewpoint S
+``rotation``      :func:`icp_explorer`: step through ICP
+``topology``      :func:`pocket_explorer`: voids and pockets as the balls grow
+================  ==========================================================
+"""
+from __future__ import annotations
+
+import importlib
+
+_EXPORTS = {
+    "alpha_explorer": "balls",
+    "critical_points_explorer": "matching",
+    "icp_explorer": "rotation",
+    "pocket_explorer": "topology",
+}
+__all__ = sorted(_EXPORTS)
+
+
+def __getattr__(name: str):
+    if name in _EXPORTS:
+        module = importlib.import_module(f"shapelab.widgets.{_EXPORTS[name]}")
+        value = getattr(module, name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'shapelab.widgets' has no attribute {name!r}")
