@@ -80,8 +80,11 @@ def all_cases() -> list[Case]:
     import benchmarks.cases as pkg
 
     cases: list[Case] = []
-    for info in sorted(pkgutil.iter_modules(pkg.__path__), key=lambda m: m.name):
-        mod = importlib.import_module(f"benchmarks.cases.{info.name}")
+    modules = [f"benchmarks.cases.{m.name}" for m in sorted(pkgutil.iter_modules(pkg.__path__), key=lambda m: m.name)]
+    # extra case modules (used by the harness's own test), comma-separated dotted names
+    modules += [m for m in os.environ.get("SHAPELAB_BENCH_MODULES", "").split(",") if m]
+    for name in modules:
+        mod = importlib.import_module(name)
         cases.extend(getattr(mod, "CASES", []))
     names = [c.name for c in cases]
     dup = {n for n in names if names.count(n) > 1}
@@ -100,9 +103,13 @@ def _rss_now() -> int:
         return 0
 
 
+def _module_name(module: str) -> str:
+    return module if "." in module else f"benchmarks.cases.{module}"
+
+
 def _worker(case_name: str, side: str, seed: int) -> None:
     case = {c.name: c for c in all_cases()}[case_name]
-    mod = importlib.import_module(f"benchmarks.cases.{case.module}")
+    mod = importlib.import_module(_module_name(case.module))
     data = getattr(mod, case.setup)(seed=seed, **case.params)
     fn = getattr(mod, getattr(case, side))
     fn(data)  # warm-up: imports, JIT-free caches, page faults of the input

@@ -23,13 +23,12 @@ BUILD = BOOK / "_build"
 VENDOR = BOOK / "_extra" / "vendor"
 NODE = BOOK / "node_modules"
 
-# what the offline site and slides need from the npm packages, and where it goes
+# what the offline site needs from the npm packages, and where it goes under the site's
+# root (the slides copy their own set, scripts/slides.py)
 ASSETS = {
     "requirejs/require.js": "require.min.js",
     "@jupyter-widgets/html-manager/dist": "html-manager",
     "mathjax/es5": "mathjax",
-    "reveal.js/dist": "reveal.js/dist",
-    "reveal.js/plugin": "reveal.js/plugin",
 }
 
 
@@ -45,15 +44,17 @@ def step(title: str):
     return time.perf_counter()
 
 
-def vendor_assets() -> Path:
-    """Copy the JavaScript the site needs from book/node_modules (npm ci) to book/_extra/vendor."""
-    missing = [src for src in ASSETS if not (NODE / src).exists()]
+def vendor_assets(assets: dict[str, str] = ASSETS, dest: Path = VENDOR) -> Path:
+    """Copy JavaScript from book/node_modules (installed by `npm ci`) to ``dest``."""
+    missing = [src for src in assets if not (NODE / src).exists()]
     if missing:
         raise SystemExit(
             f"book/node_modules lacks {', '.join(missing)}: run `cd book && npm ci` (make does this for you)"
         )
-    for src, dst in ASSETS.items():
-        target = VENDOR / dst
+    if dest == VENDOR and VENDOR.exists():
+        shutil.rmtree(VENDOR)
+    for src, dst in assets.items():
+        target = dest / dst
         if target.exists():
             shutil.rmtree(target) if target.is_dir() else target.unlink()
         target.parent.mkdir(parents=True, exist_ok=True)
@@ -62,7 +63,7 @@ def vendor_assets() -> Path:
             shutil.copytree(NODE / src, target, ignore=ignore)
         else:
             shutil.copy2(NODE / src, target)
-    return VENDOR
+    return dest
 
 
 def lessons_into_book(execute: bool) -> None:
@@ -82,7 +83,7 @@ def lessons_into_book(execute: bool) -> None:
 
 def build_book(path_output: Path | None = None) -> Path:
     vendor_assets()
-    cmd = [sys.executable, "-m", "jupyter_book", "build", str(BOOK), "--keep-going"]
+    cmd = [str(Path(sys.executable).parent / "jupyter-book"), "build", str(BOOK), "--keep-going"]
     if path_output is not None:
         cmd += ["--path-output", str(path_output)]
     env = dict(os.environ, PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
@@ -127,7 +128,6 @@ def main(argv=None) -> int:
     if "slides" in want:
         t = step("slides (reveal.js, offline)")
         out = BUILD / "slides"
-        vendor_assets()
         run_optional("slides", [str(ROOT / "scripts" / "slides.py"), "--out", str(out)])
         summary.append(("slides", out, time.perf_counter() - t))
     if "student" in want:

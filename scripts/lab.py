@@ -13,9 +13,10 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 
 
-def main() -> int:
-    token = secrets.token_hex(24)
-    port = os.environ.get("PORT", "8888")
+def build_command(token: str, port: str, as_root: bool) -> list[str]:
+    """The JupyterLab command line: loopback only, a non-empty token, root only if needed."""
+    if not token:
+        raise ValueError("token must not be empty: JupyterLab would accept anyone")
     cmd = [
         sys.executable, "-m", "jupyterlab",
         "--ServerApp.ip=127.0.0.1",
@@ -25,8 +26,15 @@ def main() -> int:
         f"--ServerApp.root_dir={ROOT}",
         "--LabApp.default_url=/lab/tree/lessons/00_start_here.ipynb",
     ]
-    if hasattr(os, "geteuid") and os.geteuid() == 0:
+    if as_root:
         cmd.append("--allow-root")
+    return cmd
+
+
+def main() -> int:
+    token = secrets.token_hex(24)
+    port = os.environ.get("PORT", "8888")
+    cmd = build_command(token, port, as_root=hasattr(os, "geteuid") and os.geteuid() == 0)
     print("JupyterLab for the shapelab course, on this machine only (127.0.0.1).")
     print(f"Open: http://127.0.0.1:{port}/lab/tree/lessons/00_start_here.ipynb?token={token}")
     print("(If the port is taken, JupyterLab picks the next one and prints its own URL below.)")

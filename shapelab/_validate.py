@@ -41,7 +41,7 @@ def _check_finite(arr: np.ndarray, name: str) -> None:
     if not np.all(np.isfinite(arr)):
         bad = np.argwhere(~np.isfinite(arr))[0]
         where = tuple(int(i) for i in bad)
-        raise ValueError(f"{name} must be finite; found {arr[tuple(bad)]!r} at index {where}")
+        raise ValueError(f"{name} must be finite; found {float(arr[tuple(bad)])!r} at index {where}")
 
 
 def as_points(x, name: str = "points", *, dim=None, min_points: int = 1) -> np.ndarray:
@@ -110,7 +110,7 @@ def as_radii(r, n: int, name: str = "radii") -> np.ndarray:
     _check_finite(arr, name)
     if np.any(arr < 0):
         i = int(np.argmax(arr < 0))
-        raise ValueError(f"{name} must be non-negative; {name}[{i}] = {arr[i]!r}")
+        raise ValueError(f"{name} must be non-negative; {name}[{i}] = {float(arr[i])!r}")
     return np.ascontiguousarray(arr)
 
 

@@ -1,0 +1,62 @@
+"""The platform promises of issue #2: the lab launcher's security, the book config's
+offline wiring, and the pins."""
+import importlib.util
+import re
+from pathlib import Path
+
+import pytest
+import yaml
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def _lab():
+    spec = importlib.util.spec_from_file_location("lab", ROOT / "scripts" / "lab.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_lab_binds_loopback_with_a_token():
+    cmd = _lab().build_command("abc123", "8888", as_root=False)
+    assert "--ServerApp.ip=127.0.0.1" in cmd
+    assert "--IdentityProvider.token=abc123" in cmd
+    assert "--allow-root" not in cmd
+
+
+def test_lab_allows_root_only_as_root():
+    assert "--allow-root" in _lab().build_command("t", "8888", as_root=True)
+
+
+def test_lab_refuses_an_empty_token():
+    with pytest.raises(ValueError, match="token"):
+        _lab().build_command("", "8888", as_root=False)
+
+
+def test_book_serves_its_javascript_locally():
+    cfg = yaml.safe_load((ROOT / "book" / "_config.yml").read_text())
+    sphinx = cfg["sphinx"]["config"]
+    assert "://" not in sphinx["mathjax_path"]
+    assert all("://" not in url for url in sphinx["nb_ipywidgets_js"])
+    assert cfg["execute"]["execute_notebooks"] == "off"
+    # nothing under _static: Jupyter Book would inject every .js there into every page
+    assert not list((ROOT / "book").glob("_static/**/*.js"))
+
+
+def test_toc_lists_every_lesson():
+    toc = (ROOT / "book" / "_toc.yml").read_text()
+    for nb in sorted((ROOT / "lessons").glob("[0-9][0-9]_*.ipynb")):
+        assert f"lessons/{nb.stem}" in toc, f"{nb.name} is missing from book/_toc.yml"
+
+
+def test_jupyter_book_is_pinned_below_2():
+    pins = (ROOT / "requirements" / "constraints.txt").read_text()
+    m = re.search(r"^jupyter-book==(\d+)\.", pins, re.M)
+    assert m and int(m.group(1)) < 2
+    assert "jupyter-book>=1,<2" in (ROOT / "pyproject.toml").read_text()
+
+
+def test_readme_gives_the_two_commands():
+    readme = (ROOT / "README.md").read_text()
+    assert "make course" in readme and "make test" in readme
+    assert "make test" in (ROOT / ".ci" / "run").read_text()
