@@ -1,0 +1,206 @@
+"""The lecture decks (scripts/slides.py) are reveal.js slide shows that work offline.
+
+One or two lessons are rendered into a temporary folder (not all: this file stays
+fast), then: no deck references an http(s) asset, every local asset exists, the
+solutions stay out unless asked for, the lessons' slide metadata makes the slides,
+and headless Chromium with the network off shows a slide show (reveal.js ready,
+MathJax typeset).  A stock nbconvert deck, which loads reveal.js from a CDN, is the
+negative control: under the same flags it never becomes a slide show.
+"""
+from __future__ import annotations
+
+import importlib.util
+import re
+import shutil
+import subprocess
+from pathlib import Path
+from urllib.parse import urlsplit
+
+import nbformat
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+pytest.importorskip("nbconvert")
+
+LESSONS = sorted((ROOT / "lessons").glob("[0-9][0-9]_*.ipynb"))
+# lesson 00 plus the first lesson with displayed math, if there is one besides
+DECK_LESSONS = LESSONS[:1] + [p for p in LESSONS[1:] if "$$" in p.read_text(encoding="utf-8")][:1]
+
+REMOTE = re.compile(r"^(https?:)?//", re.I)
+TAG = re.compile(r"<(script|link|img|source|iframe|video|audio|embed)\b[^>]*>", re.I)
+ATTR = re.compile(r"\b(src|href|data)\s*=\s*[\"']([^\"']+)[\"']", re.I)
+CSS_URL = re.compile(r"(?:url\(\s*[\"']?|@import\s+[\"'])([^\"')\s]+)", re.I)
+INLINE_SCRIPT = re.compile(r"<script(?P<attrs>[^>]*)>(?P<body>.*?)</script>", re.S | re.I)
+JS_REMOTE = re.compile(r"[\"'`](https?:)?//[a-z0-9.-]+\.[a-z]{2,}[^\"'`]*[\"'`]", re.I)
+
+CHROMIUM = next((shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome") if shutil.which(n)), None)
+
+
+def _slides():
+    spec = importlib.util.spec_from_file_location("slides", ROOT / "scripts" / "slides.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+@pytest.fixture(scope="module")
+def slides():
+    if not (ROOT / "book" / "node_modules" / "reveal.js").exists():
+        pytest.skip("book/node_modules is missing: run `cd book && npm ci` (make does it)")
+    return _slides()
+
+
+@pytest.fixture(scope="module")
+def decks(slides, tmp_path_factory):
+    if not DECK_LESSONS:
+        pytest.skip("no lessons yet")
+    out = tmp_path_factory.mktemp("slides")
+    assert slides.main(["--out", str(out), *map(str, DECK_LESSONS)]) == 0
+    found = sorted(out.glob("*.slides.html"))
+    assert [p.name for p in found] == sorted(f"{p.stem}.slides.html" for p in DECK_LESSONS)
+    return out
+
+
+def _asset_urls(html: str):
+    for tag in TAG.finditer(html):
+        text = tag.group(0)
+        if tag.group(1).lower() == "link" and not re.search(r"rel=[\"']?(stylesheet|preload|icon|modulepreload)", text, re.I):
+            continue
+        for _, url in ATTR.findall(text):
+            yield text, url
+
+
+def test_no_deck_references_the_network(decks):
+    offenders = []
+    for deck in [*decks.glob("*.slides.html"), decks / "index.html"]:
+        html = deck.read_text(encoding="utf-8")
+        offenders += [f"{deck.name}: {tag[:160]}" for tag, url in _asset_urls(html) if REMOTE.match(url)]
+        for style in re.findall(r"<style[^>]*>(.*?)</style>", html, re.S | re.I):
+            offenders += [f"{deck.name}: inline style {u}" for u in CSS_URL.findall(style) if REMOTE.match(u)]
+        for m in INLINE_SCRIPT.finditer(html):
+            if "json" in m.group("attrs").lower():
+                continue  # data (widget state), not code
+            offenders += [f"{deck.name}: script loads {u.group(0)}" for u in JS_REMOTE.finditer(m.group("body"))]
+    for css in (decks / "vendor").rglob("*.css"):
+        text = css.read_text(encoding="utf-8", errors="replace")
+        offenders += [f"{css.relative_to(decks)}: {u}" for u in CSS_URL.findall(text) if REMOTE.match(u)]
+    assert not offenders, "remote assets:\n" + "\n".join(offenders[:20])
+
+
+def test_the_check_above_catches_a_stock_nbconvert_deck():
+    """The stock deck loads reveal.js, require.js and MathJax from CDNs (our reason to exist)."""
+    from nbconvert.exporters import SlidesExporter
+
+    body, _ = SlidesExporter().from_notebook_node(nbformat.read(LESSONS[0], as_version=4))
+    assert any(REMOTE.match(url) for _, url in _asset_urls(body))
+
+
+def test_local_assets_exist(decks):
+    missing = set()
+    for deck in decks.glob("*.html"):
+        for tag, url in _asset_urls(deck.read_text(encoding="utf-8")):
+            if REMOTE.match(url) or url.startswith(("data:", "#", "mailto:")):
+                continue
+            if not (deck.parent / urlsplit(url).path).exists():
+                missing.add(f"{deck.name} -> {url}")
+    # the modules the decks require() and the theme's fonts
+    needed = ["vendor/reveal.js/dist/reveal.js", "vendor/reveal.js/plugin/notes/notes.js",
+              "vendor/mathjax/output/chtml/fonts/woff-v2", "vendor/html-manager/embed-amd.js"]
+    missing |= {n for n in needed if not (decks / n).exists()}
+    for css in (decks / "vendor").rglob("*.css"):
+        for u in CSS_URL.findall(css.read_text(encoding="utf-8", errors="replace")):
+            if not u.startswith(("data:", "#")) and not (css.parent / urlsplit(u).path).exists():
+                missing.add(f"{css.relative_to(decks)} -> {u}")
+    assert not missing, "missing local assets:\n" + "\n".join(sorted(missing))
+
+
+def _solution_lines(path: Path) -> list[str]:
+    nb = nbformat.read(path, as_version=4)
+    lines = []
+    for cell in nb.cells:
+        if "solution" in cell.metadata.get("tags", []) and cell.cell_type == "code":
+            body = cell.source.split("# BEGIN SOLUTION", 1)[-1].split("# END SOLUTION", 1)[0]
+            lines += [ln.strip() for ln in body.splitlines() if len(ln.strip()) > 12 and not ln.strip().startswith("#")]
+    return lines
+
+
+def test_solutions_stay_out_unless_asked_for(decks, slides, tmp_path):
+    from html import unescape
+
+    lesson = DECK_LESSONS[0]
+    lines = _solution_lines(lesson)
+    assert lines, f"{lesson.name} has no solution code to test with"
+    text = lambda p: unescape(re.sub(r"<[^>]+>", "", p.read_text(encoding="utf-8")))  # noqa: E731
+    public = text(decks / f"{lesson.stem}.slides.html")
+    assert not [ln for ln in lines if ln in public], "a solution is in the deck"
+    assert slides.main(["--out", str(tmp_path), "--with-solutions", str(lesson)]) == 0
+    instructor = text(tmp_path / f"{lesson.stem}.slides.html")
+    assert all(ln in instructor for ln in lines), "--with-solutions shows every solution"
+
+
+def test_slide_metadata_makes_the_slides(decks, slides):
+    for lesson in DECK_LESSONS:
+        nb = nbformat.read(lesson, as_version=4)
+        shown = [c for c in nb.cells if "solution" not in c.metadata.get("tags", [])]
+        kinds = [slides.slide_type(c) for c in shown]
+        expected = kinds.count("slide") + (kinds[0] != "slide")
+        html = (decks / f"{lesson.stem}.slides.html").read_text(encoding="utf-8")
+        slides_part = html.split('<div class="slides">', 1)[1]
+        # horizontal slides are the <section>s at nesting depth 1
+        depth, top = 0, 0
+        for m in re.finditer(r"<(/?)section\b", slides_part):
+            if m.group(1):
+                depth -= 1
+            else:
+                depth += 1
+                top += depth == 1
+        assert top == expected, f"{lesson.name}: {top} slides, metadata says {expected}"
+        assert top >= 2, f"{lesson.name}: a deck of one slide is a notebook dump"
+        assert html.count('class="fragment"') == kinds.count("fragment")
+        assert html.count('<aside class="notes"') == kinds.count("notes")
+
+
+def test_a_bad_slide_type_is_refused(slides):
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_markdown_cell("# t", metadata={"slideshow": {"slide_type": "slyde"}})])
+    with pytest.raises(ValueError, match="slyde"):
+        slides.prepare(nb, with_solutions=False)
+
+
+def _dump_dom(url: str, profile: Path) -> str:
+    cmd = [
+        CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
+        "--disable-background-networking", "--no-first-run", "--disable-component-update",
+        "--disable-sync", "--disable-extensions", f"--user-data-dir={profile}",
+        # the network is off: every connection goes to a closed port, no name resolves
+        "--proxy-server=127.0.0.1:9", "--host-resolver-rules=MAP * ~NOTFOUND",
+        "--virtual-time-budget=8000", "--dump-dom", url,
+    ]
+    run = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr[-2000:]
+    return run.stdout
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="Chromium is not installed (CI installs it: `apt-get install chromium`)")
+def test_a_deck_is_a_slide_show_offline_in_chromium(decks, tmp_path):
+    deck = decks / f"{DECK_LESSONS[0].stem}.slides.html"
+    dom = _dump_dom(deck.as_uri(), tmp_path / "profile")
+    reveal = re.search(r'<div class="(reveal\b[^"]*)"', dom)
+    assert reveal, "no .reveal element in the rendered page"
+    assert "ready" in reveal.group(1).split(), f"reveal.js did not start: class={reveal.group(1)!r}"
+    assert 'data-shapelab-deck="ready"' in dom, "Reveal.initialize() did not resolve"
+    assert re.search(r'<section[^>]*class="[^"]*\bpresent\b', dom), "no slide is showing"
+    assert re.search(r'<section[^>]*class="[^"]*\bfuture\b', dom), "there is no next slide"
+    assert "<mjx-container" in dom, "MathJax did not typeset the formulas"
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="Chromium is not installed (CI installs it: `apt-get install chromium`)")
+def test_a_stock_cdn_deck_is_not_a_slide_show_offline(tmp_path):
+    """Negative control: proves the network is really off and the test above can fail."""
+    from nbconvert.exporters import SlidesExporter
+
+    body, _ = SlidesExporter().from_notebook_node(nbformat.read(LESSONS[0], as_version=4))
+    deck = tmp_path / "stock.slides.html"
+    deck.write_text(body, encoding="utf-8")
+    dom = _dump_dom(deck.as_uri(), tmp_path / "profile")
+    reveal = re.search(r'<div class="(reveal\b[^"]*)"', dom)
+    assert reveal and "ready" not in reveal.group(1).split()
