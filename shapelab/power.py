@@ -1,0 +1,206 @@
+"""Regular triangulations and power diagrams of balls (Notes §23.1).
+
+The power diagram :math:`\\Pi(\\mathbb{P})` assigns to each ball :math:`B_i` the cell
+
+.. math:: \\Pi(B_i) = \\{x : \\pi_i(x) \\le \\pi_j(x) \\ \\forall j\\},
+
+with :math:`\\pi_i` the power distance (:func:`shapelab.power_distance`).  Its dual is
+the regular (weighted Delaunay) triangulation :math:`DT(\\mathbb{P})`.  Both come from
+the *lifting map*
+
+.. math:: z_i \\mapsto \\hat z_i = (z_i, \\lVert z_i\\rVert^2 - r_i^2) \\in \\mathbb{R}^{d+1}:
+
+the lower facets of the convex hull of the lifted points project to the simplices of
+DT, and a ball is *hidden* (empty cell) exactly when its lifted point lies strictly
+above that lower hull.  Notes §23.1 call DT the "Delaunay triangulation ... defined by
+the set of centers"; for balls of different radii that is imprecise: it is the
+*regular* triangulation of the weighted centres, and hidden balls are not vertices.
+
+Implementation notes
+--------------------
+* **Conditioning.**  Before lifting, the centres are translated to their mean and
+  scaled to unit size, and the lifted height is centred and scaled as well.  The lower
+  hull is invariant under these maps (an affine change of the height by a function
+  of :math:`x` keeps the lower hull's combinatorics), power distances scale by
+  :math:`s^2`, and translation does not change them.  This keeps Qhull's relative
+  precision for inputs offset by :math:`10^6` or scaled by :math:`10^{-6}`.
+* **Lower dimension.**  If the centres span an affine subspace of dimension
+  :math:`k < d` (collinear or coplanar input), they are expressed in an orthonormal
+  basis of that subspace (SVD) and triangulated there; the triangulation then has
+  :math:`k`-simplices as top simplices.
+* **Qhull options** (``scipy.spatial.ConvexHull``, which always adds ``Qt``):
+  ``Qt`` triangulates merged (non-simplicial) facets, which arise for cospherical
+  input such as integer grids; ``Qbb`` rescales the last (height) coordinate, which
+  improves precision; ``Qc`` keeps coplanar points so that a point lying on the lower
+  hull within round-off can be recovered rather than silently dropped; ``Q12``
+  allows the wide facets that merging produces on grids instead of raising an
+  error.  One extra point far above the centroid ("point at infinity", the role
+  ``Qz`` plays for Delaunay) makes the hull full-dimensional even when all lifted
+  points are coplanar (e.g. four cocircular points).
+* **Duplicates.**  Of several balls with the same centre only the one with the
+  largest radius can have a non-empty cell; among equal radii the lowest index is
+  kept (this is also what GUDHI does).  The others are reported as hidden.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial import ConvexHull, QhullError
+
+from .balls import Balls
+
+__all__ = ["regular_triangulation", "power_diagram", "PowerDiagram"]
+
+_QHULL_OPTIONS = "Qt Qbb Qc Q12"
+
+
+def _check_balls(balls) -> Balls:
+    if not isinstance(balls, Balls):
+        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+    return balls
+
+
+# ----------------------------------------------------------------------------------
+# The frame: centring, scaling, affine hull
+# ----------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class _Frame:
+    """Internal: the conditioned coordinates a triangulation was computed in.
+
+    ``x`` are the kept (non-duplicate) centres in an orthonormal basis of their
+    affine hull, centred and divided by ``scale``; ``w`` their weights divided by
+    ``scale**2``.  ``keep`` maps rows of ``x`` to input indices.  Power distances in
+    the frame times ``scale**2`` are power distances in the input.
+    """
+
+    keep: np.ndarray      # (n_k,) int64 input indices of the non-duplicate balls
+    x: np.ndarray         # (n_k, k) conditioned coordinates
+    w: np.ndarray         # (n_k,) conditioned weights
+    scale: float
+    k: int                # affine dimension
+
+
+def _dedupe(centers: np.ndarray, radii: np.ndarray) -> np.ndarray:
+    """Indices of balls kept after merging identical centres (largest radius wins,
+    lowest index among ties), ascending."""
+    n = centers.shape[0]
+    if n <= 1:
+        return np.arange(n, dtype=np.int64)
+    # sort by centre (lexicographic), then by radius descending, then index ascending
+    cols = [np.arange(n), -radii] + [centers[:, j] for j in range(centers.shape[1] - 1, -1, -1)]
+    order = np.lexsort(cols)
+    c = centers[order]
+    first = np.ones(n, dtype=bool)
+    first[1:] = np.any(c[1:] != c[:-1], axis=1)
+    return np.sort(order[first]).astype(np.int64)
+
+
+def _frame(balls: Balls) -> _Frame:
+    centers, radii = balls.centers, balls.radii
+    keep = _dedupe(centers, radii)
+    c = centers[keep]
+    w = radii[keep] ** 2
+    if c.shape[0] == 0:
+        return _Frame(keep, np.zeros((0, 0)), w, 1.0, -1)
+    mean = c.mean(axis=0)
+    y = c - mean
+    scale = float(np.max(np.abs(y))) if y.size else 0.0
+    if scale == 0.0:  # a single (distinct) centre
+        return _Frame(keep, np.zeros((c.shape[0], 0)), w, 1.0, 0)
+    y = y / scale
+    # affine dimension by SVD of the centred, scaled centres
+    _, sv, vt = np.linalg.svd(y, full_matrices=False)
+    tol = max(y.shape) * np.finfo(float).eps * 64 * sv[0]
+    k = int(np.sum(sv > tol))
+    if k < y.shape[1]:
+        y = y @ vt[:k].T
+    return _Frame(keep, np.ascontiguousarray(y), w / scale**2, scale, k)
+
+
+# ----------------------------------------------------------------------------------
+# Lower hull of the lifted points
+# ----------------------------------------------------------------------------------
+def _lower_hull(x: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """Top simplices (rows of local indices) of the regular triangulation of the
+    weighted points (x, w), x of full affine dimension k = x.shape[1] >= 1."""
+    n, k = x.shape
+    if n == k + 1:  # one simplex, no point can be hidden
+        return np.arange(n, dtype=np.int64)[None, :]
+    h = np.einsum("ij,ij->i", x, x) - w
+    # affine normalisation of the height (keeps the lower hull): centre and scale
+    h = h - h.mean()
+    hs = float(np.max(np.abs(h)))
+    if hs > 0:
+        h = h / hs
+    apex = np.concatenate([x.mean(axis=0), [h.max() + 4.0 + 2.0 * (h.max() - h.min())]])
+    lifted = np.empty((n + 1, k + 1))
+    lifted[:n, :k] = x
+    lifted[:n, k] = h
+    lifted[n] = apex
+    try:
+        hull = ConvexHull(lifted, qhull_options=_QHULL_OPTIONS)
+    except QhullError as exc:  # pragma: no cover - should not happen after conditioning
+        raise RuntimeError(f"Qhull failed on the lifted balls: {exc}") from None
+    simp = hull.simplices
+    lower = ~np.any(simp == n, axis=1) & (hull.equations[:, k] < 0)
+    return simp[lower].astype(np.int64)
+
+
+def _triangulate(balls: Balls):
+    """Frame and top simplices (input indices, rows sorted, lexsorted)."""
+    fr = _frame(balls)
+    if fr.k <= 0:
+        if fr.k < 0:
+            return fr, np.zeros((0, 1), dtype=np.int64)
+        # one distinct centre: keep[0] is the largest ball there
+        return fr, fr.keep[:1, None].copy()
+    local = _lower_hull(fr.x, fr.w)
+    tri = fr.keep[local]
+    tri.sort(axis=1)
+    tri = tri[np.lexsort(tri.T[::-1])]
+    return fr, tri
+
+
+def regular_triangulation(balls: Balls) -> np.ndarray:
+    """The regular (weighted Delaunay) triangulation DT of the balls (Notes §23.1).
+
+    Parameters
+    ----------
+    balls : Balls
+
+    Returns
+    -------
+    ndarray of int64, shape (m, k+1)
+        Top simplices, indices into ``balls``; ``k`` is the affine dimension of the
+        centres (``k = d`` normally, less for collinear/coplanar input, 0 for a single
+        distinct centre).  Vertices ascend within each row and rows are sorted
+        lexicographically.  Hidden balls never appear.
+
+    Notes
+    -----
+    Computed by the lifting map :math:`z \\mapsto (z, |z|^2 - r^2)` and the lower
+    convex hull (Qhull), see the module docstring.  For cospherical input (grids) DT is
+    not unique; one of the valid triangulations is returned.
+    """
+    _check_balls(balls)
+    return _triangulate(balls)[1]
+
+
+# ----------------------------------------------------------------------------------
+# Power diagram (filled in below)
+# ----------------------------------------------------------------------------------
+@dataclass(frozen=True, eq=False)
+class PowerDiagram:
+    """The power diagram :math:`\\Pi(\\mathbb{P})` of a set of balls (Notes §23.1)."""
+
+    balls: Balls
+    hidden: np.ndarray
+    vertices: np.ndarray
+    cells: tuple
+    adjacency: np.ndarray
+    bbox: np.ndarray | None = None
+
+
+def power_diagram(balls: Balls, *, bbox=None) -> PowerDiagram:  # pragma: no cover - placeholder
+    raise NotImplementedError("power_diagram is not implemented yet")
