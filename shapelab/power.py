@@ -188,19 +188,188 @@ def regular_triangulation(balls: Balls) -> np.ndarray:
 
 
 # ----------------------------------------------------------------------------------
-# Power diagram (filled in below)
+# Power diagram
 # ----------------------------------------------------------------------------------
 @dataclass(frozen=True, eq=False)
 class PowerDiagram:
-    """The power diagram :math:`\\Pi(\\mathbb{P})` of a set of balls (Notes §23.1)."""
+    """The power diagram :math:`\\Pi(\\mathbb{P})` of a set of balls (Notes §23.1).
+
+    Attributes
+    ----------
+    balls : Balls
+        The input.
+    hidden : ndarray of bool, shape (n,)
+        True for balls whose cell is empty (they are not vertices of DT; this
+        includes all but one of several balls with the same centre).
+    vertices : ndarray, shape (p, d)
+        The finite vertices of the diagram: the orthocentres (centres of the
+        smallest orthogonal spheres) of the top simplices of DT, in the order of
+        :func:`regular_triangulation`'s rows.  Empty if the centres are not in
+        general dimension (collinear in 2D, coplanar in 3D).
+    cells : tuple of ndarray, one per ball
+        2D: the cell :math:`\\Pi(B_i)` clipped to ``bbox`` as a counter-clockwise
+        polygon of shape (k_i, 2) (no repeated closing vertex); (0, 2) for hidden
+        balls and for cells that miss the box.  3D: int64 indices into ``vertices``
+        of the cell's finite vertices, ascending ((0,) for hidden balls).
+    adjacency : ndarray of int64, shape (e, 2)
+        Pairs ``i < j`` of balls whose cells share a facet: the edges of DT, sorted.
+    bbox : ndarray, shape (2, d)
+        ``[lower corner, upper corner]`` of the clipping box.
+    unbounded : ndarray of bool, shape (n,)
+        True for the (non-hidden) balls whose cell is unbounded, i.e. whose centre
+        is on the boundary of the convex hull of the centres.
+    """
 
     balls: Balls
     hidden: np.ndarray
     vertices: np.ndarray
     cells: tuple
     adjacency: np.ndarray
-    bbox: np.ndarray | None = None
+    bbox: np.ndarray
+    unbounded: np.ndarray
 
 
-def power_diagram(balls: Balls, *, bbox=None) -> PowerDiagram:  # pragma: no cover - placeholder
-    raise NotImplementedError("power_diagram is not implemented yet")
+def _default_bbox(balls: Balls) -> np.ndarray:
+    lo = np.min(balls.centers - balls.radii[:, None], axis=0)
+    hi = np.max(balls.centers + balls.radii[:, None], axis=0)
+    ext = float(np.max(hi - lo))
+    pad = 0.1 * ext if ext > 0 else 1.0
+    return np.array([lo - pad, hi + pad])
+
+
+def _as_bbox(bbox, d: int) -> np.ndarray:
+    from ._validate import _as_float_array, _check_finite
+
+    b = _as_float_array(bbox, "bbox")
+    if b.shape == (2 * d,):
+        b = b.reshape(2, d) if d == 2 else np.array([b[:d], b[d:]])
+    if b.shape != (2, d):
+        raise ValueError(
+            f"bbox must have shape (2, {d}) as [lower corner, upper corner], got shape {b.shape}"
+        )
+    _check_finite(b, "bbox")
+    if np.any(b[1] <= b[0]):
+        raise ValueError(f"bbox must have lower corner < upper corner in every coordinate, got {b.tolist()}")
+    return b
+
+
+def _orthocentres(balls: Balls, tri: np.ndarray) -> np.ndarray:
+    """Orthocentres of full-dimensional simplices, in input coordinates."""
+    if tri.shape[0] == 0 or tri.shape[1] != balls.dim + 1:
+        return np.zeros((0, balls.dim))
+    origin = balls.centers.mean(axis=0)
+    z = balls.centers - origin
+    w = balls.weights
+    p0 = z[tri[:, 0]]
+    A = z[tri[:, 1:]] - p0[:, None, :]
+    b = 0.5 * (np.einsum("mjk,mjk->mj", A, A) - w[tri[:, 1:]] + w[tri[:, :1]])
+    u = np.linalg.solve(A, b[..., None])[..., 0]
+    return p0 + u + origin
+
+
+def _clip_polygon(poly: list, a0: float, a1: float, c: float) -> list:
+    """Sutherland–Hodgman: keep the part of a convex polygon with a0*x + a1*y <= c."""
+    if not poly:
+        return poly
+    out = []
+    m = len(poly)
+    vals = [a0 * x + a1 * y - c for x, y in poly]
+    for t in range(m):
+        p, q = poly[t], poly[(t + 1) % m]
+        fp, fq = vals[t], vals[(t + 1) % m]
+        if fp <= 0:
+            out.append(p)
+        if (fp < 0 < fq) or (fq < 0 < fp):
+            s = fp / (fp - fq)
+            out.append((p[0] + s * (q[0] - p[0]), p[1] + s * (q[1] - p[1])))
+    return out
+
+
+def power_diagram(balls: Balls, *, bbox=None) -> PowerDiagram:
+    """The power diagram of the balls (Notes §23.1): cells, hidden balls, adjacency.
+
+    Parameters
+    ----------
+    balls : Balls
+    bbox : array_like, shape (2, d), optional
+        Clipping box ``[[xmin, ymin], [xmax, ymax]]`` (3D: three columns) for the
+        2D polygons.  Default: the bounding box of the balls padded by 10 %.
+
+    Returns
+    -------
+    PowerDiagram
+
+    Notes
+    -----
+    The cell :math:`\\Pi(B_i) = \\{x : \\pi_i(x) \\le \\pi_j(x)\\ \\forall j\\}` is an
+    intersection of half-planes; since :math:`\\pi_i - \\pi_j` is affine in x
+    (the :math:`|x|^2` cancels), the constraints are
+    :math:`2x\\cdot(z_j - z_i) \\le |z_j|^2 - r_j^2 - |z_i|^2 + r_i^2`.  Only the
+    DT neighbours ``j`` of ``i`` matter.  In 2D each cell is clipped from the box by
+    these half-planes; in 3D the cell is described by its vertices (orthocentres of
+    the incident tetrahedra) and ``unbounded`` flags the cells on the hull.
+    """
+    _check_balls(balls)
+    d = balls.dim
+    n = len(balls)
+    box = _default_bbox(balls) if bbox is None else _as_bbox(bbox, d)
+    fr, tri = _triangulate(balls)
+    present = np.zeros(n, dtype=bool)
+    present[tri.ravel()] = True
+    hidden = ~present
+    # DT edges
+    k = tri.shape[1] - 1
+    if k >= 1:
+        pairs = np.concatenate([tri[:, [a, b]] for a in range(k + 1) for b in range(a + 1, k + 1)])
+        adjacency = np.unique(pairs, axis=0).astype(np.int64)
+    else:
+        adjacency = np.zeros((0, 2), dtype=np.int64)
+    # boundary (unbounded) cells: vertices of hull facets of DT, or everything if flat
+    unbounded = np.zeros(n, dtype=bool)
+    if k < d:
+        unbounded[present] = True
+    else:
+        fac = np.sort(np.concatenate([np.delete(tri, j, axis=1) for j in range(d + 1)]), axis=1)
+        u, cnt = np.unique(fac, axis=0, return_counts=True)
+        unbounded[u[cnt == 1].ravel()] = True
+    vertices = _orthocentres(balls, tri)
+    vertices.flags.writeable = False
+    if d == 2:
+        origin = balls.centers.mean(axis=0)
+        z = balls.centers - origin
+        w = balls.weights
+        zz = np.einsum("ij,ij->i", z, z) - w
+        lo, hi = box - origin
+        square = [(lo[0], lo[1]), (hi[0], lo[1]), (hi[0], hi[1]), (lo[0], hi[1])]
+        nbrs = [[] for _ in range(n)]
+        for a, b in adjacency.tolist():
+            nbrs[a].append(b)
+            nbrs[b].append(a)
+        cells = []
+        for i in range(n):
+            if hidden[i]:
+                cells.append(np.zeros((0, 2)))
+                continue
+            poly = list(square)
+            zi = z[i]
+            for j in nbrs[i]:
+                a = 2.0 * (z[j] - zi)
+                poly = _clip_polygon(poly, float(a[0]), float(a[1]), float(zz[j] - zz[i]))
+            arr = np.asarray(poly, dtype=float).reshape(-1, 2) + origin
+            arr.flags.writeable = False
+            cells.append(arr)
+    else:
+        cells = [np.zeros(0, dtype=np.int64) for _ in range(n)]
+        if tri.shape[0] and k == d:
+            m = tri.shape[0]
+            owner = tri.ravel()
+            simp = np.repeat(np.arange(m, dtype=np.int64), d + 1)
+            order = np.lexsort((simp, owner))
+            owner, simp = owner[order], simp[order]
+            starts = np.searchsorted(owner, np.arange(n + 1))
+            cells = [simp[starts[i]:starts[i + 1]] for i in range(n)]
+        for c in cells:
+            c.flags.writeable = False
+    for a in (hidden, adjacency, box, unbounded):
+        a.flags.writeable = False
+    return PowerDiagram(balls, hidden, vertices, tuple(cells), adjacency, box, unbounded)
