@@ -282,3 +282,60 @@ def test_student_edition_of_lesson_00_says_not_implemented(tmp_path, monkeypatch
                 assert cell in exercises and o.ename == "NotImplementedError", (
                     f"cell {i} of the student edition fails with {o.ename}: {o.evalue}"
                 )
+
+
+# ------------------------------------------- the classroom image runs every lesson
+def _binder_closure() -> set[str]:
+    """Distributions installed by binder/requirements.txt, with their dependencies."""
+    from importlib import metadata
+
+    from packaging.requirements import Requirement
+
+    todo = [
+        Requirement(ln.split("#")[0].strip()).name
+        for ln in (ROOT / "binder" / "requirements.txt").read_text().splitlines()
+        if ln.split("#")[0].strip() and not ln.lstrip().startswith("-")
+    ]
+    # shapelab's own runtime dependencies (postBuild: pip install --no-deps -e .)
+    todo += [Requirement(r).name for r in metadata.requires("shapelab") or [] if "extra ==" not in r]
+    seen: set[str] = set()
+    while todo:
+        name = todo.pop().lower().replace("_", "-")
+        if name in seen:
+            continue
+        seen.add(name)
+        try:
+            reqs = metadata.requires(name) or []
+        except metadata.PackageNotFoundError:
+            continue
+        todo += [Requirement(r).name for r in reqs if "extra ==" not in r]
+    return seen
+
+
+def test_binder_environment_covers_every_lesson_import():
+    import sys
+    from importlib import metadata
+
+    pytest.importorskip("packaging")
+    try:
+        metadata.distribution("shapelab")
+    except metadata.PackageNotFoundError:
+        pytest.skip("shapelab is not pip-installed here (make installs it)")
+    have = _binder_closure()
+    owners = metadata.packages_distributions()
+    missing = set()
+    for path in LESSONS:
+        for cell in nbformat.read(path, as_version=4).cells:
+            if cell.cell_type != "code" or cell.source.lstrip().startswith(("%", "!")):
+                continue
+            for node in ast.walk(ast.parse(cell.source)):
+                mods = [a.name for a in node.names] if isinstance(node, ast.Import) else (
+                    [node.module] if isinstance(node, ast.ImportFrom) and node.module and not node.level else [])
+                for mod in mods:
+                    top = mod.split(".")[0]
+                    if top == "shapelab" or top in sys.stdlib_module_names:
+                        continue
+                    dists = {d.lower().replace("_", "-") for d in owners.get(top, [])}
+                    if not dists & have:
+                        missing.add(f"{path.name}: import {mod} ({', '.join(sorted(dists)) or 'not installed'})")
+    assert not missing, "binder/requirements.txt lacks what these lessons import:\n" + "\n".join(sorted(missing))
