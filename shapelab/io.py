@@ -42,6 +42,12 @@ VDW_RADII: dict[str, float] = {
     "Pt": 1.72, "Au": 1.66, "Hg": 1.55, "Tl": 1.96, "Pb": 2.02, "U": 1.86,
 }
 _UPPER = {k.upper(): k for k in VDW_RADII}
+#: Every element symbol (to read atom names; radii exist only for those in VDW_RADII).
+_SYMBOLS = {e.upper(): e for e in (
+    "H He Li Be B C N O F Ne Na Mg Al Si P S Cl Ar K Ca Sc Ti V Cr Mn Fe Co Ni Cu Zn Ga Ge "
+    "As Se Br Kr Rb Sr Y Zr Nb Mo Tc Ru Rh Pd Ag Cd In Sn Sb Te I Xe Cs Ba La Ce Pr Nd Pm Sm "
+    "Eu Gd Tb Dy Ho Er Tm Yb Lu Hf Ta W Re Os Ir Pt Au Hg Tl Pb Bi Po At Rn Fr Ra Ac Th Pa U "
+    "Np Pu Am Cm Bk Cf Es Fm Md No Lr").split()}
 
 
 def vdw_radius(element: str) -> float:
@@ -115,8 +121,8 @@ def _element_from_name(name: str) -> str:
     if first.upper() == "H" and len(name4.strip()) == 4:
         return "H"
     two = (first + second).strip()
-    if len(two) == 2 and two.upper() in _UPPER:
-        return _UPPER[two.upper()]
+    if len(two) == 2 and two.upper() in _SYMBOLS:
+        return _SYMBOLS[two.upper()]
     return first.upper() if first.isalpha() else ""
 
 

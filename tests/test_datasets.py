@@ -1,0 +1,305 @@
+"""Tests of shapelab.datasets: the geometry each generator promises, checked by
+independent means (closed forms, symmetry, a voxel flood fill, GUDHI's weighted alpha
+persistence), and the topology the lessons rely on."""
+from __future__ import annotations
+
+import importlib.util
+
+import numpy as np
+import pytest
+from scipy import ndimage
+from scipy.spatial import cKDTree
+from scipy.spatial.distance import pdist, squareform
+
+from shapelab import Balls, datasets as D
+
+PHI = (1 + 5**0.5) / 2
+HAS_CAVITIES = importlib.util.find_spec("shapelab.cavities") is not None
+
+
+# ------------------------------------------------------------------ oracles
+def bounded_free_components(balls: Balls, tau: float = 0.0, h: float = 0.2) -> int:
+    """Voxel oracle: bounded components of the complement of the grown union.
+
+    Independent of any triangulation: voxels whose centre is outside every grown
+    ball, 6-connected, minus those touching the padded box.
+    """
+    lo = balls.centers.min(0) - balls.radii.max() - 2 * h - 1.0
+    hi = balls.centers.max(0) + balls.radii.max() + 2 * h + 1.0
+    axes = [np.arange(a, b, h) for a, b in zip(lo, hi)]
+    grid = np.stack(np.meshgrid(*axes, indexing="ij"), -1).reshape(-1, balls.dim)
+    if np.ptp(balls.radii) == 0:  # equal radii: the nearest centre has the least power
+        d, _ = cKDTree(balls.centers).query(grid, k=1)
+        power = d**2 - balls.radii[0] ** 2
+    else:  # radii differ by < 0.3 in our data: the least power is among the 8 nearest
+        d, i = cKDTree(balls.centers).query(grid, k=min(8, len(balls)))
+        power = (d**2 - balls.radii[i] ** 2).min(axis=1)
+    free = (power > tau).reshape([len(a) for a in axes])
+    lab, n = ndimage.label(free)
+    faces = [lab.take(0, axis=ax) for ax in range(balls.dim)] + [lab.take(-1, axis=ax) for ax in range(balls.dim)]
+    border = set(np.unique(np.concatenate([f.ravel() for f in faces]))) - {0}
+    return n - len(border)
+
+
+def gudhi_pairs(balls: Balls) -> dict:
+    gudhi = pytest.importorskip("gudhi")
+    st = gudhi.AlphaComplex(points=balls.centers, weights=balls.radii**2).create_simplex_tree()
+    st.compute_persistence()
+    return {k: np.asarray(st.persistence_intervals_in_dimension(k)).reshape(-1, 2)
+            for k in range(balls.dim)}
+
+
+def alive(pairs: np.ndarray, tau: float, min_persistence: float = 0.0) -> np.ndarray:
+    p = pairs[:, 1] - pairs[:, 0]
+    return pairs[(pairs[:, 0] <= tau) & (pairs[:, 1] > tau) & (p > min_persistence)]
+
+
+def born_later(pairs: np.ndarray, tau: float, min_persistence: float) -> np.ndarray:
+    p = pairs[:, 1] - pairs[:, 0]
+    return pairs[(pairs[:, 0] > tau) & (p > min_persistence)]
+
+
+def rotation(axis, angle):
+    a = np.asarray(axis, float)
+    a = a / np.linalg.norm(a)
+    K = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
+    return np.eye(3) + np.sin(angle) * K + (1 - np.cos(angle)) * K @ K
+
+
+def same_point_set(A, B, tol=1e-9):
+    d, _ = cKDTree(A).query(B)
+    return len(A) == len(B) and d.max() < tol
+
+
+# ---------------------------------------------------------------------- C60
+def test_c60_has_60_atoms_and_90_equal_bonds():
+    b = D.fullerene_c60()
+    assert len(b) == 60 and b.dim == 3
+    d = np.sort(pdist(b.centers))
+    assert np.allclose(d[:90], 1.4, rtol=1e-12)
+    assert d[90] > 1.4 * 1.5  # the next distance (across a hexagon) is clearly longer
+    deg = (np.abs(squareform(pdist(b.centers)) - 1.4) < 1e-9).sum(1)
+    assert np.all(deg == 3)
+    # V - E + F = 2 with 12 pentagons + 20 hexagons
+    assert 60 - 90 + (12 + 20) == 2
+    assert np.array_equal(np.sort(D.c60_edges(b), axis=None), np.sort(D.c60_edges(), axis=None))
+    assert len(D.c60_edges(b)) == 90
+
+
+def test_c60_icosahedral_symmetry():
+    b = D.fullerene_c60(bond_length=2.0)
+    c = b.centers
+    R = np.linalg.norm(c, axis=1)
+    assert np.allclose(R, np.sqrt(9 * PHI**2 + 1), rtol=1e-12)  # closed form, edge 2
+    assert np.allclose(c.mean(0), 0, atol=1e-12)
+    # 5-fold axis through an icosahedron vertex (0, 1, φ), 3-fold cyclic permutation,
+    # 2-fold rotations about the coordinate axes
+    for M in (rotation([0, 1, PHI], 2 * np.pi / 5), np.roll(np.eye(3), 1, axis=0),
+              rotation([1, 0, 0], np.pi), rotation([0, 0, 1], np.pi)):
+        assert same_point_set(c, c @ M.T)
+    # and it is not invariant under a generic rotation
+    assert not same_point_set(c, c @ rotation([1, 2, 3], 0.3).T, tol=1e-3)
+
+
+def test_c60_scaling_and_radius():
+    b = D.fullerene_c60(bond_length=1.45, atom_radius=1.6)
+    assert np.allclose(np.sort(pdist(b.centers))[:90], 1.45)
+    assert np.all(b.radii == 1.6)
+
+
+def test_c60_one_void_voxel_oracle():
+    assert bounded_free_components(D.fullerene_c60(), 0.0) == 1
+    # with small atoms the faces are open: no void
+    assert bounded_free_components(D.fullerene_c60(atom_radius=1.0), 0.0) == 0
+
+
+def test_c60_void_lifetime_closed_form():
+    b = D.fullerene_c60()
+    P = gudhi_pairs(b)
+    (born, dies), = alive(P[2], 0.0)
+    R2 = np.sum(b.centers[0] ** 2)
+    assert dies == pytest.approx(R2 - 1.7**2, rel=1e-9)   # the centre is covered
+    assert born == pytest.approx(1.4**2 - 1.7**2, rel=1e-9)  # the hexagons close
+    assert len(alive(P[1], 0.0)) == 0
+
+
+@pytest.mark.skipif(not HAS_CAVITIES, reason="shapelab.cavities (topology engineer) not written yet")
+def test_c60_exactly_one_void_with_shapelab():
+    import shapelab
+    v = shapelab.voids(D.fullerene_c60(), 0.0)
+    assert len(v) == 1
+
+
+# ----------------------------------------------------------------- nanotube
+@pytest.mark.parametrize("n,m", [(8, 8), (10, 0), (6, 3)])
+def test_nanotube_radius_and_unrolled_lattice(n, m):
+    a = 2.46
+    b = D.nanotube(n, m, length=10.0)
+    R = a * np.sqrt(n * n + n * m + m * m) / (2 * np.pi)
+    assert D.nanotube_radius(n, m) == pytest.approx(R)
+    rho = np.hypot(b.centers[:, 0], b.centers[:, 1])
+    assert np.allclose(rho, R, rtol=1e-12)
+    # unroll: arc length s = R*theta, periodic with period 2*pi*R; every bond must be
+    # a/sqrt(3) long, across the seam too -- which fails if R does not match (n, m)
+    s = R * np.arctan2(b.centers[:, 1], b.centers[:, 0])
+    z = b.centers[:, 2]
+    P = 2 * np.pi * R
+    ds = np.abs(s[:, None] - s[None])
+    ds = np.minimum(ds, P - ds)
+    dist = np.hypot(ds, z[:, None] - z[None])
+    bond = a / np.sqrt(3)
+    near = (dist < 1.25 * bond) & (dist > 0)
+    assert np.allclose(dist[near], bond, rtol=1e-9)
+    interior = (z > 1.5) & (z < 10.0 - 1.5)
+    assert np.all(near[interior].sum(1) == 3)
+    # graphene density: 2 atoms per cell of area (sqrt(3)/2) a^2; compare the atoms
+    # gained by 60 Å more tube, up to one ring of atoms at each end
+    gained = len(D.nanotube(n, m, length=70.0)) - len(b)
+    expected = 2 * P * 60.0 / (np.sqrt(3) / 2 * a * a)
+    assert abs(gained - expected) <= 2 * (n + m)
+
+
+def test_nanotube_one_tunnel():
+    b = D.nanotube()
+    P = gudhi_pairs(b)
+    assert len(alive(P[1], 0.0, 1e-6)) == 1
+    assert len(alive(P[2], 0.0, 1e-6)) == 0
+    assert bounded_free_components(b, 0.0, h=0.3) == 0
+
+
+@pytest.mark.skipif(not HAS_CAVITIES, reason="shapelab.cavities (topology engineer) not written yet")
+def test_nanotube_one_tunnel_with_shapelab():
+    import shapelab
+    assert len(shapelab.tunnels(D.nanotube(), 0.0)) == 1
+
+
+# --------------------------------------------------------------------- bowl
+def test_bowl_is_a_pocket():
+    b = D.bowl()
+    assert np.allclose(np.linalg.norm(b.centers, axis=1), 6.0)
+    assert np.all(b.centers[:, 2] < 6.0 * np.cos(np.radians(50)))
+    P = gudhi_pairs(b)
+    assert len(alive(P[2], 0.0)) == 0          # open at tau = 0 ...
+    late = born_later(P[2], 0.0, 5.0)          # ... and closes into a void later
+    assert len(late) == 1
+    born, dies = late[0]
+    assert dies == pytest.approx(36.0 - 1.7**2, rel=0.05)   # the centre is covered last
+    assert bounded_free_components(b, 0.0, h=0.3) == 0
+    assert bounded_free_components(b, 0.5 * (born + dies), h=0.3) == 1
+
+
+# ------------------------------------------------------------------ globule
+def test_globule_is_deterministic_and_seeded():
+    a, b, c = D.globule(0), D.globule(0), D.globule(1)
+    assert np.array_equal(a.centers, b.centers) and np.array_equal(a.radii, b.radii)
+    assert not (len(a) == len(c) and np.array_equal(a.centers, c.centers))
+    assert set(np.unique(a.radii)) <= {1.70, 1.55, 1.52, 1.80}
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_globule_void_pocket_groove(seed):
+    b = D.globule(seed)
+    P = gudhi_pairs(b)
+    # one buried void at tau = 0, and no tunnel yet
+    assert len(alive(P[2], 0.0)) == 1
+    assert len(alive(P[1], 0.0, 1e-9)) == 0
+    # the pocket: a void born later that lives long
+    assert len(born_later(P[2], 0.0, 5.0)) >= 1
+    # the groove turns into a long-lived tunnel when the slit closes
+    g = born_later(P[1], 0.0, 5.0)
+    assert len(g) >= 1 and g[:, 0].min() < 6.0
+
+
+def test_globule_void_voxel_oracle():
+    assert bounded_free_components(D.globule(0), 0.0, h=0.35) == 1
+
+
+def test_globule_structure_matches_globule():
+    s = D.globule_structure(0)
+    g = D.globule(0)
+    # same atoms (reordered along the chain)
+    assert same_point_set(s.balls.centers, g.centers, tol=1e-12)
+    assert len(np.unique(s.residue_numbers)) == -(-len(g) // 8)
+    assert set(s.elements) <= {"C", "N", "O", "S"}
+
+
+def test_example_pdb_is_the_globule():
+    from shapelab import read_pdb
+    s = read_pdb(D.example_pdb())
+    g = D.globule_structure(0)
+    assert len(s) == len(g)
+    assert np.abs(s.balls.centers - g.balls.centers).max() <= 5e-4 + 1e-9
+    assert np.array_equal(s.balls.radii, g.balls.radii)
+    assert list(s.residue_names) == list(g.residue_names)
+
+
+# -------------------------------------------------------------- 2D figures
+def test_figure_23_2_is_deterministic():
+    (l1, r1), (l2, r2) = D.figure_23_2(), D.figure_23_2()
+    assert np.array_equal(l1.centers, l2.centers) and np.array_equal(r1.centers, r2.centers)
+    assert l1.dim == r1.dim == 2
+
+
+def test_figure_23_2_left_is_a_pocket_right_is_not():
+    left, right = D.figure_23_2()
+    PL, PR = gudhi_pairs(left), gudhi_pairs(right)
+    for P in (PL, PR):  # both dents are open at tau = 0
+        assert len(alive(P[1], 0.0)) == 0
+    late = born_later(PL[1], 0.0, 1.0)
+    assert len(late) == 1
+    assert late[0, 0] == pytest.approx(1.0 - 0.65**2, rel=1e-9)  # mouth disks touch
+    assert len(born_later(PR[1], 0.0, 1e-6)) == 0   # never a hole: fills from the bottom
+    mid = late[0].mean()
+    assert bounded_free_components(left, mid, h=0.05) == 1
+    assert bounded_free_components(right, mid, h=0.05) == 0
+
+
+@pytest.mark.skipif(not HAS_CAVITIES, reason="shapelab.cavities (topology engineer) not written yet")
+def test_figure_23_2_pockets_with_shapelab():
+    import shapelab
+    left, right = D.figure_23_2()
+    assert len(shapelab.pockets(left, 0.0)) >= 1
+    assert len(shapelab.pockets(left, 0.0, min_persistence=1.0)) == 1
+    assert len(shapelab.pockets(right, 0.0, min_persistence=1e-6)) == 0
+
+
+@pytest.mark.parametrize("n,R,r", [(12, 3.0, 1.0), (8, 2.0, 0.9)])
+@pytest.mark.parametrize("dim", [2, 3])
+def test_ring_hole_lifetime_closed_form(n, R, r, dim):
+    b = D.ring(n, radius=R, disk_radius=r, dim=dim)
+    assert len(b) == n and b.dim == dim
+    P = gudhi_pairs(b)
+    (born, dies), = alive(P[1], 0.0)
+    assert born == pytest.approx(R**2 * np.sin(np.pi / n) ** 2 - r**2, abs=1e-9)
+    assert dies == pytest.approx(R**2 - r**2, rel=1e-9)
+
+
+def test_figure_23_1_has_two_triangles_at_zero():
+    gudhi = pytest.importorskip("gudhi")
+    b = D.figure_23_1()
+    st = gudhi.AlphaComplex(points=b.centers, weights=b.radii**2).create_simplex_tree()
+    tri = [s for s, f in st.get_filtration() if len(s) == 3 and f <= 0]
+    assert len(tri) == 2
+    assert 10 <= len(b) <= 15
+
+
+# ---------------------------------------------------------------- bad input
+@pytest.mark.parametrize("call, exc", [
+    (lambda: D.fullerene_c60(bond_length=0), ValueError),
+    (lambda: D.fullerene_c60(atom_radius=-1), ValueError),
+    (lambda: D.fullerene_c60(bond_length="1"), TypeError),
+    (lambda: D.nanotube(0, 0), ValueError),
+    (lambda: D.nanotube(8, -1), ValueError),
+    (lambda: D.nanotube(8.5, 0), TypeError),
+    (lambda: D.nanotube(8, 8, length=float("nan")), ValueError),
+    (lambda: D.bowl(opening=190), ValueError),
+    (lambda: D.globule(seed=-1), ValueError),
+    (lambda: D.globule(seed=None), TypeError),
+    (lambda: D.globule(semi_axes=(1, 2)), ValueError),
+    (lambda: D.ring(2), ValueError),
+    (lambda: D.ring(5, dim=4), ValueError),
+    (lambda: D.globule_structure(0, colour="red"), TypeError),
+])
+def test_bad_input(call, exc):
+    with pytest.raises(exc):
+        call()
