@@ -1,0 +1,604 @@
+"""Quaternions and rotations in 3D (Notes §23.2, "Rotations in 3D and quaternions").
+
+A quaternion :math:`q = q_0 + q_1\\mathbf i + q_2\\mathbf j + q_3\\mathbf k` is stored as
+the four real numbers ``(w, x, y, z) = (q0, q1, q2, q3)``, scalar part first, as in
+the notes and in Horn (1987).  (SciPy's :class:`scipy.spatial.transform.Rotation`
+uses the *other* order, ``(x, y, z, w)``; see :func:`to_scipy_order`.)
+
+Two layers:
+
+* :class:`Quaternion`: one immutable quaternion with the algebra of the notes
+  (Hamilton product, conjugate, norm, inner product), the matrix forms
+  :math:`Q` (left multiplication) and :math:`\\bar Q` (right multiplication), and the
+  conversions to and from axis-angle and rotation matrices.
+* array functions on stacks of quaternions of shape ``(..., 4)``: :func:`qmul`,
+  :func:`qconj`, :func:`qnorm`, :func:`qnormalize`, :func:`qrotate`,
+  :func:`qmatrix`, :func:`qfrom_matrix`, :func:`left_matrices`,
+  :func:`right_matrices`.  They do the work for the class, for
+  :mod:`shapelab.registration`, and for lessons that need many quaternions at once.
+
+Rotation convention
+-------------------
+The unit quaternion :math:`q = \\cos(\\theta/2) + \\sin(\\theta/2)(u_x\\mathbf i + u_y\\mathbf j
++ u_z\\mathbf k)` rotates a vector :math:`r` (as the pure quaternion
+:math:`0 + r_x\\mathbf i + r_y\\mathbf j + r_z\\mathbf k`) by :math:`I_q(r) = q r q^*`:
+a rotation by :math:`\\theta` about :math:`u`, counter-clockwise when :math:`u` points
+at the viewer (right-hand rule).  The notes do not state the handedness.
+:math:`q` and :math:`-q` give the same rotation (the notes call :math:`q` a point of
+:math:`\\mathbb S^3`; rotations are really *antipodal pairs* of such points).
+
+Non-unit quaternions
+--------------------
+For any non-zero :math:`q`, :math:`q r q^* = \\lVert q\\rVert^2 R(q/\\lVert q\\rVert)\\,r` is
+a rotation *scaled* by :math:`\\lVert q\\rVert^2`.  Everything here that treats a
+quaternion *as a rotation* (:meth:`Quaternion.rotate`, :meth:`Quaternion.to_matrix`,
+:meth:`Quaternion.to_axis_angle`, :func:`qrotate`, :func:`qmatrix`) first
+**normalises** it, so it always returns a proper rotation, and raises
+:class:`ValueError` for the zero quaternion, which is no rotation at all.  The raw
+sandwich product is still available as ``q * Quaternion(0, *r) * q.conjugate()``.
+
+Where the notes are wrong
+-------------------------
+* The component formula of :math:`q\\cdot r` has the wrong sign in the
+  :math:`\\mathbf k` part: it reads :math:`q_0r_3 - q_1r_2 + q_2r_1 + q_3r_0`, but
+  :math:`\\mathbf{ij} = \\mathbf k` forces :math:`q_0r_3 + q_1r_2 - q_2r_1 + q_3r_0`
+  (the notes' own matrix has the right sign).
+* The matrix form multiplies the matrix of :math:`q`'s entries by the vector of
+  :math:`q` itself and calls the result :math:`Rq`; it must be :math:`Q\\,r`
+  (:meth:`Quaternion.left_matrix`).
+* ":math:`\\bar Q` is the matrix orthogonal to :math:`Q`" is wrong: :math:`\\bar Q` is
+  not orthogonal to :math:`Q` in any sense (:math:`Q^T\\bar Q \\ne 0`).  Both are
+  orthogonal matrices when :math:`\\lVert q\\rVert = 1`, and they *commute*.  The
+  recipe "transpose the lower-right 3×3 block of :math:`Q`" is right.
+* :math:`I_q(r) = \\bar Q^T Q r` is right, as a 4×4 identity on pure quaternions; its
+  lower-right 3×3 block is the rotation matrix (:meth:`Quaternion.to_matrix`).
+"""
+from __future__ import annotations
+
+import math
+import numbers
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._validate import _as_float_array, _check_finite, as_finite_scalar, as_point, as_vector
+
+__all__ = [
+    "Quaternion",
+    "qmul",
+    "qconj",
+    "qnorm",
+    "qnormalize",
+    "qrotate",
+    "qmatrix",
+    "qfrom_matrix",
+    "qfrom_axis_angle",
+    "left_matrices",
+    "right_matrices",
+    "rotation_angle",
+    "to_scipy_order",
+    "from_scipy_order",
+]
+
+# --------------------------------------------------------------------------- arrays
+
+
+def _as_quats(q, name: str) -> np.ndarray:
+    """Validate an array of quaternions of shape (..., 4), finite float64."""
+    arr = _as_float_array(q, name)
+    if arr.ndim == 0 or arr.shape[-1] != 4:
+        raise ValueError(f"{name} must have shape (4,) or (n, 4) (w, x, y, z), got shape {arr.shape}")
+    _check_finite(arr, name)
+    return arr
+
+
+def qmul(a, b) -> np.ndarray:
+    """Hamilton product of quaternion arrays, broadcast over leading axes.
+
+    Parameters
+    ----------
+    a, b : array_like, shape (..., 4)
+        Quaternions ``(w, x, y, z)``.
+
+    Returns
+    -------
+    ndarray, shape (..., 4)
+        :math:`a\\cdot b` with :math:`(a_0 b_0 - \\vec a\\cdot\\vec b,\\;
+        a_0\\vec b + b_0\\vec a + \\vec a\\times\\vec b)`, the product of Notes §23.2 with
+        the sign of the :math:`\\mathbf k` part corrected (see the module docstring).
+    """
+    a = _as_quats(a, "a")
+    b = _as_quats(b, "b")
+    a0, a1, a2, a3 = np.moveaxis(a, -1, 0)
+    b0, b1, b2, b3 = np.moveaxis(b, -1, 0)
+    return np.stack(
+        [
+            a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3,
+            a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2,
+            a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1,
+            a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0,
+        ],
+        axis=-1,
+    )
+
+
+def qconj(q) -> np.ndarray:
+    """Conjugates :math:`q^* = q_0 - q_1\\mathbf i - q_2\\mathbf j - q_3\\mathbf k` (Notes §23.2)."""
+    q = _as_quats(q, "q")
+    return q * np.array([1.0, -1.0, -1.0, -1.0])
+
+
+def qnorm(q) -> np.ndarray:
+    """Norms :math:`\\lVert q\\rVert = \\sqrt{q_0^2+q_1^2+q_2^2+q_3^2}`, shape (...)."""
+    q = _as_quats(q, "q")
+    return np.linalg.norm(q, axis=-1)
+
+
+def _unit(q: np.ndarray, name: str) -> np.ndarray:
+    n = np.linalg.norm(q, axis=-1, keepdims=True)
+    if np.any(n == 0) or not np.all(np.isfinite(n)):
+        bad = np.argwhere((n[..., 0] == 0) | ~np.isfinite(n[..., 0]))
+        where = "" if q.ndim == 1 else f" (at index {tuple(int(i) for i in bad[0])})"
+        raise ValueError(
+            f"{name} is the zero quaternion{where}, which does not represent a rotation"
+            if np.any(n == 0)
+            else f"{name} is too large to normalise{where}"
+        )
+    return q / n
+
+
+def qnormalize(q) -> np.ndarray:
+    """Unit quaternions :math:`q/\\lVert q\\rVert`; the zero quaternion raises ValueError."""
+    return _unit(_as_quats(q, "q"), "q")
+
+
+def qmatrix(q) -> np.ndarray:
+    """Rotation matrices of (normalised) quaternions, shape (..., 3, 3).
+
+    The matrix :math:`M` with :math:`M r = q r q^*` for a unit :math:`q`, i.e. the
+    lower-right 3×3 block of :math:`\\bar Q^T Q` (Notes §23.2, :math:`I_q`).
+    """
+    w, x, y, z = np.moveaxis(_unit(_as_quats(q, "q"), "q"), -1, 0)
+    xx, yy, zz = x * x, y * y, z * z
+    xy, xz, yz = x * y, x * z, y * z
+    wx, wy, wz = w * x, w * y, w * z
+    m = np.stack(
+        [
+            1 - 2 * (yy + zz), 2 * (xy - wz), 2 * (xz + wy),
+            2 * (xy + wz), 1 - 2 * (xx + zz), 2 * (yz - wx),
+            2 * (xz - wy), 2 * (yz + wx), 1 - 2 * (xx + yy),
+        ],
+        axis=-1,
+    )
+    return m.reshape(m.shape[:-1] + (3, 3))
+
+
+def qrotate(q, points) -> np.ndarray:
+    """Rotate points by (normalised) quaternions, vectorised: :math:`q r q^*`.
+
+    Parameters
+    ----------
+    q : array_like, shape (4,) or (n, 4)
+        One rotation for all points, or one per point.
+    points : array_like, shape (3,) or (n, 3)
+
+    Returns
+    -------
+    ndarray, shape like ``points`` (or (n, 3) when ``q`` has n rows)
+    """
+    q = _as_quats(q, "q")
+    p = np.asarray(_check_points3(points, "points"))
+    m = qmatrix(q)
+    if q.ndim == 1:
+        return p @ m.T
+    return np.einsum("...ij,...j->...i", m, p)
+
+
+def _check_points3(points, name: str) -> np.ndarray:
+    arr = _as_float_array(points, name)
+    if arr.ndim not in (1, 2) or arr.shape[-1] != 3:
+        raise ValueError(f"{name} must have shape (3,) or (n, 3), got shape {arr.shape}")
+    _check_finite(arr, name)
+    return arr
+
+
+def qfrom_matrix(m, *, atol: float = 1e-6) -> np.ndarray:
+    """Unit quaternions of rotation matrices, Shepperd's method, shape (..., 4).
+
+    For each matrix the largest of :math:`4q_0^2 = 1 + \\operatorname{tr} M` and
+    :math:`4q_i^2 = 1 + 2M_{ii} - \\operatorname{tr} M` is taken first, so no division
+    by a small number happens (Shepperd 1978).  The result has :math:`q_0 \\ge 0`.
+
+    Parameters
+    ----------
+    m : array_like, shape (3, 3) or (n, 3, 3)
+        Proper rotation matrices: :math:`M^TM = I` and :math:`\\det M = +1` within
+        ``atol``.  Anything else (a reflection, a scaling) raises ValueError.
+    """
+    m = _as_float_array(m, "matrix")
+    if m.ndim < 2 or m.shape[-2:] != (3, 3):
+        raise ValueError(f"matrix must have shape (3, 3) or (n, 3, 3), got shape {m.shape}")
+    _check_finite(m, "matrix")
+    eye = np.eye(3)
+    err = np.abs(np.swapaxes(m, -1, -2) @ m - eye).max(axis=(-1, -2))
+    if np.any(err > atol):
+        raise ValueError(f"matrix must be orthogonal (M^T M = I within {atol:g}); deviation {err.max():.3g}")
+    det = np.linalg.det(m)
+    if np.any(det < 0):
+        raise ValueError("matrix has determinant -1: it is a reflection, not a rotation; no quaternion represents it")
+    tr = m[..., 0, 0] + m[..., 1, 1] + m[..., 2, 2]
+    # 4 q_k^2 for k = 0..3
+    d = np.stack([1 + tr, 1 + 2 * m[..., 0, 0] - tr, 1 + 2 * m[..., 1, 1] - tr, 1 + 2 * m[..., 2, 2] - tr], -1)
+    k = np.argmax(d, axis=-1)
+    s = np.sqrt(np.maximum(np.take_along_axis(d, k[..., None], -1)[..., 0], 0.0))  # = 2|q_k|
+    m21_12 = m[..., 2, 1] - m[..., 1, 2]  # 4 q0 q1
+    m02_20 = m[..., 0, 2] - m[..., 2, 0]  # 4 q0 q2
+    m10_01 = m[..., 1, 0] - m[..., 0, 1]  # 4 q0 q3
+    m01_10 = m[..., 0, 1] + m[..., 1, 0]  # 4 q1 q2
+    m02p20 = m[..., 0, 2] + m[..., 2, 0]  # 4 q1 q3
+    m12_21 = m[..., 1, 2] + m[..., 2, 1]  # 4 q2 q3
+    # each row: the four products 4 q_k q_l for l = 0..3 (with 4 q_k^2 = s^2)
+    rows = np.stack(
+        [
+            np.stack([s * s, m21_12, m02_20, m10_01], -1),
+            np.stack([m21_12, s * s, m01_10, m02p20], -1),
+            np.stack([m02_20, m01_10, s * s, m12_21], -1),
+            np.stack([m10_01, m02p20, m12_21, s * s], -1),
+        ],
+        -2,
+    )
+    num = np.take_along_axis(rows, k[..., None, None], -2)[..., 0, :]
+    q = num / (2.0 * s)[..., None]
+    q = q / np.linalg.norm(q, axis=-1, keepdims=True)
+    return np.where(q[..., :1] < 0, -q, q)
+
+
+def qfrom_axis_angle(axis, angle) -> np.ndarray:
+    """Unit quaternions :math:`\\cos(\\theta/2) + \\sin(\\theta/2)\\,u` (Notes §23.2).
+
+    ``axis`` (shape (..., 3), non-zero, normalised here) and ``angle`` (radians,
+    shape (...)) broadcast against each other.
+    """
+    u = _as_float_array(axis, "axis")
+    if u.ndim == 0 or u.shape[-1] != 3:
+        raise ValueError(f"axis must have shape (3,) or (n, 3), got shape {u.shape}")
+    _check_finite(u, "axis")
+    t = _as_float_array(angle, "angle")
+    _check_finite(t, "angle")
+    n = np.linalg.norm(u, axis=-1, keepdims=True)
+    if np.any(n == 0):
+        raise ValueError("axis must be a non-zero vector; the zero vector has no direction to rotate about")
+    u = u / n
+    lead = np.broadcast_shapes(t.shape, u.shape[:-1])
+    half = 0.5 * t[..., None]
+    c = np.broadcast_to(np.cos(half), lead + (1,))
+    v = np.broadcast_to(np.sin(half) * u, lead + (3,))
+    return np.concatenate([c, v], axis=-1)
+
+
+def _qexp(v: np.ndarray) -> np.ndarray:
+    """Unit quaternions of rotation vectors (..., 3), stable at zero angle."""
+    theta = np.linalg.norm(v, axis=-1, keepdims=True)
+    half = 0.5 * theta
+    # sin(θ/2)/θ, with its Taylor series near 0
+    with np.errstate(invalid="ignore", divide="ignore"):
+        k = np.where(theta > 1e-4, np.sin(half) / np.where(theta > 0, theta, 1.0), 0.5 - theta**2 / 48.0)
+    return np.concatenate([np.cos(half), k * v], axis=-1)
+
+
+def _qlog(q: np.ndarray) -> np.ndarray:
+    """Rotation vectors (angle in [0, π]) of unit quaternions (..., 4)."""
+    q = np.where(q[..., :1] < 0, -q, q)
+    s = np.linalg.norm(q[..., 1:], axis=-1, keepdims=True)
+    angle = 2.0 * np.arctan2(s, q[..., :1])
+    with np.errstate(invalid="ignore", divide="ignore"):
+        k = np.where(s > 1e-12, angle / np.where(s > 0, s, 1.0), 2.0)
+    return k * q[..., 1:]
+
+
+def _left(q: np.ndarray) -> np.ndarray:
+    w, x, y, z = np.moveaxis(q, -1, 0)
+    m = np.stack([w, -x, -y, -z, x, w, -z, y, y, z, w, -x, z, -y, x, w], -1)
+    return m.reshape(m.shape[:-1] + (4, 4))
+
+
+def _right(q: np.ndarray) -> np.ndarray:
+    w, x, y, z = np.moveaxis(q, -1, 0)
+    m = np.stack([w, -x, -y, -z, x, w, z, -y, y, -z, w, x, z, y, -x, w], -1)
+    return m.reshape(m.shape[:-1] + (4, 4))
+
+
+def left_matrices(q) -> np.ndarray:
+    """The matrices :math:`Q` with :math:`q\\cdot r = Q r`, shape (..., 4, 4) (Notes §23.2).
+
+    A pure 3-vector (shape (..., 3)) is read as the quaternion :math:`0 + r`.
+    """
+    q = np.asarray(q, dtype=np.float64)
+    if q.ndim >= 1 and q.shape[-1] == 3:
+        q = np.concatenate([np.zeros(q.shape[:-1] + (1,)), q], -1)
+    return _left(_as_quats(q, "q"))
+
+
+def right_matrices(q) -> np.ndarray:
+    """The matrices :math:`\\bar Q` with :math:`r\\cdot q = \\bar Q r`, shape (..., 4, 4).
+
+    :math:`\\bar Q` is :math:`Q` with its lower-right 3×3 block transposed (Notes §23.2).
+    A pure 3-vector (shape (..., 3)) is read as the quaternion :math:`0 + r`.
+    """
+    q = np.asarray(q, dtype=np.float64)
+    if q.ndim >= 1 and q.shape[-1] == 3:
+        q = np.concatenate([np.zeros(q.shape[:-1] + (1,)), q], -1)
+    return _right(_as_quats(q, "q"))
+
+
+def rotation_angle(a, b) -> np.ndarray:
+    """Angle (radians, in [0, π]) of the rotation taking rotation ``a`` to rotation ``b``.
+
+    Invariant under the sign of either quaternion; computed as
+    :math:`2\\operatorname{atan2}(\\lVert\\vec c\\rVert, |c_0|)` with :math:`c = a^* b`
+    (normalised), which stays accurate for tiny angles, unlike :math:`2\\arccos`.
+    """
+    a = _unit(_as_quats(a, "a"), "a")
+    b = _unit(_as_quats(b, "b"), "b")
+    c = qmul(qconj(a), b)
+    return 2.0 * np.arctan2(np.linalg.norm(c[..., 1:], axis=-1), np.abs(c[..., 0]))
+
+
+def to_scipy_order(q) -> np.ndarray:
+    """``(w, x, y, z)`` → ``(x, y, z, w)``, the order of SciPy's ``Rotation.from_quat``."""
+    q = _as_quats(q, "q")
+    return np.concatenate([q[..., 1:], q[..., :1]], -1)
+
+
+def from_scipy_order(q) -> np.ndarray:
+    """``(x, y, z, w)`` (SciPy's ``Rotation.as_quat``) → ``(w, x, y, z)``."""
+    q = _as_quats(q, "q")
+    return np.concatenate([q[..., 3:], q[..., :3]], -1)
+
+
+# --------------------------------------------------------------------------- class
+
+
+def _scalar(v, name: str) -> float:
+    return as_finite_scalar(v, name)
+
+
+@dataclass(frozen=True, slots=True)
+class Quaternion:
+    """An immutable quaternion :math:`w + x\\mathbf i + y\\mathbf j + z\\mathbf k` (Notes §23.2).
+
+    Parameters
+    ----------
+    w, x, y, z : float
+        The notes' :math:`q_0, q_1, q_2, q_3`; finite, stored as float64.
+
+    Notes
+    -----
+    ``*`` is the Hamilton product (and scaling by a real number), ``+``/``-`` are
+    componentwise, ``==`` is exact equality of the components (use
+    :meth:`isclose`, or :meth:`same_rotation` which also accepts :math:`-q`).
+
+    Examples
+    --------
+    >>> i, j, k = Quaternion(0, 1, 0, 0), Quaternion(0, 0, 1, 0), Quaternion(0, 0, 0, 1)
+    >>> i * j == k, i * j * k
+    (True, Quaternion(w=-1.0, x=0.0, y=0.0, z=0.0))
+    """
+
+    w: float
+    x: float = 0.0
+    y: float = 0.0
+    z: float = 0.0
+
+    __array_ufunc__ = None  # numpy scalars defer to our __rmul__ instead of broadcasting
+
+    def __init__(self, w, x=0.0, y=0.0, z=0.0):
+        for name, v in (("w", w), ("x", x), ("y", y), ("z", z)):
+            object.__setattr__(self, name, _scalar(v, name))
+
+    # ---------------------------------------------------------------- construction
+    @classmethod
+    def from_array(cls, q) -> "Quaternion":
+        """From a 4-array ``(w, x, y, z)``."""
+        a = as_vector(q, "q", length=4)
+        return cls(*a)
+
+    @classmethod
+    def identity(cls) -> "Quaternion":
+        """The identity rotation :math:`1 + 0\\mathbf i + 0\\mathbf j + 0\\mathbf k`."""
+        return cls(1.0)
+
+    @classmethod
+    def pure(cls, v) -> "Quaternion":
+        """The pure quaternion :math:`0 + v_x\\mathbf i + v_y\\mathbf j + v_z\\mathbf k` of a 3-vector."""
+        v = as_point(v, "v", dim=3)
+        return cls(0.0, *v)
+
+    @classmethod
+    def from_axis_angle(cls, axis, angle) -> "Quaternion":
+        """The unit quaternion :math:`\\cos(\\theta/2) + \\sin(\\theta/2)\\,u` (Notes §23.2).
+
+        Parameters
+        ----------
+        axis : array_like, shape (3,)
+            Non-zero; normalised here.
+        angle : float
+            :math:`\\theta` in radians, right-hand rule about ``axis``.
+        """
+        axis = as_point(axis, "axis", dim=3)
+        angle = as_finite_scalar(angle, "angle")
+        return cls(*qfrom_axis_angle(axis, angle))
+
+    @classmethod
+    def from_matrix(cls, matrix, *, atol: float = 1e-6) -> "Quaternion":
+        """The unit quaternion (with :math:`w \\ge 0`) of a 3×3 rotation matrix.
+
+        Shepperd's method (see :func:`qfrom_matrix`); reflections and non-orthogonal
+        matrices raise ValueError.
+        """
+        m = np.asarray(matrix)
+        if m.shape != (3, 3):
+            raise ValueError(f"matrix must have shape (3, 3), got shape {m.shape}")
+        return cls(*qfrom_matrix(m, atol=atol))
+
+    # ---------------------------------------------------------------- arrays
+    def as_array(self) -> np.ndarray:
+        """The components as a float64 array ``(w, x, y, z)``."""
+        return np.array([self.w, self.x, self.y, self.z], dtype=np.float64)
+
+    def __array__(self, dtype=None, copy=None):
+        a = self.as_array()
+        return a if dtype is None else a.astype(dtype)
+
+    @property
+    def scalar(self) -> float:
+        """The real part :math:`q_0`."""
+        return self.w
+
+    @property
+    def vector(self) -> np.ndarray:
+        """The imaginary part :math:`(q_1, q_2, q_3)`."""
+        return np.array([self.x, self.y, self.z], dtype=np.float64)
+
+    # ---------------------------------------------------------------- algebra
+    def __mul__(self, other):
+        if isinstance(other, Quaternion):
+            return Quaternion(*qmul(self.as_array(), other.as_array()))
+        if isinstance(other, numbers.Real) and not isinstance(other, bool):
+            s = _scalar(other, "scalar")
+            return Quaternion(self.w * s, self.x * s, self.y * s, self.z * s)
+        return NotImplemented
+
+    def __rmul__(self, other):
+        if isinstance(other, numbers.Real) and not isinstance(other, bool):
+            return self.__mul__(other)  # real scalars commute with quaternions
+        return NotImplemented
+
+    def __truediv__(self, other):
+        if isinstance(other, numbers.Real) and not isinstance(other, bool):
+            s = _scalar(other, "divisor")
+            if s == 0:
+                raise ZeroDivisionError("division of a quaternion by zero")
+            return self * (1.0 / s)
+        return NotImplemented
+
+    def __add__(self, other):
+        if isinstance(other, Quaternion):
+            return Quaternion(self.w + other.w, self.x + other.x, self.y + other.y, self.z + other.z)
+        return NotImplemented
+
+    def __sub__(self, other):
+        if isinstance(other, Quaternion):
+            return Quaternion(self.w - other.w, self.x - other.x, self.y - other.y, self.z - other.z)
+        return NotImplemented
+
+    def __neg__(self):
+        return Quaternion(-self.w, -self.x, -self.y, -self.z)
+
+    def conjugate(self) -> "Quaternion":
+        """:math:`q^* = q_0 - q_1\\mathbf i - q_2\\mathbf j - q_3\\mathbf k` (Notes §23.2)."""
+        return Quaternion(self.w, -self.x, -self.y, -self.z)
+
+    def norm(self) -> float:
+        """:math:`\\lVert q\\rVert = \\sqrt{q_0^2+q_1^2+q_2^2+q_3^2}` (Notes §23.2)."""
+        return float(math.hypot(self.w, self.x, self.y, self.z))
+
+    def inner(self, other: "Quaternion") -> float:
+        """:math:`\\langle q, r\\rangle = q_0r_0 + q_1r_1 + q_2r_2 + q_3r_3` (Notes §23.2)."""
+        if not isinstance(other, Quaternion):
+            raise TypeError(f"other must be a Quaternion, got {type(other).__name__}")
+        return float(self.w * other.w + self.x * other.x + self.y * other.y + self.z * other.z)
+
+    def normalized(self) -> "Quaternion":
+        """:math:`q/\\lVert q\\rVert`; the zero quaternion raises ValueError."""
+        return Quaternion(*_unit(self.as_array(), "quaternion"))
+
+    def isclose(self, other: "Quaternion", atol: float = 1e-12) -> bool:
+        """Componentwise equality within ``atol`` (so :math:`q` and :math:`-q` differ)."""
+        if not isinstance(other, Quaternion):
+            raise TypeError(f"other must be a Quaternion, got {type(other).__name__}")
+        atol = as_finite_scalar(atol, "atol", nonnegative=True)
+        return bool(np.all(np.abs(self.as_array() - other.as_array()) <= atol))
+
+    def same_rotation(self, other: "Quaternion", atol: float = 1e-9) -> bool:
+        """True when both represent the same rotation: :math:`\\hat q = \\pm\\hat r` within ``atol``."""
+        if not isinstance(other, Quaternion):
+            raise TypeError(f"other must be a Quaternion, got {type(other).__name__}")
+        a = self.normalized().as_array()
+        b = other.normalized().as_array()
+        return bool(min(np.abs(a - b).max(), np.abs(a + b).max()) <= atol)
+
+    def angle_to(self, other: "Quaternion") -> float:
+        """Angle in radians, in [0, π], of the rotation between two rotations (see :func:`rotation_angle`)."""
+        if not isinstance(other, Quaternion):
+            raise TypeError(f"other must be a Quaternion, got {type(other).__name__}")
+        return float(rotation_angle(self.as_array(), other.as_array()))
+
+    # ---------------------------------------------------------------- matrix forms
+    def left_matrix(self) -> np.ndarray:
+        """The 4×4 matrix :math:`Q` with :math:`q\\cdot r = Q r` (Notes §23.2).
+
+        The notes print this matrix correctly but multiply it by :math:`q` itself.
+        """
+        return _left(self.as_array())
+
+    def right_matrix(self) -> np.ndarray:
+        """The 4×4 matrix :math:`\\bar Q` with :math:`r\\cdot q = \\bar Q r` (Notes §23.2).
+
+        It is :math:`Q` with the lower-right 3×3 block transposed.  It is *not*
+        "orthogonal to :math:`Q`" as the notes say; it commutes with :math:`Q`.
+        """
+        return _right(self.as_array())
+
+    # ---------------------------------------------------------------- rotations
+    def to_matrix(self) -> np.ndarray:
+        """The 3×3 rotation matrix of :math:`q/\\lVert q\\rVert` (zero raises ValueError).
+
+        Equal to the lower-right block of :math:`\\bar Q^T Q` for a unit :math:`q`
+        (Notes §23.2, :math:`I_q(r) = \\bar Q^T Q r`).
+        """
+        return qmatrix(_unit(self.as_array(), "quaternion"))
+
+    def to_axis_angle(self) -> tuple[np.ndarray, float]:
+        """Unit axis and angle :math:`\\theta \\in [0, \\pi]` of the rotation.
+
+        The sign of :math:`q` is chosen with :math:`q_0 \\ge 0`, so the angle is at most
+        π.  For the identity (angle 0) the axis is undetermined and ``(1, 0, 0)`` is
+        returned.  The zero quaternion raises ValueError.
+        """
+        q = _unit(self.as_array(), "quaternion")
+        if q[0] < 0:
+            q = -q
+        s = float(np.linalg.norm(q[1:]))
+        angle = 2.0 * math.atan2(s, float(q[0]))
+        if s == 0.0:
+            return np.array([1.0, 0.0, 0.0]), 0.0
+        return q[1:] / s, angle
+
+    @classmethod
+    def from_rotation_vector(cls, v) -> "Quaternion":
+        """The unit quaternion of the rotation vector :math:`v = \\theta u` (angle times unit axis).
+
+        The zero vector gives the identity.  Accurate for tiny angles.
+        """
+        v = as_point(v, "v", dim=3)
+        return cls(*_qexp(v))
+
+    def to_rotation_vector(self) -> np.ndarray:
+        """The rotation vector :math:`\\theta u` with :math:`\\theta \\in [0, \\pi]` (normalises first)."""
+        return _qlog(_unit(self.as_array(), "quaternion"))
+
+    def rotate(self, points) -> np.ndarray:
+        """Rotate one point (3,) or many (n, 3): :math:`I_q(r) = q r q^*` (Notes §23.2).
+
+        The quaternion is normalised first (see the module docstring), so this is
+        always a proper rotation; the zero quaternion raises ValueError.
+        """
+        p = _check_points3(points, "points")
+        return p @ self.to_matrix().T
+
+    def __repr__(self) -> str:
+        return f"Quaternion(w={self.w!r}, x={self.x!r}, y={self.y!r}, z={self.z!r})"
+
+    def __str__(self) -> str:
+        return f"{self.w:.6g} {self.x:+.6g}i {self.y:+.6g}j {self.z:+.6g}k"
