@@ -21,6 +21,7 @@ ROOT = Path(__file__).resolve().parent.parent
 BOOK = ROOT / "book"
 BUILD = BOOK / "_build"
 VENDOR = BOOK / "_extra" / "vendor"
+GALLERY = BOOK / "_gallery"  # the gallery page's figures (book/gallery.md), made before the book
 NODE = BOOK / "node_modules"
 
 # what the offline site needs from the npm packages, and where it goes under the site's
@@ -81,8 +82,24 @@ def lessons_into_book(execute: bool) -> None:
             print(f"  copied {nb.name} (committed outputs)")
 
 
-def build_book(path_output: Path | None = None) -> Path:
+def build_gallery(out: Path = GALLERY) -> bool:
+    """Draw the figures that book/gallery.md shows, as SVG (python -m shapelab.figures).
+
+    A figure that fails gets a labelled placeholder so that the site still builds;
+    the failure is printed, and ``make figures`` / the figures step fail on it.
+    """
+    env = dict(os.environ, PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    cmd = [sys.executable, "-m", "shapelab.figures", "--out", str(out), "--format", "svg", "--gallery"]
+    rc = subprocess.call(cmd, cwd=ROOT, env=env)
+    if rc:
+        print("  warning: some gallery figures failed (placeholders shown); see above", flush=True)
+    return rc == 0
+
+
+def build_book(path_output: Path | None = None, gallery: bool = True) -> Path:
     vendor_assets()
+    if gallery:
+        build_gallery()
     cmd = [str(Path(sys.executable).parent / "jupyter-book"), "build", str(BOOK), "--keep-going"]
     if path_output is not None:
         cmd += ["--path-output", str(path_output)]
@@ -122,13 +139,23 @@ def main(argv=None) -> int:
         run_optional("figure export", ["-m", "shapelab.figures", "--out", str(out), "--format", "svg"])
         summary.append(("figures", out, time.perf_counter() - t))
     if "book" in want:
+        t = step("figure gallery for the book (book/gallery.md)")
+        drawn = BUILD / "figures"
+        if "figures" in want and list(drawn.glob("*.svg")):  # just drawn, the same SVGs
+            shutil.rmtree(GALLERY, ignore_errors=True)
+            shutil.copytree(drawn, GALLERY, ignore=lambda d, names: [n for n in names if not n.endswith(".svg")])
+            print(f"  copied {len(list(GALLERY.glob('*.svg')))} figures from {drawn.relative_to(ROOT)}")
+        else:
+            build_gallery()
+        summary.append(("gallery figures", GALLERY, time.perf_counter() - t))
         t = step("book (Jupyter Book, offline)")
-        html = build_book()
+        html = build_book(gallery=False)
         summary.append(("course site", html, time.perf_counter() - t))
     if "slides" in want:
         t = step("slides (reveal.js, offline)")
         out = BUILD / "slides"
-        run_optional("slides", [str(ROOT / "scripts" / "slides.py"), "--out", str(out)])
+        # the lessons just executed (or copied) into book/lessons
+        run_optional("slides", [str(ROOT / "scripts" / "slides.py"), "--out", str(out), "--src", str(BOOK / "lessons")])
         summary.append(("slides", out, time.perf_counter() - t))
     if "student" in want:
         t = step("student edition (solutions removed, outputs cleared)")
