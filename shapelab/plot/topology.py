@@ -1,0 +1,665 @@
+"""Figures of the topology of the growth model (Notes §23.1, "Voids and pockets").
+
+* :func:`persistence_diagram`, :func:`barcode` — the pairs (birth, death) of
+  :meth:`Filtration.persistence`: "by growing the union of balls, we are able to
+  distinguish big voids or tunnels from smaller ones".
+* :func:`betti_curve` — :math:`\\beta_k(\\tau)` as the balls grow.
+* :func:`voids`, :func:`pockets`, :func:`tunnels` — the features themselves, drawn on
+  the balls grown to τ, in 2D (disks) and 3D (balls); the dimension picks the drawing.
+
+Every function returns a :class:`matplotlib.figure.Figure` (or draws into ``ax=`` and
+returns its figure) and computes nothing itself beyond calling the library.
+"""
+from __future__ import annotations
+
+import numpy as np
+from matplotlib.collections import LineCollection, PatchCollection, PolyCollection
+from matplotlib.lines import Line2D
+from matplotlib.patches import Circle, Patch
+from matplotlib.ticker import MaxNLocator
+
+from .._validate import as_finite_scalar
+from ._style import COLORS, PAGE, PALETTE, new_figure, style
+
+__all__ = ["persistence_diagram", "barcode", "betti_curve", "voids", "pockets", "tunnels"]
+
+_MARKERS = ("o", "s", "^", "D")
+_SUB = "₀₁₂₃"
+
+
+# ------------------------------------------------------------------ helpers
+def _dim_color(k: int) -> str:
+    return PALETTE[k % len(PALETTE)]
+
+
+def _dim_label(k: int, d: int | None) -> str:
+    name = {0: "components", 1: "holes" if d == 2 else ("tunnels" if d == 3 else "loops"),
+            2: "voids"}.get(k, f"{k}-cycles")
+    return f"H{_SUB[k] if k < 4 else k} {name}"
+
+
+def _axes(ax, *, size=PAGE, projection=None):
+    if ax is None:
+        fig, ax = new_figure(size=size, projection=projection)
+        return fig, ax
+    return ax.get_figure(), ax
+
+
+def _pairs_of(obj, dim=None):
+    """Normalise a Filtration or a dict {k: (p, 2)} to (dict of float arrays, ambient d)."""
+    if hasattr(obj, "persistence") and callable(obj.persistence):
+        d = getattr(getattr(obj, "balls", None), "dim", None)
+        P = obj.persistence()
+    elif isinstance(obj, dict):
+        P, d = obj, None
+    else:
+        raise TypeError(
+            "pairs_or_filtration must be a Filtration or a dict {k: (p, 2) array of (birth, death)}, "
+            f"got {type(obj).__name__}")
+    out = {}
+    for k, a in P.items():
+        if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or k < 0:
+            raise ValueError(f"pairs_or_filtration keys must be homology dimensions 0, 1, ...; got {k!r}")
+        arr = np.asarray(a, dtype=np.float64).reshape(-1, 2) if np.size(a) else np.zeros((0, 2))
+        if np.any(np.isnan(arr)):
+            raise ValueError(f"pairs in dimension {k} contain NaN")
+        if np.any(arr[:, 1] < arr[:, 0]):
+            raise ValueError(f"pairs in dimension {k} must have death >= birth")
+        out[int(k)] = arr
+    if dim is not None:
+        d = int(dim)
+    return out, d
+
+
+def _select(P: dict, dims, d=None):
+    if dims is None:  # every dimension, but not the always-empty H_d of a complex in R^d
+        return [k for k in sorted(P) if len(P[k]) or d is None or k < d]
+    dims = [dims] if isinstance(dims, (int, np.integer)) else list(dims)
+    for k in dims:
+        if k not in P:
+            raise ValueError(f"dims: no pairs of dimension {k} (available: {sorted(P)})")
+    return dims
+
+
+def _range(P: dict, dims, tau=None):
+    vals = [P[k][np.isfinite(P[k])] for k in dims if len(P[k])]
+    vals = np.concatenate(vals) if vals else np.zeros(0)
+    if tau is not None:
+        vals = np.append(vals, tau)
+    if len(vals) == 0:
+        return 0.0, 1.0
+    lo, hi = float(vals.min()), float(vals.max())
+    if hi - lo < 1e-12:
+        lo, hi = lo - 0.5, hi + 0.5
+    return lo, hi
+
+
+def _field(obj, *names):
+    for n in names:
+        if hasattr(obj, n):
+            return getattr(obj, n)
+    raise AttributeError(f"{type(obj).__name__} has none of the fields {names}")
+
+
+def _check_tau(tau, name="tau"):
+    return as_finite_scalar(tau, name)
+
+
+# ------------------------------------------------------------- persistence
+def persistence_diagram(pairs_or_filtration, *, dims=None, tau=None, min_persistence=None,
+                        ax=None, title="Persistence diagram", dim=None):
+    """The persistence diagram: one point (birth, death) per feature (Notes §23.1).
+
+    Parameters
+    ----------
+    pairs_or_filtration : Filtration or dict
+        A :class:`~shapelab.Filtration` (its :meth:`persistence` is called) or the
+        dict ``{k: (p, 2) array}`` it returns.  Deaths may be ``inf`` (drawn on a
+        dashed "∞" line at the top).
+    dims : int or sequence of int, optional
+        Homology dimensions to draw (default: all).
+    tau : float, optional
+        Shade the quadrant birth ≤ τ < death: the features *alive* at τ.
+    min_persistence : float, optional
+        Draw the band death − birth < ``min_persistence`` and grey out the points in
+        it: what topological simplification removes.
+    ax : Axes, optional
+    title : str
+    dim : int, optional
+        Ambient dimension (names H₁ "holes" in 2D, "tunnels" in 3D); taken from the
+        filtration's balls if not given.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    P, d = _pairs_of(pairs_or_filtration, dim)
+    dims = _select(P, dims, d)
+    if tau is not None:
+        tau = _check_tau(tau)
+    if min_persistence is not None:
+        min_persistence = as_finite_scalar(min_persistence, "min_persistence", nonnegative=True)
+    fig, ax = _axes(ax, size=(5.6, 5.0))
+    with style():
+        lo, hi = _range(P, dims, tau)
+        pad = 0.06 * (hi - lo)
+        inf_y = hi + 2 * pad
+        lo_, hi_ = lo - pad, inf_y + pad
+        xs = np.array([lo_, hi_])
+        ax.fill_between(xs, lo_, xs, color="#eeeeee", zorder=0, lw=0)
+        ax.plot(xs, xs, color=COLORS["muted"], lw=1, zorder=1)
+        if min_persistence:
+            ax.fill_between(xs, xs, xs + min_persistence, color=COLORS["muted"], alpha=0.25, lw=0,
+                            zorder=1, label=f"persistence < {min_persistence:g}")
+        if any(np.isinf(P[k][:, 1]).any() for k in dims):
+            ax.axhline(inf_y, color=COLORS["muted"], ls="--", lw=1, zorder=1)
+            ax.text(lo_, inf_y, " ∞", va="bottom", ha="left", color=COLORS["muted"])
+        if tau is not None:
+            ax.fill_between([lo_, tau], tau, hi_, color=COLORS["accent"], alpha=0.12, lw=0, zorder=0,
+                            label=f"alive at τ = {tau:g}")
+            ax.axvline(tau, color=COLORS["accent"], lw=1, ls=":")
+            ax.axhline(tau, color=COLORS["accent"], lw=1, ls=":")
+        for k in dims:
+            a = P[k]
+            y = np.where(np.isinf(a[:, 1]), inf_y, a[:, 1])
+            small = (a[:, 1] - a[:, 0] < min_persistence) if min_persistence else np.zeros(len(a), bool)
+            ax.scatter(a[~small, 0], y[~small], s=28, marker=_MARKERS[k % 4], color=_dim_color(k),
+                       edgecolor="white", linewidth=0.5, zorder=3, label=f"{_dim_label(k, d)} ({len(a)})")
+            if small.any():
+                ax.scatter(a[small, 0], y[small], s=14, marker=_MARKERS[k % 4], color=COLORS["muted"],
+                           alpha=0.6, zorder=2)
+        ax.set_xlim(lo_, hi_)
+        ax.set_ylim(lo_, hi_)
+        ax.set_aspect("equal")
+        ax.set_xlabel("birth τ")
+        ax.set_ylabel("death τ")
+        ax.set_title(title)
+        ax.legend(loc="lower right", fontsize=9)
+    return fig
+
+
+def barcode(pairs_or_filtration, *, dims=None, tau=None, min_persistence=0.0, max_bars=60,
+            ax=None, title="Barcode", dim=None):
+    """The barcode: one horizontal bar [birth, death) per feature (Notes §23.1).
+
+    Bars are grouped by homology dimension, longest first within a group is not
+    imposed: they are sorted by birth, so the growth reads from left to right.
+
+    Parameters
+    ----------
+    pairs_or_filtration : Filtration or dict
+        As for :func:`persistence_diagram`.
+    dims : int or sequence of int, optional
+    tau : float, optional
+        A vertical line at τ; the bars it crosses are the features alive at τ.
+    min_persistence : float
+        Leave out bars shorter than this (topological simplification).
+    max_bars : int
+        At most this many bars per dimension, the most persistent ones; the title
+        says how many were left out.
+    ax, title, dim
+        As for :func:`persistence_diagram`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    P, d = _pairs_of(pairs_or_filtration, dim)
+    dims = _select(P, dims, d)
+    if tau is not None:
+        tau = _check_tau(tau)
+    min_persistence = as_finite_scalar(min_persistence, "min_persistence", nonnegative=True)
+    if isinstance(max_bars, bool) or not isinstance(max_bars, (int, np.integer)) or max_bars < 1:
+        raise ValueError(f"max_bars must be a positive integer, got {max_bars!r}")
+    fig, ax = _axes(ax)
+    with style():
+        lo, hi = _range(P, dims, tau)
+        pad = 0.05 * (hi - lo)
+        right = hi + 2 * pad
+        y = 0
+        hidden = 0
+        yticks, ylabels = [], []
+        for k in dims:
+            a = P[k]
+            pers = a[:, 1] - a[:, 0]
+            keep = pers >= min_persistence if min_persistence > 0 else np.ones(len(a), bool)
+            a, pers = a[keep], pers[keep]
+            if len(a) > max_bars:
+                top = np.argsort(-pers, kind="stable")[:max_bars]
+                hidden += len(a) - max_bars
+                a = a[np.sort(top)]
+            hidden += int((~keep).sum())
+            order = np.lexsort((-a[:, 1], a[:, 0]))
+            a = a[order]
+            start = y
+            finite = np.isfinite(a[:, 1])
+            ends = np.where(finite, a[:, 1], right)
+            ys = y + np.arange(len(a))
+            ax.hlines(ys, a[:, 0], ends, color=_dim_color(k), lw=2.2)
+            if (~finite).any():
+                ax.scatter(ends[~finite], ys[~finite], marker=">", color=_dim_color(k), s=22, zorder=3)
+            y += len(a)
+            if len(a):
+                yticks.append(0.5 * (start + y - 1))
+                ylabels.append(_dim_label(k, d))
+                ax.axhline(y - 0.5 + 0.5, color="#dddddd", lw=0.8)
+            y += 1
+        if tau is not None:
+            ax.axvline(tau, color=COLORS["accent"], lw=1.2, ls="--", label=f"τ = {tau:g}")
+            ax.legend(loc="lower right", fontsize=9)
+        ax.set_yticks(yticks, ylabels)
+        ax.set_ylim(y - 0.5, -1)
+        ax.set_xlim(lo - pad, right + pad)
+        ax.set_xlabel("growth time τ")
+        ax.spines["left"].set_visible(False)
+        ax.tick_params(axis="y", length=0)
+        note = f" ({hidden} short bars not shown)" if hidden else ""
+        ax.set_title(title + note)
+    return fig
+
+
+def betti_curve(F_or_curve, *, taus=None, tau=None, log=None, ax=None,
+                title="Betti numbers as the balls grow"):
+    """:math:`\\beta_k(\\tau)` against the growth time τ, one step curve per k.
+
+    Parameters
+    ----------
+    F_or_curve : Filtration or (taus, curve)
+        A filtration (its :meth:`betti_curve` is evaluated at ``taus``) or a pair of
+        arrays ``taus`` (m,) and ``curve`` (m, d + 1) already computed.
+    taus : array_like, optional
+        Where to evaluate; default: every entry time of the filtration up to the
+        last finite death (so that every change shows), plus a margin.
+    tau : float, optional
+        Mark one τ with a vertical line.
+    log : bool, optional
+        A symmetric-log y axis, so that a few features late in the growth stay
+        visible next to hundreds of tiny ones early on; default: when some
+        :math:`\beta_k > 20`.
+    ax, title
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    if isinstance(F_or_curve, tuple) and len(F_or_curve) == 2:
+        t = np.asarray(F_or_curve[0], dtype=np.float64).reshape(-1)
+        curve = np.asarray(F_or_curve[1])
+        if curve.ndim != 2 or curve.shape[0] != len(t):
+            raise ValueError(f"curve must have shape (len(taus), d + 1) = ({len(t)}, ...), got {curve.shape}")
+        d = curve.shape[1] - 1
+    elif hasattr(F_or_curve, "betti_curve"):
+        F = F_or_curve
+        d = F.balls.dim
+        if taus is None:
+            vals = np.concatenate([np.asarray(F.values(k)) for k in range(F.dimension + 1)]) \
+                if F.dimension >= 0 else np.zeros(1)
+            P = F.persistence()
+            deaths = np.concatenate([np.asarray(a)[:, 1] for a in P.values() if len(a)] or [np.zeros(0)])
+            births = vals.min() if len(vals) else 0.0
+            stop = deaths[np.isfinite(deaths)].max() if np.isfinite(deaths).any() else vals.max()
+            stop = max(stop, births + 1e-9)
+            margin = 0.08 * (stop - births)
+            t = np.unique(np.concatenate([vals[(vals >= births) & (vals <= stop)],
+                                          [births - margin, stop + margin]]))
+        else:
+            t = np.sort(np.asarray(taus, dtype=np.float64).reshape(-1))
+        curve = np.asarray(F.betti_curve(t))
+    else:
+        raise TypeError(f"F_or_curve must be a Filtration or a (taus, curve) pair, got {type(F_or_curve).__name__}")
+    if not np.all(np.isfinite(t)):
+        raise ValueError("taus must be finite")
+    if tau is not None:
+        tau = _check_tau(tau)
+    fig, ax = _axes(ax)
+    with style():
+        for k in range(curve.shape[1]):
+            if k == d and not curve[:, k].any():
+                continue  # β_d of a complex in R^d is always 0
+            ax.step(t, curve[:, k], where="post", color=_dim_color(k), lw=1.8,
+                    label=f"β{_SUB[k] if k < 4 else k} ({_dim_label(k, d).split(' ', 1)[1]})")
+        if tau is not None:
+            ax.axvline(tau, color=COLORS["accent"], ls="--", lw=1.2)
+        if log is None:
+            log = bool(curve.size) and int(curve.max()) > 20
+        if log:
+            ax.set_yscale("symlog", linthresh=1.0, linscale=0.6)
+            ax.set_ylim(bottom=-0.2)
+        else:
+            ax.yaxis.set_major_locator(MaxNLocator(integer=True))
+        ax.set_xlabel("growth time τ")
+        ax.set_ylabel("Betti number" + (" (symlog scale)" if log else ""))
+        ax.set_title(title)
+        ax.legend(loc="upper right")
+    return fig
+
+
+# ------------------------------------------------------------------ drawing
+def _grown_radii(balls, tau):
+    w = balls.weights + tau
+    return np.sqrt(np.clip(w, 0.0, None)), w > 0
+
+
+def _draw_disks(ax, balls, tau, *, highlight=None, alpha=1.0, zorder=2):
+    r, ok = _grown_radii(balls, tau)
+    c = balls.centers
+    patches = [Circle(c[i], r[i]) for i in np.flatnonzero(ok)]
+    face = np.tile(np.array(_rgba(COLORS["ball"], alpha)), (len(patches), 1))
+    if highlight is not None and len(patches):
+        hl = np.zeros(len(balls), bool)
+        hl[np.asarray(highlight, dtype=np.int64)] = True
+        face[hl[ok]] = _rgba("#a6d7f2", alpha)
+    ax.add_collection(PatchCollection(patches, facecolors=face, edgecolors=COLORS["ball_edge"],
+                                      linewidths=0.6, zorder=zorder))
+    ax.scatter(c[:, 0], c[:, 1], s=3, color=COLORS["ball_edge"], zorder=zorder + 0.1)
+    lo = (c - r[:, None]).min(0)
+    hi = (c + r[:, None]).max(0)
+    pad = 0.05 * (hi - lo).max()
+    ax.set_xlim(lo[0] - pad, hi[0] + pad)
+    ax.set_ylim(lo[1] - pad, hi[1] + pad)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x")
+    ax.set_ylabel("y")
+
+
+def _rgba(color, alpha=1.0):
+    from matplotlib.colors import to_rgba
+
+    return to_rgba(color, alpha)
+
+
+def _draw_complex_2d(ax, balls, tau):
+    import shapelab
+
+    K = shapelab.alpha_filtration(balls).complex_at(tau)
+    c = balls.centers
+    E = np.asarray(K.simplices(1))
+    T = np.asarray(K.simplices(2))
+    if len(T):
+        ax.add_collection(PolyCollection(c[T], facecolors=_rgba(COLORS["triangle"], 0.25),
+                                         edgecolors="none", zorder=3))
+    if len(E):
+        ax.add_collection(LineCollection(c[E], colors=COLORS["complex"], linewidths=0.7, zorder=3))
+
+
+def _cells_of(feature):
+    return np.asarray(_field(feature, "cells"), dtype=np.int64)
+
+
+def _lining_of(feature):
+    return np.asarray(_field(feature, "lining", "lining_balls", "balls_lining"), dtype=np.int64).reshape(-1)
+
+
+def _measure_word(d):
+    return "area" if d == 2 else "volume"
+
+
+def _label_point(balls, cells):
+    """A point to label a feature: the centroid of its largest cell."""
+    pts = balls.centers[cells]
+    if balls.dim == 2:
+        e1, e2 = pts[:, 1] - pts[:, 0], pts[:, 2] - pts[:, 0]
+        size = np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
+    else:
+        size = np.abs(np.linalg.det(pts[:, 1:] - pts[:, :1]))
+    return pts[int(np.argmax(size))].mean(0)
+
+
+def _setup_3d(ax, balls, elev, azim):
+    c = balls.centers
+    lo, hi = c.min(0), c.max(0)
+    mid = 0.5 * (lo + hi)
+    half = 0.5 * (hi - lo).max() + balls.radii.max()
+    ax.set_xlim(mid[0] - half, mid[0] + half)
+    ax.set_ylim(mid[1] - half, mid[1] + half)
+    ax.set_zlim(mid[2] - half, mid[2] + half)
+    ax.set_box_aspect((1, 1, 1))
+    ax.view_init(elev=elev, azim=azim)
+    ax.set_xlabel("x")
+    ax.set_ylabel("y")
+    ax.set_zlabel("z")
+    return half
+
+
+def _draw_balls_3d(ax, balls, tau, *, highlight=None, alpha=0.18, half=1.0):
+    r, ok = _grown_radii(balls, tau)
+    c = balls.centers
+    fig = ax.get_figure()
+    # marker area in points^2 so that a marker's diameter is about the ball's
+    width_pt = 72.0 * fig.get_size_inches()[0] * 0.55
+    s = (2 * r / (2 * half) * width_pt * 0.75) ** 2
+    base = np.ones(len(balls), bool) & ok
+    if highlight is not None:
+        base[np.asarray(highlight, dtype=np.int64)] = False
+    ax.scatter(*c[base].T, s=s[base], color=COLORS["ball"], alpha=alpha, edgecolors="none",
+               depthshade=True)
+    if highlight is not None and len(highlight):
+        h = np.asarray(highlight, dtype=np.int64)
+        ax.scatter(*c[h].T, s=s[h] * 0.35, color=COLORS["ball_edge"], alpha=0.9, edgecolors="white",
+                   linewidths=0.3, depthshade=False)
+
+
+def _boundary_faces(cells):
+    """Triangles on the boundary of a set of tetrahedra (faces used by one cell)."""
+    faces = np.concatenate([cells[:, [1, 2, 3]], cells[:, [0, 2, 3]], cells[:, [0, 1, 3]], cells[:, [0, 1, 2]]])
+    faces = np.sort(faces, axis=1)
+    u, cnt = np.unique(faces, axis=0, return_counts=True)
+    return u[cnt == 1]
+
+
+def _features_or_compute(balls, features, tau, fn_name, **kw):
+    if features is None:
+        import shapelab
+
+        return getattr(shapelab, fn_name)(balls, tau, **kw)
+    return list(features)
+
+
+def _check_balls(balls):
+    from ..balls import Balls
+
+    if not isinstance(balls, Balls):
+        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+
+
+def voids(balls, voids=None, *, tau=0.0, ax=None, show_complex=False, elev=20, azim=35,
+          title=None):
+    """Draw the voids of the union of balls grown to τ (holes in 2D, Notes §23.1).
+
+    A void is a bounded component of :math:`\\mathbb{R}^d \\setminus \\bigcup B_i`; it is
+    drawn as the top simplices of DT it consists of (2D: filled triangles under the
+    opaque disks, so the free space shows; 3D: its boundary triangles, inside
+    see-through balls), with its lining balls highlighted.
+
+    Parameters
+    ----------
+    balls : Balls
+    voids : sequence of Void, optional
+        From :func:`shapelab.voids`; computed at ``tau`` if not given.
+    tau : float
+        Growth time at which to draw the balls (radii :math:`\\sqrt{r^2+\\tau}`).
+    ax : Axes, optional (a 3D Axes for 3D balls)
+    show_complex : bool
+        2D only: also draw the dual complex :math:`K_\\tau` (edges and triangles).
+    elev, azim : float
+        3D view.
+    title : str, optional
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    _check_balls(balls)
+    tau = _check_tau(tau)
+    V = _features_or_compute(balls, voids, tau, "voids")
+    word = "hole" if balls.dim == 2 else "void"
+    title = title or f"{len(V)} {word}{'s' if len(V) != 1 else ''} at τ = {tau:g}"
+    return _draw_features(balls, tau, V, [], [], ax=ax, show_complex=show_complex, elev=elev,
+                          azim=azim, title=title)
+
+
+def pockets(balls, pockets=None, *, tau=0.0, voids=None, show_voids=True, ax=None,
+            show_complex=False, min_persistence=0.0, elev=20, azim=35, title=None):
+    """Draw the pockets of the growth model at τ with their mouths (Notes §23.1, Fig. 23.2).
+
+    A pocket is a region of the complement still connected to the outside at τ that
+    becomes a void later, when its mouth closes.  Each pocket's cells are filled in a
+    colour of its own, its mouth — the (d−1)-simplices joining it to the outside —
+    drawn as thick pink edges (2D) or triangles (3D), and its lining balls highlighted.
+
+    Parameters
+    ----------
+    balls : Balls
+    pockets : sequence of Pocket, optional
+        From :func:`shapelab.pockets`; computed at ``tau`` (with ``min_persistence``)
+        if not given.
+    tau : float
+    voids : sequence of Void, optional
+        Voids to draw too (computed at τ if ``show_voids`` and not given).
+    show_voids : bool
+    ax, show_complex, elev, azim, title
+        As for :func:`voids`.
+    min_persistence : float
+        Passed to :func:`shapelab.pockets` when computing.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    _check_balls(balls)
+    tau = _check_tau(tau)
+    Pk = _features_or_compute(balls, pockets, tau, "pockets", min_persistence=min_persistence) \
+        if pockets is None else list(pockets)
+    V = (_features_or_compute(balls, voids, tau, "voids") if show_voids else [])
+    word = "hole" if balls.dim == 2 else "void"
+    if title is None:
+        title = f"{len(Pk)} pocket{'s' if len(Pk) != 1 else ''}"
+        if show_voids:
+            title += f", {len(V)} {word}{'s' if len(V) != 1 else ''}"
+        title += f" at τ = {tau:g}"
+    return _draw_features(balls, tau, V, Pk, [], ax=ax, show_complex=show_complex, elev=elev,
+                          azim=azim, title=title)
+
+
+def tunnels(balls, tunnels=None, *, tau=0.0, ax=None, show_complex=False, elev=20, azim=35,
+            title=None):
+    """Draw the tunnels alive at τ: a representative cycle of each H₁ class (Notes §23.1).
+
+    Parameters
+    ----------
+    balls : Balls
+    tunnels : sequence of Tunnel, optional
+        From :func:`shapelab.tunnels`; computed at ``tau`` if not given.  Each cycle is a
+        closed chain of edges between ball centres, drawn as a thick line.
+    tau, ax, show_complex, elev, azim, title
+        As for :func:`voids`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    _check_balls(balls)
+    tau = _check_tau(tau)
+    T = _features_or_compute(balls, tunnels, tau, "tunnels")
+    title = title or f"{len(T)} tunnel{'s' if len(T) != 1 else ''} at τ = {tau:g}"
+    return _draw_features(balls, tau, [], [], T, ax=ax, show_complex=show_complex, elev=elev,
+                          azim=azim, title=title)
+
+
+def _cycle_edges(t):
+    e = np.asarray(_field(t, "cycle", "edges", "cycle_edges"), dtype=np.int64)
+    return e.reshape(-1, 2)
+
+
+def _draw_features(balls, tau, V, Pk, T, *, ax, show_complex, elev, azim, title):
+    d = balls.dim
+    legend = []
+    if d == 2:
+        fig, ax = _axes(ax)
+        with style():
+            lining = [_lining_of(f) for f in list(V) + list(Pk)]
+            hl = np.unique(np.concatenate(lining)) if lining else None
+            _draw_disks(ax, balls, tau, highlight=hl, zorder=2)
+            c = balls.centers
+            for v in V:
+                cells = _cells_of(v)
+                if len(cells):
+                    ax.add_collection(PolyCollection(c[cells], facecolors=COLORS["void"], edgecolors="none",
+                                                     zorder=1))
+            for i, p in enumerate(Pk):
+                cells = _cells_of(p)
+                if len(cells):
+                    ax.add_collection(PolyCollection(c[cells], facecolors=COLORS["accent"], edgecolors="none",
+                                                     zorder=1))
+                mouth = np.asarray(_field(p, "mouth"), dtype=np.int64).reshape(-1, 2)
+                if len(mouth):
+                    ax.add_collection(LineCollection(c[mouth], colors=COLORS["mouth"], linewidths=3.0,
+                                                     zorder=4, capstyle="round"))
+            if show_complex:
+                _draw_complex_2d(ax, balls, tau)
+            for t in T:
+                e = _cycle_edges(t)
+                ax.add_collection(LineCollection(c[e], colors=COLORS["void"], linewidths=2.5, zorder=5))
+            _annotate(ax, balls, V, Pk)
+            ax.set_title(title)
+    else:
+        fig, ax = _axes(ax, size=(6.0, 5.6), projection="3d")
+        with style():
+            half = _setup_3d(ax, balls, elev, azim)
+            lining = [_lining_of(f) for f in list(V) + list(Pk)]
+            hl = np.unique(np.concatenate(lining)) if lining else None
+            _draw_balls_3d(ax, balls, tau, highlight=hl, half=half)
+            from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
+
+            c = balls.centers
+            for v in V:
+                cells = _cells_of(v)
+                if len(cells):
+                    ax.add_collection3d(Poly3DCollection(c[_boundary_faces(cells)], facecolors=_rgba(COLORS["void"], 0.55),
+                                                         edgecolors=_rgba(COLORS["void"], 0.9), linewidths=0.3))
+            for p in Pk:
+                cells = _cells_of(p)
+                if len(cells):
+                    ax.add_collection3d(Poly3DCollection(c[_boundary_faces(cells)], facecolors=_rgba(COLORS["accent"], 0.45),
+                                                         edgecolors=_rgba(COLORS["accent"], 0.8), linewidths=0.3))
+                mouth = np.asarray(_field(p, "mouth"), dtype=np.int64).reshape(-1, 3)
+                if len(mouth):
+                    ax.add_collection3d(Poly3DCollection(c[mouth], facecolors=_rgba(COLORS["mouth"], 0.9),
+                                                         edgecolors=COLORS["mouth"], linewidths=0.5))
+            if show_complex:
+                pass  # K in 3D is too dense to read; see shapelab.plot.complex3d
+            for t in T:
+                e = _cycle_edges(t)
+                ax.add_collection3d(Line3DCollection(c[e], colors=COLORS["void"], linewidths=3.0))
+            ax.set_title(title)
+    if V:
+        legend.append(Patch(color=COLORS["void"], label="void" if d == 3 else "hole"))
+    if Pk:
+        legend.append(Patch(color=COLORS["accent"], label="pocket"))
+        legend.append(Line2D([], [], color=COLORS["mouth"], lw=3, label="mouth"))
+    if T:
+        legend.append(Line2D([], [], color=COLORS["void"], lw=2.5, label="tunnel cycle"))
+    if show_complex and d == 2:
+        legend.append(Line2D([], [], color=COLORS["complex"], lw=0.8, label=f"K(τ)"))
+    if legend:
+        with style():
+            ax.legend(handles=legend, loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=9)
+    return fig
+
+
+def _annotate(ax, balls, V, Pk):
+    word = _measure_word(balls.dim)
+    items = [("V", v) for v in V] + [("P", p) for p in Pk]
+    for i, (kind, f) in enumerate(items):
+        cells = _cells_of(f)
+        if not len(cells):
+            continue
+        x = _label_point(balls, cells)
+        try:
+            vol = float(_field(f, "volume", "area"))
+            txt = f"{kind}{i + 1 if kind == 'V' else i + 1 - len(V)}\n{word} {vol:.2f}"
+        except AttributeError:
+            txt = f"{kind}{i + 1}"
+        ax.annotate(txt, x, xytext=(0, 0), textcoords="offset points", ha="center", va="center",
+                    fontsize=8, zorder=6,
+                    bbox=dict(boxstyle="round,pad=0.2", fc="white", ec="none", alpha=0.8))

@@ -1,0 +1,111 @@
+"""The pocket explorer: voids and pockets as the disks grow (Notes §23.1, Figure 23.2)."""
+from __future__ import annotations
+
+import ipywidgets as W
+import numpy as np
+
+from .._validate import as_finite_scalar
+
+__all__ = ["pocket_explorer", "PocketExplorer"]
+
+
+def _default_range(balls):
+    """From the moment the smallest ball appears to just after the last feature dies."""
+    import shapelab
+
+    lo = -float(balls.weights.min())
+    P = shapelab.alpha_filtration(balls).persistence()
+    deaths = np.concatenate([np.asarray(a)[:, 1] for a in P.values() if len(a)] or [np.zeros(0)])
+    deaths = deaths[np.isfinite(deaths)]
+    hi = float(deaths.max()) if len(deaths) else lo + 1.0
+    hi = max(hi, lo + 1e-6)
+    return lo, hi + 0.1 * (hi - lo)
+
+
+def pocket_explorer(balls, *, tau=0.0, tau_range=None, steps=100, min_persistence=0.0,
+                    show_complex=False):
+    """A slider in τ over the disks grown to :math:`\\sqrt{r^2+\\tau}`, with the holes
+    (voids) and the pockets with their mouths at that τ (Notes §23.1, Figure 23.2).
+
+    Drag τ up and watch a pocket's mouth close: the pocket turns into a hole, which
+    then fills.  A dent that fills before its mouth closes is never coloured as a
+    pocket — the right-hand shape of Figure 23.2.
+
+    Parameters
+    ----------
+    balls : Balls
+        2D disks (3D works too but redraws slowly).
+    tau : float
+        Initial growth time.
+    tau_range : (float, float), optional
+        Slider bounds; default from the smallest ball's appearance
+        :math:`-\\min r_i^2` to a little after the last finite death.
+    steps : int
+        Slider resolution.
+    min_persistence : float
+        Passed to :func:`shapelab.pockets`.
+    show_complex : bool
+        Also draw the dual complex :math:`K_\\tau`.
+
+    Returns
+    -------
+    PocketExplorer
+        An ``ipywidgets.VBox`` holding the slider and the figure.
+    """
+    from ..balls import Balls
+
+    if not isinstance(balls, Balls):
+        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+    tau = as_finite_scalar(tau, "tau")
+    if tau_range is None:
+        lo, hi = _default_range(balls)
+    else:
+        try:
+            lo, hi = (as_finite_scalar(v, "tau_range") for v in tau_range)
+        except TypeError:
+            raise TypeError("tau_range must be a pair (low, high) of numbers") from None
+        if not lo < hi:
+            raise ValueError(f"tau_range must have low < high, got {tuple(tau_range)!r}")
+    if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 2:
+        raise ValueError(f"steps must be an integer >= 2, got {steps!r}")
+    lo = max(lo, -float(balls.weights.min()))
+    tau = min(max(tau, lo), hi)
+    min_persistence = as_finite_scalar(min_persistence, "min_persistence", nonnegative=True)
+    return PocketExplorer(balls, tau, lo, hi, (hi - lo) / steps, min_persistence, bool(show_complex))
+
+
+class PocketExplorer(W.VBox):
+    """Slider + figure; see :func:`pocket_explorer`."""
+
+    def __init__(self, balls, tau, lo, hi, step, min_persistence, show_complex):
+        self._balls = balls
+        self._minp = min_persistence
+        self._show_complex = show_complex
+        self.slider = W.FloatSlider(value=tau, min=lo, max=hi, step=step, description="τ",
+                                    continuous_update=False, readout_format=".2f",
+                                    layout=W.Layout(width="60%"))
+        self.status = W.HTML()
+        self.out = W.Output()
+        super().__init__([W.HBox([self.slider, self.status]), self.out])
+        self.slider.observe(self._redraw, names="value")
+        self._redraw()
+
+    def _redraw(self, change=None):
+        import shapelab
+        from IPython.display import display
+
+        from ..plot.topology import pockets as plot_pockets
+
+        t = float(self.slider.value)
+        P = shapelab.pockets(self._balls, t, min_persistence=self._minp)
+        V = shapelab.voids(self._balls, t)
+        word = "holes" if self._balls.dim == 2 else "voids"
+        self.status.value = f"&nbsp;{len(P)} pockets, {len(V)} {word}"
+        fig = plot_pockets(self._balls, P, tau=t, voids=V, show_complex=self._show_complex)
+        self.out.clear_output(wait=True)
+        with self.out:
+            display(fig)
+
+    def __repr__(self):
+        return (f"PocketExplorer(n_balls={len(self._balls)}, tau={self.slider.value:.2f}, "
+                f"range=({self.slider.min:.2f}, {self.slider.max:.2f}))")

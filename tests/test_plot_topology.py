@@ -1,0 +1,274 @@
+"""Tests of shapelab.plot.topology and shapelab.widgets.topology: the figures draw
+exactly the data they are given (counted from the artists), and bad input is refused."""
+from __future__ import annotations
+
+import importlib.util
+from dataclasses import dataclass
+
+import matplotlib
+import numpy as np
+import pytest
+from matplotlib.collections import LineCollection, PatchCollection, PathCollection, PolyCollection
+from matplotlib.figure import Figure
+
+import shapelab
+from shapelab import datasets as D
+from shapelab.plot import topology as PT
+from shapelab.plot._style import COLORS, new_figure
+
+matplotlib.use("Agg")
+HAS_CAVITIES = importlib.util.find_spec("shapelab.cavities") is not None
+
+PAIRS = {
+    0: np.array([[0.0, np.inf], [0.0, 1.0], [0.5, 2.0]]),
+    1: np.array([[1.0, 3.0], [1.5, 1.6], [2.0, 2.05], [0.2, 4.0]]),
+    2: np.zeros((0, 2)),
+}
+
+
+def render(fig):
+    """Draw the figure for real (3D collections project their data when drawn)."""
+    import io
+    fig.savefig(io.BytesIO(), format="png")
+
+
+def scatter_offsets(ax):
+    return [c.get_offsets() for c in ax.collections if isinstance(c, PathCollection)]
+
+
+# ------------------------------------------------------------ diagrams
+def test_persistence_diagram_draws_every_pair():
+    fig = PT.persistence_diagram(PAIRS, dim=2)
+    assert isinstance(fig, Figure)
+    ax = fig.axes[0]
+    pts = np.concatenate(scatter_offsets(ax))
+    assert len(pts) == 3 + 4
+    # finite pairs at (birth, death); the essential class on the ∞ line above them
+    for b, d in PAIRS[1]:
+        assert np.any(np.all(np.isclose(pts, [b, d]), axis=1))
+    inf_y = pts[np.isclose(pts[:, 0], 0.0) & (pts[:, 1] > 4.0), 1]
+    assert len(inf_y) == 1 and inf_y[0] > 4.0
+    assert ax.get_xlabel() == "birth τ" and ax.get_ylabel() == "death τ"
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert any("H₁ holes" in t for t in labels)
+    assert not any("H₂" in t for t in labels)  # the empty top dimension is left out
+
+
+def test_persistence_diagram_min_persistence_greys_short_pairs():
+    fig = PT.persistence_diagram(PAIRS, dims=[1], min_persistence=0.5)
+    off = scatter_offsets(fig.axes[0])
+    sizes = sorted(len(o) for o in off)
+    assert sizes == [2, 2]  # two long pairs in colour, two short ones in grey
+
+
+def test_persistence_diagram_of_a_filtration_matches_its_pairs():
+    F = shapelab.alpha_filtration(D.ring(8, radius=2.0, disk_radius=0.9))
+    P = F.persistence()
+    fig = PT.persistence_diagram(F, tau=0.0)
+    n = sum(len(o) for o in scatter_offsets(fig.axes[0]))
+    assert n == sum(len(a) for a in P.values())
+
+
+def test_draws_into_given_axes():
+    fig, axes = new_figure(1, 2)
+    out = PT.persistence_diagram(PAIRS, ax=axes[0])
+    out2 = PT.barcode(PAIRS, ax=axes[1])
+    assert out is fig and out2 is fig and len(fig.axes) == 2
+
+
+# ------------------------------------------------------------ barcodes
+def bar_segments(ax):
+    return sum(len(c.get_segments()) for c in ax.collections if isinstance(c, LineCollection))
+
+
+def test_barcode_one_bar_per_pair():
+    fig = PT.barcode(PAIRS)
+    assert bar_segments(fig.axes[0]) == 7
+    # the infinite bar ends in an arrow head beyond every finite death
+    heads = np.concatenate(scatter_offsets(fig.axes[0]))
+    assert len(heads) == 1 and heads[0, 0] > 4.0
+
+
+def test_barcode_simplification_and_cap():
+    fig = PT.barcode(PAIRS, min_persistence=0.5)
+    ax = fig.axes[0]
+    assert bar_segments(ax) == 3 + 2
+    assert "2 short bars" in ax.get_title()
+    fig = PT.barcode(PAIRS, dims=1, max_bars=2)
+    segs = [s for c in fig.axes[0].collections if isinstance(c, LineCollection) for s in c.get_segments()]
+    lengths = sorted(np.ptp(np.asarray(s)[:, 0]) for s in segs)
+    assert lengths == pytest.approx([2.0, 3.8])  # the two most persistent H1 bars
+
+
+# ------------------------------------------------------------ Betti curves
+def test_betti_curve_is_the_library_curve():
+    F = shapelab.alpha_filtration(D.ring(8, radius=2.0, disk_radius=0.9))
+    taus = np.linspace(-1, 4, 11)
+    fig = PT.betti_curve(F, taus=taus, tau=0.0)
+    lines = [ln for ln in fig.axes[0].get_lines() if len(ln.get_xdata()) == len(taus)]
+    curve = F.betti_curve(taus)
+    assert len(lines) == 2  # β0, β1 (β2 is always zero in the plane)
+    for k, ln in enumerate(lines):
+        assert np.array_equal(ln.get_ydata(), curve[:, k])
+
+
+def test_betti_curve_from_arrays_and_default_taus():
+    taus = np.array([0.0, 1.0, 2.0])
+    curve = np.array([[3, 0, 0], [1, 1, 0], [1, 0, 0]])
+    fig = PT.betti_curve((taus, curve))
+    assert len(fig.axes[0].get_lines()) == 2
+    F = shapelab.alpha_filtration(D.figure_23_2()[0])
+    fig = PT.betti_curve(F)
+    ax = fig.axes[0]
+    x = ax.get_lines()[0].get_xdata()
+    # the default range covers every finite death, so the pocket's hole shows
+    P = F.persistence()
+    assert x.max() >= np.max(P[1][:, 1])
+    assert ax.get_yscale() == "symlog"  # ~100 components at first
+
+
+@pytest.mark.parametrize("call, exc", [
+    (lambda: PT.persistence_diagram([1, 2]), TypeError),
+    (lambda: PT.persistence_diagram({0: [[1.0, 0.0]]}), ValueError),
+    (lambda: PT.persistence_diagram({0: [[np.nan, 1.0]]}), ValueError),
+    (lambda: PT.persistence_diagram({"a": [[0.0, 1.0]]}), ValueError),
+    (lambda: PT.persistence_diagram(PAIRS, dims=[5]), ValueError),
+    (lambda: PT.persistence_diagram(PAIRS, tau=np.inf), ValueError),
+    (lambda: PT.barcode(PAIRS, max_bars=0), ValueError),
+    (lambda: PT.barcode(PAIRS, min_persistence=-1), ValueError),
+    (lambda: PT.betti_curve("F"), TypeError),
+    (lambda: PT.betti_curve((np.arange(3), np.zeros((2, 2)))), ValueError),
+    (lambda: PT.voids(np.zeros((3, 2)), []), TypeError),
+    (lambda: PT.pockets(D.ring(5), [], tau="x"), TypeError),
+])
+def test_bad_input(call, exc):
+    with pytest.raises(exc):
+        call()
+
+
+# ------------------------------------------------------------ feature drawings
+@dataclass(frozen=True)
+class FakeVoid:
+    cells: np.ndarray
+    lining: np.ndarray
+    born: float
+    dies: float
+    volume: float
+
+
+@dataclass(frozen=True)
+class FakePocket:
+    cells: np.ndarray
+    mouth: np.ndarray
+    lining: np.ndarray
+    closes_at: float
+    fills_at: float
+    volume: float
+
+
+@dataclass(frozen=True)
+class FakeTunnel:
+    birth: float
+    death: float
+    cycle: np.ndarray
+
+
+def polys(ax, color):
+    from matplotlib.colors import to_rgba
+    out = []
+    for c in ax.collections:
+        if isinstance(c, PolyCollection) and len(c.get_facecolors()) and \
+                np.allclose(c.get_facecolors()[0][:3], to_rgba(color)[:3]):
+            out.extend(c.get_paths())
+    return out
+
+
+def test_voids_2d_draws_cells_under_the_disks():
+    b = D.ring(6, radius=2.0, disk_radius=1.2)
+    cells = np.array([[0, 1, 2], [0, 2, 3], [0, 3, 5], [3, 4, 5]])
+    v = FakeVoid(cells, np.arange(6), -1.0, 2.8, 0.123)
+    fig = PT.voids(b, [v], tau=0.0)
+    ax = fig.axes[0]
+    assert len(polys(ax, COLORS["void"])) == 4
+    disks = [c for c in ax.collections if isinstance(c, PatchCollection)][0]
+    assert len(disks.get_paths()) == 6
+    assert disks.get_zorder() > [c for c in ax.collections if isinstance(c, PolyCollection)][0].get_zorder()
+    assert "area 0.12" in " ".join(t.get_text() for t in ax.texts)
+    assert "1 hole at τ = 0" in ax.get_title()
+    assert ax.get_aspect() == 1.0
+
+
+def test_voids_grow_the_disks():
+    b = D.ring(6, radius=2.0, disk_radius=1.0)
+    fig = PT.voids(b, [], tau=3.0)
+    disks = [c for c in fig.axes[0].collections if isinstance(c, PatchCollection)][0]
+    paths = disks.get_paths()
+    assert len(paths) == 6
+    for path, c in zip(paths, b.centers):  # radius sqrt(r^2 + tau) = 2
+        r = np.linalg.norm(path.vertices - c, axis=1)
+        assert np.isclose(r.min(), 2.0, rtol=1e-9)  # on-curve vertices
+
+
+def test_pockets_2d_draws_mouths():
+    b = D.ring(6, radius=2.0, disk_radius=1.2)
+    p = FakePocket(np.array([[0, 1, 2], [0, 2, 3]]), np.array([[0, 3], [1, 2]]), np.array([0, 1, 2, 3]),
+                   0.5, 2.0, 0.4)
+    fig = PT.pockets(b, [p], tau=0.0, show_voids=False)
+    ax = fig.axes[0]
+    assert len(polys(ax, COLORS["accent"])) == 2
+    mouths = [c for c in ax.collections if isinstance(c, LineCollection)]
+    assert sum(len(m.get_segments()) for m in mouths) == 2
+    seg = np.asarray(mouths[0].get_segments()[0])
+    assert np.allclose(seg, b.centers[[0, 3]])
+    assert "1 pocket at τ = 0" in ax.get_title()
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["pocket", "mouth"]
+
+
+def test_tunnels_3d_draws_the_cycle():
+    b = D.ring(8, radius=3.0, disk_radius=1.0, dim=3)
+    cyc = np.array([[i, (i + 1) % 8] for i in range(8)])
+    fig = PT.tunnels(b, [FakeTunnel(-0.4, 8.0, cyc)], tau=0.0)
+    render(fig)
+    ax = fig.axes[0]
+    assert ax.name == "3d"
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection
+    lines = [c for c in ax.collections if isinstance(c, Line3DCollection)]
+    assert len(lines) == 1 and len(lines[0].get_segments()) == 8
+
+
+def test_voids_3d_draws_the_boundary_of_the_cells():
+    b = D.fullerene_c60()
+    # two tetrahedra sharing a face: 6 boundary triangles
+    cells = np.array([[0, 1, 2, 3], [0, 1, 2, 4]])
+    fig = PT.voids(b, [FakeVoid(cells, np.arange(5), -0.9, 9.1, 1.0)])
+    render(fig)
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+    surf = [c for c in fig.axes[0].collections if isinstance(c, Poly3DCollection)]
+    assert len(surf) == 1 and len(surf[0].get_paths()) == 6
+
+
+# ------------------------------------------------------------ with the library
+@pytest.mark.skipif(not HAS_CAVITIES, reason="shapelab.cavities (topology engineer) not written yet")
+def test_plots_of_real_features():
+    left, _ = D.figure_23_2()
+    P = shapelab.pockets(left, 0.0)
+    fig = PT.pockets(left, tau=0.0)
+    assert len(polys(fig.axes[0], COLORS["accent"])) == sum(len(p.cells) for p in P)
+    V = shapelab.voids(D.fullerene_c60(), 0.0)
+    assert isinstance(PT.voids(D.fullerene_c60(), V), Figure)
+    assert isinstance(PT.tunnels(D.nanotube()), Figure)
+
+
+@pytest.mark.skipif(not HAS_CAVITIES, reason="shapelab.cavities (topology engineer) not written yet")
+def test_pocket_explorer_widget():
+    from shapelab.widgets import pocket_explorer
+    left, _ = D.figure_23_2()
+    w = pocket_explorer(left, tau=0.0, steps=20)
+    assert repr(w).startswith("PocketExplorer(n_balls=112, tau=0.00")
+    assert "1 pockets" in w.status.value
+    w.slider.value = 2.0  # the mouth has closed: a hole, no pocket
+    assert "0 pockets, 1 holes" in w.status.value
+    with pytest.raises(ValueError):
+        pocket_explorer(left, tau_range=(1.0, 0.0))
+    with pytest.raises(TypeError):
+        pocket_explorer(left.centers)
