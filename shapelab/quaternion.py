@@ -135,16 +135,14 @@ def qnorm(q) -> np.ndarray:
 
 
 def _unit(q: np.ndarray, name: str) -> np.ndarray:
-    n = np.linalg.norm(q, axis=-1, keepdims=True)
-    if np.any(n == 0) or not np.all(np.isfinite(n)):
-        bad = np.argwhere((n[..., 0] == 0) | ~np.isfinite(n[..., 0]))
+    """q / |q| without overflow or underflow; the zero quaternion raises ValueError."""
+    big = np.abs(q).max(axis=-1, keepdims=True)
+    if np.any(big == 0):
+        bad = np.argwhere(big[..., 0] == 0)
         where = "" if q.ndim == 1 else f" (at index {tuple(int(i) for i in bad[0])})"
-        raise ValueError(
-            f"{name} is the zero quaternion{where}, which does not represent a rotation"
-            if np.any(n == 0)
-            else f"{name} is too large to normalise{where}"
-        )
-    return q / n
+        raise ValueError(f"{name} is the zero quaternion{where}, which does not represent a rotation")
+    s = q / big
+    return s / np.linalg.norm(s, axis=-1, keepdims=True)
 
 
 def qnormalize(q) -> np.ndarray:

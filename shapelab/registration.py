@@ -139,6 +139,16 @@ def horn_matrix(R, G) -> np.ndarray:
     return _horn_from_m(cross_covariance(R, G))
 
 
+def _covariance_and_scale(R: np.ndarray, G: np.ndarray) -> tuple[np.ndarray, float]:
+    """M = Σ r gᵀ and the scale sqrt(Σ|r|² Σ|g|²) bounding its entries; overflow → ValueError."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        m = R.T @ G
+        scale = float(np.sqrt(np.einsum("ij,ij->", R, R)) * np.sqrt(np.einsum("ij,ij->", G, G)))
+    if not (np.all(np.isfinite(m)) and np.isfinite(scale)):
+        raise ValueError("R and G are too large: their cross-covariance overflows float64")
+    return m, scale
+
+
 def _rotation_from_m(m: np.ndarray, scale: float, *, caller: str) -> Quaternion:
     """Top eigenvector of Horn's matrix built from M; warn when it is not unique."""
     a = _horn_from_m(m)
@@ -208,11 +218,7 @@ def optimal_rotation(R, G) -> Quaternion:
     R = as_points(R, "R", dim=3)
     G = as_points(G, "G", dim=3)
     check_same_shape(R, G, "R", "G")
-    m = R.T @ G
-    if not np.all(np.isfinite(m)):
-        raise ValueError("R and G are too large: their cross-covariance overflows float64")
-    scale = float(np.sqrt(np.einsum("ij,ij->", R, R) * np.einsum("ij,ij->", G, G)))
-    return _rotation_from_m(m, scale, caller="optimal_rotation")
+    return _rotation_from_m(*_covariance_and_scale(R, G), caller="optimal_rotation")
 
 
 def kabsch(R, G, *, proper: bool = True) -> np.ndarray:
@@ -357,15 +363,12 @@ class RigidMotion:
 
 
 def _register(R: np.ndarray, G: np.ndarray, *, caller: str) -> RigidMotion:
-    cr = R.mean(axis=0)
-    cg = G.mean(axis=0)
-    Rc = R - cr
-    Gc = G - cg
-    m = Rc.T @ Gc
-    if not np.all(np.isfinite(m)):
-        raise ValueError("R and G are too large: their cross-covariance overflows float64")
-    scale = float(np.sqrt(np.einsum("ij,ij->", Rc, Rc) * np.einsum("ij,ij->", Gc, Gc)))
-    q = _rotation_from_m(m, scale, caller=caller)
+    with np.errstate(over="ignore", invalid="ignore"):
+        cr = R.mean(axis=0)
+        cg = G.mean(axis=0)
+    if not (np.all(np.isfinite(cr)) and np.all(np.isfinite(cg))):
+        raise ValueError("R and G are too large: their centroids overflow float64")
+    q = _rotation_from_m(*_covariance_and_scale(R - cr, G - cg), caller=caller)
     return RigidMotion(q, cg - q.rotate(cr))
 
 
