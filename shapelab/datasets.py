@@ -13,6 +13,7 @@ in arbitrary units for the 2D figure inputs.
 :func:`ring`           a ring of disks (or balls) around one hole (tunnel)
 :func:`figure_23_1`    a dozen disks whose dual complex has two triangles
 :func:`figure_23_2`    the two kinds of dent of Figure 23.2
+:func:`swiss_cheese`   2D disks with round holes of three sizes and a long slit
 :func:`example_pdb`    path of the shipped example PDB file (the globule)
 ====================  =========================================================
 
@@ -40,6 +41,7 @@ __all__ = [
     "ring",
     "figure_23_1",
     "figure_23_2",
+    "swiss_cheese",
     "example_pdb",
     "GRAPHENE_LATTICE_CONSTANT",
     "CARBON_RADIUS",
@@ -563,3 +565,41 @@ def figure_23_2(*, body_radius=6.0, spacing=1.0, disk_radius=0.65):
                       np.array([0.0, R + 2 * s, 0.0])) < 0.9 * s)
     bite = np.hypot(p[:, 0], p[:, 1] - (R + 3.0 * s)) < 4.5 * s
     return Balls(p[~flask], r), Balls(p[~bite], r)
+
+
+def swiss_cheese(*, spacing=1.0, disk_radius=0.65):
+    """2D disks with four holes: round ones of three sizes and a long thin slit.
+
+    Geometry: the triangular lattice of spacing s = 1 in the rectangle
+    [−12, 12] × [−6, 6], disks of radius 0.65 (the body has no holes, as in
+    :func:`figure_23_2`).  Removed (distances in units of s):
+
+    * three round holes, every point within :math:`\\rho + 0.65` of (−7, 2), (0, 2)
+      and (7, 2) for free radii ρ = 0.5, 0.9 and 1.3;
+    * a slit, the lattice row y = −3·(√3/2) for −10 ≤ x ≤ 10 (21 points).  Its
+      neighbours are the rows √3/2 above and below, so the slit is only
+      :math:`2(\\sqrt3/2 - 0.65) \\approx 0.43` wide but 20 long.
+
+    The slit has the largest area and the smallest persistence: its rows touch at
+    τ = 3/4 − 0.65² ≈ 0.33, cutting it into 1 × √3 rectangles, all filled at
+    τ = 1 − 0.65² ≈ 0.58, long before even the smallest round hole.  Persistence
+    measures a hole's *thickness*, not its size (lesson 09).
+
+    Returns
+    -------
+    Balls
+    """
+    s = as_finite_scalar(spacing, "spacing", positive=True)
+    r = as_finite_scalar(disk_radius, "disk_radius", positive=True)
+    j, i = np.meshgrid(np.arange(-8, 9), np.arange(-14, 15), indexing="ij")
+    x = (i + 0.5 * (j % 2)) * s
+    y = j * s * np.sqrt(3.0) / 2.0
+    p = np.column_stack([x.ravel(), y.ravel()])
+    p = p[(np.abs(p[:, 0]) <= 12 * s + 1e-9) & (np.abs(p[:, 1]) <= 6 * s + 1e-9)]
+    remove = np.zeros(len(p), bool)
+    for cx, rho in ((-7.0, 0.5), (0.0, 0.9), (7.0, 1.3)):
+        remove |= np.hypot(p[:, 0] - cx * s, p[:, 1] - 2.0 * s) < (rho * s + r)
+    row = -3 * s * np.sqrt(3.0) / 2.0
+    remove |= (np.abs(p[:, 1] - row) < 1e-9 * s) & (np.abs(p[:, 0]) <= 10 * s + 1e-9)
+    p = p[~remove]
+    return Balls(p[np.lexsort((p[:, 0], p[:, 1]))], r)

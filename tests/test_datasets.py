@@ -274,6 +274,29 @@ def test_ring_hole_lifetime_closed_form(n, R, r, dim):
     assert dies == pytest.approx(R**2 - r**2, rel=1e-9)
 
 
+def test_swiss_cheese_slit_is_biggest_but_least_persistent():
+    b = D.swiss_cheese()
+    P = gudhi_pairs(b)
+    holes = alive(P[1], 0.0)
+    assert len(holes) == 4
+    # the slit: rectangles 1 x sqrt(3) of co-circular centres, filled at 1 - r^2; its
+    # rows touch at 3/4 - r^2 and cut it into short-lived pieces
+    assert holes[:, 1].min() == pytest.approx(1.0 - 0.65**2, abs=1e-9)
+    pieces = born_later(P[1], 0.0, 1e-6)
+    assert np.allclose(pieces[:, 0], 0.75 - 0.65**2) and np.allclose(pieces[:, 1], 1.0 - 0.65**2)
+    # ... yet it has the largest area (pixel oracle)
+    h = 0.05
+    xs, ys = np.arange(-13, 13, h), np.arange(-7, 7, h)
+    g = np.stack(np.meshgrid(xs, ys, indexing="ij"), -1).reshape(-1, 2)
+    d, _ = cKDTree(b.centers).query(g)
+    lab, n = ndimage.label((d > 0.65).reshape(len(xs), len(ys)))
+    def area_at(x, y):
+        return (lab == lab[int(round((x + 13) / h)), int(round((y + 7) / h))]).sum() * h * h
+    slit = area_at(0.0, -3 * np.sqrt(3) / 2)
+    rounds = [area_at(-7.0, 2.0), area_at(0.0, 2.0), area_at(7.0, 2.0)]
+    assert slit > max(rounds) and rounds[0] < rounds[1] < rounds[2]
+
+
 def test_figure_23_1_has_two_triangles_at_zero():
     gudhi = pytest.importorskip("gudhi")
     b = D.figure_23_1()
