@@ -147,7 +147,7 @@ def nanotube_radius(n, m, *, a=GRAPHENE_LATTICE_CONSTANT) -> float:
 
 
 def nanotube(n=8, m=8, *, length=12.0, atom_radius=CARBON_RADIUS,
-             a=GRAPHENE_LATTICE_CONSTANT) -> Balls:
+             a=GRAPHENE_LATTICE_CONSTANT, slit=0.0) -> Balls:
     """A single-walled (n, m) carbon nanotube: a graphene sheet rolled up.
 
     Geometry: graphene has lattice vectors :math:`a_1 = a(1, 0)`,
@@ -164,6 +164,11 @@ def nanotube(n=8, m=8, *, length=12.0, atom_radius=CARBON_RADIUS,
     1.42 Å from their atoms) while the inside stays free, so the union has exactly
     **one tunnel** (β₁ = 1) and no void.
 
+    With ``slit`` > 0 the atoms whose arc position :math:`R\theta` lies within
+    ``slit``/2 of the line θ = 0 are removed along the whole length: the tube becomes
+    a **groove** (a gutter) that turns into a tunnel when its lips close as the
+    balls grow — if the slit is narrow enough (lesson 08).
+
     Parameters
     ----------
     n, m : int
@@ -174,6 +179,8 @@ def nanotube(n=8, m=8, *, length=12.0, atom_radius=CARBON_RADIUS,
         Ball radius in Å.
     a : float
         Lattice constant in Å.
+    slit : float
+        Arc width in Å of the strip of atoms removed (0: a closed tube).
     """
     n = as_positive_int(n, "n", minimum=1)
     m = as_positive_int(m, "m", minimum=0)
@@ -201,7 +208,14 @@ def nanotube(n=8, m=8, *, length=12.0, atom_radius=CARBON_RADIUS,
     order = np.lexsort((u, v))
     u, v = u[order], v[order]
     R = C / (2 * np.pi)
+    sl = as_finite_scalar(slit, "slit", nonnegative=True)
+    if sl >= C:
+        raise ValueError(f"slit must be narrower than the circumference {C:.4g} Å, got {sl!r}")
     theta = 2 * np.pi * u / C
+    if sl > 0:  # arc distance from the line theta = 0, both ways round
+        arc = np.minimum(u, C - u)
+        keep = arc >= sl / 2.0
+        theta, v = theta[keep], v[keep]
     centers = np.column_stack([R * np.cos(theta), R * np.sin(theta), v])
     if len(centers) == 0:
         raise ValueError(f"length={L} is too short to hold a ring of atoms")

@@ -167,6 +167,25 @@ def test_nanotube_one_tunnel():
     assert bounded_free_components(b, 0.0, h=0.3) == 0
 
 
+def test_nanotube_slit_groove_becomes_a_tunnel_only_if_narrow():
+    closed = D.nanotube()
+    R = D.nanotube_radius(8, 8)
+    narrow, wide = D.nanotube(slit=3.0), D.nanotube(slit=22.0)
+    assert len(narrow) < len(closed) and len(wide) < len(narrow)
+    # removed atoms are exactly those within slit/2 of the line theta = 0 (arc length)
+    arc = R * np.abs(np.arctan2(narrow.centers[:, 1], narrow.centers[:, 0]))
+    assert arc.min() >= 1.5 - 1e-9
+    P = gudhi_pairs(closed)
+    (born0, dies0), = alive(P[1], 0.0, 1e-6)
+    assert dies0 == pytest.approx(R**2 - 1.7**2, rel=1e-9)  # the ring of atoms covers the axis
+    g = born_later(gudhi_pairs(narrow)[1], 0.0, 2.0)
+    g = g[np.isfinite(g[:, 0]) & (g[:, 0] < 1e6)]
+    assert len(g) == 1 and g[0, 1] == pytest.approx(dies0)   # a groove at 0, a tunnel later
+    w = gudhi_pairs(wide)[1]
+    w = w[(w[:, 1] - w[:, 0] > 2.0) & (w[:, 0] < 1e6)]
+    assert len(w) == 0                                        # a half-pipe never closes
+
+
 @pytest.mark.skipif(not HAS_CAVITIES, reason="shapelab.cavities (topology engineer) not written yet")
 def test_nanotube_one_tunnel_with_shapelab():
     import shapelab
@@ -316,6 +335,8 @@ def test_figure_23_1_has_two_triangles_at_zero():
     (lambda: D.nanotube(8.5, 0), TypeError),
     (lambda: D.nanotube(8, 8, length=float("nan")), ValueError),
     (lambda: D.bowl(opening=190), ValueError),
+    (lambda: D.nanotube(slit=40.0), ValueError),
+    (lambda: D.nanotube(slit=-1.0), ValueError),
     (lambda: D.globule(seed=-1), ValueError),
     (lambda: D.globule(seed=None), TypeError),
     (lambda: D.globule(semi_axes=(1, 2)), ValueError),
