@@ -36,44 +36,99 @@ from dataclasses import dataclass
 import numpy as np
 
 from .balls import Balls
-from .power import _triangulate
+from .power import _triangulate_local
 
 __all__ = ["alpha_filtration", "dual_complex", "Filtration", "Complex"]
 
 
 # ----------------------------------------------------------------------------------
-# Face enumeration with integer keys
+# Face enumeration
 # ----------------------------------------------------------------------------------
+def _drop_cols(w: int):
+    """Column lists: for each i, the columns of a w-row without column i."""
+    return [[c for c in range(w) if c != i] for i in range(w)]
+
+
+def _facets_from_neighbours(simp: np.ndarray, nbr: np.ndarray):
+    """Facets of top simplices using the neighbour relation (no sorting).
+
+    Each interior facet is shared by exactly two top simplices; the one with the
+    smaller index owns it.  Returns ``(facets, boundary)`` or ``None`` if the
+    neighbour relation is inconsistent (then the caller falls back to sorting).
+    """
+    m, w = simp.shape
+    own = (nbr < 0) | (np.arange(m, dtype=np.int64)[:, None] < nbr)
+    ids = np.cumsum(own.ravel(), dtype=np.int64).reshape(m, w) - 1
+    p = np.flatnonzero(~own.ravel())
+    t, i = np.divmod(p, w)
+    nb = nbr.ravel()[p]
+    back = nbr[nb] == t[:, None]
+    j = np.argmax(back, axis=1)
+    if not np.all(back[np.arange(j.size), j]):
+        return None
+    # the shared facet must have the same vertices on both sides (checked by the
+    # sums and sums of squares of its vertex indices)
+    for f in (simp, simp * simp):
+        fs = f.sum(axis=1)[:, None] - f
+        if not np.array_equal(fs.ravel()[p], fs[nb, j]):
+            return None
+    ids.ravel()[p] = ids[nb, j]
+    cols = np.array(_drop_cols(w))
+    ro, co = np.divmod(np.flatnonzero(own.ravel()), w)
+    facets = simp[ro[:, None], cols[co]]
+    return facets, ids
+
+
+def _pack_sort(keys: np.ndarray, key_bits: int):
+    """Sort integer keys, returning (sorted keys, permutation), using one SIMD
+    ``np.sort`` of the keys with the index packed into the low bits when it fits
+    in 63 bits (much faster than ``argsort``)."""
+    m = keys.size
+    ib = max(1, int(m - 1).bit_length())
+    if key_bits + ib <= 63:
+        packed = (keys.astype(np.int64) << np.int64(ib)) | np.arange(m, dtype=np.int64)
+        packed.sort()
+        perm = packed & np.int64((1 << ib) - 1)
+        packed >>= np.int64(ib)
+        return packed, perm
+    perm = np.argsort(keys, kind="stable")  # pragma: no cover - huge inputs
+    return keys[perm], perm  # pragma: no cover
+
+
 def _unique_facets(simp: np.ndarray, nv: int):
     """All facets of the rows of ``simp`` (vertices ascending): unique facets
-    (lexicographically sorted, ascending rows) and the (m, j+1) boundary matrix whose
-    column i is the facet opposite vertex i."""
-    m, w = simp.shape  # w = j + 1 vertices, facets have w - 1
+    (rows ascending, lexicographically sorted) and the (m, j+1) boundary matrix
+    whose column i is the row of the facet opposite vertex i."""
+    m, w = simp.shape
     fw = w - 1
-    if fw == 0:
-        raise ValueError("vertices have no facets")
-    # facet opposite column i: drop column i (stays ascending)
-    cols = [np.delete(np.arange(w), i) for i in range(w)]
-    if fw == 1:
-        keys = np.concatenate([simp[:, 1], simp[:, 0]])  # facet opposite i: the other vertex
-        uniq, inv = np.unique(keys, return_inverse=True)
-        return uniq[:, None].astype(np.int64), inv.reshape(w, m).T.astype(np.int64)
-    if float(nv) ** fw < 2.0**62:
+    if fw == 1:  # facets are vertices: a lookup table
+        pos = np.full(nv, -1, dtype=np.int64)
+        verts = np.flatnonzero(np.bincount(simp.ravel(), minlength=nv))
+        pos[verts] = np.arange(verts.size)
+        return verts[:, None].astype(np.int64), pos[simp[:, ::-1]]
+    key_bits = int(nv - 1).bit_length() * fw if nv > 1 else 1
+    if key_bits <= 62:
         base = np.int64(nv)
         keys = np.empty((w, m), dtype=np.int64)
-        for i, c in enumerate(cols):
+        for i, c in enumerate(_drop_cols(w)):
             k = simp[:, c[0]].astype(np.int64)
             for cc in c[1:]:
                 k = k * base + simp[:, cc]
             keys[i] = k
-        uniq, inv = np.unique(keys.ravel(), return_inverse=True)
+        sk, perm = _pack_sort(keys.ravel(), key_bits)
+        first = np.empty(sk.size, dtype=bool)
+        first[0] = True
+        np.not_equal(sk[1:], sk[:-1], out=first[1:])
+        uniq = sk[first]
+        inv = np.empty(sk.size, dtype=np.int64)
+        inv[perm] = np.cumsum(first) - 1
         faces = np.empty((uniq.size, fw), dtype=np.int64)
-        rest = uniq.copy()
+        rest = uniq
         for t in range(fw - 1, -1, -1):
             faces[:, t] = rest % base
-            rest //= base
-        return faces, inv.reshape(w, m).T.astype(np.int64)
-    allf = np.concatenate([simp[:, c] for c in cols])  # pragma: no cover - huge n
+            rest = rest // base
+        return faces, inv.reshape(w, m).T.copy()
+    allf = np.concatenate([simp[:, c] for c in _drop_cols(w)])  # pragma: no cover - huge n
     faces, inv = np.unique(allf, axis=0, return_inverse=True)  # pragma: no cover
     return faces.astype(np.int64), inv.reshape(w, m).T.astype(np.int64)  # pragma: no cover
 
@@ -81,65 +136,124 @@ def _unique_facets(simp: np.ndarray, nv: int):
 # ----------------------------------------------------------------------------------
 # Smallest orthogonal spheres
 # ----------------------------------------------------------------------------------
-def _orthospheres(x: np.ndarray, w: np.ndarray, S: np.ndarray):
-    """Centre offsets u (relative to the first vertex) and squared radii rho of the
-    smallest orthogonal spheres of the simplices S (rows of local vertex indices).
+def _dot(a, b):
+    out = a[0] * b[0]
+    for t in range(1, len(a)):
+        out += a[t] * b[t]
+    return out
 
-    The centre ``c = x[S[:,0]] + u`` lies in the affine hull of the simplex and has
-    equal power to all its weighted vertices; ``rho`` is that common power.
+
+def _cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def _ortho_generic(x: np.ndarray, w: np.ndarray, S: np.ndarray):
+    """Orthocentre offset u (from the first vertex) and rho of simplices S by the
+    minimum-norm solution of the Gram system (robust for flat simplices)."""
+    p0 = x[S[:, 0]]
+    w0 = w[S[:, 0]]
+    if S.shape[1] == 1:
+        return np.zeros_like(p0), -w0
+    A = x[S[:, 1:]] - p0[:, None, :]
+    b = 0.5 * (np.einsum("mjk,mjk->mj", A, A) - w[S[:, 1:]] + w0[:, None])
+    G = np.einsum("mik,mjk->mij", A, A)
+    lam = np.einsum("mij,mj->mi", np.linalg.pinv(G, rcond=1e-10), b)
+    u = np.einsum("mi,mik->mk", lam, A)
+    return u, np.einsum("mk,mk->m", u, u) - w0
+
+
+def _orthospheres(x: np.ndarray, w: np.ndarray, S: np.ndarray):
+    """Smallest orthogonal spheres of the simplices S (rows of local indices).
+
+    Returns
+    -------
+    rho : (m,) float
+        The squared radius (common power distance) of the smallest orthogonal
+        sphere; ``-w`` for vertices.
+    att : (m, j+1) bool
+        ``att[s, i]``: the facet of simplex ``s`` opposite its vertex ``S[s, i]`` is
+        *attached* (not Gabriel) with respect to that vertex, i.e. the vertex has
+        negative power with respect to the facet's smallest orthogonal sphere.
+
+    Notes
+    -----
+    Write the orthocentre as :math:`c = \\sum_i \\lambda_i z_i` (barycentric).  Along
+    the line through the facet's orthocentre :math:`c_f` orthogonal to the facet,
+    :math:`\\pi_v(c_f) - \\rho_f = 2t\\,n\\cdot(z_v - c_f)` where :math:`c = c_f + tn`; so
+    the facet opposite :math:`v` is attached iff :math:`c` and :math:`z_v` lie on
+    opposite sides of it, i.e. iff :math:`\\lambda_v < 0`.  This replaces one power
+    test per (simplex, facet) pair by the barycentric coordinates of one point.
     """
     m, w1 = S.shape
     j = w1 - 1
     k = x.shape[1]
-    p0 = x[S[:, 0]]
+    X = np.ascontiguousarray(x.T)
     w0 = w[S[:, 0]]
     if j == 0:
-        return np.zeros((m, k)), -w0.copy()
-    A = x[S[:, 1:]] - p0[:, None, :]          # (m, j, k)
-    b = 0.5 * (np.einsum("mjk,mjk->mj", A, A) - w[S[:, 1:]] + w0[:, None])  # u . a_i = b_i
+        return -w0, np.zeros((m, 1), dtype=bool)
+    P0 = X[:, S[:, 0]]
+    vec = [X[:, S[:, i]] - P0 for i in range(1, w1)]          # each (k, m)
+    nrm2 = [_dot(v, v) for v in vec]
+    beta = [0.5 * (nrm2[i] - w[S[:, i + 1]] + w0) for i in range(j)]   # u . a_i = beta_i
+    lam = np.empty((w1, m))
     if j == 1:
-        a = A[:, 0]
-        aa = np.einsum("mk,mk->m", a, a)
-        u = (b[:, 0] / aa)[:, None] * a
-        flat = np.zeros(m, dtype=bool)
+        t = beta[0] / nrm2[0]
+        rho = t * t * nrm2[0] - w0
+        lam[1] = t
+        flat = None
     elif j == 2 and k == 2:
-        a, c = A[:, 0], A[:, 1]
-        det = a[:, 0] * c[:, 1] - a[:, 1] * c[:, 0]
-        scale = np.sqrt(np.einsum("mk,mk->m", a, a) * np.einsum("mk,mk->m", c, c))
-        flat = np.abs(det) <= 1e-12 * scale
+        a, c = vec
+        det = a[0] * c[1] - a[1] * c[0]
+        flat = np.abs(det) <= 1e-12 * np.sqrt(nrm2[0] * nrm2[1])
         det = np.where(flat, 1.0, det)
-        u = np.empty((m, 2))
-        u[:, 0] = (b[:, 0] * c[:, 1] - b[:, 1] * a[:, 1]) / det
-        u[:, 1] = (a[:, 0] * b[:, 1] - c[:, 0] * b[:, 0]) / det
+        ux = (beta[0] * c[1] - beta[1] * a[1]) / det
+        uy = (a[0] * beta[1] - c[0] * beta[0]) / det
+        rho = ux * ux + uy * uy - w0
+        lam[1] = (ux * c[1] - uy * c[0]) / det
+        lam[2] = (a[0] * uy - a[1] * ux) / det
     elif j == 2 and k == 3:
-        a, c = A[:, 0], A[:, 1]
-        nrm = np.cross(a, c)
-        nn = np.einsum("mk,mk->m", nrm, nrm)
-        scale = np.einsum("mk,mk->m", a, a) * np.einsum("mk,mk->m", c, c)
-        flat = nn <= 1e-24 * scale
+        a, c = vec
+        n = _cross(a, c)
+        nn = _dot(n, n)
+        flat = nn <= 1e-24 * nrm2[0] * nrm2[1]
         nn = np.where(flat, 1.0, nn)
-        u = (b[:, :1] * np.cross(c, nrm) + b[:, 1:2] * np.cross(nrm, a)) / nn[:, None]
+        ad = [q / nn for q in _cross(c, n)]   # dual basis of (a, c) in their plane
+        cd = [q / nn for q in _cross(n, a)]
+        u = [beta[0] * ad[t] + beta[1] * cd[t] for t in range(3)]
+        rho = _dot(u, u) - w0
+        lam[1] = _dot(u, ad)
+        lam[2] = _dot(u, cd)
     elif j == 3 and k == 3:
-        a, c, e = A[:, 0], A[:, 1], A[:, 2]
-        ce, ea, ac = np.cross(c, e), np.cross(e, a), np.cross(a, c)
-        det = np.einsum("mk,mk->m", a, ce)
-        scale = np.sqrt(np.einsum("mk,mk->m", a, a) * np.einsum("mk,mk->m", c, c)
-                        * np.einsum("mk,mk->m", e, e))
-        flat = np.abs(det) <= 1e-12 * scale
+        a, b, c = vec
+        bc, ca, ab = _cross(b, c), _cross(c, a), _cross(a, b)
+        det = _dot(a, bc)
+        flat = np.abs(det) <= 1e-12 * np.sqrt(nrm2[0] * nrm2[1] * nrm2[2])
         det = np.where(flat, 1.0, det)
-        u = (b[:, :1] * ce + b[:, 1:2] * ea + b[:, 2:3] * ac) / det[:, None]
+        u = [(beta[0] * bc[t] + beta[1] * ca[t] + beta[2] * ab[t]) / det for t in range(3)]
+        rho = _dot(u, u) - w0
+        lam[1] = _dot(u, bc) / det
+        lam[2] = _dot(u, ca) / det
+        lam[3] = _dot(u, ab) / det
     else:  # pragma: no cover - j > k cannot happen
         raise AssertionError("simplex dimension exceeds the ambient dimension")
-    if np.any(flat):
-        # Degenerate (flat) simplices that Qhull's triangulation of cospherical input
-        # may contain: the least-squares (minimum-norm) orthocentre in their span.
+    lam[0] = 1.0 - lam[1:].sum(axis=0)
+    att = (lam < 0).T
+    if flat is not None and np.any(flat):
+        # Flat simplices, which Qhull's triangulation ("Qt") of cospherical input
+        # (grids) contains: minimum-norm orthocentre in their span, and the power
+        # test done facet by facet.
         idx = np.flatnonzero(flat)
-        Af = A[idx]
-        G = np.einsum("mik,mjk->mij", Af, Af)
-        lam = np.einsum("mij,mj->mi", np.linalg.pinv(G, rcond=1e-10), b[idx])
-        u[idx] = np.einsum("mi,mik->mk", lam, Af)
-    rho = np.einsum("mk,mk->m", u, u) - w0
-    return u, rho
+        Sf = S[idx]
+        u, r = _ortho_generic(x, w, Sf)
+        rho = rho.copy()
+        rho[idx] = r
+        att = att.copy()
+        for i, cols in enumerate(_drop_cols(w1)):
+            F = Sf[:, cols]
+            uf, rf = _ortho_generic(x, w, F)
+            d = x[F[:, 0]] + uf - x[Sf[:, i]]
+            att[idx, i] = np.einsum("mk,mk->m", d, d) - w[Sf[:, i]] < rf
+    return rho, att
 
 
 # ----------------------------------------------------------------------------------
@@ -341,61 +455,49 @@ def alpha_filtration(balls: Balls) -> Filtration:
     """
     if not isinstance(balls, Balls):
         raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
-    fr, tri = _triangulate(balls)
-    if tri.shape[0] == 0:
+    fr, simp, nbr = _triangulate_local(balls)
+    if simp.shape[0] == 0:
         return _empty_filtration(balls)
-    n = len(balls)
-    dim = tri.shape[1] - 1
-    # local indices into the frame (keep is ascending, so rows stay ascending)
-    loc = np.full(n, -1, dtype=np.int64)
-    loc[fr.keep] = np.arange(fr.keep.size)
+    dim = simp.shape[1] - 1
     nv = fr.keep.size
     x, w = fr.x, fr.w
 
+    # 1. all faces, top-down, with boundary matrices (local vertex indices)
     faces = [None] * (dim + 1)
     bnd = [None] * (dim + 1)
-    faces[dim] = loc[tri]
+    faces[dim] = simp
     for j in range(dim, 0, -1):
-        faces[j - 1], bnd[j] = _unique_facets(faces[j], nv)
+        res = _facets_from_neighbours(simp, nbr) if (j == dim and j >= 2) else None
+        faces[j - 1], bnd[j] = res if res is not None else _unique_facets(faces[j], nv)
 
-    if dim == 0:
-        vals = [-w[faces[0][:, 0]]]
-    else:
-        cen = [None] * (dim + 1)
-        rho = [None] * (dim + 1)
-        for j in range(dim + 1):
-            cen[j], rho[j] = _orthospheres(x, w, faces[j])
-        vals = [None] * (dim + 1)
-        vals[dim] = rho[dim]
-        for j in range(dim, 0, -1):
-            S, B = faces[j], bnd[j]
-            F = faces[j - 1]
-            nf = F.shape[0]
-            fidx = B.ravel()                      # facet of (sigma, column i)
-            vopp = S.ravel()                      # the vertex opposite that facet
-            f0 = F[fidx, 0]
-            c = x[f0] + cen[j - 1][fidx]           # facet's orthocentre
-            dv = c - x[vopp]
-            pw = np.einsum("mk,mk->m", dv, dv) - w[vopp]
-            att = pw < rho[j - 1][fidx]
-            attached = np.zeros(nf, dtype=bool)
-            attached[fidx[att]] = True
-            cof = np.full(nf, np.inf)
-            np.minimum.at(cof, fidx, np.repeat(vals[j], j + 1))
-            vals[j - 1] = np.where(attached, cof, rho[j - 1])
-        # make the filtration non-decreasing against round-off (GUDHI does the same)
-        for j in range(1, dim + 1):
-            vals[j] = np.maximum(vals[j], vals[j - 1][bnd[j]].max(axis=1))
+    # 2. smallest orthogonal spheres and attachment, 3. top-down propagation
+    vals = [None] * (dim + 1)
+    rho, att = _orthospheres(x, w, faces[dim])
+    vals[dim] = rho
+    for j in range(dim, 0, -1):
+        B = bnd[j]
+        rho_f, att_f = _orthospheres(x, w, faces[j - 1]) if j > 1 else (-w[faces[0][:, 0]], None)
+        nf = faces[j - 1].shape[0]
+        attached = np.zeros(nf, dtype=bool)
+        attached[B[att]] = True
+        cof = np.full(nf, np.inf)
+        np.minimum.at(cof, B.ravel(), np.repeat(vals[j], j + 1))
+        vals[j - 1] = np.where(attached, cof, rho_f)
+        att = att_f
+    # 4. non-decreasing against round-off (GUDHI's make_filtration_non_decreasing)
+    for j in range(1, dim + 1):
+        np.maximum(vals[j], vals[j - 1][bnd[j]].max(axis=1), out=vals[j])
 
+    # 5. filtration order per dimension, back to input indices and scale
     s2 = fr.scale**2
-    # filtration order: by value, ties lexicographic (rows are already lex-sorted)
     simp_out, vals_out, bnd_out = [], [], [None]
     inv_prev = None
     for j in range(dim + 1):
+        rows = fr.keep[faces[j]]
         v = vals[j] * s2
-        order = np.argsort(v, kind="stable")
-        simp_out.append(_ro(fr.keep[faces[j][order]]))
-        vals_out.append(_ro(np.ascontiguousarray(v[order])))
+        order = _filtration_order(v, rows)
+        simp_out.append(_ro(rows[order]))
+        vals_out.append(_ro(v[order]))
         if j >= 1:
             bnd_out.append(_ro(inv_prev[bnd[j][order]]))
         inv_prev = np.empty(order.size, dtype=np.int64)
@@ -406,6 +508,41 @@ def alpha_filtration(balls: Balls) -> Filtration:
         bnd_out.append(_ro(np.zeros((0, j + 1), dtype=np.int64)))
     counts = tuple(int(a.shape[0]) for a in simp_out)
     return Filtration(balls, dim, tuple(simp_out), tuple(vals_out), tuple(bnd_out), counts)
+
+
+def _filtration_order(v: np.ndarray, rows: np.ndarray) -> np.ndarray:
+    """Permutation sorting by value, ties broken lexicographically by the rows.
+
+    Uses a SIMD sort of the order-preserving integer image of the values with the
+    index packed into the low bits, then a stable pass (fast on nearly sorted
+    data) to repair the order where the packing dropped low-order value bits.
+    """
+    m = v.size
+    if m == 0:
+        return np.zeros(0, dtype=np.int64)
+    ib = max(1, int(m - 1).bit_length())
+    bits = v.view(np.int64)
+    # order-preserving map of float64 to int64 (negative floats reversed)
+    ordered = np.where(bits < 0, np.int64(-(2**63)) - bits - 1, bits) if np.any(bits < 0) else bits.copy()
+    ordered >>= np.int64(ib)
+    packed = (ordered << np.int64(ib)) | np.arange(m, dtype=np.int64)
+    packed.sort()
+    order = packed & np.int64((1 << ib) - 1)
+    vs = v[order]
+    if np.any(vs[1:] < vs[:-1]):
+        order = order[np.argsort(vs, kind="stable")]
+        vs = v[order]
+    ties = vs[1:] == vs[:-1]
+    if np.any(ties):
+        # lexicographic order of the rows inside groups of equal value
+        grp = np.zeros(m, dtype=bool)
+        grp[1:] |= ties
+        grp[:-1] |= ties
+        pos = np.flatnonzero(grp)
+        sub = order[pos]
+        keys = [rows[sub, c] for c in range(rows.shape[1] - 1, -1, -1)] + [v[sub]]
+        order[pos] = sub[np.lexsort(keys)]
+    return order
 
 
 def dual_complex(balls: Balls) -> Complex:
