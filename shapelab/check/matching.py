@@ -1,0 +1,109 @@
+"""Self-checks for the exercises on the Hausdorff distance and critical points
+(notes §23.2; lessons 11–12).
+
+Each check runs *your* function on edge cases first (single points, identical
+sets, duplicates, one dimension, a set inside the other), then on random sets, and
+compares with the library (:mod:`shapelab.hausdorff`, :mod:`shapelab.critical`).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ._runner import CheckResult, allclose, run_check
+
+__all__ = ["hausdorff", "directed_hausdorff", "critical_points"]
+
+
+def _pair_cases():
+    rng = np.random.default_rng(2320)
+    cases = [
+        (np.array([[0.0, 0.0]]), np.array([[3.0, 4.0]])),                       # one point each: 5
+        (np.array([[0.0, 0.0], [1.0, 0.0]]), np.array([[0.0, 0.0], [1.0, 0.0]])),  # identical: 0
+        (np.array([[0.0], [1.0]]), np.array([[0.0], [3.0]])),                   # 1D
+        (np.array([[0.0, 0.0], [1.0, 1.0]]), np.array([[0.0, 0.0], [1.0, 1.0], [5.0, 5.0]])),  # A inside B
+        (np.array([[1.0, 1.0]] * 3 + [[2.0, 0.0]]), np.array([[0.0, 0.0], [0.0, 0.0], [2.0, 1.0]])),  # duplicates
+    ]
+    for n, m, d in [(5, 7, 2), (12, 4, 3), (30, 25, 2)]:
+        cases.append((rng.normal(size=(n, d)), rng.normal(size=(m, d)) + rng.normal(size=d)))
+    return cases
+
+
+def _describe(case):
+    A, B = case
+    return f"A with {len(A)} point(s) in {A.shape[1]}D, B with {len(B)}; A = {A[:3].tolist()}..., B = {B[:3].tolist()}..."
+
+
+def directed_hausdorff(fn, *, quiet: bool = False) -> CheckResult:
+    """Check ``fn(A, B) -> float``, the directed distance h(A, B) = max_a min_b |a − b|.
+
+    Includes a set A inside B, where h(A, B) = 0 but h(B, A) > 0: computing the
+    symmetric distance (or swapping the roles) fails there.
+    """
+    from ..hausdorff import directed_hausdorff as ref
+
+    return run_check("directed Hausdorff distance", fn, _pair_cases(), lambda A, B: ref(A, B).distance,
+                     allclose(1e-9, 1e-9), describe=_describe, quiet=quiet)
+
+
+def hausdorff(fn, *, quiet: bool = False) -> CheckResult:
+    """Check ``fn(A, B) -> float``, the Hausdorff distance H(A, B) of the notes (§23.2)."""
+    from ..hausdorff import hausdorff as ref
+
+    return run_check("Hausdorff distance", fn, _pair_cases(), ref, allclose(1e-9, 1e-9),
+                     describe=_describe, quiet=quiet)
+
+
+def _curve_cases():
+    square = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0], [0.0, 0.0]])
+    # a thin triangle: the far vertex is a maximum although its neighbour is farther
+    # from S along the polyline's vertices; compare one-sided slopes, not neighbours
+    spike = np.array([[1.0, 0.0], [-1.1, 0.05], [-1.0, -0.6], [1.0, 0.0]])
+    t = np.arange(24) * (2 * np.pi / 24)
+    ellipse = np.vstack([np.c_[2 * np.cos(t), np.sin(t)], [[2.0, 0.0]]])
+    rng = np.random.default_rng(2321)
+    a = np.sort(rng.uniform(0, 2 * np.pi, 15))
+    r = 1 + 0.4 * rng.uniform(size=15)
+    blob = np.c_[r * np.cos(a), r * np.sin(a)]
+    blob = np.vstack([blob, blob[:1]])
+    return [
+        (square, np.array([1.0, 1.0])),   # centre: 4 maxima at corners, 4 minima at midpoints
+        (square, np.array([1.0, 0.5])),
+        (spike, np.array([0.0, 0.0])),
+        (ellipse, np.array([0.3, 0.2])),
+        (blob, np.array([0.1, -0.1])),
+        (blob, np.array([3.0, 0.0])),     # S outside the curve
+    ]
+
+
+def critical_points(fn, *, kind: str = "max", quiet: bool = False) -> CheckResult:
+    """Check ``fn(polyline, S) -> sorted values of F at the maxima`` (or minima).
+
+    Parameters
+    ----------
+    fn : callable
+        ``fn(polyline, S)`` with ``polyline`` an (n, 2) closed polyline (first
+        point repeated at the end) and ``S`` a point; returns the values
+        ``|x − S|`` at the local maxima (``kind="max"``) or minima
+        (``kind="min"``) of F along the polyline, sorted increasingly.
+    kind : {"max", "min"}
+        Minima include the feet of perpendiculars inside segments.
+    """
+    from ..critical import critical_points as ref
+
+    if kind not in ("max", "min"):
+        raise ValueError(f"kind must be 'max' or 'min', got {kind!r}")
+
+    def reference(P, S):
+        res = ref(P, S)
+        return np.sort(res.values[res.kinds == kind])
+
+    def describe(case):
+        P, S = case
+        return f"polyline with {len(P) - 1} vertices {P[:4].round(3).tolist()}..., S = {S.tolist()}"
+
+    def compare(expected, received):
+        r = np.sort(np.asarray(received, dtype=float).ravel())
+        return r.shape == expected.shape and bool(np.allclose(r, expected, atol=1e-9, rtol=1e-9))
+
+    name = "maxima of F on a polyline" if kind == "max" else "minima of F on a polyline"
+    return run_check(name, fn, _curve_cases(), reference, compare, describe=describe, quiet=quiet)

@@ -1,0 +1,328 @@
+"""Figures of shape matching (notes §23.2): critical points and the Hausdorff distance.
+
+* :func:`critical_points` — Figure 23.3: a closed curve, the viewpoint S, the rays
+  from S to the extrema of F(x) = |x − S|, and F plotted along the curve.
+* :func:`critical_surface` — the 3D remark: a closed surface shaded by F with its
+  minima, saddles and maxima.
+* :func:`hausdorff` — two point sets with the witness segments of both directed
+  distances and the empty disks that certify them.
+* :func:`translation` — matching under translation: centroid against optimum.
+* :func:`timings` — a bar chart of measured running times.
+
+Every function returns a :class:`matplotlib.figure.Figure` (or draws into ``ax=``
+and returns its figure) and computes no geometry beyond calling the library.
+"""
+from __future__ import annotations
+
+import numpy as np
+from matplotlib.patches import Circle
+from matplotlib.ticker import MaxNLocator
+
+from ._style import COLORS, PAGE, PALETTE, SLIDE, new_figure, style
+
+__all__ = ["critical_points", "critical_surface", "hausdorff", "translation", "timings"]
+
+_KIND_STYLE = {
+    "min": dict(color=PALETTE[0], marker="v", label="minimum"),
+    "max": dict(color=PALETTE[3], marker="^", label="maximum"),
+    "saddle": dict(color=PALETTE[1], marker="X", label="saddle"),
+}
+
+
+def _axes(ax, *, size=PAGE, projection=None):
+    if ax is None:
+        return new_figure(size=size, projection=projection)
+    return ax.get_figure(), ax
+
+
+def _check_result(result, sources):
+    from ..critical import CriticalPoints
+
+    if not isinstance(result, CriticalPoints):
+        raise TypeError(f"result must be a CriticalPoints from shapelab.critical_points, got {type(result).__name__}")
+    if result.source not in sources:
+        raise ValueError(f"result comes from a {result.source}; this figure needs one of {sources}")
+
+
+def critical_points(curve, result, *, ax=None, profile_ax=None, profile: bool = True,
+                    rays: bool = True, title: str | None = None, size=SLIDE, n: int = 600):
+    """Figure 23.3: a closed curve seen from S, with its critical points.
+
+    Parameters
+    ----------
+    curve : array_like or callable
+        The closed polyline or parametric curve given to
+        :func:`shapelab.critical_points`.
+    result : CriticalPoints
+        Its critical points (the viewpoint is ``result.viewpoint``).
+    ax : Axes, optional
+        Draw the curve panel here (then the profile goes to ``profile_ax`` if
+        given, and is omitted otherwise).
+    profile_ax : Axes, optional
+        Where to draw F along the curve when ``ax`` is given.
+    profile : bool
+        Add the second panel, F along the curve, when creating the figure.
+    rays : bool
+        Draw the segments from S to each extremum.
+    title : str, optional
+    size : (float, float)
+        Figure size when creating the figure.
+    n : int
+        Samples used to draw a parametric curve and the profile.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    from ..critical import distance_along, polyline
+
+    _check_result(result, ("polyline", "parametric"))
+    if ax is None:
+        if profile:
+            fig, (ax, profile_ax) = new_figure(1, 2, size=size)
+        else:
+            fig, ax = new_figure(size=size)
+    else:
+        fig = ax.get_figure()
+    if callable(curve):
+        P = polyline(curve, n)
+        param_label = "parameter t"
+    else:
+        P = np.asarray(curve, dtype=float)
+        if not np.array_equal(P[0], P[-1]):
+            P = np.vstack([P, P[:1]])
+        param_label = "arc length (fraction of the perimeter)"
+    S = result.viewpoint
+    with style():
+        ax.plot(P[:, 0], P[:, 1], color=COLORS["complex"], lw=1.6, zorder=2, label="curve C")
+        if not callable(curve):
+            ax.plot(P[:-1, 0], P[:-1, 1], ".", color=COLORS["complex"], ms=3, zorder=2)
+        for kind in ("min", "max"):
+            sel = result.kinds == kind
+            X = result.positions[sel]
+            st = _KIND_STYLE[kind]
+            if rays:
+                for x in X:
+                    ax.plot([S[0], x[0]], [S[1], x[1]], color=st["color"], lw=0.9, ls="--", alpha=0.8, zorder=1)
+            ax.scatter(X[:, 0], X[:, 1], s=70, color=st["color"], marker=st["marker"], zorder=4,
+                       edgecolor="white", linewidth=0.6, label=f"{st['label']} ({int(sel.sum())})")
+        ax.scatter([S[0]], [S[1]], s=90, color=COLORS["accent"], marker="*", zorder=5, edgecolor="black",
+                   linewidth=0.5, label="viewpoint S")
+        ax.annotate("S", S[:2], xytext=(6, 6), textcoords="offset points", fontsize=11)
+        ax.set_aspect("equal")
+        ax.set_xlabel("x")
+        ax.set_ylabel("y")
+        deg = " — F constant: every point is critical" if result.degenerate else ""
+        ax.set_title(title or f"Critical points of F(x) = |x − S|{deg}")
+        ax.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0) if profile_ax is None else (0.0, -0.2),
+                  ncol=1 if profile_ax is None else 2, fontsize=9)
+        if profile_ax is not None:
+            s, F = distance_along(curve, S, n=n)
+            pax = profile_ax
+            pax.plot(s, F, color=COLORS["complex"], lw=1.4)
+            for kind in ("min", "max"):
+                sel = result.kinds == kind
+                st = _KIND_STYLE[kind]
+                pax.scatter(result.parameters[sel], result.values[sel], s=55, color=st["color"],
+                            marker=st["marker"], zorder=4, edgecolor="white", linewidth=0.6)
+                for p, v in zip(result.parameters[sel], result.values[sel]):
+                    pax.axvline(p, color=st["color"], lw=0.6, ls=":", zorder=0)
+            pax.set_xlabel(param_label)
+            pax.set_ylabel("F = |x − S|")
+            pax.set_title("F along the curve")
+    return fig
+
+
+def critical_surface(vertices, faces, result, *, ax=None, size=PAGE, elev: float = 20.0,
+                     azim: float = -60.0, title: str | None = None, colorbar: bool = True):
+    """A closed surface shaded by F = |x − S| with its minima, saddles and maxima.
+
+    Parameters
+    ----------
+    vertices, faces : array_like
+        The mesh given to :func:`shapelab.critical_points`.
+    result : CriticalPoints
+        From a surface (``faces=`` given).
+    ax : Axes3D, optional
+    elev, azim : float
+        The camera.
+    title : str, optional
+    colorbar : bool
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+    from matplotlib import colormaps
+    from matplotlib.colors import Normalize
+    from matplotlib.cm import ScalarMappable
+
+    _check_result(result, ("surface",))
+    V = np.asarray(vertices, dtype=float)
+    F = np.asarray(faces, dtype=np.intp)
+    fig, ax = _axes(ax, size=size, projection="3d")
+    S = result.viewpoint
+    h = np.sqrt(np.sum((V - S) ** 2, axis=1))
+    with style():
+        norm = Normalize(h.min(), h.max())
+        cmap = colormaps["viridis"]
+        coll = Poly3DCollection(V[F], facecolors=cmap(norm(h[F].mean(axis=1))), edgecolor=(0, 0, 0, 0.12),
+                                linewidth=0.2, alpha=0.55)
+        ax.add_collection3d(coll)
+        for kind in ("min", "saddle", "max"):
+            sel = result.kinds == kind
+            st = _KIND_STYLE[kind]
+            X = result.positions[sel]
+            count = int(result.multiplicities[sel].sum())
+            ax.scatter(X[:, 0], X[:, 1], X[:, 2], s=60, color=st["color"], marker=st["marker"],
+                       edgecolor="black", linewidth=0.4, depthshade=False, label=f"{st['label']} ({count})")
+        ax.scatter([S[0]], [S[1]], [S[2]], s=90, color=COLORS["accent"], marker="*", edgecolor="black",
+                   linewidth=0.5, depthshade=False, label="viewpoint S")
+        lo, hi = V.min(axis=0), V.max(axis=0)
+        c, r = 0.5 * (lo + hi), 0.5 * float((hi - lo).max())
+        ax.set_xlim(c[0] - r, c[0] + r)
+        ax.set_ylim(c[1] - r, c[1] + r)
+        ax.set_zlim(c[2] - r, c[2] + r)
+        ax.set_box_aspect((1, 1, 1))
+        for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+            axis.set_major_locator(MaxNLocator(4))
+            axis.set_tick_params(labelsize=8)
+        ax.view_init(elev=elev, azim=azim)
+        ax.set_xlabel("x")
+        ax.set_ylabel("y")
+        ax.set_zlabel("z")
+        chi = result.euler_characteristic
+        ax.set_title(title or f"#min − #saddle + #max = {result.n_min} − {result.n_saddle} + {result.n_max} = {chi}")
+        ax.legend(loc="upper left", fontsize=9)
+        if colorbar:
+            sm = ScalarMappable(norm=norm, cmap=cmap)
+            fig.colorbar(sm, ax=ax, shrink=0.6, label="F = |x − S|")
+    return fig
+
+
+def hausdorff(A, B, *, ax=None, size=PAGE, labels=("A", "B"), disks: bool = True,
+              title: str | None = None):
+    """Two planar point sets with the witnesses of both directed Hausdorff distances.
+
+    The segment from ``A[i]`` to its nearest point ``B[j]`` realises h(A, B);
+    the disk of that radius around ``A[i]`` holds no point of B in its interior,
+    which certifies the value.  Likewise for h(B, A).  The longer segment is
+    H(A, B) (notes §23.2).
+
+    Parameters
+    ----------
+    A, B : array_like, shape (n, 2) and (m, 2)
+    ax : Axes, optional
+    labels : (str, str)
+        Names of the sets (e.g. ``("R", "G")`` as in the notes).
+    disks : bool
+        Draw the certifying empty disks.
+    title : str, optional
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    from .._validate import as_points
+    from ..hausdorff import hausdorff_pair
+
+    A = as_points(A, "A", dim=2)
+    B = as_points(B, "B", dim=2)
+    ab, ba = hausdorff_pair(A, B)
+    fig, ax = _axes(ax, size=size)
+    la, lb = labels
+    ca, cb = COLORS["red"], COLORS["green"]
+    with style():
+        ax.scatter(A[:, 0], A[:, 1], s=22, color=ca, label=la, zorder=3)
+        ax.scatter(B[:, 0], B[:, 1], s=22, color=cb, marker="s", label=lb, zorder=3)
+        for (h, i, j), P, Q, col, name in ((ab, A, B, ca, f"h({la}, {lb})"), (ba, B, A, cb, f"h({lb}, {la})")):
+            p, q = P[i], Q[j]
+            ax.annotate("", xy=q, xytext=p, arrowprops=dict(arrowstyle="-|>", color=col, lw=2.0), zorder=4)
+            ax.plot([], [], color=col, lw=2.0, label=f"{name} = {h:.3f}")
+            if disks and h > 0:
+                ax.add_patch(Circle(p, h, facecolor=col, alpha=0.08, edgecolor=col, lw=0.8, ls="--", zorder=1))
+            ax.scatter([p[0]], [p[1]], s=80, facecolor="none", edgecolor=col, linewidth=1.5, zorder=5)
+        H = max(ab.distance, ba.distance)
+        ax.set_aspect("equal")
+        ax.autoscale_view()
+        ax.set_xlabel("x")
+        ax.set_ylabel("y")
+        ax.set_title(title or f"H({la}, {lb}) = max{{h({la},{lb}), h({lb},{la})}} = {H:.3f}")
+        ax.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=9)
+    return fig
+
+
+def translation(A, B, match, *, size=SLIDE, labels=("A", "B"), title: str | None = None):
+    """Matching under translation: B moved by the centroid translation and by the
+    optimal one, each panel with its Hausdorff witnesses.
+
+    Parameters
+    ----------
+    A, B : array_like, shape (n, 2) and (m, 2)
+    match : TranslationMatch
+        From :func:`shapelab.hausdorff_under_translation` on the same sets.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    from .._validate import as_points
+    from ..hausdorff import TranslationMatch
+
+    if not isinstance(match, TranslationMatch):
+        raise TypeError(f"match must be a TranslationMatch, got {type(match).__name__}")
+    A = as_points(A, "A", dim=2)
+    B = as_points(B, "B", dim=2)
+    fig, axes = new_figure(1, 2, size=size)
+    la, lb = labels
+    hausdorff(A, B + match.centroid_translation, ax=axes[0], labels=(la, f"{lb}+t"),
+              title=f"centroids aligned: H = {match.centroid_distance:.3f}")
+    hausdorff(A, B + match.optimal_translation, ax=axes[1], labels=(la, f"{lb}+t"),
+              title=f"optimal translation: H = {match.optimal_distance:.3f}")
+    with style():
+        lims = np.array([a.get_xlim() + a.get_ylim() for a in axes])
+        for a in axes:
+            a.set_xlim(lims[:, 0].min(), lims[:, 1].max())
+            a.set_ylim(lims[:, 2].min(), lims[:, 3].max())
+            a.legend(loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=2, fontsize=8)
+        fig.suptitle(title or f"centroid / optimum = {match.ratio:.3f}")
+    return fig
+
+
+def timings(seconds: dict, *, ax=None, size=PAGE, title: str | None = None, log: bool = True):
+    """A horizontal bar chart of measured running times.
+
+    Parameters
+    ----------
+    seconds : dict
+        ``{label: seconds}`` (e.g. from :func:`shapelab.hausdorff.timings`).
+    log : bool
+        Logarithmic time axis.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    if not isinstance(seconds, dict) or not seconds:
+        raise TypeError("seconds must be a non-empty dict {label: seconds}")
+    names = list(seconds)
+    vals = np.array([float(seconds[k]) for k in names])
+    if not np.all(np.isfinite(vals)) or np.any(vals <= 0):
+        raise ValueError("seconds must hold positive finite times")
+    fig, ax = _axes(ax, size=size)
+    with style():
+        y = np.arange(len(names))
+        ax.barh(y, vals, color=[PALETTE[k % len(PALETTE)] for k in range(len(names))])
+        ax.set_yticks(y, names)
+        ax.invert_yaxis()
+        if log:
+            ax.set_xscale("log")
+        for k, v in enumerate(vals):
+            text = f"{v * 1e3:.1f} ms" if v < 1 else f"{v:.2f} s"
+            ax.text(v, k, "  " + text, va="center", fontsize=9)
+        ax.set_xlabel("time (s)")
+        ax.set_title(title or "Running time")
+        ax.set_xlim(right=vals.max() * (8 if log else 1.3))
+    return fig
+

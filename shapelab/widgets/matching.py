@@ -1,0 +1,104 @@
+"""The critical-points explorer: move the viewpoint S and watch the extrema of
+F(x) = |x − S| move, appear and cancel (notes §23.2, Figure 23.3)."""
+from __future__ import annotations
+
+import ipywidgets as W
+import numpy as np
+
+from .._validate import as_point, as_positive_int
+
+__all__ = ["critical_points_explorer", "CriticalPointsExplorer"]
+
+
+def critical_points_explorer(curve, *, viewpoint=None, x_range=None, y_range=None, steps: int = 60,
+                             close: bool = False):
+    """Two sliders move the viewpoint S; the figure of Figure 23.3 follows.
+
+    Parameters
+    ----------
+    curve : array_like or callable
+        A closed polyline (n, 2) or a parametric curve ``t -> (x(t), y(t))`` on
+        [0, 2π), as for :func:`shapelab.critical_points`.
+    viewpoint : array_like, shape (2,), optional
+        The initial S; default the centre of the curve's bounding box.
+    x_range, y_range : (float, float), optional
+        Slider bounds; default the curve's bounding box, enlarged by 20 %.
+    steps : int
+        Slider resolution.
+    close : bool
+        Passed to :func:`shapelab.critical_points` for polylines.
+
+    Returns
+    -------
+    CriticalPointsExplorer
+        An ``ipywidgets.VBox``: the two sliders, a status line with the counts and
+        the figure.
+    """
+    from ..critical import _closed_vertices, polyline
+
+    if callable(curve):
+        P = polyline(curve, 400)
+    else:
+        P, _ = _closed_vertices(curve, close)
+    if P.shape[1] != 2:
+        raise ValueError(f"curve must be planar (2 coordinates), got {P.shape[1]}")
+    steps = as_positive_int(steps, "steps", minimum=2)
+    lo, hi = P.min(axis=0), P.max(axis=0)
+    pad = 0.2 * (hi - lo)
+
+    def _range(r, k, name):
+        if r is None:
+            return float(lo[k] - pad[k]), float(hi[k] + pad[k])
+        a, b = (float(v) for v in as_point(r, name, dim=2))
+        if not a < b:
+            raise ValueError(f"{name} must have low < high, got {tuple(r)!r}")
+        return a, b
+
+    xr, yr = _range(x_range, 0, "x_range"), _range(y_range, 1, "y_range")
+    S = 0.5 * (lo + hi) if viewpoint is None else as_point(viewpoint, "viewpoint", dim=2)
+    return CriticalPointsExplorer(curve, S, xr, yr, steps, bool(close))
+
+
+class CriticalPointsExplorer(W.VBox):
+    """Sliders + figure; see :func:`critical_points_explorer`."""
+
+    def __init__(self, curve, S, xr, yr, steps, close):
+        self._curve = curve
+        self._close = close
+        kw = dict(continuous_update=False, readout_format=".2f", layout=W.Layout(width="45%"))
+        self.sx = W.FloatSlider(value=float(np.clip(S[0], *xr)), min=xr[0], max=xr[1],
+                                step=(xr[1] - xr[0]) / steps, description="S x", **kw)
+        self.sy = W.FloatSlider(value=float(np.clip(S[1], *yr)), min=yr[0], max=yr[1],
+                                step=(yr[1] - yr[0]) / steps, description="S y", **kw)
+        self.status = W.HTML()
+        self.out = W.Output()
+        super().__init__([W.HBox([self.sx, self.sy]), self.status, self.out])
+        self.sx.observe(self._redraw, names="value")
+        self.sy.observe(self._redraw, names="value")
+        self._redraw()
+
+    @property
+    def viewpoint(self) -> np.ndarray:
+        return np.array([self.sx.value, self.sy.value])
+
+    def _redraw(self, change=None):
+        from IPython.display import display
+
+        from ..critical import critical_points
+        from ..plot.matching import critical_points as plot_critical
+
+        result = critical_points(self._curve, self.viewpoint, close=self._close)
+        self.result = result
+        if result.degenerate:
+            self.status.value = "F is constant: every point is critical"
+        else:
+            self.status.value = f"{result.n_min} minima, {result.n_max} maxima"
+        fig = plot_critical(self._curve, result)
+        self.out.clear_output(wait=True)
+        with self.out:
+            display(fig)
+
+    def __repr__(self):
+        S = self.viewpoint
+        return (f"CriticalPointsExplorer(S=({S[0]:.2f}, {S[1]:.2f}), {self.result.n_min} minima, "
+                f"{self.result.n_max} maxima)")
