@@ -1,0 +1,462 @@
+"""Figures for slides: every figure of the notes and the key figures of each lesson.
+
+    python -m shapelab.figures --out DIR --format pdf|svg|png [--only NAME ...] [--list]
+
+Each figure is a small function registered here under a name (``fig23_1i``,
+``l09_barcode``, ...).  It calls a :mod:`shapelab.plot` function on inputs from
+:mod:`shapelab.datasets` (and the library's results on them), exactly as the lessons
+do, so a figure on a slide is the figure of the lesson.  All share the course style
+(:mod:`shapelab.plot._style`: Okabe–Ito colour-blind-safe palette) and are drawn at
+the 16:9 slide size :data:`shapelab.plot.SLIDE` (10 × 5.625 in; PNG at 192 dpi is
+1920 × 1080 pixels).
+
+PDF and SVG are vector output written **deterministically**: no creation date, a
+fixed producer string and a fixed SVG hash salt, so the same input gives the same
+bytes (:func:`save`).  A figure that cannot be drawn is reported with its reason and
+the command exits with status 1; the others are still written.
+
+The course site's gallery (``book/gallery.md``) shows them all; ``make course``
+regenerates its images with ``--gallery``.
+"""
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+import time
+import traceback
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+__all__ = ["FigureSpec", "FIGURES", "FORMATS", "register", "missing", "build", "save", "main"]
+
+FORMATS = ("pdf", "svg", "png")
+#: PNG resolution: 10 in × 192 dpi = 1920 px, a full-HD slide.
+PNG_DPI = 192
+PRODUCER = "shapelab"
+
+
+@dataclass(frozen=True)
+class FigureSpec:
+    """One registered figure.
+
+    Attributes
+    ----------
+    name : str
+        File stem and ``--only`` key.
+    caption : str
+        What the figure shows (the gallery's caption).
+    source : str
+        Where it comes from: ``"Notes, Figure 23.1 (i)"`` or ``"Lesson 09"``.
+    lesson : str or None
+        The lesson that draws it (``"09_persistence"``), for the gallery's link.
+    needs : tuple of str
+        Library names it calls, as ``"plot.barcode"`` or ``"datasets.ring"``: when
+        one is missing (a module still being written) the figure is reported as
+        such rather than as a bug.
+    draw : callable
+        ``draw() -> matplotlib.figure.Figure``.
+    """
+
+    name: str
+    caption: str
+    source: str
+    lesson: str | None
+    needs: tuple[str, ...]
+    draw: Callable = field(repr=False)
+
+
+#: The registry, in gallery order: the notes' figures first, then lesson by lesson.
+FIGURES: dict[str, FigureSpec] = {}
+
+
+def register(name: str, caption: str, *, source: str, lesson: str | None = None, needs=()):
+    """Decorator adding a figure function to :data:`FIGURES`."""
+
+    def deco(fn):
+        if name in FIGURES:
+            raise ValueError(f"figure {name!r} is registered twice")
+        FIGURES[name] = FigureSpec(name, caption, source, lesson, tuple(needs), fn)
+        return fn
+
+    return deco
+
+
+def _resolve(dotted: str):
+    obj = importlib.import_module("shapelab")
+    for part in dotted.split("."):
+        obj = getattr(obj, part)
+    return obj
+
+
+def missing(spec: FigureSpec) -> list[str]:
+    """The names ``spec`` needs that the library does not provide (yet)."""
+    out = []
+    for dotted in spec.needs:
+        try:
+            _resolve(dotted)
+        except (AttributeError, ImportError):
+            out.append(f"shapelab.{dotted}")
+    return out
+
+
+def _slide(nrows=1, ncols=1, **kw):
+    from .plot import SLIDE, new_figure
+
+    return new_figure(nrows, ncols, size=SLIDE, **kw)
+
+
+def build(name: str):
+    """Draw the registered figure ``name`` at the 16:9 slide size; returns the Figure."""
+    from matplotlib.figure import Figure
+
+    from .plot import SLIDE
+
+    spec = FIGURES[name]
+    fig = spec.draw()
+    if not isinstance(fig, Figure):
+        raise TypeError(f"figure {name!r}: its function returned {type(fig).__name__}, not a Figure")
+    fig.set_size_inches(*SLIDE)
+    return fig
+
+
+@contextmanager
+def _save_style():
+    import matplotlib
+
+    from .plot._style import RC
+
+    # the course style, but the page size is the figure's size: no tight bbox, so
+    # every file is exactly 16:9
+    with matplotlib.rc_context({**RC, "savefig.bbox": "standard", "svg.hashsalt": "shapelab"}):
+        yield
+
+
+def save(fig, path, fmt: str | None = None) -> Path:
+    """Write ``fig`` to ``path`` deterministically (same figure, same bytes).
+
+    PDF: no ``CreationDate``, a fixed Creator/Producer.  SVG: no ``Date``, a fixed
+    hash salt for the element ids.  PNG: a fixed ``Software`` entry, 192 dpi.
+    """
+    path = Path(path)
+    fmt = (fmt or path.suffix.lstrip(".")).lower()
+    if fmt not in FORMATS:
+        raise ValueError(f"fmt must be one of {', '.join(FORMATS)}, got {fmt!r}")
+    meta = {
+        "pdf": {"CreationDate": None, "ModDate": None, "Creator": PRODUCER, "Producer": PRODUCER},
+        "svg": {"Date": None, "Creator": PRODUCER},
+        "png": {"Software": PRODUCER},
+    }[fmt]
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with _save_style():
+        fig.savefig(path, format=fmt, metadata=meta, dpi=PNG_DPI if fmt == "png" else None)
+    return path
+
+
+def _placeholder(name: str, reason: str):
+    """A plain slide-sized figure saying that ``name`` could not be drawn (gallery only)."""
+    fig, ax = _slide()
+    ax.set_axis_off()
+    ax.text(0.5, 0.55, f"{name}: not available", ha="center", va="center", fontsize=18)
+    ax.text(0.5, 0.4, reason[:120], ha="center", va="center", fontsize=10, color="#666666", wrap=True)
+    return fig
+
+
+# ============================================================== the figures
+# Inputs are seeded or closed-form, and small: the whole set renders in seconds.
+def _sl():
+    return importlib.import_module("shapelab")
+
+
+def _datasets():
+    return importlib.import_module("shapelab.datasets")
+
+
+def _plot():
+    return importlib.import_module("shapelab.plot")
+
+
+
+# --------------------------------------------------------- the notes' figures
+@register("fig23_1i", "A union of disks, its power cells clipped to the disks, and the dual complex K "
+          "drawn on top: edges for pairwise, triangles for triple intersections of the clipped cells.",
+          source="Notes, Figure 23.1 (i)", lesson="02_dual_complex",
+          needs=("datasets.figure_23_1", "plot.dual_complex"))
+def fig23_1i():
+    fig, ax = _slide()
+    _plot().dual_complex(_datasets().figure_23_1(), ax=ax)
+    return fig
+
+
+@register("fig23_1ii", "The filtration of the Delaunay triangulation: every edge and triangle shaded by "
+          "the growth time τ at which it enters the dual complex.",
+          source="Notes, Figure 23.1 (ii)", lesson="03_alpha_filtration",
+          needs=("datasets.figure_23_1", "alpha_filtration", "plot.filtration"))
+def fig23_1ii():
+    fig, ax = _slide()
+    _plot().filtration(_sl().alpha_filtration(_datasets().figure_23_1()), ax=ax)
+    return fig
+
+
+@register("fig23_2", "Two dents. Left: as the disks grow, the mouth closes before the chamber fills, so "
+          "the dent becomes a hole: a pocket. Right: the shallow bite fills from the bottom and never "
+          "closes: not a pocket.",
+          source="Notes, Figure 23.2", lesson="07_pockets",
+          needs=("datasets.figure_23_2", "plot.pockets"))
+def fig23_2():
+    left, right = _datasets().figure_23_2()
+    fig, (a, b) = _slide(1, 2)
+    _plot().pockets(left, ax=a, title="a pocket: its mouth closes first")
+    _plot().pockets(right, ax=b, title="not a pocket: it fills without closing")
+    return fig
+
+
+@register("fig23_3", "A closed curve C, a viewpoint S inside it, and the critical points of the distance "
+          "F(x) = |x − S| along C (left), with F itself along the curve (right): minima and maxima "
+          "alternate.",
+          source="Notes, Figure 23.3", lesson="11_critical_points",
+          needs=("critical.blob_curve", "critical_points", "plot.critical_points"))
+def fig23_3():
+    blob = _sl().critical.blob_curve
+    S = np.array([0.1, 0.05])
+    return _plot().critical_points(blob, _sl().critical_points(blob, S))
+
+
+@register("fig23_4", "Rotation in R³ about a unit axis u by an angle θ: a point r and its image, the "
+          "unit quaternion q = cos(θ/2) + sin(θ/2)(u_x i + u_y j + u_z k).",
+          source="Notes, Figure 23.4", lesson="14_quaternions",
+          needs=("plot.rotation_axis",))
+def fig23_4():
+    return _plot().rotation_axis(np.array([1.0, 1.0, 2.0]) / np.sqrt(6.0), 2 * np.pi / 3)
+
+
+# ---------------------------------------------------------- lesson figures
+@register("l01_power_diagram", "The power diagram of a few disks: each cell is where that disk's power "
+          "distance is smallest; a small disk can be hidden, with an empty cell.",
+          source="Lesson 01", lesson="01_power_diagrams",
+          needs=("datasets.figure_23_1", "power_diagram", "plot.power_diagram"))
+def l01_power_diagram():
+    fig, ax = _slide()
+    _plot().power_diagram(_sl().power_diagram(_datasets().figure_23_1()), ax=ax)
+    return fig
+
+
+@register("l05_dual_complex_3d", "The dual complex of a small 3D molecule: balls, and the edges, "
+          "triangles and tetrahedra of K.",
+          source="Lesson 05", lesson="05_dual_complex_3d",
+          needs=("datasets.bowl", "dual_complex", "plot.complex3d"))
+def l05_dual_complex_3d():
+    return _plot().complex3d(_sl().dual_complex(_datasets().bowl()))
+
+
+@register("l06_voids_c60", "The one void of C60: the inside of the carbon cage, sealed off once the "
+          "hexagons close, drawn inside the see-through balls.",
+          source="Lesson 06", lesson="06_voids",
+          needs=("datasets.fullerene_c60", "plot.voids"))
+def l06_voids_c60():
+    fig, ax = _slide(projection="3d")
+    _plot().voids(_datasets().fullerene_c60(), ax=ax)
+    return fig
+
+
+@register("l07_pockets_bowl", "A pocket in 3D: a spherical shell with a round opening, its mouth "
+          "(the triangles joining it to the outside) and its lining atoms.",
+          source="Lesson 07", lesson="07_pockets",
+          needs=("datasets.bowl", "plot.pockets"))
+def l07_pockets_bowl():
+    fig, ax = _slide(projection="3d")
+    _plot().pockets(_datasets().bowl(), ax=ax)
+    return fig
+
+
+@register("l08_tunnels_nanotube", "The tunnel of an (8, 8) carbon nanotube: a representative cycle of "
+          "its H₁ class around the tube.",
+          source="Lesson 08", lesson="08_tunnels",
+          needs=("datasets.nanotube", "plot.tunnels"))
+def l08_tunnels_nanotube():
+    fig, ax = _slide(projection="3d")
+    _plot().tunnels(_datasets().nanotube(), ax=ax)
+    return fig
+
+
+def _swiss_cheese_filtration():
+    return _sl().alpha_filtration(_datasets().swiss_cheese())
+
+
+@register("l09_persistence_diagram", "The persistence diagram of the Swiss cheese: three round holes "
+          "far from the diagonal, and the long thin slit's pieces close to it. Persistence measures "
+          "thickness, not area.",
+          source="Lesson 09", lesson="09_persistence",
+          needs=("datasets.swiss_cheese", "alpha_filtration", "plot.persistence_diagram"))
+def l09_persistence_diagram():
+    fig, ax = _slide()
+    _plot().persistence_diagram(_swiss_cheese_filtration(), ax=ax)
+    return fig
+
+
+@register("l09_barcode", "The barcode of the same filtration: one bar per component and per hole, "
+          "from its birth to its death.",
+          source="Lesson 09", lesson="09_persistence",
+          needs=("datasets.swiss_cheese", "alpha_filtration", "plot.barcode"))
+def l09_barcode():
+    fig, ax = _slide()
+    _plot().barcode(_swiss_cheese_filtration(), ax=ax)
+    return fig
+
+
+@register("l09_betti_curve", "Betti numbers β₀ and β₁ as the disks grow: components merge, holes "
+          "appear and fill.",
+          source="Lesson 09", lesson="09_persistence",
+          needs=("datasets.swiss_cheese", "alpha_filtration", "plot.betti_curve"))
+def l09_betti_curve():
+    fig, ax = _slide()
+    _plot().betti_curve(_swiss_cheese_filtration(), ax=ax)
+    return fig
+
+
+@register("l10_globule_pockets", "A protein-like globule: its pockets with their mouths, and its buried "
+          "void, computed from first principles as CASTp-style tools report them.",
+          source="Lesson 10", lesson="10_molecule_case_study",
+          needs=("datasets.globule", "plot.pockets"))
+def l10_globule_pockets():
+    fig, ax = _slide(projection="3d")
+    _plot().pockets(_datasets().globule(), ax=ax)
+    return fig
+
+
+# ============================================================== the gallery page
+GALLERY_DIR = "_gallery"  # relative to book/, written by scripts/build_course.py
+
+
+def gallery_markdown() -> str:
+    """The text of ``book/gallery.md``: one MyST figure per registered figure.
+
+    ``python -m shapelab.figures --write-gallery book/gallery.md`` rewrites it, and a
+    test keeps the committed page equal to this text.
+    """
+    parts = [
+        "# Figure gallery",
+        "",
+        "Every figure of the notes and the key figure of each lesson, drawn by the library's",
+        "plotting functions (`shapelab.plot`) on generated inputs (`shapelab.datasets`) in the",
+        "course's colour-blind-safe style, at the 16:9 size of a slide. For your own slides:",
+        "",
+        "```bash",
+        "python -m shapelab.figures --out figures --format pdf       # all of them (or svg, png)",
+        "python -m shapelab.figures --list                           # their names",
+        "make figures                                                # SVG in book/_build/figures/",
+        "```",
+        "",
+        "PDF and SVG files are written deterministically: the same input gives the same bytes.",
+        "",
+    ]
+    section = None
+    for spec in FIGURES.values():
+        here = "Figures of the notes" if spec.source.startswith("Notes") else "Figures of the lessons"
+        if here != section:
+            parts += [f"## {here}", ""]
+            section = here
+        link = f" ([lesson]({'lessons/' + spec.lesson + '.ipynb'}))" if spec.lesson else ""
+        parts += [
+            f":::{{figure}} {GALLERY_DIR}/{spec.name}.svg",
+            f":name: gallery-{spec.name.replace('_', '-')}",
+            ":width: 100%",
+            "",
+            f"**{spec.source}.** {spec.caption}{link}",
+            ":::",
+            "",
+            f"`python -m shapelab.figures --only {spec.name} --format pdf --out figures`",
+            "",
+        ]
+    return "\n".join(parts).rstrip() + "\n"
+
+
+# ============================================================== command line
+def _format_size(n: int) -> str:
+    return f"{n / 1024:.0f} KiB" if n < 2**20 else f"{n / 2**20:.1f} MiB"
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(
+        prog="python -m shapelab.figures",
+        description="Export the notes' figures and each lesson's key figures for 16:9 slides.",
+    )
+    ap.add_argument("--out", type=Path, default=Path("figures"), help="output folder (default ./figures)")
+    ap.add_argument("--format", dest="formats", action="append", choices=FORMATS,
+                    help="pdf, svg or png; repeat for several (default svg)")
+    ap.add_argument("--only", action="append", metavar="NAME", help="only this figure (repeatable)")
+    ap.add_argument("--list", action="store_true", help="list the figures and whether they can be drawn")
+    ap.add_argument("--write-gallery", type=Path, metavar="PAGE",
+                    help="write the gallery page (book/gallery.md) for the registered figures and stop")
+    ap.add_argument("--gallery", action="store_true",
+                    help="for the book: write a labelled placeholder for a figure that fails (still exit 1)")
+    args = ap.parse_args(argv)
+
+    if args.write_gallery:
+        args.write_gallery.write_text(gallery_markdown(), encoding="utf-8")
+        print(f"wrote {args.write_gallery} ({len(FIGURES)} figures)")
+        return 0
+    if args.list:
+        for spec in FIGURES.values():
+            gone = missing(spec)
+            state = "ready" if not gone else "needs " + ", ".join(gone)
+            print(f"{spec.name:24s} {spec.source:28s} {state}\n{'':24s} {spec.caption}")
+        return 0
+    names = args.only or list(FIGURES)
+    unknown = [n for n in names if n not in FIGURES]
+    if unknown:
+        ap.error(f"unknown figure {', '.join(unknown)}; known: {', '.join(FIGURES)}")
+    formats = args.formats or ["svg"]
+    import matplotlib
+
+    matplotlib.use("Agg")
+    out = args.out
+    out.mkdir(parents=True, exist_ok=True)
+    t_all = time.perf_counter()
+    failed, total = [], 0
+    for i, name in enumerate(names, 1):
+        spec = FIGURES[name]
+        print(f"[{i}/{len(names)}] {name} ({spec.source}) ...", end="", flush=True)
+        t0 = time.perf_counter()
+        gone = missing(spec)
+        try:
+            if gone:
+                raise LookupError("needs " + ", ".join(gone) + ", not written yet")
+            fig = build(name)
+        except Exception as exc:
+            reason = str(exc) if isinstance(exc, LookupError) else (
+                f"{type(exc).__name__}: {exc} ({traceback.extract_tb(exc.__traceback__)[-1].filename.split('/')[-1]}:"
+                f"{traceback.extract_tb(exc.__traceback__)[-1].lineno})"
+            )
+            print(f" FAILED: {reason}")
+            failed.append((name, reason))
+            if not args.gallery:
+                continue
+            fig = _placeholder(name, reason)
+        sizes = []
+        for fmt in formats:
+            path = save(fig, out / f"{name}.{fmt}", fmt)
+            sizes.append(path.stat().st_size)
+        total += sum(sizes)
+        if not (failed and failed[-1][0] == name):
+            print(f" {time.perf_counter() - t0:.1f} s, " + ", ".join(
+                f"{f} {_format_size(s)}" for f, s in zip(formats, sizes)))
+    ok = len(names) - len(failed)
+    print(
+        f"figures: {ok}/{len(names)} drawn as {', '.join(formats)} in {time.perf_counter() - t_all:.1f} s, "
+        f"{_format_size(total)} in {out}"
+    )
+    if failed:
+        print(f"{len(failed)} figure(s) failed:", file=sys.stderr)
+        for name, reason in failed:
+            print(f"  {name}: {reason}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
