@@ -274,8 +274,8 @@ def _check_k(k, dim_max: int) -> int:
 
 
 def _check_tau(tau) -> float:
-    if isinstance(tau, (bool, np.bool_)):
-        raise TypeError("tau must be a real number, got bool")
+    if isinstance(tau, (bool, np.bool_, str, bytes)):
+        raise TypeError(f"tau must be a real number, got {type(tau).__name__}")
     try:
         t = float(tau)
     except (TypeError, ValueError):

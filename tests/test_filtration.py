@@ -1,0 +1,453 @@
+"""Tests of shapelab.filtration: the weighted α-filtration and the dual complex.
+
+Oracles:
+
+* GUDHI's weighted ``AlphaComplex`` (a peer library with exact predicates): same
+  simplices, same values (1e-9 relative) on inputs in general position;
+* the definition of the dual complex itself: the entry time of a set R of balls is
+  the least common power distance over the face of the power diagram dual to R,
+  computed here by brute force (enumerating active constraint sets of a tiny
+  quadratic program, no triangulation involved);
+* invariants (faces before cofaces, monotone values, DT tiles the hull, Euler
+  characteristic) and, on degenerate input where DT is not unique, the Euler
+  characteristic and the number of components of K(τ) at every critical τ, which do
+  not depend on the triangulation chosen (K(τ) has the homotopy type of the union).
+"""
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+from scipy.spatial import ConvexHull
+
+from shapelab import Balls, alpha_filtration, dual_complex, regular_triangulation
+from shapelab.filtration import Complex, Filtration
+
+gudhi = pytest.importorskip("gudhi")
+
+
+# ----------------------------------------------------------------------------------
+# helpers
+# ----------------------------------------------------------------------------------
+def random_balls(seed, n, d, rmax, spread=1.0):
+    rng = np.random.default_rng(seed)
+    return Balls(rng.uniform(0, spread, (n, d)), rng.uniform(0, rmax, n))
+
+
+def as_dict(F):
+    out = {}
+    for k in range(F.dimension + 1):
+        for s, v in zip(F.simplices(k).tolist(), F.values(k).tolist()):
+            out[tuple(s)] = v
+    return out
+
+
+def gudhi_dict(balls):
+    st_ = gudhi.AlphaComplex(points=balls.centers, weights=balls.weights).create_simplex_tree()
+    return {tuple(sorted(s)): f for s, f in st_.get_filtration()}
+
+
+def assert_same_as_gudhi(balls, rtol=1e-9):
+    ours = as_dict(alpha_filtration(balls))
+    theirs = gudhi_dict(balls)
+    assert set(ours) == set(theirs)
+    scale = max(1.0, max(abs(v) for v in theirs.values()))
+    for s, v in theirs.items():
+        assert ours[s] == pytest.approx(v, rel=rtol, abs=rtol * scale), s
+
+
+def assert_valid(F):
+    """Faces present with value <= coface value, rows ascending, values sorted."""
+    assert isinstance(F, (Filtration, Complex))
+    for k in range(F.dimension + 1):
+        S, v = F.simplices(k), F.values(k)
+        assert S.shape == (v.size, k + 1) and S.dtype == np.int64
+        assert np.all(np.isfinite(v))
+        assert np.all(np.diff(v) >= 0)
+        assert np.all(np.diff(S, axis=1) > 0)
+        assert np.unique(S, axis=0).shape[0] == S.shape[0]
+        if k >= 1:
+            B = F.boundary(k)
+            fa = F.simplices(k - 1)
+            assert B.shape == S.shape
+            assert B.min(initial=0) >= 0 and B.max(initial=-1) < fa.shape[0]
+            for j in range(k + 1):
+                np.testing.assert_array_equal(fa[B[:, j]], np.delete(S, j, axis=1))
+            assert np.all(F.values(k - 1)[B].max(axis=1) <= v)
+
+
+def critical_taus(*value_sets):
+    vals = np.unique(np.concatenate([np.asarray(v, float) for v in value_sets]))
+    eps = 1e-7 * max(1.0, float(np.abs(vals).max()))
+    return np.concatenate([vals - eps, vals + eps])
+
+
+def euler_and_b0_ours(F, tau):
+    K = F.complex_at(tau)
+    return K.euler_characteristic(), components(K.simplices(0)[:, 0], K.simplices(1) if K.dimension >= 1 else np.zeros((0, 2), int))
+
+
+def components(verts, edges):
+    if verts.size == 0:
+        return 0
+    idx = {v: i for i, v in enumerate(verts.tolist())}
+    e = np.array([[idx[a], idx[b]] for a, b in edges.tolist()], dtype=int).reshape(-1, 2)
+    g = coo_matrix((np.ones(len(e)), (e[:, 0], e[:, 1])), shape=(verts.size, verts.size))
+    return connected_components(g, directed=False)[0]
+
+
+def euler_and_b0_gudhi(simplices, tau):
+    present = [s for s, f in simplices if f <= tau]
+    chi = sum((-1) ** (len(s) - 1) for s in present)
+    verts = np.array(sorted(s[0] for s in present if len(s) == 1), dtype=int)
+    edges = np.array([s for s in present if len(s) == 2], dtype=int).reshape(-1, 2)
+    return chi, components(verts, edges)
+
+
+def assert_topology_matches_gudhi(balls):
+    """Triangulation-independent comparison for degenerate input."""
+    F = alpha_filtration(balls)
+    assert_valid(F)
+    st_ = gudhi.AlphaComplex(points=balls.centers, weights=balls.weights).create_simplex_tree()
+    simplices = [(tuple(s), f) for s, f in st_.get_filtration()]
+    ours_vals = np.concatenate([F.values(k) for k in range(F.dimension + 1)])
+    for tau in critical_taus(ours_vals, [f for _, f in simplices]):
+        assert euler_and_b0_ours(F, tau) == euler_and_b0_gudhi(simplices, tau), tau
+    return F
+
+
+# ----------------------------------------------------------------------------------
+# GUDHI agreement
+# ----------------------------------------------------------------------------------
+@pytest.mark.parametrize("d", [2, 3])
+@pytest.mark.parametrize("rmax", [0.0, 0.05, 0.3, 0.8])
+@pytest.mark.parametrize("seed", [0, 1])
+def test_agrees_with_gudhi_fixed_seeds(d, rmax, seed):
+    balls = random_balls(seed, 60 if d == 2 else 40, d, rmax)
+    assert_same_as_gudhi(balls)
+
+
+def test_agrees_with_gudhi_with_many_hidden_balls():
+    rng = np.random.default_rng(7)
+    for d in (2, 3):
+        big = Balls(rng.uniform(0, 4, (25, d)), rng.uniform(0.8, 1.6, 25))
+        small = rng.uniform(0, 4, (40, d))
+        balls = Balls(np.r_[big.centers, small], np.r_[big.radii, np.full(40, 0.05)])
+        F = alpha_filtration(balls)
+        assert F.simplices(0).shape[0] < len(balls)  # some balls are hidden
+        assert_same_as_gudhi(balls)
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    seed=st.integers(0, 2**32 - 1),
+    d=st.sampled_from([2, 3]),
+    n=st.integers(1, 40),
+    rmax=st.sampled_from([0.0, 0.1, 0.5, 2.0]),
+    offset=st.sampled_from([0.0, -3.0, 50.0]),
+)
+def test_agrees_with_gudhi_hypothesis(seed, d, n, rmax, offset):
+    rng = np.random.default_rng(seed)
+    balls = Balls(rng.uniform(0, 1, (n, d)) + offset, rng.uniform(0, rmax, n))
+    assert_same_as_gudhi(balls)
+
+
+def test_vertex_values_in_the_weighted_case():
+    # ball 1's centre is covered by ball 0's power (pi_0(z_1) = -3 < -1), but its
+    # cell [2, 3] x R is not empty: B_1 first meets its cell at x = (2, 0), at
+    # tau = pi_1((2, 0)) = 0, together with the edge {0, 1} (bisector x = 2)
+    balls = Balls([[0.0, 0.0], [1.0, 0.0], [5.0, 0.0]], [2.0, 1.0, 1.0])
+    F = alpha_filtration(balls)
+    d = as_dict(F)
+    assert d[(1,)] == pytest.approx(0.0, abs=1e-12)
+    assert d[(0, 1)] == pytest.approx(0.0, abs=1e-12)
+    assert d[(0,)] == -4.0 and d[(2,)] == -1.0
+    assert_same_as_gudhi(balls)
+
+
+# ----------------------------------------------------------------------------------
+# The definition: entry time of R = min common power over the dual power face
+# ----------------------------------------------------------------------------------
+def entry_time_brute_force(balls, R):
+    """min over {x : pi_i(x) equal for i in R, pi_i(x) <= pi_k(x) for all k} of the
+    common power, by enumerating active sets of the tiny QP (inf if infeasible)."""
+    z, w = balls.centers, balls.weights
+    c0 = z.mean(axis=0)
+    z = z - c0  # better conditioning; power distances do not change
+    i0 = R[0]
+    h = np.einsum("ij,ij->i", z, z) - w
+    # rows: 2 x.(z_k - z_i0) <= h_k - h_i0
+    M = 2.0 * (z - z[i0])
+    m = h - h[i0]
+    eq = [k for k in R[1:]]
+    ineq = [k for k in range(len(balls)) if k not in R]
+    d = z.shape[1]
+    best = np.inf
+    target = z[i0]
+    scale = 1.0 + float(np.abs(z).max()) ** 2
+    for size in range(0, d + 1):
+        for S in itertools.combinations(ineq, size):
+            rows = eq + list(S)
+            if rows:
+                A, b = M[rows], m[rows]
+                # project target onto {A x = b}
+                lam, *_ = np.linalg.lstsq(A @ A.T, A @ target - b, rcond=1e-12)
+                x = target - A.T @ lam
+                if np.max(np.abs(A @ x - b)) > 1e-9 * scale:
+                    continue
+            else:
+                x = target
+            if ineq and np.max(M[ineq] @ x - m[ineq]) > 1e-9 * scale:
+                continue
+            best = min(best, float(np.sum((x - z[i0]) ** 2) - w[i0]))
+    return best
+
+
+@pytest.mark.parametrize("d,n", [(2, 8), (3, 7)])
+@pytest.mark.parametrize("seed", [3, 4, 5])
+def test_entry_times_from_the_definition(d, n, seed):
+    rng = np.random.default_rng(seed)
+    balls = Balls(rng.uniform(0, 1, (n, d)), rng.uniform(0, 0.4, n))
+    ours = as_dict(alpha_filtration(balls))
+    for size in range(1, d + 2):
+        for R in itertools.combinations(range(n), size):
+            t = entry_time_brute_force(balls, list(R))
+            if np.isinf(t):
+                assert R not in ours, R
+            else:
+                assert R in ours, R
+                assert ours[R] == pytest.approx(t, rel=1e-7, abs=1e-9), R
+
+
+@pytest.mark.parametrize("seed", [11, 12])
+def test_dual_complex_is_the_nerve(seed):
+    """K(0) is the nerve of the clipped cells B_i ∩ Π(B_i)."""
+    rng = np.random.default_rng(seed)
+    balls = Balls(rng.uniform(0, 1, (8, 2)), rng.uniform(0.05, 0.3, 8))
+    K = dual_complex(balls)
+    present = {tuple(s) for k in range(K.dimension + 1) for s in K.simplices(k).tolist()}
+    for size in (1, 2, 3):
+        for R in itertools.combinations(range(8), size):
+            t = entry_time_brute_force(balls, list(R))
+            if abs(t) < 1e-6:
+                continue  # too close to call
+            assert (R in present) == (t < 0), R
+
+
+# ----------------------------------------------------------------------------------
+# Invariants
+# ----------------------------------------------------------------------------------
+@pytest.mark.parametrize("d", [2, 3])
+def test_invariants(d):
+    balls = random_balls(21, 150, d, 0.08)
+    F = alpha_filtration(balls)
+    assert_valid(F)
+    assert len(F) == sum(F.simplices(k).shape[0] for k in range(d + 1))
+    assert F.dimension == d
+    # complex_at(inf) is the whole DT, its top simplices tile the convex hull
+    K = F.complex_at(np.inf)
+    assert len(K) == len(F) and K.dimension == d
+    top = {tuple(s) for s in K.simplices(d).tolist()}
+    assert top == {tuple(s) for s in regular_triangulation(balls).tolist()}
+    c = balls.centers
+    T = K.simplices(d)
+    vol = np.abs(np.linalg.det(c[T[:, 1:]] - c[T[:, :1]])).sum() / (2 if d == 2 else 6)
+    assert vol == pytest.approx(ConvexHull(c).volume, rel=1e-10)
+    assert K.euler_characteristic() == 1
+    # complex_at is monotone and the filtration starts empty
+    assert len(F.complex_at(-np.inf)) == 0
+    sizes = [len(F.complex_at(t)) for t in np.linspace(-0.01, 0.05, 7)]
+    assert sizes == sorted(sizes)
+    # dual_complex is complex_at(0)
+    K0, K0b = dual_complex(balls), F.complex_at(0.0)
+    for k in range(d + 1):
+        np.testing.assert_array_equal(K0.simplices(k), K0b.simplices(k))
+        assert np.all(K0.values(k) <= 0)
+    assert_valid(K0)
+
+
+def test_ties_broken_deterministically_and_faces_first():
+    g = np.array(list(itertools.product(range(4), repeat=2)), float)
+    F = alpha_filtration(Balls(g, 0.0))
+    for k in range(3):
+        S, v = F.simplices(k), F.values(k)
+        keys = np.lexsort(list(S.T[::-1]) + [v])
+        np.testing.assert_array_equal(keys, np.arange(v.size))
+    F2 = alpha_filtration(Balls(g, 0.0))
+    for k in range(3):
+        np.testing.assert_array_equal(F.simplices(k), F2.simplices(k))
+
+
+def test_translation_and_scaling():
+    balls = random_balls(5, 50, 3, 0.2)
+    F = alpha_filtration(balls)
+    s = 1e-3
+    Fs = alpha_filtration(Balls(balls.centers * s + 1e4 * s, balls.radii * s))
+    for k in range(4):
+        np.testing.assert_array_equal(F.simplices(k), Fs.simplices(k))
+        np.testing.assert_allclose(Fs.values(k), F.values(k) * s**2, rtol=1e-7, atol=1e-12 * s**2)
+
+
+def test_growth_model_consistency():
+    """K(tau) of the balls equals K(0) of the balls grown by tau."""
+    balls = random_balls(8, 40, 2, 0.1)
+    F = alpha_filtration(balls)
+    for tau in (0.001, 0.004, 0.02):
+        K = F.complex_at(tau)
+        K2 = dual_complex(balls.grow(tau))
+        for k in range(3):
+            np.testing.assert_array_equal(K.simplices(k), K2.simplices(k))
+
+
+def test_arrays_are_read_only_and_accessors_validate():
+    F = alpha_filtration(random_balls(1, 20, 2, 0.1))
+    with pytest.raises(ValueError):
+        F.values(0)[0] = 1.0
+    with pytest.raises(ValueError, match="k must be between 0 and 2"):
+        F.simplices(3)
+    with pytest.raises(ValueError, match="k must be >= 1"):
+        F.boundary(0)
+    with pytest.raises(TypeError, match="k must be an integer"):
+        F.values(1.5)
+    with pytest.raises(ValueError, match="tau must not be NaN"):
+        F.complex_at(np.nan)
+    with pytest.raises(TypeError, match="tau"):
+        F.complex_at("0")
+    with pytest.raises(TypeError, match="balls must be a shapelab.Balls"):
+        alpha_filtration(np.zeros((3, 2)))
+
+
+def test_topology_methods_forward(monkeypatch):
+    import shapelab.topology as topo
+
+    F = alpha_filtration(random_balls(1, 10, 2, 0.1))
+    calls = []
+    monkeypatch.setattr(topo, "betti", lambda f, t: calls.append(("b", f, t)) or (1, 0, 0))
+    monkeypatch.setattr(topo, "betti_curve", lambda f, ts: calls.append(("c", f, ts)) or "curve")
+    monkeypatch.setattr(topo, "persistence", lambda f: calls.append(("p", f)) or {})
+    assert F.betti(0.5) == (1, 0, 0)
+    assert F.betti_curve([0, 1]) == "curve"
+    assert F.persistence() == {}
+    assert [c[0] for c in calls] == ["b", "c", "p"] and all(c[1] is F for c in calls)
+
+
+# ----------------------------------------------------------------------------------
+# Degenerate input
+# ----------------------------------------------------------------------------------
+GRID2 = np.array(list(itertools.product(range(5), repeat=2)), float)
+GRID3 = np.array(list(itertools.product(range(4), repeat=3)), float)
+
+
+@pytest.mark.parametrize(
+    "name,centers,radii",
+    [
+        ("grid2", GRID2, 0.0),
+        ("grid2-weighted", GRID2, 0.4),
+        ("grid3", GRID3, 0.0),
+        ("grid3-weighted", GRID3, 0.6),
+        ("grid3-offset", GRID3 + 1e6, 0.0),
+        ("grid3-tiny", GRID3 * 1e-6, 0.0),
+        ("grid3-tiny-offset", GRID3 * 1e-6 + 1e6, 0.0),
+        ("grid2-offset-weighted", GRID2 + 1e6, np.linspace(0.1, 0.7, 25)),
+    ],
+)
+def test_grids(name, centers, radii):
+    F = assert_topology_matches_gudhi(Balls(centers, radii))
+    d = centers.shape[1]
+    K = F.complex_at(np.inf)
+    assert K.euler_characteristic() == 1
+    T, c = K.simplices(d), centers - centers.mean(axis=0)
+    vol = np.abs(np.linalg.det(c[T[:, 1:]] - c[T[:, :1]])).sum() / (2 if d == 2 else 6)
+    assert vol == pytest.approx(ConvexHull(c).volume, rel=1e-8)
+    # every (d-1)-face in at most two top simplices (a pseudo-manifold)
+    assert np.bincount(K.boundary(d).ravel()).max() <= 2
+
+
+def test_collinear_and_coplanar():
+    rng = np.random.default_rng(2)
+    t = np.sort(rng.uniform(0, 1, 9))
+    for centers in (np.c_[t, 2 * t], np.c_[t, 2 * t - 1, 0.5 * t]):
+        F = assert_topology_matches_gudhi(Balls(centers, rng.uniform(0, 0.05, 9)))
+        assert F.dimension == 1
+        # the path along the line: consecutive centres
+        np.testing.assert_array_equal(np.sort(F.simplices(1), axis=0)[:, 0], np.arange(8))
+    P = rng.uniform(size=(15, 2))
+    coplanar = np.c_[P, P @ [1.0, -2.0] + 3]
+    F = assert_topology_matches_gudhi(Balls(coplanar, rng.uniform(0, 0.2, 15)))
+    assert F.dimension == 2
+    F = assert_topology_matches_gudhi(Balls(np.c_[P * 1e-6, np.full(15, 7.0)], 0.0))
+    assert F.dimension == 2
+
+
+@pytest.mark.parametrize("d", [2, 3])
+def test_few_balls(d):
+    rng = np.random.default_rng(4)
+    for n in range(1, d + 2):
+        balls = Balls(rng.uniform(0, 1, (n, d)), rng.uniform(0, 0.3, n))
+        F = alpha_filtration(balls)
+        assert_valid(F)
+        assert F.dimension == n - 1
+        assert_same_as_gudhi(balls)
+    F = alpha_filtration(Balls(np.zeros((1, d)), 2.0))
+    assert F.values(0).tolist() == [-4.0] and len(F) == 1
+
+
+def test_duplicate_centres():
+    c = np.array([[0.0, 0, 0], [0, 0, 0], [1, 0, 0], [1, 0, 0], [0, 1, 0], [0, 1, 0], [0, 0, 1]])
+    r = np.array([0.1, 0.3, 0.2, 0.2, 0.5, 0.1, 0.0])
+    F = alpha_filtration(Balls(c, r))
+    assert_valid(F)
+    # the larger ball wins; equal radii: the lower index
+    assert sorted(F.simplices(0)[:, 0].tolist()) == [1, 2, 4, 6]
+    # GUDHI keeps one of two equal balls at the same centre, which one depends on
+    # its insertion order: compare after naming each ball by its centre's first index
+    first = {tuple(p): i for i, p in reversed(list(enumerate(c.tolist())))}
+    rename = {i: first[tuple(p)] for i, p in enumerate(c.tolist())}
+    theirs = {tuple(sorted(rename[v] for v in s)): f for s, f in gudhi_dict(Balls(c, r)).items()}
+    ours = {tuple(rename[v] for v in s): f for s, f in as_dict(F).items()}
+    assert set(ours) == set(theirs)
+    for s in ours:
+        assert ours[s] == pytest.approx(theirs[s], rel=1e-9, abs=1e-12)
+    # unequal duplicates only: exactly GUDHI
+    assert_same_as_gudhi(Balls(np.r_[c, c[:3] + 0.5], np.r_[r[:2], 0.4, r[3:], 0.3, 0.1, 0.2]))
+    # all centres equal: one ball survives
+    F = alpha_filtration(Balls(np.zeros((5, 2)), [0.1, 0.4, 0.4, 0.2, 0.0]))
+    assert F.simplices(0).tolist() == [[1]]
+    assert F.values(0).tolist() == pytest.approx([-0.16])
+
+
+@pytest.mark.parametrize("d", [2, 3])
+def test_all_hidden_but_the_hull_corners(d):
+    rng = np.random.default_rng(9)
+    corners = np.eye(d + 1, d) * 10.0  # origin + unit axes, scaled
+    inside = rng.dirichlet(np.ones(d + 1), 30) @ corners
+    balls = Balls(np.r_[corners, inside], np.r_[np.full(d + 1, 12.0), np.full(30, 0.5)])
+    F = alpha_filtration(balls)
+    assert sorted(F.simplices(0)[:, 0].tolist()) == list(range(d + 1))
+    assert F.dimension == d and len(F) == 2 ** (d + 1) - 1
+    assert_same_as_gudhi(balls)
+
+
+@settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    pts=st.lists(st.tuples(st.integers(0, 3), st.integers(0, 3), st.integers(0, 2)), min_size=1, max_size=25),
+    r=st.sampled_from([0.0, 0.3, 0.7]),
+    flat=st.booleans(),
+)
+def test_degenerate_integer_inputs_hypothesis(pts, r, flat):
+    c = np.array(pts, dtype=float)
+    if flat:
+        c = c[:, :2]
+    assert_topology_matches_gudhi(Balls(c, r))
+
+
+def test_empty_balls():
+    F = alpha_filtration(Balls(np.zeros((0, 3)), []))
+    assert len(F) == 0 and F.dimension == -1
+    assert F.simplices(2).shape == (0, 3)
+    assert F.complex_at(0.0).euler_characteristic() == 0
