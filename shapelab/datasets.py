@@ -85,7 +85,7 @@ def _truncated_icosahedron() -> np.ndarray:
     return out
 
 
-def fullerene_c60(*, bond_length=1.4, atom_radius=CARBON_RADIUS) -> Balls:
+def fullerene_c60(*, bond_length=1.4, atom_radius=CARBON_RADIUS, jitter=0.0, seed=0) -> Balls:
     """Buckminsterfullerene C60: 60 carbon balls on a truncated icosahedron.
 
     Geometry: the vertices of the truncated icosahedron (even permutations of
@@ -106,16 +106,24 @@ def fullerene_c60(*, bond_length=1.4, atom_radius=CARBON_RADIUS) -> Balls:
         C–C bond length b in Å.
     atom_radius : float, default 1.70
         Radius of every ball (Bondi's carbon).
+    jitter : float, default 0
+        Move every centre by a seeded random vector of length ≤ ``jitter`` (Å), which
+        breaks the degeneracies below.
+    seed : int or Generator
 
     Returns
     -------
     Balls
-        60 balls in 3D.  The input is deliberately degenerate: all 60 centres are
-        co-spherical and each hexagon is co-circular.
+        60 balls in 3D.  Without jitter the input is deliberately degenerate: all 60
+        centres are co-spherical and each hexagon is co-circular.
     """
     b = as_finite_scalar(bond_length, "bond_length", positive=True)
     r = as_finite_scalar(atom_radius, "atom_radius", nonnegative=True)
-    return Balls(_truncated_icosahedron() * (b / 2.0), r)
+    jit = as_finite_scalar(jitter, "jitter", nonnegative=True)
+    c = _truncated_icosahedron() * (b / 2.0)
+    if jit > 0:
+        c = c + _ball_jitter(_rng(seed), len(c), jit)
+    return Balls(c, r)
 
 
 def c60_edges(balls: Balls | None = None, *, tol: float = 1e-6) -> np.ndarray:
@@ -147,7 +155,7 @@ def nanotube_radius(n, m, *, a=GRAPHENE_LATTICE_CONSTANT) -> float:
 
 
 def nanotube(n=8, m=8, *, length=12.0, atom_radius=CARBON_RADIUS,
-             a=GRAPHENE_LATTICE_CONSTANT, slit=0.0) -> Balls:
+             a=GRAPHENE_LATTICE_CONSTANT, slit=0.0, jitter=0.0, seed=0) -> Balls:
     """A single-walled (n, m) carbon nanotube: a graphene sheet rolled up.
 
     Geometry: graphene has lattice vectors :math:`a_1 = a(1, 0)`,
@@ -181,6 +189,10 @@ def nanotube(n=8, m=8, *, length=12.0, atom_radius=CARBON_RADIUS,
         Lattice constant in Å.
     slit : float
         Arc width in Å of the strip of atoms removed (0: a closed tube).
+    jitter : float, default 0
+        Move every centre by a seeded random vector of length ≤ ``jitter`` (Å): the
+        exact tube is degenerate (co-cylindrical, and rings of co-circular atoms).
+    seed : int or Generator
     """
     n = as_positive_int(n, "n", minimum=1)
     m = as_positive_int(m, "m", minimum=0)
@@ -219,6 +231,9 @@ def nanotube(n=8, m=8, *, length=12.0, atom_radius=CARBON_RADIUS,
     centers = np.column_stack([R * np.cos(theta), R * np.sin(theta), v])
     if len(centers) == 0:
         raise ValueError(f"length={L} is too short to hold a ring of atoms")
+    jit = as_finite_scalar(jitter, "jitter", nonnegative=True)
+    if jit > 0:
+        centers = centers + _ball_jitter(_rng(seed), len(centers), jit)
     return Balls(centers, r)
 
 

@@ -128,6 +128,29 @@ def test_c60_exactly_one_void_with_shapelab():
     import shapelab
     v = shapelab.voids(D.fullerene_c60(), 0.0)
     assert len(v) == 1
+    v = shapelab.voids(D.fullerene_c60(jitter=1e-3), 2.0)
+    assert len(v) == 1
+
+
+@pytest.mark.xfail(strict=False, reason=(
+    "core: alpha_filtration of the exactly co-spherical C60 splits the void into 7 at "
+    "0.35 < tau < 9.15 (GUDHI and the voxel oracle: 1); reported"))
+@pytest.mark.skipif(not HAS_CAVITIES, reason="shapelab.cavities (topology engineer) not written yet")
+@pytest.mark.parametrize("tau", [2.0, 5.0])
+def test_c60_one_void_while_it_lives_degenerate(tau):
+    import shapelab
+    b = D.fullerene_c60()
+    assert bounded_free_components(b, tau) == 1
+    assert len(shapelab.voids(b, tau)) == 1
+
+
+def test_jitter_is_seeded_and_small():
+    a, b = D.fullerene_c60(jitter=1e-3, seed=3), D.fullerene_c60(jitter=1e-3, seed=3)
+    assert np.array_equal(a.centers, b.centers)
+    d = np.linalg.norm(a.centers - D.fullerene_c60().centers, axis=1)
+    assert 0 < d.max() <= 1e-3
+    t = D.nanotube(jitter=1e-3)
+    assert np.linalg.norm(t.centers - D.nanotube().centers, axis=1).max() <= 1e-3
 
 
 # ----------------------------------------------------------------- nanotube
@@ -190,6 +213,19 @@ def test_nanotube_slit_groove_becomes_a_tunnel_only_if_narrow():
 def test_nanotube_one_tunnel_with_shapelab():
     import shapelab
     assert len(shapelab.tunnels(D.nanotube(), 0.0)) == 1
+    assert len(shapelab.voids(D.nanotube(), 0.0)) == 0
+
+
+@pytest.mark.xfail(strict=False, reason=(
+    "core: alpha_filtration of the exact (co-cylindrical) nanotube has voids at tau = 22..60 "
+    "that neither GUDHI nor the voxel oracle see; reported"))
+@pytest.mark.skipif(not HAS_CAVITIES, reason="shapelab.cavities (topology engineer) not written yet")
+def test_nanotube_no_late_voids_degenerate():
+    import shapelab
+    b = D.nanotube()
+    for tau in (22.0, 30.0):
+        assert bounded_free_components(b, tau, h=0.3) == 0
+        assert len(shapelab.voids(b, tau)) == 0
 
 
 # --------------------------------------------------------------------- bowl

@@ -251,7 +251,7 @@ def test_voids_3d_draws_the_boundary_of_the_cells():
 @pytest.mark.skipif(not HAS_CAVITIES, reason="shapelab.cavities (topology engineer) not written yet")
 def test_plots_of_real_features():
     left, _ = D.figure_23_2()
-    P = shapelab.pockets(left, 0.0)
+    P = shapelab.pockets(left, 0.0, min_persistence=1e-9)
     fig = PT.pockets(left, tau=0.0)
     assert len(polys(fig.axes[0], COLORS["accent"])) == sum(len(p.cells) for p in P)
     V = shapelab.voids(D.fullerene_c60(), 0.0)
@@ -265,7 +265,7 @@ def test_pocket_explorer_widget():
     left, _ = D.figure_23_2()
     w = pocket_explorer(left, tau=0.0, steps=20)
     assert repr(w).startswith("PocketExplorer(n_balls=112, tau=0.00")
-    assert "1 pockets" in w.status.value
+    assert "1 pockets, 0 holes" in w.status.value
     w.slider.value = 2.0  # the mouth has closed: a hole, no pocket
     assert "0 pockets, 1 holes" in w.status.value
     with pytest.raises(ValueError):

@@ -368,10 +368,11 @@ def _rgba(color, alpha=1.0):
     return to_rgba(color, alpha)
 
 
-def _draw_complex_2d(ax, balls, tau):
+def _draw_complex_2d(ax, balls, tau, filtration=None):
     import shapelab
 
-    K = shapelab.alpha_filtration(balls).complex_at(tau)
+    F = filtration if filtration is not None else shapelab.alpha_filtration(balls)
+    K = F.complex_at(tau)
     c = balls.centers
     E = np.asarray(K.simplices(1))
     T = np.asarray(K.simplices(2))
@@ -447,11 +448,11 @@ def _boundary_faces(cells):
     return u[cnt == 1]
 
 
-def _features_or_compute(balls, features, tau, fn_name, **kw):
+def _features_or_compute(balls, features, tau, fn_name, filtration=None, **kw):
     if features is None:
         import shapelab
 
-        return getattr(shapelab, fn_name)(balls, tau, **kw)
+        return list(getattr(shapelab, fn_name)(balls, tau, filtration=filtration, **kw))
     return list(features)
 
 
@@ -463,7 +464,7 @@ def _check_balls(balls):
 
 
 def voids(balls, voids=None, *, tau=0.0, ax=None, show_complex=False, elev=20, azim=35,
-          title=None):
+          title=None, filtration=None):
     """Draw the voids of the union of balls grown to τ (holes in 2D, Notes §23.1).
 
     A void is a bounded component of :math:`\\mathbb{R}^d \\setminus \\bigcup B_i`; it is
@@ -484,6 +485,8 @@ def voids(balls, voids=None, *, tau=0.0, ax=None, show_complex=False, elev=20, a
     elev, azim : float
         3D view.
     title : str, optional
+    filtration : Filtration, optional
+        ``alpha_filtration(balls)``, to avoid recomputing it.
 
     Returns
     -------
@@ -491,15 +494,16 @@ def voids(balls, voids=None, *, tau=0.0, ax=None, show_complex=False, elev=20, a
     """
     _check_balls(balls)
     tau = _check_tau(tau)
-    V = _features_or_compute(balls, voids, tau, "voids")
+    V = _features_or_compute(balls, voids, tau, "voids", filtration)
     word = "hole" if balls.dim == 2 else "void"
     title = title or f"{len(V)} {word}{'s' if len(V) != 1 else ''} at τ = {tau:g}"
     return _draw_features(balls, tau, V, [], [], ax=ax, show_complex=show_complex, elev=elev,
-                          azim=azim, title=title)
+                          azim=azim, title=title, filtration=filtration)
 
 
 def pockets(balls, pockets=None, *, tau=0.0, voids=None, show_voids=True, ax=None,
-            show_complex=False, min_persistence=0.0, elev=20, azim=35, title=None):
+            show_complex=False, min_persistence=1e-9, elev=20, azim=35, title=None,
+            filtration=None):
     """Draw the pockets of the growth model at τ with their mouths (Notes §23.1, Fig. 23.2).
 
     A pocket is a region of the complement still connected to the outside at τ that
@@ -519,8 +523,11 @@ def pockets(balls, pockets=None, *, tau=0.0, voids=None, show_voids=True, ax=Non
     show_voids : bool
     ax, show_complex, elev, azim, title
         As for :func:`voids`.
-    min_persistence : float
-        Passed to :func:`shapelab.pockets` when computing.
+    min_persistence : float, default 1e-9
+        Passed to :func:`shapelab.pockets` when computing (the default leaves out
+        pockets that close and fill at the same τ up to round-off).
+    filtration : Filtration, optional
+        ``alpha_filtration(balls)``, to avoid recomputing it.
 
     Returns
     -------
@@ -528,9 +535,8 @@ def pockets(balls, pockets=None, *, tau=0.0, voids=None, show_voids=True, ax=Non
     """
     _check_balls(balls)
     tau = _check_tau(tau)
-    Pk = _features_or_compute(balls, pockets, tau, "pockets", min_persistence=min_persistence) \
-        if pockets is None else list(pockets)
-    V = (_features_or_compute(balls, voids, tau, "voids") if show_voids else [])
+    Pk = _features_or_compute(balls, pockets, tau, "pockets", filtration, min_persistence=min_persistence)
+    V = (_features_or_compute(balls, voids, tau, "voids", filtration) if show_voids else [])
     word = "hole" if balls.dim == 2 else "void"
     if title is None:
         title = f"{len(Pk)} pocket{'s' if len(Pk) != 1 else ''}"
@@ -538,11 +544,11 @@ def pockets(balls, pockets=None, *, tau=0.0, voids=None, show_voids=True, ax=Non
             title += f", {len(V)} {word}{'s' if len(V) != 1 else ''}"
         title += f" at τ = {tau:g}"
     return _draw_features(balls, tau, V, Pk, [], ax=ax, show_complex=show_complex, elev=elev,
-                          azim=azim, title=title)
+                          azim=azim, title=title, filtration=filtration)
 
 
 def tunnels(balls, tunnels=None, *, tau=0.0, ax=None, show_complex=False, elev=20, azim=35,
-            title=None):
+            title=None, filtration=None):
     """Draw the tunnels alive at τ: a representative cycle of each H₁ class (Notes §23.1).
 
     Parameters
@@ -551,7 +557,7 @@ def tunnels(balls, tunnels=None, *, tau=0.0, ax=None, show_complex=False, elev=2
     tunnels : sequence of Tunnel, optional
         From :func:`shapelab.tunnels`; computed at ``tau`` if not given.  Each cycle is a
         closed chain of edges between ball centres, drawn as a thick line.
-    tau, ax, show_complex, elev, azim, title
+    tau, ax, show_complex, elev, azim, title, filtration
         As for :func:`voids`.
 
     Returns
@@ -560,10 +566,10 @@ def tunnels(balls, tunnels=None, *, tau=0.0, ax=None, show_complex=False, elev=2
     """
     _check_balls(balls)
     tau = _check_tau(tau)
-    T = _features_or_compute(balls, tunnels, tau, "tunnels")
+    T = _features_or_compute(balls, tunnels, tau, "tunnels", filtration)
     title = title or f"{len(T)} tunnel{'s' if len(T) != 1 else ''} at τ = {tau:g}"
     return _draw_features(balls, tau, [], [], T, ax=ax, show_complex=show_complex, elev=elev,
-                          azim=azim, title=title)
+                          azim=azim, title=title, filtration=filtration)
 
 
 def _cycle_edges(t):
@@ -571,7 +577,7 @@ def _cycle_edges(t):
     return e.reshape(-1, 2)
 
 
-def _draw_features(balls, tau, V, Pk, T, *, ax, show_complex, elev, azim, title):
+def _draw_features(balls, tau, V, Pk, T, *, ax, show_complex, elev, azim, title, filtration=None):
     d = balls.dim
     legend = []
     if d == 2:
@@ -596,7 +602,7 @@ def _draw_features(balls, tau, V, Pk, T, *, ax, show_complex, elev, azim, title)
                     ax.add_collection(LineCollection(c[mouth], colors=COLORS["mouth"], linewidths=3.0,
                                                      zorder=4, capstyle="round"))
             if show_complex:
-                _draw_complex_2d(ax, balls, tau)
+                _draw_complex_2d(ax, balls, tau, filtration)
             for t in T:
                 e = _cycle_edges(t)
                 ax.add_collection(LineCollection(c[e], colors=COLORS["void"], linewidths=2.5, zorder=5))

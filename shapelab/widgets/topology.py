@@ -9,12 +9,10 @@ from .._validate import as_finite_scalar
 __all__ = ["pocket_explorer", "PocketExplorer"]
 
 
-def _default_range(balls):
+def _default_range(balls, F):
     """From the moment the smallest ball appears to just after the last feature dies."""
-    import shapelab
-
     lo = -float(balls.weights.min())
-    P = shapelab.alpha_filtration(balls).persistence()
+    P = F.persistence()
     deaths = np.concatenate([np.asarray(a)[:, 1] for a in P.values() if len(a)] or [np.zeros(0)])
     deaths = deaths[np.isfinite(deaths)]
     hi = float(deaths.max()) if len(deaths) else lo + 1.0
@@ -22,7 +20,7 @@ def _default_range(balls):
     return lo, hi + 0.1 * (hi - lo)
 
 
-def pocket_explorer(balls, *, tau=0.0, tau_range=None, steps=100, min_persistence=0.0,
+def pocket_explorer(balls, *, tau=0.0, tau_range=None, steps=100, min_persistence=1e-9,
                     show_complex=False):
     """A slider in τ over the disks grown to :math:`\\sqrt{r^2+\\tau}`, with the holes
     (voids) and the pockets with their mouths at that τ (Notes §23.1, Figure 23.2).
@@ -42,8 +40,9 @@ def pocket_explorer(balls, *, tau=0.0, tau_range=None, steps=100, min_persistenc
         :math:`-\\min r_i^2` to a little after the last finite death.
     steps : int
         Slider resolution.
-    min_persistence : float
-        Passed to :func:`shapelab.pockets`.
+    min_persistence : float, default 1e-9
+        Passed to :func:`shapelab.pockets`; the default hides pockets that close and
+        fill at the same τ up to round-off (degenerate, e.g. co-circular, centres).
     show_complex : bool
         Also draw the dual complex :math:`K_\\tau`.
 
@@ -56,9 +55,12 @@ def pocket_explorer(balls, *, tau=0.0, tau_range=None, steps=100, min_persistenc
 
     if not isinstance(balls, Balls):
         raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+    import shapelab
+
     tau = as_finite_scalar(tau, "tau")
+    F = shapelab.alpha_filtration(balls)
     if tau_range is None:
-        lo, hi = _default_range(balls)
+        lo, hi = _default_range(balls, F)
     else:
         try:
             lo, hi = (as_finite_scalar(v, "tau_range") for v in tau_range)
@@ -71,14 +73,15 @@ def pocket_explorer(balls, *, tau=0.0, tau_range=None, steps=100, min_persistenc
     lo = max(lo, -float(balls.weights.min()))
     tau = min(max(tau, lo), hi)
     min_persistence = as_finite_scalar(min_persistence, "min_persistence", nonnegative=True)
-    return PocketExplorer(balls, tau, lo, hi, (hi - lo) / steps, min_persistence, bool(show_complex))
+    return PocketExplorer(balls, F, tau, lo, hi, (hi - lo) / steps, min_persistence, bool(show_complex))
 
 
 class PocketExplorer(W.VBox):
     """Slider + figure; see :func:`pocket_explorer`."""
 
-    def __init__(self, balls, tau, lo, hi, step, min_persistence, show_complex):
+    def __init__(self, balls, F, tau, lo, hi, step, min_persistence, show_complex):
         self._balls = balls
+        self._F = F
         self._minp = min_persistence
         self._show_complex = show_complex
         self.slider = W.FloatSlider(value=tau, min=lo, max=hi, step=step, description="τ",
@@ -97,8 +100,8 @@ class PocketExplorer(W.VBox):
         from ..plot.topology import pockets as plot_pockets
 
         t = float(self.slider.value)
-        P = shapelab.pockets(self._balls, t, min_persistence=self._minp)
-        V = shapelab.voids(self._balls, t)
+        P = shapelab.pockets(self._balls, t, min_persistence=self._minp, filtration=self._F)
+        V = shapelab.voids(self._balls, t, filtration=self._F)
         word = "holes" if self._balls.dim == 2 else "voids"
         self.status.value = f"&nbsp;{len(P)} pockets, {len(V)} {word}"
         fig = plot_pockets(self._balls, P, tau=t, voids=V, show_complex=self._show_complex)
