@@ -133,7 +133,7 @@ class Balls:
             i = int(np.argmin(w))
             raise ValueError(
                 f"tau = {t!r} makes the radius of ball {i} imaginary: "
-                f"r[{i}]**2 + tau = {w[i]!r} < 0 (tau must be >= {-self.weights[i]!r})"
+                f"r[{i}]**2 + tau = {float(w[i])!r} < 0 (tau must be >= {float(-self.weights[i])!r})"
             )
         return Balls(self.centers, np.sqrt(w))
 
