@@ -111,7 +111,12 @@ def _slide(nrows=1, ncols=1, **kw):
 
 
 def build(name: str):
-    """Draw the registered figure ``name`` at the 16:9 slide size; returns the Figure."""
+    """Draw the registered figure ``name`` at the 16:9 slide size; returns the Figure.
+
+    The layout is settled (two passes of the layout engine: a legend placed outside
+    its axes moves with them after the first) and then frozen, so that saving the
+    figure in several formats draws it the same way each time, and fast.
+    """
     from matplotlib.figure import Figure
 
     from .plot import SLIDE
@@ -121,7 +126,15 @@ def build(name: str):
     if not isinstance(fig, Figure):
         raise TypeError(f"figure {name!r}: its function returned {type(fig).__name__}, not a Figure")
     fig.set_size_inches(*SLIDE)
+    _settle(fig)
     return fig
+
+
+def _settle(fig) -> None:
+    if fig.get_layout_engine() is not None:
+        fig.draw_without_rendering()
+        fig.draw_without_rendering()
+        fig.set_layout_engine("none")
 
 
 @contextmanager
@@ -153,8 +166,35 @@ def save(fig, path, fmt: str | None = None) -> Path:
     }[fmt]
     path.parent.mkdir(parents=True, exist_ok=True)
     with _save_style():
-        fig.savefig(path, format=fmt, metadata=meta, dpi=PNG_DPI if fmt == "png" else None)
+        fig.savefig(path, format=fmt, metadata=meta, dpi=PNG_DPI if fmt == "png" else None,
+                    bbox_inches=_page(fig))
     return path
+
+
+def _page(fig):
+    """The page to save: the figure, grown to hold anything drawn outside it (a legend
+    below the axes, say) and then to 16:9 again, centred.  ``None`` when it all fits."""
+    from matplotlib.transforms import Bbox
+
+    _settle(fig)
+    w, h = fig.get_size_inches()
+    tight = fig.get_tightbbox(fig._get_renderer())
+    x0, y0 = min(0.0, tight.x0), min(0.0, tight.y0)
+    x1, y1 = max(w, tight.x1), max(h, tight.y1)
+    if (x0, y0, x1, y1) == (0.0, 0.0, w, h):
+        return None
+    pad = 0.05
+    x0, y0, x1, y1 = x0 - pad, y0 - pad, x1 + pad, y1 + pad
+    ratio = w / h
+    bw, bh = x1 - x0, y1 - y0
+    if bw / bh < ratio:  # too tall: widen
+        grow = bh * ratio - bw
+        x0, x1 = x0 - grow / 2, x1 + grow / 2
+    else:
+        grow = bw / ratio - bh
+        y0, y1 = y0 - grow / 2, y1 + grow / 2
+    x0, x1, y0 = round(x0, 3), round(x1, 3), round(y0, 3)
+    return Bbox.from_extents(x0, y0, x1, y0 + (x1 - x0) / ratio)
 
 
 def _placeholder(name: str, reason: str):
