@@ -83,6 +83,11 @@ __all__ = [
     "hausdorff_under_translation",
     "TranslationMatch",
     "reference_point",
+    "hausdorff_pair",
+    "hausdorff_kdtree",
+    "hausdorff_early_break",
+    "Timings",
+    "timings",
 ]
 
 _EPS = np.finfo(np.float64).eps
@@ -295,7 +300,8 @@ def _query_exact(src: _Cloud, rows: np.ndarray, ub: np.ndarray, points: np.ndarr
         best.offer(d2h, rows[hi], jh)
 
 
-def _subset_stage(src: _Cloud, alive: np.ndarray, u: np.ndarray, dst: _Cloud, best: _Best) -> bool:
+def _subset_stage(src: _Cloud, alive: np.ndarray, u: np.ndarray, dst: _Cloud, best: _Best,
+                  force: bool = False) -> bool:
     """Finish a *clustered* set of survivors with a small tree.
 
     Every survivor ``a`` has its nearest neighbour within ``sqrt(u(a))``, so only
@@ -310,7 +316,7 @@ def _subset_stage(src: _Cloud, alive: np.ndarray, u: np.ndarray, dst: _Cloud, be
     reach = radius + float(np.sqrt(u[alive].max()))
     reach = reach * (1.0 + 1e-9) + 1e-300
     inside = np.flatnonzero(_sqdist(dst.points, center) <= reach * reach)
-    if inside.size > dst.points.shape[0] // 4:
+    if inside.size > dst.points.shape[0] // 4 and not force:
         return False
     if inside.size == 0:  # impossible: every survivor has a neighbour inside
         return False
@@ -389,9 +395,14 @@ def _tree_stage(src: _Cloud, alive: np.ndarray, u: np.ndarray, dst: _Cloud, best
     return best
 
 
-def _directed_pruned(src: _Cloud, dst: _Cloud, best: _Best, seed: int = 0) -> _Best:
+def _directed_pruned(src: _Cloud, dst: _Cloud, best: _Best, seed: int = 0, stage: str | None = None) -> _Best:
     """Batched early break, switching to a bounded k-d tree when the sets overlap
-    (see the module docstring)."""
+    (see the module docstring).
+
+    ``stage`` forces a path after the first block, for tests on small inputs:
+    ``"tree"``, ``"subset"``, or ``"probe"`` (blocks until every point of dst was
+    a probe).
+    """
     n, d = src.points.shape
     m = dst.points.shape[0]
     margin = _margin(src, dst)
@@ -402,7 +413,7 @@ def _directed_pruned(src: _Cloud, dst: _Cloud, best: _Best, seed: int = 0) -> _B
     k = 8
     first = True
     while alive.size:
-        if alive.size <= 16 or alive.size * (m - used) <= 2 * _BLOCK:
+        if stage is None and (alive.size <= 16 or alive.size * (m - used) <= 2 * _BLOCK):
             rest = alive[u[alive] > best.d2]
             d2, nn = _exact_rows(src, rest, dst)
             best.offer(d2, rest, nn)
@@ -434,10 +445,17 @@ def _directed_pruned(src: _Cloud, dst: _Cloud, best: _Best, seed: int = 0) -> _B
         # 4x per block (a point at depth delta below cmax survives K probes with
         # probability ~exp(-c delta K)).  Much less means random probes cannot see
         # the nearest neighbours: the sets overlap and the k-d tree takes over.
-        slow = alive.size > 0.5 * before
-        if 0 < alive.size <= 65536 and (slow or alive.size <= 4096) and _subset_stage(src, alive, u, dst, best):
+        if stage == "tree":
+            return _tree_stage(src, alive, u, dst, best) if alive.size else best
+        if stage == "subset":
+            if alive.size:
+                _subset_stage(src, alive, u, dst, best, force=True)
             break
-        if slow and alive.size > 64:
+        slow = alive.size > 0.5 * before
+        if stage is None and 0 < alive.size <= 65536 and (slow or alive.size <= 4096) \
+                and _subset_stage(src, alive, u, dst, best):
+            break
+        if stage is None and slow and alive.size > 64:
             return _tree_stage(src, alive, u, dst, best)
         k = min(m - used, 4 * k)
     return best
@@ -640,7 +658,8 @@ class TranslationMatch:
         lower_bound`` is the remaining gap (at most ``tol`` when ``converged``).
     ratio : float
         ``centroid_distance / optimal_distance`` (1.0 when both are 0).  No
-        constant bounds it for point sets.
+        constant bounds it for point sets.  Meaningless when both distances are
+        at round-off level (a translated copy).
     bbox_ratio : float
         ``bbox_distance / optimal_distance``; at most :attr:`bound`.
     bound : float
@@ -813,3 +832,99 @@ def hausdorff_under_translation(A, B, *, tol: float = 1e-3, max_evaluations: int
         lower_bound=float(lower), ratio=_ratio(f_c), bbox_ratio=_ratio(f_b),
         bound=1.0 + sqrt_d, n_evaluations=n_eval, converged=converged,
     )
+
+
+# --------------------------------------------------------------------------- #
+# The classical algorithms, for comparisons in lessons and benchmarks          #
+# --------------------------------------------------------------------------- #
+def hausdorff_kdtree(A, B) -> float:
+    """H(A, B) by two k-d tree queries (scipy ``cKDTree``, every nearest neighbour).
+
+    The reference "k-d tree" algorithm of the benchmarks: fast when the sets
+    overlap, slow when they are far apart.
+    """
+    A, B = _validate_pair(A, B)
+    hab = cKDTree(B).query(A, k=1, workers=-1)[0].max()
+    hba = cKDTree(A).query(B, k=1, workers=-1)[0].max()
+    return float(max(hab, hba))
+
+
+def hausdorff_early_break(A, B, seed: int = 0) -> float:
+    """H(A, B) by scipy's early-break algorithm (Taha & Hanbury), both directions.
+
+    Fast when the sets are far apart, slow when they overlap.
+    """
+    from scipy.spatial.distance import directed_hausdorff as _scipy_dh
+
+    A, B = _validate_pair(A, B)
+    return float(max(_scipy_dh(A, B, seed=seed)[0], _scipy_dh(B, A, seed=seed)[0]))
+
+
+@dataclass(frozen=True, eq=False)
+class Timings:
+    """Wall times (best of ``repeat``) and results of several Hausdorff algorithms.
+
+    Attributes
+    ----------
+    seconds : dict
+        ``{name: seconds}``.
+    values : dict
+        ``{name: H(A, B)}``; all equal when the algorithms are exact.
+    """
+
+    seconds: dict
+    values: dict
+
+    @property
+    def agree(self) -> bool:
+        """Whether every algorithm returned the same distance (to 1e-12 relative)."""
+        v = np.array(list(self.values.values()))
+        return bool(np.allclose(v, v[0], rtol=1e-12, atol=0.0))
+
+
+def timings(A, B, *, repeat: int = 1, brute: bool = True) -> Timings:
+    """Time brute force, a k-d tree, scipy's early break and :func:`hausdorff`.
+
+    Parameters
+    ----------
+    A, B : array_like
+    repeat : int
+        Best of this many runs per algorithm.
+    brute : bool
+        Include brute force (``n * m`` distances; keep the sets small).
+
+    Returns
+    -------
+    Timings
+    """
+    import time
+
+    A, B = _validate_pair(A, B)
+    repeat = as_positive_int(repeat, "repeat")
+    algos = {}
+    if brute:
+        algos["brute force"] = lambda: hausdorff(A, B, method="brute")
+    algos["k-d tree (scipy)"] = lambda: hausdorff_kdtree(A, B)
+    algos["early break (scipy)"] = lambda: hausdorff_early_break(A, B)
+    algos["shapelab"] = lambda: hausdorff(A, B)
+    seconds, values = {}, {}
+    for name, fn in algos.items():
+        best = np.inf
+        for _ in range(repeat):
+            t0 = time.perf_counter()
+            values[name] = float(fn())
+            best = min(best, time.perf_counter() - t0)
+        seconds[name] = best
+    return Timings(seconds, values)
+
+
+# ``shapelab.hausdorff`` names both this module and the function :func:`hausdorff`
+# (the public API maps the function lazily; importing the submodule rebinds the
+# package attribute to the module).  Making the module callable keeps
+# ``shapelab.hausdorff(A, B)`` working whichever object the name resolves to.
+class _CallableModule(__import__("types").ModuleType):
+    def __call__(self, A, B, **kwargs):
+        return hausdorff(A, B, **kwargs)
+
+
+__import__("sys").modules[__name__].__class__ = _CallableModule
