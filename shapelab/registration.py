@@ -98,10 +98,8 @@ def cross_covariance(R, G) -> np.ndarray:
 
     Computed as one matrix product, O(n).
     """
-    R = as_points(R, "R", dim=3)
-    G = as_points(G, "G", dim=3)
-    check_same_shape(R, G, "R", "G")
-    return R.T @ G
+    R, G = _paired(R, G)
+    return _covariance(R, G)
 
 
 def _horn_from_m(m: np.ndarray) -> np.ndarray:
@@ -139,21 +137,63 @@ def horn_matrix(R, G) -> np.ndarray:
     return _horn_from_m(cross_covariance(R, G))
 
 
-def _covariance_and_scale(R: np.ndarray, G: np.ndarray) -> tuple[np.ndarray, float]:
-    """M = Σ r gᵀ and the scale sqrt(Σ|r|² Σ|g|²) bounding its entries; overflow → ValueError."""
+_BLOCK = 4096
+
+
+def _cross(R: np.ndarray, G: np.ndarray) -> np.ndarray:
+    """M = Σ r gᵀ as a sum of blocked 3×3 products (cache-friendly, several times faster
+    than one (3×n)(n×3) product for large n, and summed blockwise: no less accurate)."""
+    n = R.shape[0]
+    if n < 2 * _BLOCK:
+        return R.T @ G
+    k = n // _BLOCK * _BLOCK
+    Rb = R[:k].reshape(-1, _BLOCK, 3)
+    Gb = G[:k].reshape(-1, _BLOCK, 3)
+    return np.matmul(Rb.transpose(0, 2, 1), Gb).sum(axis=0) + R[k:].T @ G[k:]
+
+
+def _paired(R, G) -> tuple[np.ndarray, np.ndarray]:
+    """Validate paired (n, 3) sets, leaving the finiteness test to :func:`_covariance`.
+
+    Any NaN or inf in R or G makes M = Σ r gᵀ non-finite (inf·0 = NaN, inf + (−inf) =
+    NaN, NaN propagates), so testing the nine entries of M replaces two passes over
+    the input; only then are R and G scanned, to name the culprit.
+    """
+    out = []
+    for x, name in ((R, "R"), (G, "G")):
+        a = _as_float_array(x, name)
+        if a.ndim != 2:
+            raise ValueError(f"{name} must be a 2-D array of shape (n, d), got shape {a.shape}")
+        if a.shape[1] != 3:
+            raise ValueError(f"{name} must have 3 columns (dimension), got shape {a.shape}")
+        if a.shape[0] < 1:
+            raise ValueError(f"{name} must hold at least 1 point(s), got {a.shape[0]}")
+        out.append(np.ascontiguousarray(a))
+    check_same_shape(out[0], out[1], "R", "G")
+    return out[0], out[1]
+
+
+def _covariance(R: np.ndarray, G: np.ndarray) -> np.ndarray:
+    """M = Σ r gᵀ; a non-finite input or an overflow raises ValueError naming it."""
     with np.errstate(over="ignore", invalid="ignore"):
-        m = R.T @ G
-        scale = float(np.sqrt(np.einsum("ij,ij->", R, R)) * np.sqrt(np.einsum("ij,ij->", G, G)))
-    if not (np.all(np.isfinite(m)) and np.isfinite(scale)):
+        m = _cross(R, G)
+    if not np.all(np.isfinite(m)):
+        _check_finite(R, "R")
+        _check_finite(G, "G")
         raise ValueError("R and G are too large: their cross-covariance overflows float64")
-    return m, scale
+    return m
 
 
-def _rotation_from_m(m: np.ndarray, scale: float, *, caller: str) -> Quaternion:
-    """Top eigenvector of Horn's matrix built from M; warn when it is not unique."""
+def _rotation_from_m(m: np.ndarray, *, caller: str) -> Quaternion:
+    """Top eigenvector of Horn's matrix built from M; warn when it is not unique.
+
+    Not unique means λ₁ − λ₂ ≤ 1e-9 · max|λ| (a numerically repeated top eigenvalue);
+    A = 0 gives the identity.
+    """
     a = _horn_from_m(m)
     lam, vec = np.linalg.eigh(a)  # ascending
     q = vec[:, 3]
+    scale = float(np.abs(lam).max())
     if scale == 0.0 or lam[3] - lam[2] <= 1e-9 * scale:
         warnings.warn(
             f"{caller}: the optimal rotation is not unique (the points are collinear with the "
@@ -206,7 +246,8 @@ def optimal_rotation(R, G) -> Quaternion:
       reflection.  See :func:`kabsch`.
     * Two non-parallel pairs already determine the rotation (:math:`n=2` is fine
       here, unlike for :func:`register`, where centring leaves a single direction).
-    * Cost: one BLAS product for :math:`M` (O(n)) and a 4×4 symmetric eigenproblem.
+    * Cost: one pass over the data for :math:`M` (blocked 3×3 products, O(n)) and a
+      4×4 symmetric eigenproblem; input finiteness is read off :math:`M`.
 
     Examples
     --------
@@ -215,10 +256,8 @@ def optimal_rotation(R, G) -> Quaternion:
     >>> optimal_rotation(R, q.rotate(R)).isclose(q)
     True
     """
-    R = as_points(R, "R", dim=3)
-    G = as_points(G, "G", dim=3)
-    check_same_shape(R, G, "R", "G")
-    return _rotation_from_m(*_covariance_and_scale(R, G), caller="optimal_rotation")
+    R, G = _paired(R, G)
+    return _rotation_from_m(_covariance(R, G), caller="optimal_rotation")
 
 
 def kabsch(R, G, *, proper: bool = True) -> np.ndarray:
@@ -368,7 +407,7 @@ def _register(R: np.ndarray, G: np.ndarray, *, caller: str) -> RigidMotion:
         cg = G.mean(axis=0)
     if not (np.all(np.isfinite(cr)) and np.all(np.isfinite(cg))):
         raise ValueError("R and G are too large: their centroids overflow float64")
-    q = _rotation_from_m(*_covariance_and_scale(R - cr, G - cg), caller=caller)
+    q = _rotation_from_m(_covariance(R - cr, G - cg), caller=caller)
     return RigidMotion(q, cg - q.rotate(cr))
 
 

@@ -79,6 +79,17 @@ def test_horn_matrix_equals_the_literal_sum_of_the_notes(seed):
     assert np.isclose(q @ A @ q, sum(np.dot(a, g) for a, g in zip(rot, G)), atol=1e-10)
 
 
+def test_blocked_cross_covariance_on_large_inputs():
+    rng = np.random.default_rng(1)
+    R, G = rng.normal(size=(2, 3 * 4096 + 17, 3))
+    np.testing.assert_allclose(cross_covariance(R, G), np.einsum("ni,nj->ij", R, G), rtol=1e-12, atol=1e-9)
+    for name, bad in (("R", np.inf), ("G", np.nan)):
+        R2, G2 = R.copy(), G.copy()
+        (R2 if name == "R" else G2)[12000, 1] = bad
+        with pytest.raises(ValueError, match=rf"{name} must be finite; found {bad} at index \(12000, 1\)"):
+            optimal_rotation(R2, G2)
+
+
 # ----------------------------------------------------------------- optimal rotation
 
 

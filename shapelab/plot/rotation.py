@@ -1,0 +1,313 @@
+"""Figures for §23.2 of the notes: red and green point sets, ICP steps and
+convergence, and a rotation about an axis (Figure 23.4) in 3D.
+
+Every function returns a :class:`matplotlib.figure.Figure` (or draws into ``ax`` and
+returns its figure).  Geometry comes from :mod:`shapelab.registration` and
+:mod:`shapelab.quaternion`; nothing is recomputed here.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .._validate import as_finite_scalar, as_point, as_points, as_positive_int
+from ..quaternion import Quaternion, qfrom_axis_angle, qrotate
+from ..registration import ICPResult, RigidMotion
+from ._style import COLORS, PAGE, new_figure, style
+
+__all__ = ["point_sets", "icp_step", "icp_convergence", "rotation_axis"]
+
+
+def _axes(ax, *, size=PAGE, projection=None):
+    if ax is None:
+        return new_figure(size=size, projection=projection)
+    if projection == "3d" and getattr(ax, "name", "") != "3d":
+        raise ValueError("ax must be a 3D axes (projection='3d') for this figure")
+    if projection is None and getattr(ax, "name", "") == "3d":
+        raise ValueError("ax must be a 2D axes for planar points")
+    return ax.get_figure(), ax
+
+
+def _cube_limits(ax, pts: np.ndarray, pad: float = 0.08) -> None:
+    """Equal aspect in 3D: a cube around the points."""
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    c = 0.5 * (lo + hi)
+    r = 0.5 * float((hi - lo).max()) * (1 + pad) or 1.0
+    ax.set_xlim(c[0] - r, c[0] + r)
+    ax.set_ylim(c[1] - r, c[1] + r)
+    ax.set_zlim(c[2] - r, c[2] + r)
+    ax.set_box_aspect((1, 1, 1))
+    ax.set_xlabel("x")
+    ax.set_ylabel("y")
+    ax.set_zlabel("z")
+
+
+def _stride(n: int, most: int) -> np.ndarray:
+    """At most ``most`` evenly spaced indices of range(n) (deterministic)."""
+    if n <= most:
+        return np.arange(n)
+    return np.unique(np.linspace(0, n - 1, most).round().astype(int))
+
+
+def _marker_size(n: int) -> float:
+    return float(np.clip(1200.0 / max(n, 1) ** 0.75, 1.0, 36.0))
+
+
+def point_sets(R, G, *, pairs: bool = False, labels=("R", "G"), ax=None, title=None,
+               max_pairs: int = 400, elev: float = 20.0, azim: float = 35.0):
+    """The red set R and the green set G of the notes (§23.2), in 2D or 3D.
+
+    Parameters
+    ----------
+    R, G : array_like, shape (n, d) and (m, d), d in {2, 3}
+    pairs : bool
+        Draw the segments :math:`r_j g_j` of paired sets (needs n = m); at most
+        ``max_pairs`` of them, evenly spaced.
+    labels : (str, str)
+        Legend entries.
+    ax : Axes, optional
+        Draw into this axes (3D axes for 3D points).
+    title : str, optional
+    elev, azim : float
+        3D view angles.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    R = as_points(R, "R", dim=(2, 3))
+    G = as_points(G, "G", dim=(2, 3))
+    if R.shape[1] != G.shape[1]:
+        raise ValueError(f"R and G must have the same dimension, got {R.shape[1]} and {G.shape[1]}")
+    if pairs and R.shape != G.shape:
+        raise ValueError(f"pairs=True needs R and G of the same shape, got {R.shape} and {G.shape}")
+    max_pairs = as_positive_int(max_pairs, "max_pairs")
+    three = R.shape[1] == 3
+    fig, ax = _axes(ax, projection="3d" if three else None)
+    with style():
+        if pairs:
+            idx = _stride(len(R), max_pairs)
+            seg = np.stack([R[idx], G[idx]], axis=1)
+            if three:
+                from mpl_toolkits.mplot3d.art3d import Line3DCollection
+
+                ax.add_collection3d(Line3DCollection(seg, colors=COLORS["muted"], linewidths=0.6, alpha=0.7))
+            else:
+                from matplotlib.collections import LineCollection
+
+                ax.add_collection(LineCollection(seg, colors=COLORS["muted"], linewidths=0.8, alpha=0.7))
+        for P, color, label, marker in ((R, COLORS["red"], labels[0], "o"), (G, COLORS["green"], labels[1], "s")):
+            s = _marker_size(len(P))
+            if three:
+                ax.scatter(P[:, 0], P[:, 1], P[:, 2], s=s, color=color, label=label, marker=marker,
+                           depthshade=False, alpha=0.85, linewidths=0)
+            else:
+                ax.scatter(P[:, 0], P[:, 1], s=s * 1.5, color=color, label=label, marker=marker, alpha=0.9,
+                           linewidths=0, zorder=3)
+        if three:
+            _cube_limits(ax, np.vstack([R, G]))
+            ax.view_init(elev=elev, azim=azim)
+        else:
+            ax.set_aspect("equal", adjustable="datalim")
+            ax.set_xlabel("x")
+            ax.set_ylabel("y")
+        ax.legend(loc="upper left", markerscale=2.0)
+        if title:
+            ax.set_title(title)
+    return fig
+
+
+def _correspondence_at(result: ICPResult, k: int) -> np.ndarray:
+    if result.correspondences is not None:
+        return result.correspondences[k]
+    if k == result.n_iter:
+        return result.correspondence
+    raise ValueError(
+        f"the correspondence of iteration {k} was not kept; run icp(..., keep_history=True) "
+        "to draw intermediate steps"
+    )
+
+
+def icp_step(source, target, result: ICPResult, k: int = 0, *, ax=None, max_lines: int = 300,
+             show_next: bool = True, title=None, elev: float = 20.0, azim: float = 35.0):
+    """One ICP iteration (Notes §23.2, steps 1–3) in 3D.
+
+    Draws the target (green), the source at motion ``result.motions[k]`` (red), the
+    closest-point correspondence :math:`\\pi` of step 1 as grey segments, and (with
+    ``show_next``) where steps 2–3 move the source, as hollow red markers.
+
+    Parameters
+    ----------
+    source, target : array_like, shape (n, 3), (m, 3)
+        The inputs given to :func:`shapelab.icp`.
+    result : ICPResult
+        Its output; intermediate ``k`` need ``keep_history=True``.
+    k : int
+        Iteration, 0 ≤ k ≤ ``result.n_iter``.
+    max_lines : int
+        At most this many correspondence segments (evenly spaced source points).
+    """
+    if not isinstance(result, ICPResult):
+        raise TypeError(f"result must be an ICPResult, got {type(result).__name__}")
+    src = as_points(source, "source", dim=3)
+    tgt = as_points(target, "target", dim=3)
+    k = as_positive_int(k, "k", minimum=0)
+    if k > result.n_iter:
+        raise ValueError(f"k must be at most result.n_iter = {result.n_iter}, got {k}")
+    corr = _correspondence_at(result, k)
+    if corr.shape[0] != src.shape[0]:
+        raise ValueError(f"source has {src.shape[0]} points but the result pairs {corr.shape[0]}")
+    max_lines = as_positive_int(max_lines, "max_lines")
+    moved = result.motions[k].apply(src)
+    fig, ax = _axes(ax, projection="3d")
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection
+
+    with style():
+        s = _marker_size(max(len(src), len(tgt)))
+        ax.scatter(*tgt.T, s=s, color=COLORS["green"], marker="s", depthshade=False, alpha=0.55, linewidths=0,
+                   label="target (fixed)")
+        ax.scatter(*moved.T, s=s, color=COLORS["red"], depthshade=False, alpha=0.9, linewidths=0,
+                   label=f"source at iteration {k}")
+        idx = _stride(len(src), max_lines)
+        idx = idx[corr[idx] >= 0]
+        seg = np.stack([moved[idx], tgt[corr[idx]]], axis=1)
+        ax.add_collection3d(Line3DCollection(seg, colors=COLORS["complex"], linewidths=0.6, alpha=0.55))
+        ax.plot([], [], color=COLORS["complex"], lw=0.8, label="closest-point pairs π (step 1)")
+        pts = [tgt, moved]
+        if show_next and k < result.n_iter:
+            nxt = result.motions[k + 1].apply(src)
+            ax.scatter(*nxt[idx].T, s=2.2 * s, facecolors="none", edgecolors=COLORS["red"], linewidths=0.7,
+                       depthshade=False, alpha=0.8, label="after steps 2–3")
+            pts.append(nxt)
+        _cube_limits(ax, np.vstack(pts))
+        ax.view_init(elev=elev, azim=azim)
+        ax.legend(loc="upper left", fontsize=9, markerscale=1.5)
+        ax.set_title(title or f"ICP iteration {k} of {result.n_iter}: MSE = {result.mse[k]:.3g}")
+    return fig
+
+
+def icp_convergence(result, *, truth: RigidMotion | None = None, ax=None, mark: int | None = None, title=None):
+    """Mean squared error against iteration, on a log scale (Notes §23.2, step 4).
+
+    Parameters
+    ----------
+    result : ICPResult or dict of str → ICPResult
+        One run, or several labelled runs to compare (e.g. plain and accelerated).
+    truth : RigidMotion, optional
+        The true motion, when known: the rotation error (degrees) of each iterate
+        is drawn too, dashed, on a second log axis.
+    mark : int, optional
+        An iteration to highlight (e.g. the widget's current one).
+    """
+    runs = result if isinstance(result, dict) else {"ICP": result}
+    if not runs:
+        raise ValueError("result must hold at least one ICPResult")
+    for name, r in runs.items():
+        if not isinstance(r, ICPResult):
+            raise TypeError(f"result[{name!r}] must be an ICPResult, got {type(r).__name__}")
+    if truth is not None and not isinstance(truth, RigidMotion):
+        raise TypeError(f"truth must be a RigidMotion, got {type(truth).__name__}")
+    fig, ax = _axes(ax)
+    with style():
+        colors = [COLORS["ball_edge"], COLORS["accent"], COLORS["mouth"], COLORS["green"]]
+        handles = []
+        ax2 = ax.twinx() if truth is not None else None
+        for (name, r), color in zip(runs.items(), colors * 4):
+            it = np.arange(r.n_iter + 1)
+            mse = np.where(r.mse > 0, r.mse, np.nan)
+            (h,) = ax.plot(it, mse, "o-", color=color, ms=3.5, lw=1.6,
+                           label=f"{name}: MSE" + (" (converged)" if r.converged else ""))
+            handles.append(h)
+            if ax2 is not None:
+                err = np.degrees([m.rotation.angle_to(truth.rotation) for m in r.motions])
+                err = np.where(err > 0, err, np.nan)
+                (h2,) = ax2.plot(it, err, "--", color=color, lw=1.2, alpha=0.8, label=f"{name}: rotation error")
+                handles.append(h2)
+        ax.set_yscale("log")
+        ax.set_xlabel("iteration k")
+        ax.set_ylabel("mean squared error μ/n")
+        if ax2 is not None:
+            ax2.set_yscale("log")
+            ax2.set_ylabel("rotation error (degrees)")
+            ax2.spines["right"].set_visible(True)
+        if mark is not None:
+            mark = as_positive_int(mark, "mark", minimum=0)
+            ax.axvline(mark, color=COLORS["muted"], lw=1.0, ls=":")
+        ax.legend(handles=handles, loc="upper right", fontsize=9)
+        ax.set_title(title or "ICP convergence")
+        ax.grid(True, which="major", alpha=0.25)
+    return fig
+
+
+def rotation_axis(rotation, angle=None, *, points=None, ax=None, title=None, elev: float = 22.0,
+                  azim: float = -55.0):
+    """A rotation about an axis through the origin, Figure 23.4 of the notes in 3D.
+
+    Draws the unit axis :math:`u` as an arrow, each point before (red) and after
+    (green) the rotation, its circle about the axis (dotted), the arc swept through
+    the angle :math:`\\theta` (with an arrowhead, right-hand rule), and the radii from
+    the axis to both positions.
+
+    Parameters
+    ----------
+    rotation : Quaternion or array_like (3,)
+        A quaternion (its axis and angle in [0, π] are used), or an axis vector.
+    angle : float, optional
+        The angle in radians, required with an axis vector, not allowed with a
+        quaternion.
+    points : array_like, shape (3,) or (k, 3), optional
+        Points to rotate; default one point off the axis.
+    """
+    if isinstance(rotation, Quaternion):
+        if angle is not None:
+            raise ValueError("angle must be None when rotation is a Quaternion (it carries its own angle)")
+        u, theta = rotation.to_axis_angle()
+    else:
+        u = as_point(rotation, "rotation", dim=3)
+        if angle is None:
+            raise ValueError("angle is required when rotation is an axis vector")
+        theta = as_finite_scalar(angle, "angle")
+        if not np.linalg.norm(u) > 0:
+            raise ValueError("rotation must be a non-zero axis vector")
+        u = u / np.linalg.norm(u)
+    if points is None:
+        helper = np.array([1.0, 0.0, 0.0]) if abs(u[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+        perp = np.cross(u, helper)
+        P = (perp / np.linalg.norm(perp) + 0.45 * u)[None, :]
+    else:
+        P = np.atleast_2d(np.asarray(points, dtype=float))
+        P = as_points(P, "points", dim=3)
+    fig, ax = _axes(ax, projection="3d")
+    t = np.linspace(0.0, theta, 64)
+    full = np.linspace(0.0, 2 * np.pi, 129)
+    with style():
+        L = 1.25 * max(1.0, float(np.abs(P).max()))
+        ax.plot(*np.stack([-L * u, L * u]).T, color=COLORS["complex"], lw=1.2, alpha=0.5)
+        ax.quiver(0, 0, 0, *(L * u), color=COLORS["complex"], lw=2.0, arrow_length_ratio=0.12)
+        ax.text(*(1.08 * L * u), "u", fontsize=13, fontweight="bold")
+        ax.scatter([0], [0], [0], color=COLORS["complex"], s=14, depthshade=False)
+        everything = [np.stack([-L * u, L * u])]
+        for j, p in enumerate(P):
+            c = float(p @ u) * u  # the foot of p on the axis
+            circle = qrotate(qfrom_axis_angle(u, full), np.broadcast_to(p, (full.size, 3)))
+            arc = qrotate(qfrom_axis_angle(u, t), np.broadcast_to(p, (t.size, 3)))
+            q = arc[-1]
+            ax.plot(*circle.T, color=COLORS["muted"], lw=0.9, ls=":")
+            ax.plot(*arc.T, color=COLORS["accent"], lw=2.6, label="rotation by θ" if j == 0 else None)
+            if abs(theta) > 1e-9:
+                d = arc[-1] - arc[-4]
+                ax.quiver(*arc[-4], *d, color=COLORS["accent"], lw=2.6, arrow_length_ratio=0.9,
+                          length=1.0, normalize=False)
+            for end in (p, q):
+                ax.plot(*np.stack([c, end]).T, color=COLORS["muted"], lw=1.0, ls="--")
+            ax.scatter(*p, s=60, color=COLORS["red"], depthshade=False, label="r" if j == 0 else None, zorder=5)
+            ax.scatter(*q, s=60, color=COLORS["green"], depthshade=False, label="q r q*" if j == 0 else None,
+                       zorder=5)
+            mid = arc[len(arc) // 2]
+            ax.text(*(c + 1.18 * (mid - c)), "θ", color=COLORS["accent"], fontsize=13)
+            everything += [circle, p[None], q[None]]
+        _cube_limits(ax, np.vstack(everything), pad=0.02)
+        ax.view_init(elev=elev, azim=azim)
+        ax.legend(loc="upper left")
+        ax.set_title(title or (f"Rotation by θ = {np.degrees(theta):.1f}° about "
+                               f"u = ({u[0]:.2f}, {u[1]:.2f}, {u[2]:.2f})"))
+    return fig

@@ -1,0 +1,97 @@
+"""The ICP explorer: step through the iterations of ICP with a slider (Notes §23.2).
+
+All iterations are computed once, by :func:`shapelab.icp` with ``keep_history=True``;
+moving the slider only redraws (:func:`shapelab.plot.icp_step` and
+:func:`shapelab.plot.icp_convergence`).
+"""
+from __future__ import annotations
+
+import ipywidgets as W
+import numpy as np
+
+from .._validate import as_points, as_positive_int
+
+__all__ = ["icp_explorer", "ICPExplorer"]
+
+
+def icp_explorer(source, target, *, max_iter: int = 30, tol: float = 0.0, accelerate: bool = False,
+                 init=None, max_distance=None, truth=None, max_lines: int = 200):
+    """A slider over the iterations of ICP, with the step and the convergence plot.
+
+    Parameters
+    ----------
+    source, target : array_like, shape (n, 3), (m, 3)
+        As for :func:`shapelab.icp` (keep them small, a few hundred points).
+    max_iter, tol, accelerate, init, max_distance
+        Passed to :func:`shapelab.icp`.  ``accelerate`` defaults to False here, so
+        each slider position is one plain step of the notes' algorithm.
+    truth : RigidMotion, optional
+        The true motion, to show the rotation error too.
+    max_lines : int
+        Correspondence segments drawn at most.
+
+    Returns
+    -------
+    ICPExplorer
+        An ``ipywidgets.VBox``: the slider, a status line and the two figures.
+    """
+    from ..registration import RigidMotion, icp
+
+    src = as_points(source, "source", dim=3, min_points=3)
+    tgt = as_points(target, "target", dim=3, min_points=3)
+    max_lines = as_positive_int(max_lines, "max_lines")
+    if truth is not None and not isinstance(truth, RigidMotion):
+        raise TypeError(f"truth must be a RigidMotion, got {type(truth).__name__}")
+    result = icp(src, tgt, tol=tol, max_iter=max_iter, init=init, max_distance=max_distance,
+                 accelerate=accelerate, keep_history=True)
+    return ICPExplorer(src, tgt, result, truth, max_lines)
+
+
+class ICPExplorer(W.VBox):
+    """Slider + figures; see :func:`icp_explorer`.  ``.result`` is the ICPResult."""
+
+    def __init__(self, source, target, result, truth, max_lines):
+        self.source, self.target, self.result = source, target, result
+        self._truth, self._max_lines = truth, max_lines
+        self.slider = W.IntSlider(value=0, min=0, max=result.n_iter, step=1, description="iteration",
+                                  continuous_update=False, layout=W.Layout(width="60%"))
+        self.status = W.HTML()
+        self.out = W.Output()
+        super().__init__([self.slider, self.status, self.out])
+        self.slider.observe(self._redraw, names="value")
+        self._redraw()
+
+    @property
+    def iteration(self) -> int:
+        return int(self.slider.value)
+
+    def _status_text(self) -> str:
+        k, r = self.iteration, self.result
+        text = f"iteration {k} of {r.n_iter}: MSE {r.mse[k]:.4g}"
+        if self._truth is not None:
+            err = np.degrees(r.motions[k].rotation.angle_to(self._truth.rotation))
+            text += f", rotation error {err:.3f}°"
+        if k == r.n_iter:
+            text += " (converged)" if r.converged else " (stopped at max_iter)"
+        return text
+
+    def _redraw(self, change=None):
+        from IPython.display import display
+
+        from ..plot._style import new_figure
+        from ..plot.rotation import icp_convergence, icp_step
+
+        k = self.iteration
+        self.status.value = self._status_text()
+        fig, axes = new_figure(1, 2, size=(11.0, 4.6))
+        # the left panel must be 3D: replace it
+        axes[0].remove()
+        ax3 = fig.add_subplot(1, 2, 1, projection="3d")
+        icp_step(self.source, self.target, self.result, k, ax=ax3, max_lines=self._max_lines)
+        icp_convergence(self.result, truth=self._truth, ax=axes[1], mark=k)
+        self.out.clear_output(wait=True)
+        with self.out:
+            display(fig)
+
+    def __repr__(self) -> str:
+        return f"ICPExplorer({self._status_text()})"
