@@ -846,10 +846,10 @@ def _clip_convex_by_disk(poly, cx, cy, r, step):
 
 
 def clipped_cells(balls: Balls, *, tau=0.0, diagram=None, arc_resolution: int = 96):
-    """The cells :math:`B_i(\tau) \cap \Pi(B_i)` of disks as polygons (Notes §23.1).
+    """The cells :math:`B_i(\\tau) \\cap \\Pi(B_i)` of disks as polygons (Notes §23.1).
 
     The power diagram partitions the union into these convex pieces, "the cells
-    contained in :math:`\bigcup B_i`"; their areas are ``union_measure(...).
+    contained in :math:`\\bigcup B_i`"; their areas are ``union_measure(...).
     ball_measure``.  Circular arcs are sampled with ``arc_resolution`` points per full
     turn (the polygons are inscribed, so their areas are slightly smaller).
 

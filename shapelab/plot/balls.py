@@ -334,6 +334,10 @@ class DualComplexView:
             return np.asarray(canvas.buffer_rgba())
         size = canvas.get_width_height()
         if getattr(self, "_background", None) is None or self._background_size != size:
+            if fig.get_layout_engine() is not None:
+                # lay out once, then freeze: later frames only move artists
+                canvas.draw()
+                fig.set_layout_engine("none")
             dyn = self._dynamic()
             vis = [a.get_visible() for a in dyn]
             for a in dyn:
@@ -369,10 +373,6 @@ class DualComplexView:
             self._disks.set_heights(2 * r)
         if self._cells is not None:
             self._set_cells(tau)
-        if self.figure.get_layout_engine() is not None and self.figure.get_layout_engine().__class__.__name__ != "PlaceHolderLayoutEngine":
-            # freeze the layout after its first computation: later frames only move artists
-            self.figure.get_layout_engine().execute(self.figure)
-            self.figure.set_layout_engine("none")
         self.complex = self.filtration.complex_at(tau)
         self._set_complex(self.complex)
         return self

@@ -1,0 +1,118 @@
+"""Self-checks for the lessons on power diagrams and the dual complex (01–05).
+
+* :func:`power_distance` — :math:`\\pi(x) = \\lVert x - z \\rVert^2 - r^2` (Notes §23.1);
+* :func:`orthogonal_radius` — the squared radius of the circle orthogonal to three
+  circles, which is the time τ at which their triangle enters the α-filtration;
+* :func:`union_area` — the area of the union of two disks by inclusion–exclusion.
+
+Each runs the student's function on edge cases first, then on seeded random cases,
+and compares with the library (:func:`shapelab.power_distance`,
+:func:`shapelab.alpha_filtration`, :func:`shapelab.union_measure`).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ._runner import CheckResult, allclose, run_check
+
+__all__ = ["power_distance", "orthogonal_radius", "union_area"]
+
+
+def power_distance(student_fn, *, quiet: bool = False) -> CheckResult:
+    """Check ``student_fn(x, center, radius) -> float``, the power distance
+    :math:`\\lVert x - z\\rVert^2 - r^2` of the point x from the ball (z, r).
+
+    Cases: x at the centre (:math:`-r^2`), x on the sphere (0), a ball of radius 0
+    (the squared distance), a point outside (the squared tangent length), 3D points,
+    then random points in 2D and 3D.
+    """
+    from ..balls import Balls
+    from ..balls import power_distance as lib
+
+    cases = [
+        (np.array([1.0, 2.0]), np.array([1.0, 2.0]), 1.5),
+        (np.array([4.0, 6.0]), np.array([1.0, 2.0]), 5.0),
+        (np.array([3.0, 4.0]), np.array([0.0, 0.0]), 0.0),
+        (np.array([0.0, 0.0]), np.array([3.0, 4.0]), 1.0),
+        (np.array([1.0, 1.0, 1.0]), np.array([0.0, 0.0, 0.0]), 2.0),
+    ]
+    rng = np.random.default_rng(20)
+    for d in (2, 3, 2, 3):
+        cases.append((rng.normal(size=d) * 3, rng.normal(size=d), float(rng.uniform(0, 2))))
+
+    def reference(x, c, r):
+        return float(lib(x, Balls(c[None, :], [r]))[0])
+
+    return run_check("power distance", student_fn, cases, reference, allclose(atol=1e-9, rtol=1e-9), quiet=quiet)
+
+
+def orthogonal_radius(student_fn, *, quiet: bool = False) -> CheckResult:
+    """Check ``student_fn(centers, radii) -> float``: for three disks (centres (3, 2),
+    radii (3,)), the squared radius :math:`R^2` of the circle orthogonal to all three.
+
+    Its centre y is the point with equal power distance to the three disks, and
+    :math:`R^2 = \\lVert y - z_i \\rVert^2 - r_i^2` (a circle of radius R about y
+    meets circle i at a right angle iff :math:`\\lVert y - z_i\\rVert^2 = R^2 + r_i^2`).
+    :math:`R^2` is negative when y lies inside the three disks.  It is the time τ
+    at which the triangle enters the α-filtration (Notes §23.1), which is what the
+    library's answer is: ``alpha_filtration(Balls(centers, radii)).values(2)[0]``.
+
+    Cases: three points (radius 0: the circumradius squared), equal disks, disks that
+    overlap around y (:math:`R^2 < 0`), unequal disks, then random triangles.
+    """
+    from ..balls import Balls
+    from ..filtration import alpha_filtration
+
+    cases = [
+        (np.array([[0.0, 0.0], [4.0, 0.0], [0.0, 3.0]]), np.zeros(3)),
+        (np.array([[0.0, 0.0], [2.0, 0.0], [1.0, np.sqrt(3.0)]]), np.full(3, 0.5)),
+        (np.array([[0.0, 0.0], [2.0, 0.0], [1.0, np.sqrt(3.0)]]), np.full(3, 1.5)),
+        (np.array([[0.0, 0.0], [5.0, 1.0], [2.0, 4.0]]), np.array([1.0, 2.0, 0.5])),
+    ]
+    rng = np.random.default_rng(21)
+    while len(cases) < 10:
+        c = rng.uniform(-3, 3, (3, 2))
+        e = np.linalg.norm(c[[1, 2, 0]] - c, axis=1)
+        u, v = c[1] - c[0], c[2] - c[0]
+        area = 0.5 * abs(u[0] * v[1] - u[1] * v[0])
+        if area < 0.5:  # keep triangles well shaped
+            continue
+        cases.append((c, rng.uniform(0, 0.3, 3) * e.min()))  # small disks: none is hidden
+
+    def reference(centers, radii):
+        return float(alpha_filtration(Balls(centers, radii)).values(2)[0])
+
+    return run_check("orthogonal circle (squared radius)", student_fn, cases, reference,
+                     allclose(atol=1e-9, rtol=1e-8), quiet=quiet)
+
+
+def union_area(student_fn, *, quiet: bool = False) -> CheckResult:
+    """Check ``student_fn(c1, r1, c2, r2) -> float``, the area of the union of two
+    disks: :math:`\\pi r_1^2 + \\pi r_2^2 - \\operatorname{area}(B_1 \\cap B_2)`.
+
+    Cases: disjoint, tangent, overlapping, one inside the other, identical disks, a
+    disk of radius 0, then random pairs.  The library's answer is
+    :func:`shapelab.union_measure`.
+    """
+    from ..balls import Balls
+    from ..measure import union_measure
+
+    p = np.array
+    cases = [
+        (p([0.0, 0.0]), 1.0, p([5.0, 0.0]), 2.0),
+        (p([0.0, 0.0]), 1.0, p([3.0, 0.0]), 2.0),
+        (p([0.0, 0.0]), 1.0, p([1.0, 0.0]), 1.0),
+        (p([0.0, 0.0]), 3.0, p([0.5, 0.5]), 1.0),
+        (p([1.0, 1.0]), 2.0, p([1.0, 1.0]), 2.0),
+        (p([0.0, 0.0]), 0.0, p([1.0, 0.0]), 1.0),
+        (p([0.0, 0.0]), 2.0, p([0.0, 2.5]), 1.0),
+    ]
+    rng = np.random.default_rng(22)
+    for _ in range(6):
+        cases.append((rng.uniform(-2, 2, 2), float(rng.uniform(0.2, 2)), rng.uniform(-2, 2, 2), float(rng.uniform(0.2, 2))))
+
+    def reference(c1, r1, c2, r2):
+        return float(union_measure(Balls(np.array([c1, c2]), [r1, r2])).area)
+
+    return run_check("area of the union of two disks", student_fn, cases, reference,
+                     allclose(atol=1e-9, rtol=1e-9), quiet=quiet)

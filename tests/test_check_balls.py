@@ -1,0 +1,84 @@
+"""Tests of the self-checks of lessons 01–05 (shapelab.check.balls).
+
+A correct student function written here from first principles (independent of the
+library) must pass; typical mistakes must fail; a placeholder must be reported as
+not implemented.  That the correct functions pass also checks the references.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from shapelab import check
+
+
+# ----------------------------------------------------- correct solutions
+def good_power(x, c, r):
+    x, c = np.asarray(x, float), np.asarray(c, float)
+    return float(np.sum((x - c) ** 2) - r**2)
+
+
+def good_orthogonal(centers, radii):
+    # y solves 2 (z_j - z_0) . y = |z_j|^2 - r_j^2 - |z_0|^2 + r_0^2, j = 1, 2
+    z, r = np.asarray(centers, float), np.asarray(radii, float)
+    A = 2 * (z[1:] - z[0])
+    b = (z[1:] ** 2).sum(1) - r[1:] ** 2 - (z[0] ** 2).sum() + r[0] ** 2
+    y = np.linalg.solve(A, b)
+    return float(np.sum((y - z[0]) ** 2) - r[0] ** 2)
+
+
+def good_union(c1, r1, c2, r2):
+    d = float(np.linalg.norm(np.asarray(c2) - np.asarray(c1)))
+    if d >= r1 + r2:
+        lens = 0.0
+    elif d <= abs(r1 - r2):
+        lens = np.pi * min(r1, r2) ** 2
+    else:
+        a1 = r1**2 * np.arccos((d**2 + r1**2 - r2**2) / (2 * d * r1))
+        a2 = r2**2 * np.arccos((d**2 + r2**2 - r1**2) / (2 * d * r2))
+        lens = a1 + a2 - 0.5 * np.sqrt((-d + r1 + r2) * (d + r1 - r2) * (d - r1 + r2) * (d + r1 + r2))
+    return np.pi * (r1**2 + r2**2) - lens
+
+
+@pytest.mark.parametrize("name, fn", [("power_distance", good_power), ("orthogonal_radius", good_orthogonal),
+                                      ("union_area", good_union)])
+def test_correct_solutions_pass(name, fn, capsys):
+    res = getattr(check, name)(fn)
+    assert res.passed and res.n_cases >= 7
+    assert "✓" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("name, fn", [
+    ("power_distance", lambda x, c, r: float(np.sum((np.asarray(x) - c) ** 2) - r)),          # r, not r²
+    ("power_distance", lambda x, c, r: float(np.linalg.norm(np.asarray(x) - c) - r)),        # Euclidean
+    ("orthogonal_radius", lambda c, r: good_orthogonal(c, np.zeros(3))),                    # ignores radii
+    ("orthogonal_radius", lambda c, r: float(np.sqrt(abs(good_orthogonal(c, r))))),         # R, not R²
+    ("union_area", lambda c1, r1, c2, r2: np.pi * (r1**2 + r2**2)),                         # no lens
+    ("union_area", lambda c1, r1, c2, r2: good_union(c1, r1, c2, r2) if np.linalg.norm(np.subtract(c1, c2)) > abs(r1 - r2) else np.pi * (r1**2 + r2**2)),
+])
+def test_mistakes_fail(name, fn, capsys):
+    res = getattr(check, name)(fn)
+    assert not res.passed
+    assert "✗" in capsys.readouterr().out
+
+
+def test_placeholder_and_crash_reported(capsys):
+    def todo(*args):
+        raise NotImplementedError
+
+    assert not check.union_area(todo)
+    assert "not implemented" in capsys.readouterr().out
+    res = check.power_distance(lambda x, c, r: 1 / 0, quiet=True)
+    assert not res.passed and "ZeroDivisionError" in res.message
+    assert not check.orthogonal_radius(42, quiet=True)
+
+
+def test_orthogonal_circle_is_orthogonal():
+    """The reference's R² is the squared radius of a circle meeting all three at right
+    angles: |y − z_i|² = R² + r_i² (checked on the check's own cases)."""
+    z = np.array([[0.0, 0.0], [5.0, 1.0], [2.0, 4.0]])
+    r = np.array([1.0, 2.0, 0.5])
+    R2 = good_orthogonal(z, r)
+    import shapelab
+
+    assert shapelab.alpha_filtration(shapelab.Balls(z, r)).values(2)[0] == pytest.approx(R2, rel=1e-12)
