@@ -483,6 +483,7 @@ def pockets(balls, tau=0.0, *, min_persistence=0.0, filtration=None) -> tuple:
     cv = S.values[k]
     b = T.kill_value
     cand = np.flatnonzero((b > tau) & (cv > b) & (cv - b >= mp))
+    cand = cand[~_topo.is_roundoff(F, b[cand], cv[cand])]
     if cand.size == 0:
         return ()
     lab, _ = _complement_labels(F, S, tau)
@@ -541,7 +542,7 @@ def _h1_classes(balls, F, tau, select, fname):
         return ()
     birth = S.values[1][piv_e]
     death = S.values[2][piv_t]
-    keep = np.flatnonzero(select(birth, death) & (death > birth))
+    keep = np.flatnonzero(select(birth, death) & (death > birth) & ~_topo.is_roundoff(F, birth, death))
     edges = np.asarray(F.simplices(1), dtype=np.int64)
     out = []
     for i in keep.tolist():

@@ -51,9 +51,11 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import minimum_spanning_tree
 
-from ._validate import as_finite_scalar, as_vector
+import numbers
 
-__all__ = ["betti", "betti_curve", "persistence", "euler_characteristic_curve"]
+from ._validate import _as_float_array
+
+__all__ = ["betti", "betti_curve", "persistence", "euler_characteristic_curve", "is_roundoff"]
 
 
 # ---------------------------------------------------------------------------- checks
@@ -79,7 +81,8 @@ def _spanning_forest(n_nodes: int, u: np.ndarray, v: np.ndarray, reverse: bool =
     """Indices of the edges (u, v) in the Kruskal spanning forest, edges taken in index
     order (or in reverse index order if ``reverse``).
 
-    Self-loops never enter the forest.  With distinct weights the
+    Self-loops never enter the forest; parallel edges may only end at node
+    ``n_nodes - 1`` (the outside node of a dual graph).  With distinct weights the
     minimum spanning forest is unique and equals Kruskal's, i.e. the set of edges that
     join two different components when the edges are added in that order.
     """
@@ -87,18 +90,19 @@ def _spanning_forest(n_nodes: int, u: np.ndarray, v: np.ndarray, reverse: bool =
     if m == 0 or n_nodes == 0:
         return np.empty(0, dtype=np.int64)
     order_weight = np.arange(m, 0, -1, dtype=np.float64) if reverse else np.arange(1, m + 1, dtype=np.float64)
-    keep = u != v
-    idx = np.flatnonzero(keep)
-    # one stored entry per (row, col): orient every edge as (min, max); parallel edges
-    # (two facets between the same two cells) must not be summed, so keep the lightest.
-    a = np.minimum(u[idx], v[idx])
-    b = np.maximum(u[idx], v[idx])
-    w = order_weight[idx]
-    key = a.astype(np.int64) * n_nodes + b
-    o = np.lexsort((w, key))
-    first = np.ones(o.shape[0], dtype=bool)
-    first[1:] = key[o][1:] != key[o][:-1]
-    sel = o[first]
+    # one stored entry per (row, col): SciPy would sum parallel edges, so keep the
+    # lightest of each bundle.  In a triangulation the only parallel edges are the
+    # dual edges of hull facets, which all end at the outside node (the largest index).
+    a = np.minimum(u, v)
+    b = np.maximum(u, v)
+    sel = np.flatnonzero(a != b)
+    hub = sel[b[sel] == n_nodes - 1]
+    if hub.size:
+        o = hub[np.lexsort((order_weight[hub], a[hub]))]
+        first = np.ones(o.shape[0], dtype=bool)
+        first[1:] = a[o][1:] != a[o][:-1]
+        sel = np.concatenate((sel[b[sel] != n_nodes - 1], o[first]))
+    w = order_weight
     g = coo_matrix((w[sel], (a[sel], b[sel])), shape=(n_nodes, n_nodes)).tocsr()
     t = minimum_spanning_tree(g).tocoo()
     # map the chosen weights back to edge indices
@@ -188,6 +192,28 @@ def _summary(F) -> _Summary:
 
 
 # ------------------------------------------------------------------------ Betti numbers
+def _as_tau(tau) -> float:
+    """A growth time: a real number, ±inf allowed (nothing / everything), NaN not."""
+    if isinstance(tau, (bool, np.bool_)) or not isinstance(tau, (numbers.Real, np.floating, np.integer)):
+        if not (isinstance(tau, np.ndarray) and tau.ndim == 0 and tau.dtype.kind in "iuf"):
+            raise TypeError(f"tau must be a real number, got {type(tau).__name__}")
+    t = float(tau)
+    if np.isnan(t):
+        raise ValueError("tau must not be NaN")
+    return t
+
+
+def _as_taus(taus) -> np.ndarray:
+    if np.ndim(taus) == 0 and not isinstance(taus, (list, tuple)):
+        raise ValueError("taus must be a 1-D array of growth times, got a scalar (use betti(F, tau))")
+    t = _as_float_array(taus, "taus")
+    if t.ndim != 1:
+        raise ValueError(f"taus must be a 1-D array, got shape {t.shape}")
+    if np.any(np.isnan(t)):
+        raise ValueError(f"taus must not contain NaN (index {int(np.argmax(np.isnan(t)))})")
+    return t
+
+
 def _count_le(sorted_vals: np.ndarray, taus: np.ndarray) -> np.ndarray:
     return np.searchsorted(sorted_vals, taus, side="right").astype(np.int64)
 
@@ -231,7 +257,7 @@ def betti(F, tau) -> tuple:
     F : Filtration
         From :func:`shapelab.alpha_filtration` (or any object with the same accessors).
     tau : float
-        Growth time.
+        Growth time (``inf`` gives the whole triangulation, ``-inf`` the empty complex).
 
     Returns
     -------
@@ -247,8 +273,8 @@ def betti(F, tau) -> tuple:
     >>> sl.alpha_filtration(ring).betti(0.0)     # doctest: +SKIP
     (1, 1, 0)
     """
+    t = _as_tau(tau)
     S = _summary(F)
-    t = as_finite_scalar(tau, "tau")
     return tuple(int(x) for x in _betti_array(S, np.array([t]))[0])
 
 
@@ -260,18 +286,15 @@ def betti_curve(F, taus) -> np.ndarray:
     search per τ: Delfinado–Edelsbrunner with :math:`\\beta_1` from the Euler
     characteristic in 3D.
     """
+    t = _as_taus(taus)
     S = _summary(F)
-    arr = np.asarray(taus) if not np.isscalar(taus) else taus
-    if np.isscalar(arr) or (isinstance(arr, np.ndarray) and arr.ndim == 0):
-        raise ValueError("taus must be a 1-D array of growth times, got a scalar (use betti(tau))")
-    t = as_vector(arr, "taus")
     return _betti_array(S, t)
 
 
 def euler_characteristic_curve(F, taus) -> np.ndarray:
     """:math:`\\chi(K_\\tau) = \\sum_k (-1)^k \\#\\{k\\text{-simplices with value} \\le \\tau\\}`."""
     _check_filtration(F)
-    t = as_vector(np.atleast_1d(np.asarray(taus, dtype=float)), "taus")
+    t = _as_taus(taus)
     chi = np.zeros(t.shape[0], dtype=np.int64)
     for j in range(int(F.dimension) + 1):
         c = _count_le(np.asarray(F.values(j), dtype=np.float64), t)
@@ -391,27 +414,85 @@ def _reduce_h1(S: _Summary, F, *, compress: bool = True):
         rows = np.where(is_pos[rows], rows, -1)
     else:
         rows = b2[tri]
-    owner = {}
-    piv_edge = []
-    piv_tri = []
+    # initial pivot of every column: its youngest (remaining) edge
+    piv0 = rows.max(axis=1)
+    if np.any(piv0 < 0):  # a negative triangle always has a positive edge; be defensive
+        keep = piv0 >= 0
+        tri, rows, piv0 = tri[keep], rows[keep], piv0[keep]
+    rows_l = rows.tolist()
+    owner = {}      # pivot edge -> column position (int), or its reduced column (set)
+    changed = {}    # column position -> final pivot (-1: reduced to zero), for reduced columns
     get = owner.get
-    for j, (a, b, c) in zip(tri.tolist(), rows.tolist()):
-        col = {a, b, c}
-        col.discard(-1)
-        p = max(col)
+    # Most columns are "apparent": nothing before them owns their pivot, so they are
+    # recorded as they are and only materialised as sets when a later column needs them.
+    for i, p in enumerate(piv0.tolist()):
         other = get(p)
+        if other is None:
+            owner[p] = i
+            continue
+        col = set(rows_l[i])
+        col.discard(-1)
         while other is not None:
+            if other.__class__ is int:
+                o = set(rows_l[other])
+                o.discard(-1)
+                owner[p] = o
+                other = o
             col ^= other
             if not col:
                 break
             p = max(col)
             other = get(p)
-        if not col:  # a negative triangle never reduces to zero; be defensive
+        if not col:  # cannot happen for a negative triangle; be defensive
+            changed[i] = -1
             continue
         owner[p] = col
-        piv_edge.append(p)
-        piv_tri.append(j)
-    return np.asarray(piv_edge, dtype=np.int64), np.asarray(piv_tri, dtype=np.int64), owner
+        changed[i] = p
+    final = piv0.copy()
+    if changed:
+        idx = np.fromiter(changed.keys(), dtype=np.int64, count=len(changed))
+        final[idx] = np.fromiter(changed.values(), dtype=np.int64, count=len(changed))
+    ok = final >= 0
+    return final[ok], tri[ok], _ColumnView(owner, rows_l)
+
+
+class _ColumnView:
+    """Reduced columns by pivot edge, materialising unreduced ones on demand."""
+
+    def __init__(self, owner, rows):
+        self._owner = owner
+        self._rows = rows
+
+    def __getitem__(self, p):
+        c = self._owner[p]
+        if c.__class__ is int:
+            c = set(self._rows[c])
+            c.discard(-1)
+        return c
+
+
+#: relative size of round-off in entry times
+ROUNDOFF = 1e-11
+
+
+def _value_scale(S: _Summary) -> float:
+    vals = np.concatenate([v[np.isfinite(v)] for v in S.values]) if S.values else np.empty(0)
+    return float(np.median(np.abs(vals))) if vals.size else 0.0
+
+
+def is_roundoff(F, births, deaths) -> np.ndarray:
+    """Which pairs are round-off of tied entry times rather than features.
+
+    Tied entry times (co-circular or co-spherical balls: grids, symmetric cages) come
+    out of floating-point arithmetic a few ulps apart, in GUDHI as here, and give
+    pairs of length ~1e-15.  A pair counts as zero-length when
+    ``death - birth <= ROUNDOFF * max(|birth|, |death|, median |τ|)`` with
+    ``ROUNDOFF = 1e-11``.
+    """
+    b = np.asarray(births, dtype=np.float64)
+    d = np.asarray(deaths, dtype=np.float64)
+    scale = np.maximum(np.maximum(np.abs(b), np.where(np.isfinite(d), np.abs(d), 0.0)), _value_scale(_summary(F)))
+    return (d - b) <= ROUNDOFF * scale
 
 
 def _build_pairs(F) -> dict:
@@ -428,6 +509,8 @@ def _build_pairs(F) -> dict:
         out[1] = P[P[:, 1] > P[:, 0]]
     for j in out:
         a = np.ascontiguousarray(out[j], dtype=np.float64).reshape(-1, 2)
+        a = a[~is_roundoff(F, a[:, 0], a[:, 1])]
+        a = a[np.lexsort((a[:, 1], a[:, 0]))]
         a.flags.writeable = False
         out[j] = a
     return out
@@ -448,8 +531,11 @@ def persistence(F) -> dict:
     dict
         ``{k: (p, 2) float array}`` for ``k = 0..d``, rows ``(birth, death)`` in τ.
         Essential classes (only the components of the whole triangulation) have death
-        ``inf``; zero-length pairs are omitted.  As multisets the pairs equal GUDHI's
+        ``inf``; zero-length pairs are omitted, and so are pairs shorter than the
+        round-off of tied entry times (:func:`is_roundoff`: relative length below
+        1e-11).  As multisets the pairs equal GUDHI's
         ``persistence_intervals_in_dimension(k)`` on the weighted alpha complex of the
-        same balls.  Rows are in no particular order; arrays are read-only.
+        same balls (up to those round-off pairs, which GUDHI reports too).  Rows are
+        sorted by birth, then death; arrays are read-only.
     """
     return dict(_cached(_PAIR_CACHE, F, _build_pairs))
