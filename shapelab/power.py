@@ -53,6 +53,7 @@ from .balls import Balls
 __all__ = ["regular_triangulation", "power_diagram", "PowerDiagram"]
 
 _QHULL_OPTIONS = "Qt Qbb Qc Q12"
+_VERTICAL_TOL = 1e-10
 
 
 def _check_balls(balls) -> Balls:
@@ -151,28 +152,19 @@ def _morton_order(x: np.ndarray) -> np.ndarray:
     return np.argsort(code, kind="stable")
 
 
-def _lower_hull(x: np.ndarray, w: np.ndarray):
-    """Regular triangulation of the weighted points (x, w), x of full affine
-    dimension k = x.shape[1] >= 1.
+def _flat_rows(x: np.ndarray, simp: np.ndarray) -> np.ndarray:
+    """Mask of top simplices whose projection has (relative) volume ~ 0."""
+    k = x.shape[1]
+    if k < 2 or simp.shape[0] == 0:
+        return np.zeros(simp.shape[0], dtype=bool)
+    A = x[simp[:, 1:]] - x[simp[:, :1]]
+    det = np.linalg.det(A)
+    size = np.prod(np.sqrt(np.einsum("mjk,mjk->mj", A, A)), axis=1)
+    return np.abs(det) <= 1e-12 * size
 
-    Returns
-    -------
-    simp : (m, k+1) int64
-        Top simplices, local indices, vertices ascending in each row.
-    nbr : (m, k+1) int64
-        ``nbr[t, i]`` is the top simplex sharing the facet of ``t`` opposite its
-        vertex ``simp[t, i]``, or -1 on the hull.
-    """
+
+def _hull_once(x: np.ndarray, h: np.ndarray, perm: np.ndarray):
     n, k = x.shape
-    if n == k + 1:  # one simplex, no point can be hidden
-        return np.arange(n, dtype=np.int64)[None, :], np.full((1, n), -1, dtype=np.int64)
-    h = np.einsum("ij,ij->i", x, x) - w
-    # affine normalisation of the height (keeps the lower hull): centre and scale
-    h = h - h.mean()
-    hs = float(np.max(np.abs(h)))
-    if hs > 0:
-        h = h / hs
-    perm = _morton_order(x)
     lifted = np.empty((n + 1, k + 1))
     lifted[:n, :k] = x[perm]
     lifted[:n, k] = h[perm]
@@ -185,7 +177,18 @@ def _lower_hull(x: np.ndarray, w: np.ndarray):
     except QhullError as exc:  # pragma: no cover - should not happen after conditioning
         raise RuntimeError(f"Qhull failed on the lifted balls: {exc}") from None
     simp = hull.simplices
-    lower = ~np.any(simp == n, axis=1) & (hull.equations[:, k] < 0)
+    # Lower facets: downward unit normal.  Vertical facets (normal's last component
+    # zero up to round-off) project to flat simplices, e.g. over collinear points on
+    # the boundary of the hull, and are not part of DT.  In the conditioned frame a
+    # genuine facet this steep would have an orthoradius above ~1e10.
+    nz = hull.equations[:, k]
+    lower = ~np.any(simp == n, axis=1) & (nz < -_VERTICAL_TOL)
+    # Qhull's normals of such vertical facets can be off by ~1e-10 when they are
+    # computed from nearly degenerate points: a facet that is flat in projection and
+    # nearly vertical is vertical.
+    steep = np.flatnonzero(lower & (nz > -1e-6))
+    if steep.size:
+        lower[steep[_flat_rows(x[perm], simp[steep])]] = False
     newid = np.cumsum(lower) - 1
     simp = simp[lower]
     nbr = hull.neighbors[lower]
@@ -197,6 +200,50 @@ def _lower_hull(x: np.ndarray, w: np.ndarray):
     simp = np.take_along_axis(simp, order, axis=1)
     nbr = np.take_along_axis(nbr, order, axis=1)
     return simp.astype(np.int64), nbr.astype(np.int64)
+
+
+def _lower_hull(x: np.ndarray, w: np.ndarray):
+    """Regular triangulation of the weighted points (x, w), x of full affine
+    dimension k = x.shape[1] >= 1.
+
+    Returns
+    -------
+    simp : (m, k+1) int64
+        Top simplices, local indices, vertices ascending in each row.
+    nbr : (m, k+1) int64
+        ``nbr[t, i]`` is the top simplex sharing the facet of ``t`` opposite its
+        vertex ``simp[t, i]``, or -1 on the hull.
+
+    Notes
+    -----
+    On cospherical input (grids) Qhull merges facets and ``Qt`` triangulates the
+    merged facets; in 3D that triangulation may contain *flat* tetrahedra (four
+    cocircular points) that glue two different diagonal splits of a square.  Such a
+    "pillow" is not a triangulation, and the local Gabriel test of the α-filtration
+    is wrong on it.  When flat simplices appear, the lower hull is recomputed with
+    the lifted heights perturbed by a deterministic pseudo-random amount of 1e-9
+    (relative), far above Qhull's round-off, so that no facets merge; the result is
+    one of the valid regular triangulations of the degenerate input (any
+    perturbation small against the input's non-degenerate gaps gives one).
+    """
+    n, k = x.shape
+    if n == k + 1:  # one simplex, no point can be hidden
+        return np.arange(n, dtype=np.int64)[None, :], np.full((1, n), -1, dtype=np.int64)
+    h = np.einsum("ij,ij->i", x, x) - w
+    # affine normalisation of the height (keeps the lower hull): centre and scale
+    h = h - h.mean()
+    hs = float(np.max(np.abs(h)))
+    if hs > 0:
+        h = h / hs
+    perm = _morton_order(x)
+    simp, nbr = _hull_once(x, h, perm)
+    if k >= 3:
+        jitter = np.random.default_rng(20231).random(n)
+        for delta in (1e-9, 1e-7):
+            if not np.any(_flat_rows(x, simp)):
+                break
+            simp, nbr = _hull_once(x, h - delta * jitter, perm)
+    return simp, nbr
 
 
 def _triangulate_local(balls: Balls):
