@@ -436,7 +436,7 @@ def _surface_critical(vertices, faces, S: np.ndarray) -> CriticalPoints:
     _check_closed_manifold(Fc, V.shape[0])
     n = V.shape[0]
     D = V - S
-    height = np.sqrt(np.einsum("ij,ij->i", D, D))
+    height = np.sqrt(D[:, 0] * D[:, 0] + D[:, 1] * D[:, 1] + D[:, 2] * D[:, 2])
     # simulation of simplicity: order by (F, index); rank is a strict total order
     rank = np.empty(n, dtype=np.intp)
     rank[np.lexsort((np.arange(n), height))] = np.arange(n)
