@@ -494,3 +494,21 @@ def test_clipped_cells_have_the_per_ball_areas(tau):
     assert hidden_inside.ball_measure[-1] == 0.0
     with pytest.raises(ValueError, match="2D"):
         clipped_cells(random_balls(1, 4, 3))
+
+
+# ------------------------------------------------------- sampling oracles
+def test_sampled_nerve_and_raster_topology_on_figure_23_1():
+    from shapelab import datasets
+    from shapelab.measure import raster_topology, sampled_nerve
+
+    b = datasets.figure_23_1()
+    F = alpha_filtration(b)
+    for tau in (-0.3, 0.0, 3.0):  # no simplex enters within the sampling margin of these
+        K = F.complex_at(tau)
+        ours = {tuple(int(v) for v in s) for k in range(3) for s in K.simplices(k)}
+        assert sampled_nerve(b, tau=tau, spacing=0.03) == ours
+        assert raster_topology(b, tau=tau, spacing=0.03) == F.betti(tau)[:2]
+    with pytest.raises(ValueError, match="2D"):
+        raster_topology(random_balls(0, 3, 3))
+    with pytest.raises(ValueError, match="spacing"):
+        sampled_nerve(b, spacing=1e-5)

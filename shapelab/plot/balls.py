@@ -7,7 +7,10 @@
   :math:`B_i \\cap \\Pi(B_i)` and the dual complex K drawn on top;
 * :func:`filtration` — Figure 23.1 (ii): every simplex of DT shaded by its entry
   time, with a colourbar (early simplices dark and thick, as in the notes);
-* :func:`balls3d`, :func:`complex3d` — the same in 3D with matplotlib's 3D axes.
+* :func:`balls3d`, :func:`complex3d` — the same in 3D with matplotlib's 3D axes;
+* :func:`lifting` — the lifting map: disks as points on and below the paraboloid
+  :math:`x_3 = |x|^2`, whose lower convex hull projects to the regular triangulation;
+* :func:`method_comparison` — times and errors of several methods against a size.
 
 Every function returns a :class:`matplotlib.figure.Figure` (or draws into ``ax=``
 and returns its figure) and computes no geometry of its own: cells, complexes and
@@ -27,7 +30,8 @@ from .._validate import as_finite_scalar, as_positive_int
 from ..balls import Balls
 from ._style import COLORS, PAGE, new_figure, style
 
-__all__ = ["disks", "power_diagram", "dual_complex", "filtration", "balls3d", "complex3d", "DualComplexView"]
+__all__ = ["disks", "power_diagram", "dual_complex", "filtration", "balls3d", "complex3d", "lifting",
+           "method_comparison", "DualComplexView"]
 
 
 # ------------------------------------------------------------------ helpers
@@ -645,4 +649,128 @@ def complex3d(complex_or_filtration, *, tau=None, ax=None, show_balls=False, cma
         ax.set_title(title if title is not None else
                      f"Dual complex K at {_tau_title(K.tau) if np.isfinite(K.tau) else 'τ = ∞ (all of DT)'}\n"
                      f"{n[0]} vertices, {n[1]} edges, {n[2]} triangles, {n[3]} tetrahedra")
+    return fig
+
+
+# --------------------------------------------------------------- lifting map
+def lifting(balls, *, ax=None, elev=18.0, azim=-60.0, title=None):
+    """The lifting map of disks (Notes §23.1, the power diagram and DT).
+
+    The disk :math:`(z_i, r_i)` is lifted to the point
+    :math:`(z_i, \\lVert z_i \\rVert^2 - r_i^2)`, on the paraboloid
+    :math:`x_3 = \\lVert x \\rVert^2` when :math:`r_i = 0` and :math:`r_i^2` below it
+    otherwise.  The lower convex hull of the lifted points projects to the regular
+    triangulation (drawn both on the hull and in the plane below); hidden disks are
+    the lifted points strictly above the hull.  The power distance is the vertical
+    distance from the paraboloid point above x down to the tangent plane of the
+    lifted disk: :math:`\\pi_i(x) = \\lVert x \\rVert^2 - (2 z_i \\cdot x - \\lVert z_i
+    \\rVert^2 + r_i^2)`.
+
+    Parameters
+    ----------
+    balls : Balls
+        2D disks.
+    ax : 3D matplotlib Axes, optional
+    elev, azim : float
+    title : str, optional
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
+
+    from ..power import power_diagram as _pd
+    from ..power import regular_triangulation
+
+    _check_balls(balls, dim=2)
+    fig, ax = _axes(ax, projection="3d")
+    c = balls.centers
+    h = np.einsum("ij,ij->i", c, c) - balls.weights
+    lifted = np.column_stack([c, h])
+    with style():
+        if len(balls):
+            lo, hi = c.min(axis=0) - 0.5, c.max(axis=0) + 0.5
+            g0, g1 = np.meshgrid(np.linspace(lo[0], hi[0], 25), np.linspace(lo[1], hi[1], 25))
+            ax.plot_wireframe(g0, g1, g0**2 + g1**2, color=COLORS["muted"], linewidth=0.4, alpha=0.5)
+            floor = min(float(h.min()), 0.0) - 0.15 * (float(np.ptp(h)) + 1.0)
+            tri = regular_triangulation(balls) if len(balls) >= 3 else np.zeros((0, 3), dtype=np.int64)
+            hidden = _pd(balls).hidden
+            if tri.shape[1] == 3 and len(tri):
+                ax.add_collection3d(Poly3DCollection(lifted[tri], facecolors=[to_rgba(COLORS["triangle"], 0.35)],
+                                                     edgecolors=[COLORS["triangle"]], linewidths=0.8))
+                flat = np.concatenate([c[tri], np.full(tri.shape + (1,), floor)], axis=2)
+                edges = np.concatenate([flat[:, [0, 1]], flat[:, [1, 2]], flat[:, [2, 0]]])
+                ax.add_collection3d(Line3DCollection(edges, colors=[COLORS["complex"]], linewidths=0.7))
+            drops = np.stack([lifted, np.column_stack([c, np.full(len(c), floor)])], axis=1)
+            ax.add_collection3d(Line3DCollection(drops, colors=[to_rgba(COLORS["muted"], 0.7)], linewidths=0.6,
+                                                 linestyles=":"))
+            vis = ~hidden
+            ax.scatter(*lifted[vis].T, s=18, color=COLORS["ball_edge"], depthshade=False)
+            if hidden.any():
+                ax.scatter(*lifted[hidden].T, s=30, facecolors="white", edgecolors=COLORS["void"], depthshade=False)
+            ax.set_zlim(floor, float(max(h.max(), (hi**2).sum())))
+            ax.set_xlim(lo[0], hi[0])
+            ax.set_ylim(lo[1], hi[1])
+        ax.view_init(elev=elev, azim=azim)
+        ax.set_xlabel("x")
+        ax.set_ylabel("y")
+        ax.set_zlabel(r"$|z|^2 - r^2$")
+        ax.legend(handles=[
+            Line2D([], [], color=COLORS["muted"], lw=0.6, label=r"paraboloid $x_3 = |x|^2$"),
+            Line2D([], [], ls="", marker="o", ms=5, color=COLORS["ball_edge"], label="lifted disk"),
+            Line2D([], [], ls="", marker="o", ms=6, mfc="white", mec=COLORS["void"], label="hidden: above the hull"),
+            Patch(facecolor=to_rgba(COLORS["triangle"], 0.35), edgecolor=COLORS["triangle"], label="lower convex hull"),
+            Line2D([], [], color=COLORS["complex"], lw=0.7, label="its projection: DT"),
+        ], loc="upper left", bbox_to_anchor=(1.02, 1.0))
+        ax.set_title(title if title is not None else "The lifting map: the lower hull projects to the regular triangulation")
+    return fig
+
+
+# ------------------------------------------------------- method comparison
+def method_comparison(sizes, seconds, errors=None, *, xlabel="number of disks n", ax=None, title=None):
+    """Times (and errors) of several methods against the input size, on log axes.
+
+    Parameters
+    ----------
+    sizes : array_like, shape (m,)
+    seconds : dict
+        ``{method name: (m,) array of times in seconds}`` (NaN where not run).
+    errors : dict, optional
+        ``{method name: (m,) array of absolute errors}``; drawn in a second panel.
+    xlabel, title : str
+    ax : matplotlib Axes, optional
+        Only without ``errors`` (one panel).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    n = np.asarray(sizes, dtype=float)
+    if errors is not None and ax is not None:
+        raise ValueError("ax can only be given for a single panel (without errors)")
+    if ax is None:
+        fig, axes = new_figure(1, 2 if errors else 1)
+        axes = np.atleast_1d(axes)
+    else:
+        fig, axes = ax.get_figure(), np.array([ax])
+    markers = "osD^v"
+    with style():
+        for panel, data, label in ((0, seconds, "time (s)"), (1, errors, "absolute error")):
+            if data is None:
+                continue
+            a = axes[panel]
+            for j, (name, vals) in enumerate(data.items()):
+                v = np.asarray(vals, dtype=float)
+                if v.shape != n.shape:
+                    raise ValueError(f"{name!r} has {v.shape[0]} values for {n.shape[0]} sizes")
+                ok = np.isfinite(v) & (v > 0)
+                a.plot(n[ok], v[ok], marker=markers[j % len(markers)], label=name)
+            a.set_yscale("log")
+            a.set_xlabel(xlabel)
+            a.set_ylabel(label)
+            a.legend()
+        axes[0].set_title(title if title is not None else "Cost of the methods")
+        if errors is not None:
+            axes[1].set_title("Accuracy (against the exact value)")
     return fig
