@@ -145,15 +145,18 @@ class _Cloud:
 
     def __init__(self, points: np.ndarray, center: np.ndarray):
         self.points = points
-        xc = points - center
+        self.center = center
         n, d = points.shape
-        self.sq = _sqdist(xc, 0.0)
-        self.sqmax = float(self.sq.max())
         self.leftT = np.empty((d + 1, n))
-        self.leftT[:d] = xc.T
+        xcT = self.leftT[:d]
+        np.subtract(points.T, center[:, None], out=xcT)
         self.leftT[d] = 1.0
+        self.sq = xcT[0] * xcT[0]
+        for k in range(1, d):
+            self.sq += xcT[k] * xcT[k]
+        self.sqmax = float(self.sq.max())
         self.rightT = np.empty((d + 1, n))
-        np.multiply(xc.T, -2.0, out=self.rightT[:d])
+        np.multiply(xcT, -2.0, out=self.rightT[:d])
         self.rightT[d] = self.sq
         self._tree = None
         self._rank = None
@@ -213,7 +216,7 @@ def _upper(raw: np.ndarray, rows_sq: np.ndarray, margin: float, d: int) -> np.nd
 def _block_min(src: _Cloud, rows: np.ndarray, dst: _Cloud, cols: np.ndarray) -> np.ndarray:
     """For each of ``rows``: ``min_j left_row . right_j`` over ``cols`` (the probes),
     block by block: ``(k, d+1) @ (d+1, rows)`` then a minimum down the columns."""
-    L = src.leftT[:, rows]
+    L = src.leftT if rows.size == src.points.shape[0] else src.leftT[:, rows]  # rows: sorted, unique
     R = np.ascontiguousarray(dst.rightT[:, cols].T)
     out = np.empty(rows.size)
     step = max(256, _BLOCK // max(1, cols.size))
@@ -315,7 +318,13 @@ def _subset_stage(src: _Cloud, alive: np.ndarray, u: np.ndarray, dst: _Cloud, be
     radius = float(np.sqrt(_sqdist(P, center).max()))
     reach = radius + float(np.sqrt(u[alive].max()))
     reach = reach * (1.0 + 1e-9) + 1e-300
-    inside = np.flatnonzero(_sqdist(dst.points, center) <= reach * reach)
+    # |b - center|^2 from the prepared columns in one pass: with e = center - c,
+    # |b - c|^2 - 2 (b - c).e + |e|^2; the round-off margin keeps it a superset
+    e = center - dst.center
+    ee = float(e @ e)
+    d2c = np.r_[e, 1.0] @ dst.rightT + ee
+    slack = 8.0 * (e.size + 4) * _EPS * (dst.sqmax + ee) + 1e-300
+    inside = np.flatnonzero(d2c <= reach * reach + slack)
     if inside.size > dst.points.shape[0] // 4 and not force:
         return False
     if inside.size == 0:  # impossible: every survivor has a neighbour inside
@@ -421,8 +430,13 @@ def _directed_pruned(src: _Cloud, dst: _Cloud, best: _Best, seed: int = 0, stage
         probes = perm[used:used + k]
         used += probes.size
         raw = _block_min(src, alive, dst, probes)
-        ua = np.minimum(u[alive], _upper(raw, src.sq[alive], margin, d))
-        u[alive] = ua
+        full = alive.size == n  # alive is sorted and unique: all rows, skip the gathers
+        if full:
+            u = np.minimum(u, _upper(raw, src.sq, margin, d))
+            ua = u
+        else:
+            ua = np.minimum(u[alive], _upper(raw, src.sq[alive], margin, d))
+            u[alive] = ua
         before = alive.size
         # Exact value of the most promising point(s): a lower bound with a
         # witness.  Costs one scan of dst, so only when a block costs as much.
@@ -432,9 +446,9 @@ def _directed_pruned(src: _Cloud, dst: _Cloud, best: _Best, seed: int = 0, stage
             d2, nn = _exact_rows(src, top, dst)
             best.offer(d2, top, nn)
             u[top] = -np.inf  # known exactly
-            ua = u[alive]
+            ua = u if full else u[alive]
             first = False
-        alive = alive[ua > best.d2]
+        alive = np.flatnonzero(ua > best.d2) if full else alive[ua > best.d2]
         if _DEBUG:
             print(f"round k={probes.size} used={used} alive {before} -> {alive.size} cmax={np.sqrt(max(best.d2, 0)):.6f}")
         if used >= m:  # every point of dst probed: u is the (rounded) distance
