@@ -87,9 +87,16 @@ def register(name: str, caption: str, *, source: str, lesson: str | None = None,
 
 
 def _resolve(dotted: str):
-    obj = importlib.import_module("shapelab")
+    obj, path = importlib.import_module("shapelab"), "shapelab"
     for part in dotted.split("."):
-        obj = getattr(obj, part)
+        path += "." + part
+        try:
+            obj = getattr(obj, part)
+        except AttributeError:
+            try:  # a submodule not re-exported, e.g. "plot.balls.lifting"
+                obj = importlib.import_module(path)
+            except ModuleNotFoundError:
+                raise AttributeError(path) from None
     return obj
 
 
@@ -266,12 +273,14 @@ def fig23_3():
     return _plot().critical_points(blob, _sl().critical_points(blob, S))
 
 
-@register("fig23_4", "Rotation in R³ about a unit axis u by an angle θ: a point r and its image, the "
-          "unit quaternion q = cos(θ/2) + sin(θ/2)(u_x i + u_y j + u_z k).",
+@register("fig23_4", "Rotation in R³ about the unit axis u by the angle θ (right-hand rule): points before "
+          "(red) and after (green), their circles about the axis and the swept arcs. As a unit quaternion, "
+          "q = cos(θ/2) + sin(θ/2)(u_x i + u_y j + u_z k).",
           source="Notes, Figure 23.4", lesson="14_quaternions",
-          needs=("plot.rotation_axis",))
+          needs=("Quaternion", "plot.rotation_axis"))
 def fig23_4():
-    return _plot().rotation_axis(np.array([1.0, 1.0, 2.0]) / np.sqrt(6.0), 2 * np.pi / 3)
+    q = _sl().Quaternion.from_axis_angle([1.0, 1.0, 2.0], np.radians(100.0))
+    return _plot().rotation_axis(q)
 
 
 # ---------------------------------------------------------- lesson figures
@@ -365,6 +374,73 @@ def l09_betti_curve():
 def l10_globule_pockets():
     fig, ax = _slide(projection="3d")
     _plot().pockets(_datasets().globule(), ax=ax)
+    return fig
+
+
+@register("l11_critical_surface", "Critical points on a closed surface seen from its centre: minima, "
+          "saddles and maxima of F = |x − S|, with #min − #saddles + #max = χ = 2.",
+          source="Lesson 11", lesson="11_critical_points",
+          needs=("critical.bumpy_sphere", "critical_points", "plot.critical_surface"))
+def l11_critical_surface():
+    V, F = _sl().critical.bumpy_sphere(3)
+    S = np.zeros(3)
+    fig, ax = _slide(projection="3d")
+    _plot().critical_surface(V, F, _sl().critical_points(V, S, faces=F), ax=ax)
+    return fig
+
+
+def _icp_example(n=250):
+    """Lesson 13's setting: a lumpy shape and an independent sampling of it, moved."""
+    sl = _sl()
+    sample = sl.registration.sample_shape
+    truth = sl.RigidMotion(sl.Quaternion.from_axis_angle([1.0, 2.0, 3.0], np.radians(30.0)), [0.3, -0.1, 0.2])
+    return sample("lumpy", n, seed=1), truth.apply(sample("lumpy", n, seed=2)), truth
+
+
+@register("l13_icp_step", "One ICP iteration: step 1 pairs every source point (red) with its closest "
+          "target point (green); steps 2–3 move the source by the best rigid motion for those pairs.",
+          source="Lesson 13", lesson="13_icp",
+          needs=("registration.sample_shape", "icp", "RigidMotion", "plot.icp_step"))
+def l13_icp_step():
+    source, target, _ = _icp_example()
+    result = _sl().icp(source, target, max_iter=40, tol=1e-12, accelerate=False, keep_history=True)
+    fig, ax = _slide(projection="3d")
+    _plot().icp_step(source, target, result, 0, ax=ax)
+    return fig
+
+
+@register("l13_icp_convergence", "ICP's mean squared error falls at every iteration (step 4), and the "
+          "rotation error with it; the accelerated variant needs fewer iterations.",
+          source="Lesson 13", lesson="13_icp",
+          needs=("registration.sample_shape", "icp", "RigidMotion", "plot.icp_convergence"))
+def l13_icp_convergence():
+    source, target, truth = _icp_example(500)
+    runs = {
+        "plain": _sl().icp(source, target, max_iter=100, tol=1e-10, accelerate=False),
+        "accelerated": _sl().icp(source, target, max_iter=100, tol=1e-10),
+    }
+    fig, ax = _slide()
+    _plot().icp_convergence(runs, truth=truth, ax=ax)
+    return fig
+
+
+@register("l15_optimal_rotation", "Horn's optimal rotation: paired sets R and G before (left) and after "
+          "(right) rotating R by the top eigenvector q of the 4 × 4 matrix A.",
+          source="Lesson 15", lesson="15_optimal_rotation",
+          needs=("Quaternion", "optimal_rotation", "plot.point_sets"))
+def l15_optimal_rotation():
+    sl = _sl()
+    rng = np.random.default_rng(0)
+    R = rng.normal(size=(40, 3)) * [2.0, 1.2, 0.6]
+    R -= R.mean(axis=0)
+    q_true = sl.Quaternion.from_axis_angle([1.0, 2.0, 3.0], np.radians(50.0))
+    G = q_true.rotate(R) + 0.05 * rng.normal(size=R.shape)
+    G -= G.mean(axis=0)
+    q = sl.optimal_rotation(R, G)
+    fig, (a, b) = _slide(1, 2, projection="3d")
+    _plot().point_sets(R, G, pairs=True, ax=a, title="paired sets: r_j → g_j")
+    _plot().point_sets(q.rotate(R), G, pairs=True, labels=("q R q*", "G"), ax=b,
+                       title="after the optimal rotation")
     return fig
 
 
