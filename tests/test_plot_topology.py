@@ -193,7 +193,8 @@ def test_voids_2d_draws_cells_under_the_disks():
     disks = [c for c in ax.collections if isinstance(c, PatchCollection)][0]
     assert len(disks.get_paths()) == 6
     assert disks.get_zorder() > [c for c in ax.collections if isinstance(c, PolyCollection)][0].get_zorder()
-    assert "area 0.12" in " ".join(t.get_text() for t in ax.texts)
+    assert [t.get_text() for t in ax.texts] == ["V1"]
+    assert "hole V1: area 0.12" in [t.get_text() for t in ax.get_legend().get_texts()]
     assert "1 hole at τ = 0" in ax.get_title()
     assert ax.get_aspect() == 1.0
 
@@ -221,7 +222,7 @@ def test_pockets_2d_draws_mouths():
     seg = np.asarray(mouths[0].get_segments()[0])
     assert np.allclose(seg, b.centers[[0, 3]])
     assert "1 pocket at τ = 0" in ax.get_title()
-    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["pocket", "mouth"]
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["pocket P1: area 0.40", "mouth", "lining balls"]
 
 
 def test_tunnels_3d_draws_the_cycle():
@@ -236,15 +237,23 @@ def test_tunnels_3d_draws_the_cycle():
     assert len(lines) == 1 and len(lines[0].get_segments()) == 8
 
 
-def test_voids_3d_draws_the_boundary_of_the_cells():
-    b = D.fullerene_c60()
-    # two tetrahedra sharing a face: 6 boundary triangles
-    cells = np.array([[0, 1, 2, 3], [0, 1, 2, 4]])
-    fig = PT.voids(b, [FakeVoid(cells, np.arange(5), -0.9, 9.1, 1.0)])
+def test_voids_3d_draws_the_free_space_of_the_cells():
+    b = D.fullerene_c60(jitter=1e-3)
+    # a fake void: one interior "cell" made of 4 atoms around the centre
+    far = np.argsort(b.centers @ np.array([1.0, 0.3, 0.1]))[[0, 20, 40, 59]]
+    cells = np.array([np.sort(far)])
+    fig = PT.voids(b, [FakeVoid(cells, far, -0.9, 9.1, 1.0)])
     render(fig)
-    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
-    surf = [c for c in fig.axes[0].collections if isinstance(c, Poly3DCollection)]
-    assert len(surf) == 1 and len(surf[0].get_paths()) == 6
+    ax = fig.axes[0]
+    cloud = [c for c in ax.collections if isinstance(c, PathCollection)][-1]
+    pts = np.asarray(cloud._offsets3d).T
+    assert len(pts) > 100
+    # every drawn point is free (outside every ball) and inside the cell
+    assert np.all(shapelab.power_distance(pts, b).min(axis=1) > 0)
+    X = b.centers[cells[0]]
+    lam = np.linalg.solve((X[1:] - X[0]).T, (pts - X[0]).T)
+    assert np.all(lam >= -1e-9) and np.all(lam.sum(0) <= 1 + 1e-9)
+    assert "void V1" in [t.get_text() for t in ax.get_legend().get_texts()]
 
 
 # ------------------------------------------------------------ with the library

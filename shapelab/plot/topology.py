@@ -422,22 +422,26 @@ def _setup_3d(ax, balls, elev, azim):
     return half
 
 
-def _draw_balls_3d(ax, balls, tau, *, highlight=None, alpha=0.18, half=1.0):
+def _draw_balls_3d(ax, balls, tau, *, highlight=None, half=1.0):
+    """Balls as depth-shaded discs; lining balls darker and smaller so that the
+    features drawn after them (on top: the axes do not sort by depth) stay visible."""
     r, ok = _grown_radii(balls, tau)
     c = balls.centers
     fig = ax.get_figure()
     # marker area in points^2 so that a marker's diameter is about the ball's
     width_pt = 72.0 * fig.get_size_inches()[0] * 0.55
     s = (2 * r / (2 * half) * width_pt * 0.75) ** 2
-    base = np.ones(len(balls), bool) & ok
+    base = ok.copy()
     if highlight is not None:
         base[np.asarray(highlight, dtype=np.int64)] = False
-    ax.scatter(*c[base].T, s=s[base], color=COLORS["ball"], alpha=alpha, edgecolors="none",
-               depthshade=True)
+    ax.scatter(*c[base].T, s=s[base], color=COLORS["ball"], alpha=0.3 if highlight is None else 0.12,
+               edgecolors="none",
+               depthshade=True, zorder=1)
     if highlight is not None and len(highlight):
         h = np.asarray(highlight, dtype=np.int64)
-        ax.scatter(*c[h].T, s=s[h] * 0.35, color=COLORS["ball_edge"], alpha=0.9, edgecolors="white",
-                   linewidths=0.3, depthshade=False)
+        h = h[ok[h]]
+        ax.scatter(*c[h].T, s=s[h] * 0.2, color=COLORS["ball_edge"], alpha=0.55, edgecolors="white",
+                   linewidths=0.3, depthshade=True, zorder=2)
 
 
 def _boundary_faces(cells):
@@ -464,7 +468,7 @@ def _check_balls(balls):
 
 
 def voids(balls, voids=None, *, tau=0.0, ax=None, show_complex=False, elev=20, azim=35,
-          title=None, filtration=None):
+          title=None, filtration=None, show_volumes=None):
     """Draw the voids of the union of balls grown to τ (holes in 2D, Notes §23.1).
 
     A void is a bounded component of :math:`\\mathbb{R}^d \\setminus \\bigcup B_i`; it is
@@ -487,10 +491,19 @@ def voids(balls, voids=None, *, tau=0.0, ax=None, show_complex=False, elev=20, a
     title : str, optional
     filtration : Filtration, optional
         ``alpha_filtration(balls)``, to avoid recomputing it.
+    show_volumes : bool, optional
+        Write each feature's area/volume in the legend (default: in 2D only, since
+        an exact pocket volume in 3D can take seconds).
 
     Returns
     -------
     matplotlib.figure.Figure
+
+    Notes
+    -----
+    In 3D the free space is shown as a cloud of points: uniform samples of the
+    void's cells kept where no grown ball covers them.  The cells themselves would
+    draw the void of :math:`K_\\tau`, which is much larger than the void of the union.
     """
     _check_balls(balls)
     tau = _check_tau(tau)
@@ -498,12 +511,13 @@ def voids(balls, voids=None, *, tau=0.0, ax=None, show_complex=False, elev=20, a
     word = "hole" if balls.dim == 2 else "void"
     title = title or f"{len(V)} {word}{'s' if len(V) != 1 else ''} at τ = {tau:g}"
     return _draw_features(balls, tau, V, [], [], ax=ax, show_complex=show_complex, elev=elev,
-                          azim=azim, title=title, filtration=filtration)
+                          azim=azim, title=title, filtration=filtration,
+                          show_volumes=show_volumes)
 
 
 def pockets(balls, pockets=None, *, tau=0.0, voids=None, show_voids=True, ax=None,
             show_complex=False, min_persistence=1e-9, elev=20, azim=35, title=None,
-            filtration=None):
+            filtration=None, show_volumes=None):
     """Draw the pockets of the growth model at τ with their mouths (Notes §23.1, Fig. 23.2).
 
     A pocket is a region of the complement still connected to the outside at τ that
@@ -521,7 +535,7 @@ def pockets(balls, pockets=None, *, tau=0.0, voids=None, show_voids=True, ax=Non
     voids : sequence of Void, optional
         Voids to draw too (computed at τ if ``show_voids`` and not given).
     show_voids : bool
-    ax, show_complex, elev, azim, title
+    ax, show_complex, elev, azim, title, show_volumes
         As for :func:`voids`.
     min_persistence : float, default 1e-9
         Passed to :func:`shapelab.pockets` when computing (the default leaves out
@@ -544,7 +558,8 @@ def pockets(balls, pockets=None, *, tau=0.0, voids=None, show_voids=True, ax=Non
             title += f", {len(V)} {word}{'s' if len(V) != 1 else ''}"
         title += f" at τ = {tau:g}"
     return _draw_features(balls, tau, V, Pk, [], ax=ax, show_complex=show_complex, elev=elev,
-                          azim=azim, title=title, filtration=filtration)
+                          azim=azim, title=title, filtration=filtration,
+                          show_volumes=show_volumes)
 
 
 def tunnels(balls, tunnels=None, *, tau=0.0, ax=None, show_complex=False, elev=20, azim=35,
@@ -577,95 +592,118 @@ def _cycle_edges(t):
     return e.reshape(-1, 2)
 
 
-def _draw_features(balls, tau, V, Pk, T, *, ax, show_complex, elev, azim, title, filtration=None):
+def _free_points(balls, tau, cells, n_points, rng):
+    """Points of the free space inside ``cells`` (uniform in the cells, then kept where
+    no ball grown to τ covers them, by :func:`shapelab.power_distance`): a picture of a
+    void's shape, not a measurement."""
+    from ..balls import power_distance
+
+    X = balls.centers[cells]                         # (m, d+1, d)
+    E = X[:, 1:] - X[:, :1]
+    vol = np.abs(np.linalg.det(E))
+    if not len(cells) or vol.sum() <= 0:
+        return np.zeros((0, balls.dim))
+    k = rng.multinomial(n_points, vol / vol.sum())
+    idx = np.repeat(np.arange(len(cells)), k)
+    w = rng.dirichlet(np.ones(balls.dim + 1), size=len(idx))
+    pts = np.einsum("mk,mkd->md", w, X[idx])
+    keep = power_distance(pts, balls).min(axis=1) > tau if len(pts) else np.zeros(0, bool)
+    return pts[keep]
+
+
+def _feature_label(kind, i, f, d, show_volumes):
+    if not show_volumes:
+        return f"{kind}{i}"
+    try:
+        vol = float(_field(f, "volume"))
+    except AttributeError:
+        return f"{kind}{i}"
+    return f"{kind}{i}: {_measure_word(d)} {vol:.2f}"
+
+
+def _draw_features(balls, tau, V, Pk, T, *, ax, show_complex, elev, azim, title, filtration=None,
+                   show_volumes=None):
     d = balls.dim
+    show_volumes = (d == 2) if show_volumes is None else bool(show_volumes)
     legend = []
+    c = balls.centers
+    void_word = "hole" if d == 2 else "void"
+    lining = [_lining_of(f) for f in list(V) + list(Pk)]
+    hl = np.unique(np.concatenate(lining)) if lining else None
     if d == 2:
-        fig, ax = _axes(ax)
+        fig, ax = _axes(ax, size=(6.8, 5.0))
         with style():
-            lining = [_lining_of(f) for f in list(V) + list(Pk)]
-            hl = np.unique(np.concatenate(lining)) if lining else None
             _draw_disks(ax, balls, tau, highlight=hl, zorder=2)
-            c = balls.centers
-            for v in V:
+            for i, v in enumerate(V, 1):
                 cells = _cells_of(v)
-                if len(cells):
-                    ax.add_collection(PolyCollection(c[cells], facecolors=COLORS["void"], edgecolors="none",
-                                                     zorder=1))
-            for i, p in enumerate(Pk):
+                ax.add_collection(PolyCollection(c[cells].reshape(-1, 3, 2), facecolors=COLORS["void"],
+                                                 edgecolors="none", zorder=1))
+                legend.append(Patch(color=COLORS["void"],
+                                    label=f"{void_word} " + _feature_label("V", i, v, d, show_volumes)))
+                _tag(ax, balls, cells, f"V{i}")
+            for i, p in enumerate(Pk, 1):
                 cells = _cells_of(p)
-                if len(cells):
-                    ax.add_collection(PolyCollection(c[cells], facecolors=COLORS["accent"], edgecolors="none",
-                                                     zorder=1))
+                ax.add_collection(PolyCollection(c[cells].reshape(-1, 3, 2), facecolors=COLORS["accent"],
+                                                 edgecolors="none", zorder=1))
                 mouth = np.asarray(_field(p, "mouth"), dtype=np.int64).reshape(-1, 2)
                 if len(mouth):
                     ax.add_collection(LineCollection(c[mouth], colors=COLORS["mouth"], linewidths=3.0,
                                                      zorder=4, capstyle="round"))
+                legend.append(Patch(color=COLORS["accent"], label="pocket " + _feature_label("P", i, p, d,
+                                                                                            show_volumes)))
+                _tag(ax, balls, cells, f"P{i}")
             if show_complex:
                 _draw_complex_2d(ax, balls, tau, filtration)
             for t in T:
                 e = _cycle_edges(t)
                 ax.add_collection(LineCollection(c[e], colors=COLORS["void"], linewidths=2.5, zorder=5))
-            _annotate(ax, balls, V, Pk)
             ax.set_title(title)
     else:
-        fig, ax = _axes(ax, size=(6.0, 5.6), projection="3d")
+        from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
+
+        fig, ax = _axes(ax, size=(6.8, 5.6), projection="3d")
+        ax.computed_zorder = False  # draw in the order given: features on top of the balls
+        rng = np.random.default_rng(0)
         with style():
             half = _setup_3d(ax, balls, elev, azim)
-            lining = [_lining_of(f) for f in list(V) + list(Pk)]
-            hl = np.unique(np.concatenate(lining)) if lining else None
             _draw_balls_3d(ax, balls, tau, highlight=hl, half=half)
-            from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
-
-            c = balls.centers
-            for v in V:
-                cells = _cells_of(v)
-                if len(cells):
-                    ax.add_collection3d(Poly3DCollection(c[_boundary_faces(cells)], facecolors=_rgba(COLORS["void"], 0.55),
-                                                         edgecolors=_rgba(COLORS["void"], 0.9), linewidths=0.3))
-            for p in Pk:
-                cells = _cells_of(p)
-                if len(cells):
-                    ax.add_collection3d(Poly3DCollection(c[_boundary_faces(cells)], facecolors=_rgba(COLORS["accent"], 0.45),
-                                                         edgecolors=_rgba(COLORS["accent"], 0.8), linewidths=0.3))
+            for i, v in enumerate(V, 1):
+                pts = _free_points(balls, tau, _cells_of(v), 3000, rng)
+                ax.scatter(*pts.T, s=3, color=COLORS["void"], alpha=0.9, depthshade=False, zorder=3)
+                legend.append(Patch(color=COLORS["void"],
+                                    label=f"{void_word} " + _feature_label("V", i, v, d, show_volumes)))
+            for i, p in enumerate(Pk, 1):
+                pts = _free_points(balls, tau, _cells_of(p), 3000, rng)
+                ax.scatter(*pts.T, s=3, color=COLORS["accent"], alpha=0.9, depthshade=False, zorder=3)
                 mouth = np.asarray(_field(p, "mouth"), dtype=np.int64).reshape(-1, 3)
                 if len(mouth):
-                    ax.add_collection3d(Poly3DCollection(c[mouth], facecolors=_rgba(COLORS["mouth"], 0.9),
-                                                         edgecolors=COLORS["mouth"], linewidths=0.5))
-            if show_complex:
-                pass  # K in 3D is too dense to read; see shapelab.plot.complex3d
+                    ax.add_collection3d(Poly3DCollection(c[mouth], facecolors=_rgba(COLORS["mouth"], 0.35),
+                                                         edgecolors=_rgba(COLORS["mouth"], 0.8), linewidths=0.4,
+                                                         zorder=4))
+                legend.append(Patch(color=COLORS["accent"], label="pocket " + _feature_label("P", i, p, d,
+                                                                                            show_volumes)))
             for t in T:
                 e = _cycle_edges(t)
-                ax.add_collection3d(Line3DCollection(c[e], colors=COLORS["void"], linewidths=3.0))
+                ax.add_collection3d(Line3DCollection(c[e], colors=COLORS["void"], linewidths=3.0, zorder=5))
             ax.set_title(title)
-    if V:
-        legend.append(Patch(color=COLORS["void"], label="void" if d == 3 else "hole"))
     if Pk:
-        legend.append(Patch(color=COLORS["accent"], label="pocket"))
         legend.append(Line2D([], [], color=COLORS["mouth"], lw=3, label="mouth"))
     if T:
         legend.append(Line2D([], [], color=COLORS["void"], lw=2.5, label="tunnel cycle"))
     if show_complex and d == 2:
-        legend.append(Line2D([], [], color=COLORS["complex"], lw=0.8, label=f"K(τ)"))
+        legend.append(Line2D([], [], color=COLORS["complex"], lw=0.8, label="K(τ)"))
+    if hl is not None and len(hl):
+        legend.append(Patch(facecolor="#a6d7f2" if d == 2 else COLORS["ball_edge"], edgecolor=COLORS["ball_edge"],
+                            label="lining balls"))
     if legend:
         with style():
             ax.legend(handles=legend, loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=9)
     return fig
 
 
-def _annotate(ax, balls, V, Pk):
-    word = _measure_word(balls.dim)
-    items = [("V", v) for v in V] + [("P", p) for p in Pk]
-    for i, (kind, f) in enumerate(items):
-        cells = _cells_of(f)
-        if not len(cells):
-            continue
-        x = _label_point(balls, cells)
-        try:
-            vol = float(_field(f, "volume", "area"))
-            txt = f"{kind}{i + 1 if kind == 'V' else i + 1 - len(V)}\n{word} {vol:.2f}"
-        except AttributeError:
-            txt = f"{kind}{i + 1}"
-        ax.annotate(txt, x, xytext=(0, 0), textcoords="offset points", ha="center", va="center",
-                    fontsize=8, zorder=6,
-                    bbox=dict(boxstyle="round,pad=0.2", fc="white", ec="none", alpha=0.8))
+def _tag(ax, balls, cells, text):
+    if not len(cells):
+        return
+    x = _label_point(balls, cells)
+    ax.annotate(text, x, ha="center", va="center", fontsize=8, zorder=6, color="white",
+                fontweight="bold")
