@@ -28,13 +28,15 @@ Implementation notes
   :math:`k < d` (collinear or coplanar input), they are expressed in an orthonormal
   basis of that subspace (SVD) and triangulated there; the triangulation then has
   :math:`k`-simplices as top simplices.
-* **Qhull options** (``scipy.spatial.ConvexHull``, which always adds ``Qt``):
-  ``Qt`` triangulates merged (non-simplicial) facets, which arise for cospherical
-  input such as integer grids; ``Qbb`` rescales the last (height) coordinate, which
-  improves precision; ``Qc`` keeps coplanar points so that a point lying on the lower
-  hull within round-off can be recovered rather than silently dropped; ``Q12``
-  allows the wide facets that merging produces on grids instead of raising an
-  error.  One extra point far above the centroid ("point at infinity", the role
+* **Qhull options** ``Qt Qbb Q12 Q5 Q8`` (``scipy.spatial.ConvexHull``, which
+  always adds ``Qt``): ``Qt`` triangulates merged (non-simplicial) facets, which arise
+  for cospherical input such as integer grids (see :func:`_lower_hull` for the flat
+  tetrahedra this can leave and how they are removed); ``Qbb`` rescales the last
+  (height) coordinate, which improves precision; ``Q12`` allows the wide facets that
+  merging produces on grids instead of raising an error; ``Q5`` (no outer planes)
+  and ``Q8`` (no near-inside points) skip bookkeeping that only serves ``Qc``'s list
+  of coplanar non-vertices, which we do not use (~15 % faster at 10^5 balls).
+  ``Qz`` is a Delaunay-mode option and does not apply to our own lifting.  One extra point far above the centroid ("point at infinity", the role
   ``Qz`` plays for Delaunay) makes the hull full-dimensional even when all lifted
   points are coplanar (e.g. four cocircular points).
 * **Duplicates.**  Of several balls with the same centre only the one with the
@@ -52,7 +54,7 @@ from .balls import Balls
 
 __all__ = ["regular_triangulation", "power_diagram", "PowerDiagram"]
 
-_QHULL_OPTIONS = "Qt Qbb Qc Q12"
+_QHULL_OPTIONS = "Qt Qbb Q12 Q5 Q8"
 _VERTICAL_TOL = 1e-10
 
 
@@ -88,6 +90,15 @@ def _dedupe(centers: np.ndarray, radii: np.ndarray) -> np.ndarray:
     n = centers.shape[0]
     if n <= 1:
         return np.arange(n, dtype=np.int64)
+    # fast path: a 64-bit hash of the rows; distinct hashes mean distinct rows
+    bits = np.ascontiguousarray(centers + 0.0).view(np.uint64)  # + 0.0: -0.0 -> 0.0
+    hsh = np.zeros(n, dtype=np.uint64)
+    for j in range(bits.shape[1]):
+        hsh = (hsh ^ bits[:, j]) * np.uint64(0x9E3779B97F4A7C15)
+        hsh ^= hsh >> np.uint64(29)
+    sh = np.sort(hsh)
+    if not np.any(sh[1:] == sh[:-1]):
+        return np.arange(n, dtype=np.int64)
     # sort by centre (lexicographic), then by radius descending, then index ascending
     cols = [np.arange(n), -radii] + [centers[:, j] for j in range(centers.shape[1] - 1, -1, -1)]
     order = np.lexsort(cols)
@@ -100,8 +111,10 @@ def _dedupe(centers: np.ndarray, radii: np.ndarray) -> np.ndarray:
 def _frame(balls: Balls) -> _Frame:
     centers, radii = balls.centers, balls.radii
     keep = _dedupe(centers, radii)
-    c = centers[keep]
-    w = radii[keep] ** 2
+    if keep.size == centers.shape[0]:
+        c, w = centers, radii**2
+    else:
+        c, w = centers[keep], radii[keep] ** 2
     if c.shape[0] == 0:
         return _Frame(keep, np.zeros((0, 0)), w, 1.0, -1)
     mean = c.mean(axis=0)
@@ -109,8 +122,12 @@ def _frame(balls: Balls) -> _Frame:
     scale = float(np.max(np.abs(y))) if y.size else 0.0
     if scale == 0.0:  # a single (distinct) centre
         return _Frame(keep, np.zeros((c.shape[0], 0)), w, 1.0, 0)
-    y = y / scale
-    # affine dimension by SVD of the centred, scaled centres
+    y /= scale
+    # affine dimension: a cheap test on the d x d Gram matrix first, the SVD of the
+    # centred, scaled centres only when it is (nearly) singular
+    ev = np.linalg.eigvalsh(y.T @ y)
+    if ev[0] > 1e-8 * ev[-1]:
+        return _Frame(keep, y, w / scale**2, scale, y.shape[1])
     _, sv, vt = np.linalg.svd(y, full_matrices=False)
     tol = max(y.shape) * np.finfo(float).eps * 64 * sv[0]
     k = int(np.sum(sv > tol))
@@ -123,33 +140,47 @@ def _frame(balls: Balls) -> _Frame:
 # Lower hull of the lifted points
 # ----------------------------------------------------------------------------------
 def _spread_bits(v: np.ndarray, k: int) -> np.ndarray:
-    """Interleave the low bits of ``v`` with ``k - 1`` zero bits between them."""
+    """Interleave the bits of ``v`` (uint64) with ``k - 1`` zero bits (k = 2: 32 bits
+    in, k = 3: 21 bits in), by the usual magic-number shifts."""
     v = v.astype(np.uint64)
-    out = np.zeros_like(v)
-    bits = 63 // k
-    for b in range(bits):
-        out |= ((v >> np.uint64(b)) & np.uint64(1)) << np.uint64(k * b)
-    return out
+    if k == 2:
+        steps = [(16, 0x0000FFFF0000FFFF), (8, 0x00FF00FF00FF00FF), (4, 0x0F0F0F0F0F0F0F0F),
+                 (2, 0x3333333333333333), (1, 0x5555555555555555)]
+        v &= np.uint64(0xFFFFFFFF)
+    else:
+        steps = [(32, 0x1F00000000FFFF), (16, 0x1F0000FF0000FF), (8, 0x100F00F00F00F00F),
+                 (4, 0x10C30C30C30C30C3), (2, 0x1249249249249249)]
+        v &= np.uint64(0x1FFFFF)
+    for shift, mask in steps:
+        v = (v | (v << np.uint64(shift))) & np.uint64(mask)
+    return v
 
 
 def _morton_order(x: np.ndarray) -> np.ndarray:
     """A permutation sorting the points along a Z-order (Morton) curve.
 
-    Qhull is a little faster (~15 % at 10^5 points) when nearby points are
-    nearby in memory; the order does not change the result except for which of
-    several valid triangulations of degenerate input is returned.
+    Qhull is faster when nearby points are nearby in memory (~15 % at 10^5 balls in
+    3D, ~30 % at 10^6 disks in 2D); the order does not change the result except for
+    which of several valid triangulations of degenerate input is returned.  The
+    index is packed into the low bits of the code so that one SIMD ``np.sort``
+    replaces ``argsort``.
     """
     n, k = x.shape
-    if n < 2048:
+    if n < 2048 or k not in (2, 3):
         return np.arange(n)
-    bits = 63 // k
+    ib = int(n - 1).bit_length()
+    bits = min((63 - ib) // k, 32 if k == 2 else 21)
     lo = x.min(axis=0)
     ext = float(np.max(x.max(axis=0) - lo)) or 1.0
-    q = np.minimum(((x - lo) / ext * (2**bits - 1)), 2**bits - 1).astype(np.uint64)
+    top = float(2**bits - 1)
     code = np.zeros(n, dtype=np.uint64)
     for j in range(k):
-        code |= _spread_bits(q[:, j], k) << np.uint64(j)
-    return np.argsort(code, kind="stable")
+        q = np.minimum((x[:, j] - lo[j]) * (top / ext), top).astype(np.uint64)
+        code |= _spread_bits(q, k) << np.uint64(j)
+    code <<= np.uint64(ib)
+    code |= np.arange(n, dtype=np.uint64)
+    code.sort()
+    return (code & np.uint64((1 << ib) - 1)).astype(np.int64)
 
 
 def _flat_rows(x: np.ndarray, simp: np.ndarray) -> np.ndarray:
@@ -157,9 +188,16 @@ def _flat_rows(x: np.ndarray, simp: np.ndarray) -> np.ndarray:
     k = x.shape[1]
     if k < 2 or simp.shape[0] == 0:
         return np.zeros(simp.shape[0], dtype=bool)
-    A = x[simp[:, 1:]] - x[simp[:, :1]]
-    det = np.linalg.det(A)
-    size = np.prod(np.sqrt(np.einsum("mjk,mjk->mj", A, A)), axis=1)
+    X = np.ascontiguousarray(x.T)
+    p0 = X[:, simp[:, 0]]
+    vec = [X[:, simp[:, i]] - p0 for i in range(1, k + 1)]
+    size = np.sqrt(np.prod([np.einsum("km,km->m", v, v) for v in vec], axis=0))
+    if k == 2:
+        det = vec[0][0] * vec[1][1] - vec[0][1] * vec[1][0]
+    else:
+        a, b, c = vec
+        det = (a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2])
+               + a[2] * (b[0] * c[1] - b[1] * c[0]))
     return np.abs(det) <= 1e-12 * size
 
 
