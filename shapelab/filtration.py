@@ -492,11 +492,14 @@ def alpha_filtration(balls: Balls) -> Filtration:
     s2 = fr.scale**2
     simp_out, vals_out, bnd_out = [], [], [None]
     inv_prev = None
+    identity = fr.keep.size == len(balls)  # no duplicate centres: local = input
     for j in range(dim + 1):
-        rows = fr.keep[faces[j]]
-        v = vals[j] * s2
-        order = _filtration_order(v, rows)
-        simp_out.append(_ro(rows[order]))
+        v = vals[j] * s2 if s2 != 1.0 else vals[j]
+        # local indices are ordered like input indices (keep is ascending), so the
+        # lexicographic tie-break can use them
+        order = _filtration_order(v, faces[j])
+        rows = faces[j][order]
+        simp_out.append(_ro(rows if identity else fr.keep[rows]))
         vals_out.append(_ro(v[order]))
         if j >= 1:
             bnd_out.append(_ro(inv_prev[bnd[j][order]]))
