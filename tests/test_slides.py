@@ -204,3 +204,20 @@ def test_a_stock_cdn_deck_is_not_a_slide_show_offline(tmp_path):
     dom = _dump_dom(deck.as_uri(), tmp_path / "profile")
     reveal = re.search(r'<div class="(reveal\b[^"]*)"', dom)
     assert reveal and "ready" not in reveal.group(1).split()
+
+
+@pytest.mark.parametrize("lesson", LESSONS, ids=[p.stem for p in LESSONS])
+def test_figures_reach_the_deck_as_images(lesson):
+    """A figure in a lesson's output must be an image: '<Figure size 800x450 ...>' on a slide is not."""
+    nb = nbformat.read(lesson, as_version=4)
+    textual = []
+    for i, cell in enumerate(nb.cells):
+        for out in cell.get("outputs", []):
+            data = out.get("data", {})
+            plain = str(data.get("text/plain", ""))
+            if plain.startswith("<Figure size") and not any(k.startswith("image/") for k in data):
+                textual.append(f"cell {i}: {plain[:60]}")
+    assert not textual, (
+        f"{lesson.name}: figures stored as text only (no image/png); IPython has no image formatter for a "
+        f"matplotlib Figure unless the inline backend is active: {textual[:3]}"
+    )
