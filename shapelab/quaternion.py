@@ -599,4 +599,6 @@ class Quaternion:
         return f"Quaternion(w={self.w!r}, x={self.x!r}, y={self.y!r}, z={self.z!r})"
 
     def __str__(self) -> str:
-        return f"{self.w:.6g} {self.x:+.6g}i {self.y:+.6g}j {self.z:+.6g}k"
+        # rounded to 6 decimals for reading (no -0, no 1e-18 noise); repr() is exact
+        w, x, y, z = (round(v, 6) + 0.0 for v in (self.w, self.x, self.y, self.z))
+        return f"{w:.6g} {x:+.6g}i {y:+.6g}j {z:+.6g}k"

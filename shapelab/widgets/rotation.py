@@ -6,12 +6,17 @@ moving the slider only redraws (:func:`shapelab.plot.icp_step` and
 """
 from __future__ import annotations
 
+import io
+
 import ipywidgets as W
 import numpy as np
 
 from .._validate import as_points, as_positive_int
 
 __all__ = ["icp_explorer", "ICPExplorer"]
+
+_SIZE = (11.0, 4.6)  # inches
+_DPI = 90
 
 
 def icp_explorer(source, target, *, max_iter: int = 30, tol: float = 0.0, accelerate: bool = False,
@@ -56,8 +61,11 @@ class ICPExplorer(W.VBox):
         self.slider = W.IntSlider(value=0, min=0, max=result.n_iter, step=1, description="iteration",
                                   continuous_update=False, layout=W.Layout(width="60%"))
         self.status = W.HTML()
-        self.out = W.Output()
-        super().__init__([self.slider, self.status, self.out])
+        # a PNG image, not an Output widget: it renders the same in a live kernel, in
+        # nbclient/nbval runs and from the stored widget state on the static site
+        self.image = W.Image(format="png", layout=W.Layout(width=f"{int(_SIZE[0] * _DPI)}px",
+                                                           height=f"{int(_SIZE[1] * _DPI)}px"))
+        super().__init__([self.slider, self.status, self.image])
         self.slider.observe(self._redraw, names="value")
         self._redraw()
 
@@ -75,23 +83,25 @@ class ICPExplorer(W.VBox):
             text += " (converged)" if r.converged else " (stopped at max_iter)"
         return text
 
-    def _redraw(self, change=None):
-        from IPython.display import display
-
+    def figure(self):
+        """The current figure: the ICP step (3D) and the convergence plot."""
         from ..plot._style import new_figure
         from ..plot.rotation import icp_convergence, icp_step
 
         k = self.iteration
-        self.status.value = self._status_text()
-        fig, axes = new_figure(1, 2, size=(11.0, 4.6))
+        fig, axes = new_figure(1, 2, size=_SIZE)
         # the left panel must be 3D: replace it
         axes[0].remove()
         ax3 = fig.add_subplot(1, 2, 1, projection="3d")
         icp_step(self.source, self.target, self.result, k, ax=ax3, max_lines=self._max_lines)
         icp_convergence(self.result, truth=self._truth, ax=axes[1], mark=k)
-        self.out.clear_output(wait=True)
-        with self.out:
-            display(fig)
+        return fig
+
+    def _redraw(self, change=None):
+        self.status.value = self._status_text()
+        buf = io.BytesIO()
+        self.figure().savefig(buf, format="png", dpi=_DPI)
+        self.image.value = buf.getvalue()
 
     def __repr__(self) -> str:
         return f"ICPExplorer({self._status_text()})"
