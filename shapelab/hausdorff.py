@@ -88,6 +88,7 @@ __all__ = [
     "hausdorff_early_break",
     "Timings",
     "timings",
+    "noisy_sphere",
 ]
 
 _EPS = np.finfo(np.float64).eps
@@ -266,6 +267,11 @@ def _directed_brute(src: _Cloud, dst: _Cloud, best: _Best) -> _Best:
     return best
 
 
+def _workers(n_queries: int) -> int:
+    """Threads for a k-d tree query: starting threads costs more than small batches."""
+    return -1 if n_queries >= 8192 else 1
+
+
 def _refine_tree(src: _Cloud, rows: np.ndarray, d2: np.ndarray, nn: np.ndarray,
                  points: np.ndarray, tree: cKDTree, index: np.ndarray | None = None):
     """Make k-d tree answers bit-exact.
@@ -292,14 +298,15 @@ def _query_exact(src: _Cloud, rows: np.ndarray, ub: np.ndarray, points: np.ndarr
     """Exact nearest neighbours of ``src[rows]`` (each within ``sqrt(ub)``) in a
     tree over ``points``; offer the results to ``best``."""
     bound = float(np.sqrt(ub.max())) * (1.0 + 1e-9) + 1e-300
-    dist, j = tree.query(src.points[rows], k=1, workers=-1, distance_upper_bound=bound)
+    dist, j = tree.query(src.points[rows], k=1, workers=_workers(rows.size), distance_upper_bound=bound)
     j = np.asarray(j, dtype=np.intp)
     bad = ~np.isfinite(dist)
     if bad.any():  # cannot happen (ub is a valid bound); stay safe anyway
-        _, j2 = tree.query(src.points[rows[bad]], k=1, workers=-1)
+        _, j2 = tree.query(src.points[rows[bad]], k=1)
         j[bad] = j2
     d2 = _sqdist(src.points[rows], points[j])
-    hi = d2 >= best.d2 * (1.0 - 1e-12)
+    # only the largest value matters: refine the rows that may tie with it
+    hi = d2 >= max(best.d2, float(d2.max())) * (1.0 - 1e-12)
     if hi.any():
         d2h, jh = _refine_tree(src, rows[hi], d2[hi], j[hi], points, tree, index)
         best.offer(d2h, rows[hi], jh)
@@ -362,7 +369,7 @@ def _tree_stage(src: _Cloud, alive: np.ndarray, u: np.ndarray, dst: _Cloud, best
         t0 = time.perf_counter()
     reps_pos = np.arange(0, S.size, _GROUP)
     reps = S[reps_pos]
-    _, jr = tree.query(src.points[reps], k=1, workers=-1)
+    _, jr = tree.query(src.points[reps], k=1, workers=_workers(reps.size))
     jr = np.asarray(jr, dtype=np.intp)
     dr2 = _sqdist(src.points[reps], dst.points[jr])
     # A representative's value is exact (up to ties): a valid lower bound of h.
@@ -468,7 +475,7 @@ def _directed_pruned(src: _Cloud, dst: _Cloud, best: _Best, seed: int = 0, stage
                 _subset_stage(src, alive, u, dst, best, force=True)
             break
         slow = alive.size > 0.5 * before
-        if stage is None and 0 < alive.size <= 65536 and (slow or alive.size <= 4096) \
+        if stage is None and 0 < alive.size <= min(65536, n // 4 + 4096) and (slow or alive.size <= 4096) \
                 and _subset_stage(src, alive, u, dst, best):
             break
         if stage is None and slow and alive.size > 64:
@@ -944,3 +951,18 @@ class _CallableModule(__import__("types").ModuleType):
 
 
 __import__("sys").modules[__name__].__class__ = _CallableModule
+
+
+def noisy_sphere(n: int, *, noise: float = 0.01, center=(0.0, 0.0, 0.0), seed=0) -> np.ndarray:
+    """``n`` points of the unit sphere (uniform directions) plus isotropic Gaussian
+    noise of standard deviation ``noise``, moved to ``center``; deterministic in
+    ``seed``.  The data of the benchmarks and of lesson 12."""
+    n = as_positive_int(n, "n")
+    noise = as_finite_scalar(noise, "noise", nonnegative=True)
+    c = np.asarray(center, dtype=float)
+    if c.shape != (3,) or not np.all(np.isfinite(c)):
+        raise ValueError(f"center must be a finite 3-vector, got {center!r}")
+    rng = np.random.default_rng(seed)
+    x = rng.standard_normal((n, 3))
+    x /= np.linalg.norm(x, axis=1, keepdims=True)
+    return x + noise * rng.standard_normal((n, 3)) + c

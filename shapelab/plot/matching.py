@@ -290,20 +290,32 @@ def translation(A, B, match, *, size=SLIDE, labels=("A", "B"), title: str | None
     return fig
 
 
+_ALGORITHM_COLORS = {
+    "brute force": PALETTE[7],
+    "k-d tree (scipy)": PALETTE[0],
+    "early break (scipy)": PALETTE[1],
+    "shapelab": PALETTE[3],
+}
+
+
 def timings(seconds: dict, *, ax=None, size=PAGE, title: str | None = None, log: bool = True):
     """A horizontal bar chart of measured running times.
 
     Parameters
     ----------
     seconds : dict
-        ``{label: seconds}`` (e.g. from :func:`shapelab.hausdorff.timings`).
+        ``{label: seconds}`` (e.g. ``Timings.seconds`` from
+        :func:`shapelab.hausdorff.timings`).  The algorithms of that function keep
+        the same colour in every chart.
     log : bool
-        Logarithmic time axis.
+        Logarithmic time axis (bars start at a third of the fastest time).
 
     Returns
     -------
     matplotlib.figure.Figure
     """
+    from matplotlib.ticker import LogLocator, NullFormatter
+
     if not isinstance(seconds, dict) or not seconds:
         raise TypeError("seconds must be a non-empty dict {label: seconds}")
     names = list(seconds)
@@ -311,18 +323,24 @@ def timings(seconds: dict, *, ax=None, size=PAGE, title: str | None = None, log:
     if not np.all(np.isfinite(vals)) or np.any(vals <= 0):
         raise ValueError("seconds must hold positive finite times")
     fig, ax = _axes(ax, size=size)
+    spare = iter(c for c in PALETTE if c not in _ALGORITHM_COLORS.values())
+    colors = [_ALGORITHM_COLORS.get(k) or next(spare, COLORS["muted"]) for k in names]
     with style():
         y = np.arange(len(names))
-        ax.barh(y, vals, color=[PALETTE[k % len(PALETTE)] for k in range(len(names))])
+        left = vals.min() / 3 if log else 0.0
+        ax.barh(y, vals - left, left=left, color=colors)
         ax.set_yticks(y, names)
         ax.invert_yaxis()
         if log:
             ax.set_xscale("log")
+            ax.xaxis.set_major_locator(LogLocator(base=10))
+            ax.xaxis.set_minor_formatter(NullFormatter())
+            ax.set_xlim(left, vals.max() * 12)
+        else:
+            ax.set_xlim(0, vals.max() * 1.3)
         for k, v in enumerate(vals):
             text = f"{v * 1e3:.1f} ms" if v < 1 else f"{v:.2f} s"
             ax.text(v, k, "  " + text, va="center", fontsize=9)
         ax.set_xlabel("time (s)")
         ax.set_title(title or "Running time")
-        ax.set_xlim(right=vals.max() * (8 if log else 1.3))
     return fig
-
