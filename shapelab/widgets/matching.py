@@ -2,12 +2,17 @@
 F(x) = |x − S| move, appear and cancel (notes §23.2, Figure 23.3)."""
 from __future__ import annotations
 
+import io
+
 import ipywidgets as W
 import numpy as np
 
 from .._validate import as_point, as_positive_int
 
 __all__ = ["critical_points_explorer", "CriticalPointsExplorer"]
+
+_SIZE = (10.0, 4.6)
+_DPI = 80
 
 
 def critical_points_explorer(curve, *, viewpoint=None, x_range=None, y_range=None, steps: int = 60,
@@ -71,8 +76,11 @@ class CriticalPointsExplorer(W.VBox):
         self.sy = W.FloatSlider(value=float(np.clip(S[1], *yr)), min=yr[0], max=yr[1],
                                 step=(yr[1] - yr[0]) / steps, description="S y", **kw)
         self.status = W.HTML()
-        self.out = W.Output()
-        super().__init__([W.HBox([self.sx, self.sy]), self.status, self.out])
+        # a PNG image, not an Output widget: it renders the same in a live kernel, in
+        # nbclient/nbval runs and from the stored widget state on the static site
+        self.image = W.Image(format="png", layout=W.Layout(width=f"{int(_SIZE[0] * _DPI)}px",
+                                                           height=f"{int(_SIZE[1] * _DPI)}px"))
+        super().__init__([W.HBox([self.sx, self.sy]), self.status, self.image])
         self.sx.observe(self._redraw, names="value")
         self.sy.observe(self._redraw, names="value")
         self._redraw()
@@ -81,22 +89,23 @@ class CriticalPointsExplorer(W.VBox):
     def viewpoint(self) -> np.ndarray:
         return np.array([self.sx.value, self.sy.value])
 
-    def _redraw(self, change=None):
-        from IPython.display import display
-
-        from ..critical import critical_points
+    def figure(self):
+        """The current figure (Figure 23.3 for the current viewpoint)."""
         from ..plot.matching import critical_points as plot_critical
 
-        result = critical_points(self._curve, self.viewpoint, close=self._close)
-        self.result = result
-        if result.degenerate:
+        return plot_critical(self._curve, self.result, size=_SIZE)
+
+    def _redraw(self, change=None):
+        from ..critical import critical_points
+
+        self.result = critical_points(self._curve, self.viewpoint, close=self._close)
+        if self.result.degenerate:
             self.status.value = "F is constant: every point is critical"
         else:
-            self.status.value = f"{result.n_min} minima, {result.n_max} maxima"
-        fig = plot_critical(self._curve, result)
-        self.out.clear_output(wait=True)
-        with self.out:
-            display(fig)
+            self.status.value = f"{self.result.n_min} minima, {self.result.n_max} maxima"
+        buf = io.BytesIO()
+        self.figure().savefig(buf, format="png", dpi=_DPI)
+        self.image.value = buf.getvalue()
 
     def __repr__(self):
         S = self.viewpoint
