@@ -14,6 +14,8 @@ in arbitrary units for the 2D figure inputs.
 :func:`figure_23_1`    a dozen disks whose dual complex has two triangles
 :func:`figure_23_2`    the two kinds of dent of Figure 23.2
 :func:`swiss_cheese`   2D disks with round holes of three sizes and a long slit
+:func:`nested_pockets` 2D: a pocket with two chambers, the inner behind a neck
+:func:`mixed_dent`     2D: a dent that is a pocket for one growth model only
 :func:`example_pdb`    path of the shipped example PDB file (the globule)
 ====================  =========================================================
 
@@ -42,6 +44,8 @@ __all__ = [
     "figure_23_1",
     "figure_23_2",
     "swiss_cheese",
+    "nested_pockets",
+    "mixed_dent",
     "example_pdb",
     "GRAPHENE_LATTICE_CONSTANT",
     "CARBON_RADIUS",
@@ -632,3 +636,68 @@ def swiss_cheese(*, spacing=1.0, disk_radius=0.65):
     remove |= (np.abs(p[:, 1] - row) < 1e-9 * s) & (np.abs(p[:, 0]) <= 10 * s + 1e-9)
     p = p[~remove]
     return Balls(p[np.lexsort((p[:, 0], p[:, 1]))], r)
+
+
+def nested_pockets(*, disk_radius=0.65):
+    """2D disks with a two-chamber pocket: the pocket hierarchy (Notes §23.1).
+
+    Geometry (units of the lattice spacing 1): the triangular lattice inside a disk of
+    radius 8, disks of radius 0.65, with removed:
+
+    * chamber A: every point within 2.25 of (0, 4.5) (free radius ≈ 1.6);
+    * chamber B: every point within 2.85 of (0, −1.5) (free radius ≈ 2.2);
+    * the mouth, from A up and out: points with |x| ≤ 0.5 above y = 4.5; on every
+      other row the mouth is only 2 − 2·0.65 = 0.7 wide, so it closes at
+      τ = 1 − 0.65² ≈ 0.58;
+    * the neck between A and B: points with |x| ≤ 1 for −1.5 ≤ y ≤ 4.5; its
+      narrowest rows keep disks at x = ±1.5, so it closes at τ = 1.5² − 0.65² ≈ 1.83.
+
+    As the disks grow, the mouth closes first and A ∪ B becomes one hole; then the neck
+    closes and the hole splits in two; the smaller chamber A fills first.  At τ = 0
+    both the whole flask and chamber B are pockets, nested.
+
+    Returns
+    -------
+    Balls
+    """
+    r = as_finite_scalar(disk_radius, "disk_radius", positive=True)
+    p = _hex_disk(8.0, 1.0)
+    x, y = p[:, 0], p[:, 1]
+    remove = np.hypot(x, y - 4.5) < 2.25
+    remove |= np.hypot(x, y + 1.5) < 2.85
+    remove |= (np.abs(x) <= 0.5 + 1e-9) & (y >= 4.5)
+    remove |= (np.abs(x) <= 1.0 + 1e-9) & (y >= -1.5) & (y <= 4.5)
+    return Balls(p[~remove], r)
+
+
+def mixed_dent(*, small_radius=0.3, big_radius=3.0, bowl_radius=3.0, gap=3.6):
+    """2D: a dent that is a pocket when disks grow by a probe, but not in the notes' model.
+
+    Geometry: a half-ring of small disks (radius 0.3, centres 0.45 apart along the
+    lower half of the circle of radius 3 about the origin) forms a bowl; two big disks
+    (radius 3) sit at (±(gap/2 + 3), 1) over its rim, leaving a mouth ``gap`` = 3.6
+    wide between them.
+
+    * **Probe growth** (every radius :math:`r_i + p`, as a solvent probe or CASTp):
+      all disks grow at the same speed, the mouth between the big disks closes at
+      p = gap/2 = 1.8 while the bowl is still free: a pocket.
+    * **The notes' growth** (radius :math:`\sqrt{r_i^2 + \tau}`): small disks grow much
+      faster (:math:`d r/d\tau = 1/2r`); the bowl fills from below before the big disks
+      meet (they would at τ = (gap/2 + 3)² − 9 ≈ 14): never a void, no pocket.
+
+    Whether a dent is a pocket depends on how the balls grow (lesson 07).
+
+    Returns
+    -------
+    Balls
+        The small disks first, then the two big ones.
+    """
+    rs = as_finite_scalar(small_radius, "small_radius", positive=True)
+    rb = as_finite_scalar(big_radius, "big_radius", positive=True)
+    rho = as_finite_scalar(bowl_radius, "bowl_radius", positive=True)
+    g = as_finite_scalar(gap, "gap", positive=True)
+    n = int(round(np.pi * rho / 0.45)) + 1
+    ang = np.linspace(np.pi, 2 * np.pi, n)
+    small = np.column_stack([np.cos(ang), np.sin(ang)]) * rho
+    big = np.array([[-(g / 2 + rb), 1.0], [g / 2 + rb, 1.0]])
+    return Balls(np.vstack([small, big]), np.r_[np.full(n, rs), np.full(2, rb)])

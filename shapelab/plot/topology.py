@@ -468,7 +468,7 @@ def _check_balls(balls):
 
 
 def voids(balls, voids=None, *, tau=0.0, ax=None, show_complex=False, elev=20, azim=35,
-          title=None, filtration=None, show_volumes=None):
+          title=None, filtration=None, show_volumes=None, legend=True):
     """Draw the voids of the union of balls grown to τ (holes in 2D, Notes §23.1).
 
     A void is a bounded component of :math:`\\mathbb{R}^d \\setminus \\bigcup B_i`; it is
@@ -494,6 +494,8 @@ def voids(balls, voids=None, *, tau=0.0, ax=None, show_complex=False, elev=20, a
     show_volumes : bool, optional
         Write each feature's area/volume in the legend (default: in 2D only, since
         an exact pocket volume in 3D can take seconds).
+    legend : bool
+        Draw a legend (outside on the right of a new figure, inside a given ``ax``).
 
     Returns
     -------
@@ -512,12 +514,12 @@ def voids(balls, voids=None, *, tau=0.0, ax=None, show_complex=False, elev=20, a
     title = title or f"{len(V)} {word}{'s' if len(V) != 1 else ''} at τ = {tau:g}"
     return _draw_features(balls, tau, V, [], [], ax=ax, show_complex=show_complex, elev=elev,
                           azim=azim, title=title, filtration=filtration,
-                          show_volumes=show_volumes)
+                          show_volumes=show_volumes, legend=legend)
 
 
 def pockets(balls, pockets=None, *, tau=0.0, voids=None, show_voids=True, ax=None,
             show_complex=False, min_persistence=1e-9, elev=20, azim=35, title=None,
-            filtration=None, show_volumes=None):
+            filtration=None, show_volumes=None, legend=True):
     """Draw the pockets of the growth model at τ with their mouths (Notes §23.1, Fig. 23.2).
 
     A pocket is a region of the complement still connected to the outside at τ that
@@ -535,7 +537,7 @@ def pockets(balls, pockets=None, *, tau=0.0, voids=None, show_voids=True, ax=Non
     voids : sequence of Void, optional
         Voids to draw too (computed at τ if ``show_voids`` and not given).
     show_voids : bool
-    ax, show_complex, elev, azim, title, show_volumes
+    ax, show_complex, elev, azim, title, show_volumes, legend
         As for :func:`voids`.
     min_persistence : float, default 1e-9
         Passed to :func:`shapelab.pockets` when computing (the default leaves out
@@ -559,11 +561,11 @@ def pockets(balls, pockets=None, *, tau=0.0, voids=None, show_voids=True, ax=Non
         title += f" at τ = {tau:g}"
     return _draw_features(balls, tau, V, Pk, [], ax=ax, show_complex=show_complex, elev=elev,
                           azim=azim, title=title, filtration=filtration,
-                          show_volumes=show_volumes)
+                          show_volumes=show_volumes, legend=legend)
 
 
 def tunnels(balls, tunnels=None, *, tau=0.0, ax=None, show_complex=False, elev=20, azim=35,
-            title=None, filtration=None):
+            title=None, filtration=None, legend=True):
     """Draw the tunnels alive at τ: a representative cycle of each H₁ class (Notes §23.1).
 
     Parameters
@@ -572,7 +574,7 @@ def tunnels(balls, tunnels=None, *, tau=0.0, ax=None, show_complex=False, elev=2
     tunnels : sequence of Tunnel, optional
         From :func:`shapelab.tunnels`; computed at ``tau`` if not given.  Each cycle is a
         closed chain of edges between ball centres, drawn as a thick line.
-    tau, ax, show_complex, elev, azim, title, filtration
+    tau, ax, show_complex, elev, azim, title, filtration, legend
         As for :func:`voids`.
 
     Returns
@@ -584,7 +586,7 @@ def tunnels(balls, tunnels=None, *, tau=0.0, ax=None, show_complex=False, elev=2
     T = _features_or_compute(balls, tunnels, tau, "tunnels", filtration)
     title = title or f"{len(T)} tunnel{'s' if len(T) != 1 else ''} at τ = {tau:g}"
     return _draw_features(balls, tau, [], [], T, ax=ax, show_complex=show_complex, elev=elev,
-                          azim=azim, title=title, filtration=filtration)
+                          azim=azim, title=title, filtration=filtration, legend=legend)
 
 
 def _cycle_edges(t):
@@ -621,9 +623,18 @@ def _feature_label(kind, i, f, d, show_volumes):
     return f"{kind}{i}: {_measure_word(d)} {vol:.2f}"
 
 
+_POCKET_COLORS = (PALETTE[1], PALETTE[2], PALETTE[6], PALETTE[4], PALETTE[5])
+
+
+def _pocket_color(i: int) -> str:
+    return _POCKET_COLORS[(i - 1) % len(_POCKET_COLORS)]
+
+
 def _draw_features(balls, tau, V, Pk, T, *, ax, show_complex, elev, azim, title, filtration=None,
-                   show_volumes=None):
+                   show_volumes=None, legend=True):
     d = balls.dim
+    own_figure = ax is None
+    want_legend = legend
     show_volumes = (d == 2) if show_volumes is None else bool(show_volumes)
     legend = []
     c = balls.centers
@@ -641,15 +652,17 @@ def _draw_features(balls, tau, V, Pk, T, *, ax, show_complex, elev, azim, title,
                 legend.append(Patch(color=COLORS["void"],
                                     label=f"{void_word} " + _feature_label("V", i, v, d, show_volumes)))
                 _tag(ax, balls, cells, f"V{i}")
+            # larger pockets first, so that nested ones show on top of them
+            order = sorted(range(len(Pk)), key=lambda j: -len(_cells_of(Pk[j])))
             for i, p in enumerate(Pk, 1):
                 cells = _cells_of(p)
-                ax.add_collection(PolyCollection(c[cells].reshape(-1, 3, 2), facecolors=COLORS["accent"],
-                                                 edgecolors="none", zorder=1))
+                ax.add_collection(PolyCollection(c[cells].reshape(-1, 3, 2), facecolors=_pocket_color(i),
+                                                 edgecolors="none", zorder=1 + 0.01 * order.index(i - 1)))
                 mouth = np.asarray(_field(p, "mouth"), dtype=np.int64).reshape(-1, 2)
                 if len(mouth):
                     ax.add_collection(LineCollection(c[mouth], colors=COLORS["mouth"], linewidths=3.0,
                                                      zorder=4, capstyle="round"))
-                legend.append(Patch(color=COLORS["accent"], label="pocket " + _feature_label("P", i, p, d,
+                legend.append(Patch(color=_pocket_color(i), label="pocket " + _feature_label("P", i, p, d,
                                                                                             show_volumes)))
                 _tag(ax, balls, cells, f"P{i}")
             if show_complex:
@@ -674,13 +687,13 @@ def _draw_features(balls, tau, V, Pk, T, *, ax, show_complex, elev, azim, title,
                                     label=f"{void_word} " + _feature_label("V", i, v, d, show_volumes)))
             for i, p in enumerate(Pk, 1):
                 pts = _free_points(balls, tau, _cells_of(p), 3000, rng)
-                ax.scatter(*pts.T, s=3, color=COLORS["accent"], alpha=0.9, depthshade=False, zorder=3)
+                ax.scatter(*pts.T, s=3, color=_pocket_color(i), alpha=0.9, depthshade=False, zorder=3)
                 mouth = np.asarray(_field(p, "mouth"), dtype=np.int64).reshape(-1, 3)
                 if len(mouth):
                     ax.add_collection3d(Poly3DCollection(c[mouth], facecolors=_rgba(COLORS["mouth"], 0.35),
                                                          edgecolors=_rgba(COLORS["mouth"], 0.8), linewidths=0.4,
                                                          zorder=4))
-                legend.append(Patch(color=COLORS["accent"], label="pocket " + _feature_label("P", i, p, d,
+                legend.append(Patch(color=_pocket_color(i), label="pocket " + _feature_label("P", i, p, d,
                                                                                             show_volumes)))
             for t in T:
                 e = _cycle_edges(t)
@@ -695,9 +708,12 @@ def _draw_features(balls, tau, V, Pk, T, *, ax, show_complex, elev, azim, title,
     if hl is not None and len(hl):
         legend.append(Patch(facecolor="#a6d7f2" if d == 2 else COLORS["ball_edge"], edgecolor=COLORS["ball_edge"],
                             label="lining balls"))
-    if legend:
+    if legend and want_legend:
         with style():
-            ax.legend(handles=legend, loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=9)
+            if own_figure:   # outside, to the right; constrained layout makes room
+                fig.legend(handles=legend, loc="outside right upper", fontsize=9)
+            else:            # drawing into a panel of a bigger figure
+                ax.legend(handles=legend, loc="lower left", fontsize=8, framealpha=0.85, frameon=True)
     return fig
 
 
