@@ -681,8 +681,8 @@ def mixed_dent(*, small_radius=0.3, big_radius=3.0, bowl_radius=3.0, gap=3.6):
     * **Probe growth** (every radius :math:`r_i + p`, as a solvent probe or CASTp):
       all disks grow at the same speed, the mouth between the big disks closes at
       p = gap/2 = 1.8 while the bowl is still free: a pocket.
-    * **The notes' growth** (radius :math:`\sqrt{r_i^2 + \tau}`): small disks grow much
-      faster (:math:`d r/d\tau = 1/2r`); the bowl fills from below before the big disks
+    * **The notes' growth** (radius :math:`\\sqrt{r_i^2 + \\tau}`): small disks grow much
+      faster (:math:`dr/d\\tau = 1/(2r)`); the bowl fills from below before the big disks
       meet (they would at τ = (gap/2 + 3)² − 9 ≈ 14): never a void, no pocket.
 
     Whether a dent is a pocket depends on how the balls grow (lesson 07).
