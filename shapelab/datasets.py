@@ -176,7 +176,7 @@ def nanotube(n=8, m=8, *, length=12.0, atom_radius=CARBON_RADIUS,
     1.42 Å from their atoms) while the inside stays free, so the union has exactly
     **one tunnel** (β₁ = 1) and no void.
 
-    With ``slit`` > 0 the atoms whose arc position :math:`R\theta` lies within
+    With ``slit`` > 0 the atoms whose arc position :math:`R\\theta` lies within
     ``slit``/2 of the line θ = 0 are removed along the whole length: the tube becomes
     a **groove** (a gutter) that turns into a tunnel when its lips close as the
     balls grow — if the slit is narrow enough (lesson 08).
