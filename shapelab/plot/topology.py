@@ -275,7 +275,7 @@ def betti_curve(F_or_curve, *, taus=None, tau=None, log=None, ax=None,
     log : bool, optional
         A symmetric-log y axis, so that a few features late in the growth stay
         visible next to hundreds of tiny ones early on; default: when some
-        :math:`\beta_k > 20`.
+        :math:`\\beta_k > 20`.
     ax, title
 
     Returns
