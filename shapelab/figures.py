@@ -284,22 +284,53 @@ def fig23_4():
 
 
 # ---------------------------------------------------------- lesson figures
-@register("l01_power_diagram", "The power diagram of a few disks: each cell is where that disk's power "
-          "distance is smallest; a small disk can be hidden, with an empty cell.",
+@register("l01_power_diagram", "The power diagram of nine disks: each cell is where that disk's power "
+          "distance is smallest; its edges lie on the radical axes, and a disk can be hidden, with an "
+          "empty cell.",
           source="Lesson 01", lesson="01_power_diagrams",
-          needs=("datasets.figure_23_1", "power_diagram", "plot.power_diagram"))
+          needs=("Balls", "power_diagram", "plot.power_diagram"))
 def l01_power_diagram():
+    rng = np.random.default_rng(1)  # lesson 01's disks
+    disks = _sl().Balls(rng.uniform(0, 6, size=(9, 2)), rng.uniform(0.4, 1.2, size=9))
     fig, ax = _slide()
-    _plot().power_diagram(_sl().power_diagram(_datasets().figure_23_1()), ax=ax)
+    _plot().power_diagram(_sl().power_diagram(disks), labels=True, ax=ax)
     return fig
 
 
-@register("l05_dual_complex_3d", "The dual complex of a small 3D molecule: balls, and the edges, "
-          "triangles and tetrahedra of K.",
+@register("l02_growth", "The same disks grown: at τ = −0.3 the dual complex has a hole, at τ = 3 the "
+          "union is one piece without holes, and so is K: K has the topology of the union.",
+          source="Lesson 02", lesson="02_dual_complex",
+          needs=("datasets.figure_23_1", "alpha_filtration", "plot.dual_complex"))
+def l02_growth():
+    disks = _datasets().figure_23_1()
+    F = _sl().alpha_filtration(disks)
+    fig, (a, b) = _slide(1, 2)
+    _plot().dual_complex(disks, tau=-0.3, filtration=F, ax=a, title="τ = −0.3: one hole")
+    _plot().dual_complex(disks, tau=3.0, filtration=F, ax=b, title="τ = 3: one piece, no hole")
+    return fig
+
+
+@register("l03_alpha_complexes", "The growth model: the disks grown to radii √(r² + τ) and their dual "
+          "complexes at four times τ, a nested sequence of α-complexes (α = √τ).",
+          source="Lesson 03", lesson="03_alpha_filtration",
+          needs=("datasets.figure_23_1", "alpha_filtration", "plot.dual_complex"))
+def l03_alpha_complexes():
+    disks = _datasets().figure_23_1()
+    F = _sl().alpha_filtration(disks)
+    fig, axes = _slide(2, 2)
+    for ax, tau in zip(axes.ravel(), (-0.5, 0.0, 0.6, 1.5)):
+        _plot().dual_complex(disks, tau, filtration=F, ax=ax, show_cells=False)
+    return fig
+
+
+@register("l05_dual_complex_3d", "The dual complex of C60 at τ = 0: the 60 carbon balls' vertices, "
+          "edges and triangles close a cage around an empty centre.",
           source="Lesson 05", lesson="05_dual_complex_3d",
-          needs=("datasets.bowl", "dual_complex", "plot.complex3d"))
+          needs=("datasets.fullerene_c60", "alpha_filtration", "plot.complex3d"))
 def l05_dual_complex_3d():
-    return _plot().complex3d(_sl().dual_complex(_datasets().bowl()))
+    fig, ax = _slide(projection="3d")
+    _plot().complex3d(_sl().alpha_filtration(_datasets().fullerene_c60()), tau=0.0, elev=15, azim=30, ax=ax)
+    return fig
 
 
 @register("l06_voids_c60", "The one void of C60: the inside of the carbon cage, sealed off once the "
@@ -387,6 +418,30 @@ def l11_critical_surface():
     fig, ax = _slide(projection="3d")
     _plot().critical_surface(V, F, _sl().critical_points(V, S, faces=F), ax=ax)
     return fig
+
+
+@register("l12_hausdorff", "The Hausdorff distance of two point sets: the witnesses of h(R, G) and "
+          "h(G, R), each certified by an empty disk; the longer one is H(R, G).",
+          source="Lesson 12", lesson="12_hausdorff",
+          needs=("plot.hausdorff",))
+def l12_hausdorff():
+    rng = np.random.default_rng(0)  # lesson 12's R and G
+    R = rng.normal(size=(25, 2))
+    G = rng.normal(size=(20, 2)) * [1.3, 0.7] + [1.2, 0.3]
+    fig, ax = _slide()
+    _plot().hausdorff(R, G, labels=("R", "G"), ax=ax)
+    return fig
+
+
+@register("l12_translation", "Matching under translation: B moved onto A by aligning the centroids (a "
+          "reference point) and by the optimal translation, found by a certified search.",
+          source="Lesson 12", lesson="12_hausdorff",
+          needs=("hausdorff_under_translation", "plot.matching.translation"))
+def l12_translation():
+    rng = np.random.default_rng(12)
+    A = rng.normal(size=(40, 2)) * [1.5, 0.6]
+    B = A[rng.permutation(40)[:30]] + 0.15 * rng.normal(size=(30, 2)) + [4.0, -2.0]
+    return _sl().plot.matching.translation(A, B, _sl().hausdorff_under_translation(A, B))
 
 
 def _icp_example(n=250):
