@@ -49,7 +49,7 @@ def test_persistence_diagram_draws_every_pair():
     inf_y = pts[np.isclose(pts[:, 0], 0.0) & (pts[:, 1] > 4.0), 1]
     assert len(inf_y) == 1 and inf_y[0] > 4.0
     assert ax.get_xlabel() == "birth τ" and ax.get_ylabel() == "death τ"
-    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    labels = [t.get_text() for t in fig.legends[0].get_texts()]
     assert any("H₁ holes" in t for t in labels)
     assert not any("H₂" in t for t in labels)  # the empty top dimension is left out
 
@@ -194,7 +194,7 @@ def test_voids_2d_draws_cells_under_the_disks():
     assert len(disks.get_paths()) == 6
     assert disks.get_zorder() > [c for c in ax.collections if isinstance(c, PolyCollection)][0].get_zorder()
     assert [t.get_text() for t in ax.texts] == ["V1"]
-    assert "hole V1: area 0.12" in [t.get_text() for t in ax.get_legend().get_texts()]
+    assert "hole V1: area 0.12" in [t.get_text() for t in fig.legends[0].get_texts()]
     assert "1 hole at τ = 0" in ax.get_title()
     assert ax.get_aspect() == 1.0
 
@@ -222,7 +222,7 @@ def test_pockets_2d_draws_mouths():
     seg = np.asarray(mouths[0].get_segments()[0])
     assert np.allclose(seg, b.centers[[0, 3]])
     assert "1 pocket at τ = 0" in ax.get_title()
-    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["pocket P1: area 0.40", "mouth", "lining balls"]
+    assert [t.get_text() for t in fig.legends[0].get_texts()] == ["pocket P1: area 0.40", "mouth", "lining balls"]
 
 
 def test_tunnels_3d_draws_the_cycle():
@@ -253,7 +253,7 @@ def test_voids_3d_draws_the_free_space_of_the_cells():
     X = b.centers[cells[0]]
     lam = np.linalg.solve((X[1:] - X[0]).T, (pts - X[0]).T)
     assert np.all(lam >= -1e-9) and np.all(lam.sum(0) <= 1 + 1e-9)
-    assert "void V1" in [t.get_text() for t in ax.get_legend().get_texts()]
+    assert "void V1" in [t.get_text() for t in fig.legends[0].get_texts()]
 
 
 # ------------------------------------------------------------ with the library
@@ -275,8 +275,11 @@ def test_pocket_explorer_widget():
     w = pocket_explorer(left, tau=0.0, steps=20)
     assert repr(w).startswith("PocketExplorer(n_balls=112, tau=0.00")
     assert "1 pockets, 0 holes" in w.status.value
+    png = w.image.value
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
     w.slider.value = 2.0  # the mouth has closed: a hole, no pocket
     assert "0 pockets, 1 holes" in w.status.value
+    assert w.image.value != png
     with pytest.raises(ValueError):
         pocket_explorer(left, tau_range=(1.0, 0.0))
     with pytest.raises(TypeError):

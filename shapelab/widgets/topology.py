@@ -1,12 +1,17 @@
 """The pocket explorer: voids and pockets as the disks grow (Notes §23.1, Figure 23.2)."""
 from __future__ import annotations
 
+import io
+
 import ipywidgets as W
 import numpy as np
 
 from .._validate import as_finite_scalar
 
 __all__ = ["pocket_explorer", "PocketExplorer"]
+
+_DPI = 90
+_SIZE = (6.8, 5.0)
 
 
 def _default_range(balls, F):
@@ -88,26 +93,41 @@ class PocketExplorer(W.VBox):
                                     continuous_update=False, readout_format=".2f",
                                     layout=W.Layout(width="60%"))
         self.status = W.HTML()
-        self.out = W.Output()
-        super().__init__([W.HBox([self.slider, self.status]), self.out])
+        # a PNG image, not an Output widget: it renders the same in a live kernel, in
+        # nbclient/nbval runs and from the stored widget state on the static site
+        self.image = W.Image(format="png", layout=W.Layout(width=f"{int(_SIZE[0] * _DPI)}px",
+                                                           height=f"{int(_SIZE[1] * _DPI)}px"))
+        super().__init__([W.HBox([self.slider, self.status]), self.image])
         self.slider.observe(self._redraw, names="value")
         self._redraw()
 
-    def _redraw(self, change=None):
-        import shapelab
-        from IPython.display import display
+    @property
+    def tau(self) -> float:
+        return float(self.slider.value)
 
+    def features(self):
+        """``(pockets, voids)`` at the slider's τ."""
+        import shapelab
+
+        t = self.tau
+        return (shapelab.pockets(self._balls, t, min_persistence=self._minp, filtration=self._F),
+                shapelab.voids(self._balls, t, filtration=self._F))
+
+    def figure(self):
+        """The current figure (:func:`shapelab.plot.pockets` at the slider's τ)."""
         from ..plot.topology import pockets as plot_pockets
 
-        t = float(self.slider.value)
-        P = shapelab.pockets(self._balls, t, min_persistence=self._minp, filtration=self._F)
-        V = shapelab.voids(self._balls, t, filtration=self._F)
+        P, V = self.features()
+        return plot_pockets(self._balls, P, tau=self.tau, voids=V, show_complex=self._show_complex,
+                            filtration=self._F)
+
+    def _redraw(self, change=None):
+        P, V = self.features()
         word = "holes" if self._balls.dim == 2 else "voids"
         self.status.value = f"&nbsp;{len(P)} pockets, {len(V)} {word}"
-        fig = plot_pockets(self._balls, P, tau=t, voids=V, show_complex=self._show_complex)
-        self.out.clear_output(wait=True)
-        with self.out:
-            display(fig)
+        buf = io.BytesIO()
+        self.figure().savefig(buf, format="png", dpi=_DPI)
+        self.image.value = buf.getvalue()
 
     def __repr__(self):
         return (f"PocketExplorer(n_balls={len(self._balls)}, tau={self.slider.value:.2f}, "
