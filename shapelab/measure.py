@@ -728,13 +728,23 @@ def intersection_area(centers, radii) -> float:
     return float(max(area, 0.0))
 
 
-def naive_union_area(balls: Balls, *, max_balls: int = 16):
+def naive_union_area(balls: Balls, *, max_balls: int = 16, max_order=None):
     """Area of a union of disks by the *ordinary* inclusion–exclusion formula.
 
     :math:`\\operatorname{area} \\bigcup B_i = \\sum_{\\emptyset \\ne S \\subseteq
     \\{1..n\\}} (-1)^{|S|+1} \\operatorname{area} \\bigcap_{i \\in S} B_i`, over all
     :math:`2^n - 1` subsets (a subset whose intersection is empty makes all its
     supersets empty, which is used to skip them).  For teaching: exponential in n.
+
+    Parameters
+    ----------
+    balls : Balls
+        2D balls.
+    max_balls : int
+        Refuse more disks than this (the cost is exponential).
+    max_order : int, optional
+        Keep only the subsets of at most this many disks (a *truncated* formula,
+        which is not the area in general; for teaching).
 
     Returns
     -------
@@ -749,6 +759,7 @@ def naive_union_area(balls: Balls, *, max_balls: int = 16):
     if balls.dim != 2:
         raise ValueError(f"naive_union_area works with disks (2D), got balls of dimension {balls.dim}")
     max_balls = as_positive_int(max_balls, "max_balls")
+    max_order = None if max_order is None else as_positive_int(max_order, "max_order")
     n = len(balls)
     if n > max_balls:
         raise ValueError(f"balls has {n} disks; the naive formula has 2**n - 1 terms, allowed up to max_balls={max_balls}")
@@ -756,7 +767,7 @@ def naive_union_area(balls: Balls, *, max_balls: int = 16):
     total, nonzero = 0.0, 0
     level = [((i,), float(np.pi * r[i] ** 2)) for i in range(n)]
     size = 1
-    while level:
+    while level and (max_order is None or size <= max_order):
         sign = 1.0 if size % 2 else -1.0
         nxt = []
         for subset, a in level:

@@ -512,3 +512,15 @@ def test_sampled_nerve_and_raster_topology_on_figure_23_1():
         raster_topology(random_balls(0, 3, 3))
     with pytest.raises(ValueError, match="spacing"):
         sampled_nerve(b, spacing=1e-5)
+
+
+def test_truncated_naive_formula():
+    b = random_balls(5, 6, 2, 0.8, 1.3, box=2.0)
+    full, _, _ = naive_union_area(b)
+    one, _, _ = naive_union_area(b, max_order=1)
+    two, _, _ = naive_union_area(b, max_order=2)
+    assert one == pytest.approx(np.sum(PI * b.radii**2), rel=1e-14)
+    pairs = sum(lens_area(np.linalg.norm(b.centers[i] - b.centers[j]), b.radii[i], b.radii[j])
+                for i in range(6) for j in range(i + 1, 6))
+    assert two == pytest.approx(one - pairs, rel=1e-12)
+    assert naive_union_area(b, max_order=6)[0] == pytest.approx(full, rel=1e-14)

@@ -164,3 +164,23 @@ def test_degenerate_3d_and_ax_argument():
         plot.disks(np.zeros((3, 2)))
     with pytest.raises(ValueError, match="3D axes"):
         plot.balls3d(rand(3, 3), ax=axes[0])
+
+
+def test_lifting_and_method_comparison():
+    from shapelab.plot.balls import lifting, method_comparison
+
+    b = Balls([[0.0, 0.0], [4.0, 0.0], [2.0, 3.0], [2.4, 1.5]], [2.3, 2.3, 2.3, 0.8])  # the last is hidden
+    fig = render(lifting(b))
+    ax = fig.axes[0]
+    assert ax.name == "3d"
+    hollow = [c for c in ax.collections if type(c).__name__ == "Path3DCollection" and len(c.get_offsets()) == 1]
+    assert len(hollow) == 1  # the hidden disk, drawn above the hull
+    assert "hidden" in " ".join(t.get_text() for t in ax.get_legend().get_texts())
+    render(lifting(Balls([[0.0, 0.0], [1.0, 0.0]], 0.3)))  # too few for a triangle
+    fig = render(method_comparison([1, 2, 3], {"a": [1e-3, 2e-3, np.nan], "b": [1, 2, 3]}, {"b": [1e-3, 1e-2, 1e-1]}))
+    left, right = fig.axes
+    assert len(left.get_lines()) == 2 and len(right.get_lines()) == 1
+    assert right.get_lines()[0].get_color() == left.get_lines()[1].get_color()  # one colour per method
+    assert len(left.get_lines()[0].get_xdata()) == 2  # NaN left out
+    with pytest.raises(ValueError, match="values for"):
+        method_comparison([1, 2], {"a": [1.0]})

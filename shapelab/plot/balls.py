@@ -28,7 +28,7 @@ from matplotlib.patches import Patch
 
 from .._validate import as_finite_scalar, as_positive_int
 from ..balls import Balls
-from ._style import COLORS, PAGE, new_figure, style
+from ._style import COLORS, PAGE, PALETTE, new_figure, style
 
 __all__ = ["disks", "power_diagram", "dual_complex", "filtration", "balls3d", "complex3d", "lifting",
            "method_comparison", "DualComplexView"]
@@ -755,17 +755,19 @@ def method_comparison(sizes, seconds, errors=None, *, xlabel="number of disks n"
     else:
         fig, axes = ax.get_figure(), np.array([ax])
     markers = "osD^v"
+    names = list(seconds) + [k for k in (errors or {}) if k not in seconds]
+    look = {name: (PALETTE[j % len(PALETTE)], markers[j % len(markers)]) for j, name in enumerate(names)}
     with style():
         for panel, data, label in ((0, seconds, "time (s)"), (1, errors, "absolute error")):
             if data is None:
                 continue
             a = axes[panel]
-            for j, (name, vals) in enumerate(data.items()):
+            for name, vals in data.items():
                 v = np.asarray(vals, dtype=float)
                 if v.shape != n.shape:
                     raise ValueError(f"{name!r} has {v.shape[0]} values for {n.shape[0]} sizes")
                 ok = np.isfinite(v) & (v > 0)
-                a.plot(n[ok], v[ok], marker=markers[j % len(markers)], label=name)
+                a.plot(n[ok], v[ok], color=look[name][0], marker=look[name][1], label=name)
             a.set_yscale("log")
             a.set_xlabel(xlabel)
             a.set_ylabel(label)

@@ -10,12 +10,22 @@ __all__ = ["alpha_explorer", "AlphaExplorer"]
 
 
 def _default_range(F):
-    """From the first vertex's entry to the time by which 95 % of DT is present."""
+    """From the first vertex's entry to a little after the last change of topology
+    (the largest finite death of the persistence diagram); the last entries of DT
+    (slivers on the hull) come much later and are left out."""
     vals = np.concatenate([F.values(k) for k in range(F.dimension + 1)]) if F.dimension >= 0 else np.zeros(0)
     vals = vals[np.isfinite(vals)]
     if not vals.size:
         return -1.0, 1.0
-    lo, hi = float(vals.min()), float(np.quantile(vals, 0.95))
+    lo = float(vals.min())
+    try:
+        deaths = np.concatenate([np.asarray(a, dtype=float).reshape(-1, 2)[:, 1] for a in F.persistence().values()])
+        deaths = deaths[np.isfinite(deaths)]
+        hi = float(deaths.max()) if deaths.size else float(np.quantile(vals, 0.75))
+    except (ImportError, NotImplementedError, AttributeError):  # topology not available
+        hi = float(np.quantile(vals, 0.75))
+    hi = max(hi, 0.0)
+    hi = hi + 0.1 * (hi - lo)
     if not hi > lo:
         hi = lo + max(1.0, abs(lo))
     return lo, hi
@@ -39,8 +49,8 @@ def alpha_explorer(balls, *, tau=0.0, tau_range=None, steps=100, filtration=None
     tau : float
         Initial growth time.
     tau_range : (float, float), optional
-        Slider bounds; default from the first vertex's entry time to the time by which
-        95 % of the simplices of DT are present.
+        Slider bounds; default from the first vertex's entry time to a little after the
+        last change of topology (the largest finite death in ``F.persistence()``).
     steps : int
         Slider resolution.
     filtration : Filtration, optional
