@@ -49,7 +49,7 @@ def test_persistence_diagram_draws_every_pair():
     inf_y = pts[np.isclose(pts[:, 0], 0.0) & (pts[:, 1] > 4.0), 1]
     assert len(inf_y) == 1 and inf_y[0] > 4.0
     assert ax.get_xlabel() == "birth τ" and ax.get_ylabel() == "death τ"
-    labels = [t.get_text() for t in fig.legends[0].get_texts()]
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
     assert any("H₁ holes" in t for t in labels)
     assert not any("H₂" in t for t in labels)  # the empty top dimension is left out
 
