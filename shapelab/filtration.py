@@ -53,84 +53,92 @@ def _facets_from_neighbours(simp: np.ndarray, nbr: np.ndarray):
     """Facets of top simplices using the neighbour relation (no sorting).
 
     Each interior facet is shared by exactly two top simplices; the one with the
-    smaller index owns it.  Returns ``(facets, boundary)`` or ``None`` if the
-    neighbour relation is inconsistent (then the caller falls back to sorting).
+    smaller index owns it.  Returns ``(facets, boundary)`` (int32) or ``None`` if
+    the neighbour relation is inconsistent (then the caller falls back to sorting).
     """
     m, w = simp.shape
-    own = (nbr < 0) | (np.arange(m, dtype=np.int64)[:, None] < nbr)
-    ids = np.cumsum(own.ravel(), dtype=np.int64).reshape(m, w) - 1
+    own = nbr < 0
+    own |= np.arange(m, dtype=nbr.dtype)[:, None] < nbr
+    ids = np.cumsum(own.ravel(), dtype=np.int32).reshape(m, w)
+    ids -= 1
     p = np.flatnonzero(~own.ravel())
-    t, i = np.divmod(p, w)
+    t = p // w
+    i = p - t * w
     nb = nbr.ravel()[p]
     back = nbr[nb] == t[:, None]
     j = np.argmax(back, axis=1)
     if not np.all(back[np.arange(j.size), j]):
         return None
+    del back
     # the shared facet must have the same vertices on both sides (checked by the
-    # sums and sums of squares of its vertex indices)
-    for f in (simp, simp * simp):
-        fs = f.sum(axis=1)[:, None] - f
-        if not np.array_equal(fs.ravel()[p], fs[nb, j]):
-            return None
+    # sums of its vertex indices; the back pointers above were checked exactly)
+    fs = simp.sum(axis=1, dtype=np.int64)[:, None] - simp
+    if not np.array_equal(fs.ravel()[p], fs[nb, j]):
+        return None
+    del fs, t, i
     ids.ravel()[p] = ids[nb, j]
-    cols = np.array(_drop_cols(w))
-    ro, co = np.divmod(np.flatnonzero(own.ravel()), w)
-    facets = simp[ro[:, None], cols[co]]
+    del p, nb, j
+    cols = np.array(_drop_cols(w), dtype=np.intp)
+    q = np.flatnonzero(own.ravel())
+    ro = q // w
+    facets = simp[ro[:, None], cols[q - ro * w]]
     return facets, ids
-
-
-def _pack_sort(keys: np.ndarray, key_bits: int):
-    """Sort integer keys, returning (sorted keys, permutation), using one SIMD
-    ``np.sort`` of the keys with the index packed into the low bits when it fits
-    in 63 bits (much faster than ``argsort``)."""
-    m = keys.size
-    ib = max(1, int(m - 1).bit_length())
-    if key_bits + ib <= 63:
-        packed = (keys.astype(np.int64) << np.int64(ib)) | np.arange(m, dtype=np.int64)
-        packed.sort()
-        perm = packed & np.int64((1 << ib) - 1)
-        packed >>= np.int64(ib)
-        return packed, perm
-    perm = np.argsort(keys, kind="stable")  # pragma: no cover - huge inputs
-    return keys[perm], perm  # pragma: no cover
 
 
 def _unique_facets(simp: np.ndarray, nv: int):
     """All facets of the rows of ``simp`` (vertices ascending): unique facets
     (rows ascending, lexicographically sorted) and the (m, j+1) boundary matrix
-    whose column i is the row of the facet opposite vertex i."""
+    whose column i is the row of the facet opposite vertex i (both int32).
+
+    The facets are encoded as integers (base ``nv``) with the position packed into
+    the low bits, so one in-place SIMD ``np.sort`` replaces ``np.unique`` (which
+    would ``argsort``: ~8x slower here); everything else is in place or int32.
+    """
     m, w = simp.shape
     fw = w - 1
     if fw == 1:  # facets are vertices: a lookup table
-        pos = np.full(nv, -1, dtype=np.int64)
-        verts = np.flatnonzero(np.bincount(simp.ravel(), minlength=nv))
-        pos[verts] = np.arange(verts.size)
-        return verts[:, None].astype(np.int64), pos[simp[:, ::-1]]
-    key_bits = int(nv - 1).bit_length() * fw if nv > 1 else 1
-    if key_bits <= 62:
-        base = np.int64(nv)
-        keys = np.empty((w, m), dtype=np.int64)
-        for i, c in enumerate(_drop_cols(w)):
-            k = simp[:, c[0]].astype(np.int64)
-            for cc in c[1:]:
-                k = k * base + simp[:, cc]
-            keys[i] = k
-        sk, perm = _pack_sort(keys.ravel(), key_bits)
-        first = np.empty(sk.size, dtype=bool)
-        first[0] = True
-        np.not_equal(sk[1:], sk[:-1], out=first[1:])
-        uniq = sk[first]
-        inv = np.empty(sk.size, dtype=np.int64)
-        inv[perm] = np.cumsum(first) - 1
-        faces = np.empty((uniq.size, fw), dtype=np.int64)
-        rest = uniq
-        for t in range(fw - 1, -1, -1):
-            faces[:, t] = rest % base
-            rest = rest // base
-        return faces, inv.reshape(w, m).T.copy()
-    allf = np.concatenate([simp[:, c] for c in _drop_cols(w)])  # pragma: no cover - huge n
-    faces, inv = np.unique(allf, axis=0, return_inverse=True)  # pragma: no cover
-    return faces.astype(np.int64), inv.reshape(w, m).T.astype(np.int64)  # pragma: no cover
+        pos = np.full(nv, -1, dtype=np.int32)
+        verts = np.flatnonzero(np.bincount(simp.ravel(), minlength=nv)).astype(np.int32)
+        pos[verts] = np.arange(verts.size, dtype=np.int32)
+        return verts[:, None], pos[simp[:, ::-1]]
+    M = m * w
+    ib = max(1, int(M - 1).bit_length())
+    key_bits = max(1, int(nv - 1).bit_length()) * fw
+    if key_bits + ib > 63:  # pragma: no cover - beyond ~2e6 balls in 3D
+        allf = np.concatenate([simp[:, c] for c in _drop_cols(w)])
+        faces, inv = np.unique(allf, axis=0, return_inverse=True)
+        return faces.astype(np.int32), inv.reshape(w, m).T.astype(np.int32)
+    base = np.int64(nv)
+    packed = np.empty((m, w), dtype=np.int64)   # row-major: position t * w + i
+    for i, c in enumerate(_drop_cols(w)):
+        col = packed[:, i]
+        col[...] = simp[:, c[0]]
+        for cc in c[1:]:
+            col *= base
+            col += simp[:, cc]
+    packed = packed.ravel()
+    packed <<= np.int64(ib)
+    packed |= np.arange(M, dtype=np.int64)
+    packed.sort()
+    perm = np.empty(M, dtype=np.int32)
+    np.bitwise_and(packed, np.int64((1 << ib) - 1), out=perm, casting="unsafe")
+    packed >>= np.int64(ib)
+    first = np.empty(M, dtype=bool)
+    first[0] = True
+    np.not_equal(packed[1:], packed[:-1], out=first[1:])
+    uniq = packed[first]
+    del packed
+    rank = np.cumsum(first, dtype=np.int32)
+    rank -= 1
+    del first
+    inv = np.empty(M, dtype=np.int32)
+    inv[perm] = rank
+    del perm, rank
+    faces = np.empty((uniq.size, fw), dtype=np.int32)
+    for t in range(fw - 1, -1, -1):
+        faces[:, t] = uniq % base
+        uniq //= base
+    return faces, inv.reshape(m, w)
 
 
 # ----------------------------------------------------------------------------------
@@ -253,6 +261,22 @@ def _orthospheres(x: np.ndarray, w: np.ndarray, S: np.ndarray):
             uf, rf = _ortho_generic(x, w, F)
             d = x[F[:, 0]] + uf - x[Sf[:, i]]
             att[idx, i] = np.einsum("mk,mk->m", d, d) - w[Sf[:, i]] < rf
+    return rho, att
+
+
+_CHUNK = 1 << 15
+
+
+def _orthospheres_chunked(x: np.ndarray, w: np.ndarray, S: np.ndarray):
+    """:func:`_orthospheres` in blocks of rows, which bounds the memory of its
+    temporaries (~40 float arrays of the block size) at no measurable cost."""
+    m = S.shape[0]
+    if m <= _CHUNK:
+        return _orthospheres(x, w, S)
+    rho = np.empty(m)
+    att = np.empty((m, S.shape[1]), dtype=bool)
+    for a in range(0, m, _CHUNK):
+        rho[a:a + _CHUNK], att[a:a + _CHUNK] = _orthospheres(x, w, S[a:a + _CHUNK])
     return rho, att
 
 
@@ -472,21 +496,24 @@ def alpha_filtration(balls: Balls) -> Filtration:
 
     # 2. smallest orthogonal spheres and attachment, 3. top-down propagation
     vals = [None] * (dim + 1)
-    rho, att = _orthospheres(x, w, faces[dim])
+    rho, att = _orthospheres_chunked(x, w, faces[dim])
     vals[dim] = rho
     for j in range(dim, 0, -1):
         B = bnd[j]
-        rho_f, att_f = _orthospheres(x, w, faces[j - 1]) if j > 1 else (-w[faces[0][:, 0]], None)
+        rho_f, att_f = _orthospheres_chunked(x, w, faces[j - 1]) if j > 1 else (-w[faces[0][:, 0]], None)
         nf = faces[j - 1].shape[0]
         attached = np.zeros(nf, dtype=bool)
         attached[B[att]] = True
         cof = np.full(nf, np.inf)
-        np.minimum.at(cof, B.ravel(), np.repeat(vals[j], j + 1))
+        for i in range(j + 1):
+            np.minimum.at(cof, B[:, i], vals[j])
         vals[j - 1] = np.where(attached, cof, rho_f)
+        del cof, attached
         att = att_f
     # 4. non-decreasing against round-off (GUDHI's make_filtration_non_decreasing)
     for j in range(1, dim + 1):
-        np.maximum(vals[j], vals[j - 1][bnd[j]].max(axis=1), out=vals[j])
+        for i in range(j + 1):
+            np.maximum(vals[j], vals[j - 1][bnd[j][:, i]], out=vals[j])
 
     # 5. filtration order per dimension, back to input indices and scale
     s2 = fr.scale**2
@@ -498,13 +525,19 @@ def alpha_filtration(balls: Balls) -> Filtration:
         # local indices are ordered like input indices (keep is ascending), so the
         # lexicographic tie-break can use them
         order = _filtration_order(v, faces[j])
-        rows = faces[j][order]
-        simp_out.append(_ro(rows if identity else fr.keep[rows]))
+        out = np.empty(faces[j].shape, dtype=np.int64)
+        out[...] = faces[j][order] if identity else fr.keep[faces[j][order]]
+        simp_out.append(_ro(out))
         vals_out.append(_ro(v[order]))
+        faces[j] = vals[j] = v = None  # free as we go
         if j >= 1:
-            bnd_out.append(_ro(inv_prev[bnd[j][order]]))
-        inv_prev = np.empty(order.size, dtype=np.int64)
-        inv_prev[order] = np.arange(order.size)
+            out = np.empty(bnd[j].shape, dtype=np.int64)
+            out[...] = inv_prev[bnd[j][order]]
+            bnd_out.append(_ro(out))
+            bnd[j] = None
+        inv_prev = np.empty(order.size, dtype=np.int32)
+        inv_prev[order] = np.arange(order.size, dtype=np.int32)
+        del order
     for j in range(dim + 1, balls.dim + 1):
         simp_out.append(_ro(np.zeros((0, j + 1), dtype=np.int64)))
         vals_out.append(_ro(np.zeros(0)))

@@ -188,6 +188,9 @@ def _flat_rows(x: np.ndarray, simp: np.ndarray) -> np.ndarray:
     k = x.shape[1]
     if k < 2 or simp.shape[0] == 0:
         return np.zeros(simp.shape[0], dtype=bool)
+    chunk = 1 << 16
+    if simp.shape[0] > chunk:
+        return np.concatenate([_flat_rows(x, simp[a:a + chunk]) for a in range(0, simp.shape[0], chunk)])
     X = np.ascontiguousarray(x.T)
     p0 = X[:, simp[:, 0]]
     vec = [X[:, simp[:, i]] - p0 for i in range(1, k + 1)]
@@ -221,23 +224,31 @@ def _hull_once(x: np.ndarray, h: np.ndarray, perm: np.ndarray):
     # genuine facet this steep would have an orthoradius above ~1e10.
     nz = hull.equations[:, k]
     lower = ~np.any(simp == n, axis=1) & (nz < -_VERTICAL_TOL)
-    # Qhull's normals of such vertical facets can be off by ~1e-10 when they are
-    # computed from nearly degenerate points: a facet that is flat in projection and
-    # nearly vertical is vertical.
-    steep = np.flatnonzero(lower & (nz > -1e-6))
+    # Qhull's normal of such a vertical facet can be far from horizontal-zero (we saw
+    # -2e-6) when it is computed from points whose projections are coplanar only up
+    # to round-off: a steep facet (slope above ~1000) that is flat in projection is
+    # vertical.  (A flat facet can only be non-vertical if it is a piece of a merged
+    # facet, handled in _lower_hull.)
+    steep = np.flatnonzero(lower & (nz > -1e-3))
     if steep.size:
         lower[steep[_flat_rows(x[perm], simp[steep])]] = False
-    newid = np.cumsum(lower) - 1
+    newid = np.cumsum(lower, dtype=np.int32) - 1
     simp = simp[lower]
     nbr = hull.neighbors[lower]
     nbr = np.where(nbr >= 0, np.where(lower[nbr], newid[nbr], -1), -1)
     # back to the caller's indices; vertices ascending in each row, neighbours
     # permuted alongside
-    simp = np.asarray(perm, dtype=np.int64)[simp]
+    # Qt's pieces of one merged facet share its hyperplane (bit for bit): only those
+    # can be flat, so only they need the flatness test
+    e0 = hull.equations[lower, 0]
+    srt = np.sort(e0)
+    dup = srt[1:][srt[1:] == srt[:-1]]
+    tricoplanar = np.isin(e0, dup) if dup.size else np.zeros(e0.size, dtype=bool)
+    simp = np.asarray(perm, dtype=np.int32)[simp]
     order = np.argsort(simp, axis=1)
     simp = np.take_along_axis(simp, order, axis=1)
-    nbr = np.take_along_axis(nbr, order, axis=1)
-    return simp.astype(np.int64), nbr.astype(np.int64)
+    nbr = np.take_along_axis(nbr.astype(np.int32, copy=False), order, axis=1)
+    return simp, nbr, tricoplanar
 
 
 def _lower_hull(x: np.ndarray, w: np.ndarray):
@@ -266,7 +277,7 @@ def _lower_hull(x: np.ndarray, w: np.ndarray):
     """
     n, k = x.shape
     if n == k + 1:  # one simplex, no point can be hidden
-        return np.arange(n, dtype=np.int64)[None, :], np.full((1, n), -1, dtype=np.int64)
+        return np.arange(n, dtype=np.int32)[None, :], np.full((1, n), -1, dtype=np.int32)
     h = np.einsum("ij,ij->i", x, x) - w
     # affine normalisation of the height (keeps the lower hull): centre and scale
     h = h - h.mean()
@@ -274,13 +285,13 @@ def _lower_hull(x: np.ndarray, w: np.ndarray):
     if hs > 0:
         h = h / hs
     perm = _morton_order(x)
-    simp, nbr = _hull_once(x, h, perm)
+    simp, nbr, tricoplanar = _hull_once(x, h, perm)
     if k >= 3:
         jitter = np.random.default_rng(20231).random(n)
         for delta in (1e-9, 1e-7):
-            if not np.any(_flat_rows(x, simp)):
+            if not tricoplanar.any() or not np.any(_flat_rows(x, simp[tricoplanar])):
                 break
-            simp, nbr = _hull_once(x, h - delta * jitter, perm)
+            simp, nbr, tricoplanar = _hull_once(x, h - delta * jitter, perm)
     return simp, nbr
 
 
@@ -290,7 +301,7 @@ def _triangulate_local(balls: Balls):
     if fr.k < 0:
         return fr, np.zeros((0, 1), dtype=np.int64), np.zeros((0, 1), dtype=np.int64)
     if fr.k == 0:  # one distinct centre: keep[0] is the largest ball there
-        return fr, np.zeros((1, 1), dtype=np.int64), np.full((1, 1), -1, dtype=np.int64)
+        return fr, np.zeros((1, 1), dtype=np.int32), np.full((1, 1), -1, dtype=np.int32)
     simp, nbr = _lower_hull(fr.x, fr.w)
     return fr, simp, nbr
 
@@ -298,7 +309,7 @@ def _triangulate_local(balls: Balls):
 def _triangulate(balls: Balls):
     """Frame and top simplices (input indices, rows ascending, lexsorted)."""
     fr, simp, _ = _triangulate_local(balls)
-    tri = fr.keep[simp]
+    tri = fr.keep[simp].astype(np.int64)
     tri.sort(axis=1)
     if tri.shape[0] > 1:
         tri = tri[np.lexsort(tri.T[::-1])]
