@@ -573,7 +573,7 @@ def measure_from_simplices(centers, weights, simplices, *, tau: float = 0.0) -> 
             continue
         st = np.ascontiguousarray(simp.T)  # (k+1, m)
         # relative coordinates, component-first (k+1, d, m): exact for huge offsets
-        Z = (Zall[st] - Zall[st[0]][None]).transpose(0, 2, 1)
+        Z = np.ascontiguousarray((Zall[st] - Zall[st[0]][None]).transpose(0, 2, 1))
         W = np.maximum(Wall[st], 0.0)
         R = Rall[st]
         P, S = _pieces(Z, W, R, d, k)

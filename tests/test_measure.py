@@ -524,3 +524,28 @@ def test_truncated_naive_formula():
                 for i in range(6) for j in range(i + 1, 6))
     assert two == pytest.approx(one - pairs, rel=1e-12)
     assert naive_union_area(b, max_order=6)[0] == pytest.approx(full, rel=1e-14)
+
+
+@pytest.mark.parametrize("centers, radii", [
+    ([[0, 0], [1, 0], [2, 0]], 0.6),                    # collinear: K has no triangle
+    ([[0, 0], [1, 1]], 0.8),                            # n <= d
+    ([[0, 0], [0.1, 0], [0, 0.1]], [3.0, 0.1, 0.1]),    # all hidden but one
+    ([[0, 0], [0, 0], [0.5, 0]], [1.0, 1.0, 0.7]),      # duplicate centres
+])
+def test_low_dimensional_disks(centers, radii):
+    b = Balls(centers, radii)
+    m = union_measure(b)
+    A, L = union_disks_exact(b.centers, b.radii)
+    assert m.area == pytest.approx(A, rel=1e-12) and m.perimeter == pytest.approx(L, rel=1e-12)
+
+
+@pytest.mark.parametrize("centers", [
+    [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]],        # coplanar and cocircular
+    [[0, 0, 0], [1, 0, 0], [2, 0, 0]],                   # collinear
+    [[0, 0, 0], [1, 0.2, 0.1]],                          # n <= d
+])
+def test_low_dimensional_balls(centers):
+    b = Balls(centers, 0.8)
+    m = union_measure(b)
+    V, S = union_balls_by_slices(b.centers, b.radii)
+    assert rel(m.volume, V) < 1e-7 and rel(m.surface_area, S) < 3e-5
