@@ -517,9 +517,9 @@ def gallery_markdown() -> str:
         "course's colour-blind-safe style, at the 16:9 size of a slide. For your own slides:",
         "",
         "```bash",
-        "python -m shapelab.figures --out figures --format pdf       # all of them (or svg, png)",
-        "python -m shapelab.figures --list                           # their names",
-        "make figures                                                # SVG in book/_build/figures/",
+        "python -m shapelab.figures --out figures --format pdf   # all (or svg, png)",
+        "python -m shapelab.figures --list                       # their names",
+        "make figures                                            # SVG, book/_build/figures",
         "```",
         "",
         "PDF and SVG files are written deterministically: the same input gives the same bytes.",
@@ -531,7 +531,7 @@ def gallery_markdown() -> str:
         if here != section:
             parts += [f"## {here}", ""]
             section = here
-        link = f" ([lesson]({'lessons/' + spec.lesson + '.ipynb'}))" if spec.lesson else ""
+        link = f" ([lesson {spec.lesson[:2]}](lessons/{spec.lesson}.ipynb))" if spec.lesson else ""
         parts += [
             f":::{{figure}} {GALLERY_DIR}/{spec.name}.svg",
             f":name: gallery-{spec.name.replace('_', '-')}",

@@ -25,6 +25,10 @@ pytest.importorskip("nbconvert")
 LESSONS = sorted((ROOT / "lessons").glob("[0-9][0-9]_*.ipynb"))
 # lesson 00 plus the first lesson with displayed math, if there is one besides
 DECK_LESSONS = LESSONS[:1] + [p for p in LESSONS[1:] if "$$" in p.read_text(encoding="utf-8")][:1]
+# and the first lesson whose widgets are stored with their state, to see them in a deck
+WIDGET_LESSON = next((p for p in LESSONS if "application/vnd.jupyter.widget-state+json" in p.read_text(encoding="utf-8")), None)
+if WIDGET_LESSON is not None and WIDGET_LESSON not in DECK_LESSONS:
+    DECK_LESSONS.append(WIDGET_LESSON)
 
 REMOTE = re.compile(r"^(https?:)?//", re.I)
 TAG = re.compile(r"<(script|link|img|source|iframe|video|audio|embed)\b[^>]*>", re.I)
@@ -191,6 +195,16 @@ def test_a_deck_is_a_slide_show_offline_in_chromium(decks, tmp_path):
     assert re.search(r'<section[^>]*class="[^"]*\bpresent\b', dom), "no slide is showing"
     assert re.search(r'<section[^>]*class="[^"]*\bfuture\b', dom), "there is no next slide"
     assert "<mjx-container" in dom, "MathJax did not typeset the formulas"
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="Chromium is not installed (CI installs it: `apt-get install chromium`)")
+def test_widgets_render_offline_in_chromium(decks, tmp_path):
+    if WIDGET_LESSON is None:
+        pytest.skip("no lesson stores widget state yet")
+    dom = _dump_dom((decks / f"{WIDGET_LESSON.stem}.slides.html").as_uri(), tmp_path / "profile")
+    assert re.search(r'class="[^"]*\breveal\b[^"]*\bready\b', dom)
+    views = re.findall(r'class="lm-Widget[^"]*\bwidget-(\w+)', dom)
+    assert views, "the ipywidgets HTML manager rendered no widget from the stored state"
 
 
 @pytest.mark.skipif(CHROMIUM is None, reason="Chromium is not installed (CI installs it: `apt-get install chromium`)")
