@@ -27,6 +27,24 @@ Then, from the top dimension down, an unattached simplex enters at
 rule of GUDHI's ``AlphaComplex`` with weights, and the values agree with it to
 round-off (tested).  In the weighted case the rule also applies to vertices: a ball
 whose centre is covered by a neighbour's power enters later than :math:`-r_i^2`.
+
+Where the notes are imprecise
+-----------------------------
+* The sequence :math:`\\phi = K^1 \\subset \\dots \\subset K^m = D` is called "the
+  dual-complex"; it is the α-*filtration* (of the dual complexes).
+* :math:`K^1 = \\emptyset`, yet "the first dual complex is the set of vertices plus
+  the two thick edges": the notes mean the first *non-empty* complex shown.
+* :math:`D` is "the Delaunay triangulation defined by the set of centers"; for balls
+  of different radii it is the *regular* triangulation, and hidden balls are not
+  vertices of it (see :mod:`shapelab.power`).
+* :math:`\\alpha = \\sqrt{\\tau}` is real only for :math:`\\tau \\ge 0`, while the
+  filtration starts at :math:`\\tau = \\min_i(-r_i^2) \\le 0`; we index by τ throughout.
+* A vertex does not always enter at :math:`-r_i^2`, when its ball "appears": it
+  enters when :math:`B_i(\\tau)` first meets its own cell :math:`\\Pi(B_i)`, which is
+  later if a neighbour's power covers :math:`z_i`.
+* "The topology of :math:`K(\\mathbb{P})` is the same as that of :math:`\\mathbb{P}`":
+  :math:`K` and the union have the same *homotopy type* (nerve theorem), they are
+  not homeomorphic (a triangle of :math:`K` can stand for a region of any shape).
 """
 from __future__ import annotations
 
