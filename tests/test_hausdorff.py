@@ -72,7 +72,7 @@ def point_sets(max_n=25):
     return dims.flatmap(pair)
 
 
-@settings(max_examples=120, deadline=None)
+@settings(max_examples=80, deadline=None)
 @given(point_sets(), st.sampled_from(METHODS))
 def test_directed_equals_brute_force_with_valid_witness(AB, method):
     A, B = AB
@@ -81,7 +81,7 @@ def test_directed_equals_brute_force_with_valid_witness(AB, method):
     assert_witness(A, B, r)
 
 
-@settings(max_examples=80, deadline=None)
+@settings(max_examples=60, deadline=None)
 @given(point_sets(max_n=60), st.sampled_from(["tree", "subset", "probe"]), st.integers(0, 3))
 def test_every_stage_of_the_pruned_algorithm_is_exact(AB, stage, seed):
     """Force each path of the pruned algorithm on small inputs (where ``auto``
@@ -98,7 +98,7 @@ def test_every_stage_of_the_pruned_algorithm_is_exact(AB, stage, seed):
     assert np.sqrt(max(best.d2, floor)) == max(brute_directed(A, B), np.sqrt(floor))
 
 
-@settings(max_examples=80, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(point_sets(), st.sampled_from(METHODS))
 def test_symmetric_distance_is_max_of_directed_and_symmetric(AB, method):
     A, B = AB
