@@ -437,6 +437,8 @@ def _draw_balls_3d(ax, balls, tau, *, highlight=None, half=1.0):
     ax.scatter(*c[base].T, s=s[base], color=COLORS["ball"], alpha=0.3 if highlight is None else 0.12,
                edgecolors="none",
                depthshade=True, zorder=1)
+    ax.scatter(*c[base].T, s=5, color=COLORS["ball_edge"], alpha=0.8, edgecolors="none",
+               depthshade=False, zorder=1.5)  # the centres: structure shows through the blur
     if highlight is not None and len(highlight):
         h = np.asarray(highlight, dtype=np.int64)
         h = h[ok[h]]
