@@ -218,7 +218,7 @@ def barcode(pairs_or_filtration, *, dims=None, tau=None, min_persistence=0.0, ma
         right = hi + 2 * pad
         y = 0
         hidden = 0
-        yticks, ylabels = [], []
+        yticks, ylabels, separators = [], [], []
         for k in dims:
             a = P[k]
             pers = a[:, 1] - a[:, 0]
@@ -242,13 +242,15 @@ def barcode(pairs_or_filtration, *, dims=None, tau=None, min_persistence=0.0, ma
             if len(a):
                 yticks.append(0.5 * (start + y - 1))
                 ylabels.append(_dim_label(k, d))
-                ax.axhline(y - 0.5 + 0.5, color="#dddddd", lw=0.8)
+                separators.append(y)
             y += 1
         if tau is not None:
             ax.axvline(tau, color=COLORS["accent"], lw=1.2, ls="--", label=f"τ = {tau:g}")
             ax.legend(loc="lower right", fontsize=9)
+        for s_ in separators[:-1]:  # a thin line between the groups of bars
+            ax.axhline(s_, color="#dddddd", lw=0.8)
         ax.set_yticks(yticks, ylabels)
-        ax.set_ylim(y - 0.5, -1)
+        ax.set_ylim(max(y - 1.5, 0.5), -1)
         ax.set_xlim(lo - pad, right + pad)
         ax.set_xlabel("growth time τ")
         ax.spines["left"].set_visible(False)
