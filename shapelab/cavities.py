@@ -56,7 +56,8 @@ from __future__ import annotations
 
 import weakref
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cached_property, lru_cache
+from itertools import combinations
 
 import numpy as np
 from scipy.sparse import coo_matrix
@@ -888,75 +889,134 @@ def _segment_integral(kind, h, d, la, lb, r):
     return out
 
 
-def _polygon_order(V, n=None):
-    """Order the vertices of a convex polygon counter-clockwise (about normal n in 3D)."""
-    cen = V.mean(axis=0)
-    if V.shape[1] == 2:
-        return V[np.argsort(np.arctan2(V[:, 1] - cen[1], V[:, 0] - cen[0]))]
-    e1 = V[np.argmax(np.linalg.norm(V - cen, axis=1))] - cen
-    e1 /= np.linalg.norm(e1)
-    e2 = np.cross(n, e1)
-    return V[np.argsort(np.arctan2((V - cen) @ e2, (V - cen) @ e1))]
-
-
 def _ball_clip_measure(A, b, r, eps):
     """Measure of the ball (disk) of radius r at the origin ∩ the bounded polytope
     {x : A x <= b}: a sum of closed-form radial integrals over the polytope's edges
-    (2D) or its faces' edges (3D), signed by the side the centre lies on."""
-    d = A.shape[1]
+    (2D) or its faces' edges (3D), each signed by the side the centre lies on."""
+    if A.shape[1] == 3:
+        return _ball_clip_measure3(A, b, r, eps)
     nA = np.linalg.norm(A, axis=1)
-    dist = b / nA                                   # signed distance of the centre to each plane
+    dist = b / nA                                   # signed distance of the centre to each line
     if np.any(dist <= -r):
-        return 0.0                                  # the ball misses a halfspace
+        return 0.0                                  # the disk misses a halfplane
     if np.all(dist >= r):
-        return np.pi * r * r if d == 2 else 4.0 / 3.0 * np.pi * r ** 3
+        return np.pi * r * r
     V = _poly_vertices(A, b, eps)
-    if V.shape[0] < d + 1:
+    if V.shape[0] < 3:
         return 0.0
-    H, D, LA, LB, S, Wt = [], [], [], [], [], []
-    planes = range(A.shape[0])
-    for q in planes:
+    D, LA, LB, S = [], [], [], []
+    for q in range(A.shape[0]):
         n = A[q] / nA[q]
         on = np.abs(V @ n - dist[q]) <= 10 * eps
-        if on.sum() < d:
+        if on.sum() < 2:
             continue
-        if d == 2:
-            # the edge on this line, oriented counter-clockwise (interior on the left)
-            P = V[on]
-            t = np.array([-n[1], n[0]])
-            P = P[np.argsort(P @ t)]
-            a_, b_ = P[0], P[-1]
-            foot = np.zeros(2)
-            h = 0.0
-            wt = 1.0
-            Fv = [(a_, b_)]
-        else:
-            h = dist[q]
-            if abs(h) <= 1e-14 * r:
-                continue
-            P = _polygon_order(V[on], n)
-            foot = h * n
-            wt = h / 3.0
-            Fv = [(P[i], P[(i + 1) % len(P)]) for i in range(len(P))]
-        for a_, b_ in Fv:
-            ab = b_ - a_
-            L = np.linalg.norm(ab)
-            if L <= 0:
-                continue
-            u = ab / L
-            la = (a_ - foot) @ u
-            lb = (b_ - foot) @ u
-            dd = np.linalg.norm((a_ - foot) - la * u)
-            if d == 2:
-                side = np.sign(_cross2(ab, foot - a_))
-            else:
-                side = np.sign(np.cross(ab, foot - a_) @ n)
-            H.append(h), D.append(dd), LA.append(la), LB.append(lb), S.append(side), Wt.append(wt)
-    if not H:
+        # the edge on this line, oriented counter-clockwise (interior on the left)
+        P = V[on]
+        t = np.array([-n[1], n[0]])
+        P = P[np.argsort(P @ t)]
+        a_, b_ = P[0], P[-1]
+        ab = b_ - a_
+        L = np.linalg.norm(ab)
+        if L <= 0:
+            continue
+        u = ab / L
+        la = a_ @ u
+        D.append(np.linalg.norm(a_ - la * u)), LA.append(la), LB.append(la + L)
+        S.append(np.sign(_cross2(ab, -a_)))
+    if not D:
         return 0.0
-    H, D, LA, LB, S, Wt = (np.asarray(x, dtype=np.float64) for x in (H, D, LA, LB, S, Wt))
-    I = _segment_integral(d, H, D, LA, LB, np.full(H.shape, r))
-    return float(np.sum(Wt * S * I))
+    D, LA, LB, S = (np.asarray(x, dtype=np.float64) for x in (D, LA, LB, S))
+    I = _segment_integral(2, np.zeros_like(D), D, LA, LB, np.full(D.shape, r))
+    return float(np.sum(S * I))
+
+
+def _cross(a, b):
+    return np.stack([a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1],
+                     a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2],
+                     a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]], axis=-1)
+
+@lru_cache(maxsize=64)
+def _triples(p):
+    return np.array(list(combinations(range(p), 3)), dtype=np.int64).reshape(-1, 3)
+
+
+def _vertices3(A, b, eps):
+    """Vertices of the bounded polytope {x : A x <= b} (rows of A unit normals):
+    every triple of planes solved by Cramer's rule, kept if feasible."""
+    idx = _triples(A.shape[0])
+    na, nb, nc = A[idx[:, 0]], A[idx[:, 1]], A[idx[:, 2]]
+    bc, ca, ab = _cross(nb, nc), _cross(nc, na), _cross(na, nb)
+    det = (na * bc).sum(1)
+    ok = np.abs(det) > 1e-12
+    X = (b[idx[ok, 0], None] * bc[ok] + b[idx[ok, 1], None] * ca[ok] + b[idx[ok, 2], None] * ab[ok]) / det[ok, None]
+    X = X[np.all(X @ A.T <= b + eps, axis=1)]
+    if X.shape[0] <= 1:
+        return X
+    key = np.round(X / (100 * eps)).astype(np.int64)
+    _, first = np.unique(key, axis=0, return_index=True)
+    return X[np.sort(first)]
+
+_BOX = np.vstack([np.eye(3), -np.eye(3)])
+_REF = (np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]))
+
+def _ball_clip_measure3(A, b, r, eps):
+    """Volume of the ball of radius r at the origin ∩ the bounded polytope {x : A x <= b}.
+
+    Planes the ball lies inside are dropped (a box around the ball keeps the polytope
+    bounded); the faces of what is left, with their edges in counter-clockwise order,
+    are found at once from the vertex–plane incidences, and the volume is the sum of
+    closed-form radial integrals over those edges (see :func:`_segment_integral`).
+    """
+    nA = np.sqrt((A * A).sum(1))
+    dist = b / nA
+    if np.any(dist <= -r):
+        return 0.0
+    cut = dist < r
+    if not np.any(cut):
+        return 4.0 / 3.0 * np.pi * r ** 3
+    A2 = np.concatenate([A[cut] / nA[cut, None], _BOX])
+    b2 = np.concatenate([dist[cut], np.full(6, 2.0 * r)])
+    V = _vertices3(A2, b2, eps)
+    if V.shape[0] < 4:
+        return 0.0
+    inc = np.abs(V @ A2.T - b2) <= 10 * eps
+    cnt = inc.sum(axis=0)
+    planes = np.flatnonzero(cnt >= 3)
+    sub = inc[:, planes]
+    vi, qi = np.nonzero(sub)
+    q = planes[qi]
+    n = A2[q]
+    c = ((sub.T @ V) / cnt[planes][:, None])[qi]
+    ref = np.where(np.abs(n[:, :1]) < 0.6, _REF[0], _REF[1])
+    e1 = _cross(n, ref)
+    e1 /= np.sqrt((e1 * e1).sum(1))[:, None]
+    e2 = _cross(n, e1)
+    rel = V[vi] - c
+    ang = np.arctan2((rel * e2).sum(1), (rel * e1).sum(1))
+    o = np.lexsort((ang, q))
+    vi, q = vi[o], q[o]
+    m = q.size
+    first = np.concatenate(([True], q[1:] != q[:-1]))
+    last = np.concatenate((q[1:] != q[:-1], [True]))
+    gs = np.maximum.accumulate(np.where(first, np.arange(m), 0))
+    nxt = np.arange(1, m + 1)
+    nxt[last] = gs[last]
+    a_ = V[vi]
+    ab = V[vi[nxt]] - a_
+    n = A2[q]
+    h = b2[q]
+    foot = h[:, None] * n
+    L = np.sqrt((ab * ab).sum(1))
+    ok = (L > 0) & (np.abs(h) > 1e-14 * r)
+    a_, ab, L, n, h, foot = a_[ok], ab[ok], L[ok], n[ok], h[ok], foot[ok]
+    u = ab / L[:, None]
+    rel = a_ - foot
+    la = (rel * u).sum(1)
+    perp = rel - la[:, None] * u
+    dd = np.sqrt((perp * perp).sum(1))
+    side = np.sign((_cross(ab, foot - a_) * n).sum(1))
+    I = _segment_integral(3, h, dd, la, la + L, np.full(h.shape, r))
+    return float(np.sum(h / 3.0 * side * I))
 
 
 def _simplex_halfspaces(X):
