@@ -433,6 +433,35 @@ def test_all_hidden_but_the_hull_corners(d):
     assert_same_as_gudhi(balls)
 
 
+@pytest.mark.parametrize(
+    "points",
+    [
+        # found by hypothesis: 1, 2, 3 collinear inside a coplanar quadruple
+        [(0, 0, 0), (1, 2, 2), (2, 1, 2), (0, 3, 2)],
+        # found by hypothesis: a cocircular rectangle seen by a cospherical apex,
+        # which Qhull's "Qt" split in two ways glued by a flat tetrahedron
+        [(0, 0, 0), (0, 0, 1), (0, 0, 2), (0, 1, 2), (2, 0, 0), (2, 1, 0), (3, 0, 0)],
+    ],
+)
+def test_degenerate_regressions(points):
+    assert_topology_matches_gudhi(Balls(np.array(points, float), 0.0))
+
+
+def test_degenerate_regression_steep_vertical_facet():
+    # found by a random stress run: 37 integer points (27 distinct) in {0..3}^3;
+    # after the re-lift that removes flat tetrahedra, a hull face with four coplanar
+    # points came out of Qhull with a normal's height component of -2e-6 instead of 0
+    digits = (
+        "3231221112101323320112032003001110232132301233023131120133132131113220322"
+        "00012323323002110031221013320311210110"
+    )
+    c = np.array([int(ch) for ch in digits], float).reshape(-1, 3)
+    F = assert_topology_matches_gudhi(Balls(c, 0.3))
+    T = F.simplices(3)
+    vol = np.abs(np.linalg.det(c[T[:, 1:]] - c[T[:, :1]]))
+    assert np.all(vol > 1e-9)
+
+
 @settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
     pts=st.lists(st.tuples(st.integers(0, 3), st.integers(0, 3), st.integers(0, 2)), min_size=1, max_size=25),
