@@ -404,7 +404,8 @@ def l09_betti_curve():
           needs=("datasets.globule", "plot.pockets"))
 def l10_globule_pockets():
     fig, ax = _slide(projection="3d")
-    _plot().pockets(_datasets().globule(), ax=ax)
+    # the four pockets that persist (the others are crevices between atoms, gone at once)
+    _plot().pockets(_datasets().globule(), ax=ax, min_persistence=0.5)
     return fig
 
 
@@ -469,10 +470,10 @@ def l13_icp_step():
           source="Lesson 13", lesson="13_icp",
           needs=("registration.sample_shape", "icp", "RigidMotion", "plot.icp_convergence"))
 def l13_icp_convergence():
-    source, target, truth = _icp_example(500)
+    source, target, truth = _icp_example(400)
     runs = {
-        "plain": _sl().icp(source, target, max_iter=100, tol=1e-10, accelerate=False),
-        "accelerated": _sl().icp(source, target, max_iter=100, tol=1e-10),
+        "plain": _sl().icp(source, target, max_iter=60, tol=1e-10, accelerate=False),
+        "accelerated": _sl().icp(source, target, max_iter=60, tol=1e-10),
     }
     fig, ax = _slide()
     _plot().icp_convergence(runs, truth=truth, ax=ax)
