@@ -889,12 +889,12 @@ def _segment_integral(kind, h, d, la, lb, r):
     return out
 
 
-def _ball_clip_measure(A, b, r, eps):
+def _ball_clip_measure(A, b, r, eps, keep=0):
     """Measure of the ball (disk) of radius r at the origin ∩ the bounded polytope
     {x : A x <= b}: a sum of closed-form radial integrals over the polytope's edges
     (2D) or its faces' edges (3D), each signed by the side the centre lies on."""
     if A.shape[1] == 3:
-        return _ball_clip_measure3(A, b, r, eps)
+        return _ball_clip_measure3(A, b, r, eps, keep)
     nA = np.linalg.norm(A, axis=1)
     dist = b / nA                                   # signed distance of the centre to each line
     if np.any(dist <= -r):
@@ -959,11 +959,12 @@ def _vertices3(A, b, eps):
 _BOX = np.vstack([np.eye(3), -np.eye(3)])
 _REF = (np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]))
 
-def _ball_clip_measure3(A, b, r, eps):
+def _ball_clip_measure3(A, b, r, eps, keep=0):
     """Volume of the ball of radius r at the origin ∩ the bounded polytope {x : A x <= b}.
 
-    Planes the ball lies inside are dropped (a box around the ball keeps the polytope
-    bounded); the faces of what is left, with their edges in counter-clockwise order,
+    Planes the ball lies inside are dropped, except the first ``keep`` rows (which
+    must bound the polytope on their own; with ``keep=0`` a box around the ball does
+    that instead); the faces of what is left, with their edges in counter-clockwise order,
     are found at once from the vertex–plane incidences, and the volume is the sum of
     closed-form radial integrals over those edges (see :func:`_segment_integral`).
     """
@@ -974,8 +975,12 @@ def _ball_clip_measure3(A, b, r, eps):
     cut = dist < r
     if not np.any(cut):
         return 4.0 / 3.0 * np.pi * r ** 3
-    A2 = np.concatenate([A[cut] / nA[cut, None], _BOX])
-    b2 = np.concatenate([dist[cut], np.full(6, 2.0 * r)])
+    if keep:
+        cut[:keep] = True
+        A2, b2 = A[cut] / nA[cut, None], dist[cut]
+    else:
+        A2 = np.concatenate([A[cut] / nA[cut, None], _BOX])
+        b2 = np.concatenate([dist[cut], np.full(6, 2.0 * r)])
     V = _vertices3(A2, b2, eps)
     if V.shape[0] < 4:
         return 0.0
@@ -1114,6 +1119,6 @@ def free_measure(balls, tau, cells) -> np.ndarray:
             bp = (Z[js] ** 2).sum(1) - (Z[i] ** 2).sum() - R[js] ** 2 + R[i] ** 2
             A = np.vstack([As, Ap])
             b = np.concatenate([bs, bp])
-            covered += _ball_clip_measure(A, b - A @ Z[i], float(R[i]), eps)
+            covered += _ball_clip_measure(A, b - A @ Z[i], float(R[i]), eps, keep=d + 1)
         out[m] = meas - covered
     return out
