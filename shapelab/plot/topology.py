@@ -439,8 +439,9 @@ def _draw_balls_3d(ax, balls, tau, *, highlight=None, half=1.0):
     ax.scatter(*c[base].T, s=s[base], color=COLORS["ball"], alpha=0.3 if highlight is None else 0.12,
                edgecolors="none",
                depthshade=True, zorder=1)
-    ax.scatter(*c[base].T, s=5, color=COLORS["ball_edge"], alpha=0.8, edgecolors="none",
-               depthshade=False, zorder=1.5)  # the centres: structure shows through the blur
+    if highlight is None:  # the centres: the structure shows through the blur (tunnel figures)
+        ax.scatter(*c[base].T, s=5, color=COLORS["ball_edge"], alpha=0.8, edgecolors="none",
+                   depthshade=False, zorder=1.5)
     if highlight is not None and len(highlight):
         h = np.asarray(highlight, dtype=np.int64)
         h = h[ok[h]]
@@ -694,7 +695,7 @@ def _draw_features(balls, tau, V, Pk, T, *, ax, show_complex, elev, azim, title,
                 ax.scatter(*pts.T, s=3, color=_pocket_color(i), alpha=0.9, depthshade=False, zorder=3)
                 mouth = np.asarray(_field(p, "mouth"), dtype=np.int64).reshape(-1, 3)
                 if len(mouth):
-                    ax.add_collection3d(Poly3DCollection(c[mouth], facecolors=_rgba(COLORS["mouth"], 0.35),
+                    ax.add_collection3d(Poly3DCollection(c[mouth], facecolors=_rgba(COLORS["mouth"], 0.2),
                                                          edgecolors=_rgba(COLORS["mouth"], 0.8), linewidths=0.4,
                                                          zorder=4))
                 legend.append(Patch(color=_pocket_color(i), label="pocket " + _feature_label("P", i, p, d,
