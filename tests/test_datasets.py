@@ -402,6 +402,11 @@ def test_figure_23_1_has_two_triangles_at_zero():
     (lambda: D.ring(2), ValueError),
     (lambda: D.ring(5, dim=4), ValueError),
     (lambda: D.globule_structure(0, colour="red"), TypeError),
+    (lambda: D.swiss_cheese(disk_radius=0), ValueError),
+    (lambda: D.nested_pockets(disk_radius=-1), ValueError),
+    (lambda: D.mixed_dent(gap="wide"), TypeError),
+    (lambda: D.figure_23_2(disk_radius=np.inf), ValueError),
+    (lambda: D.bowl(radius=0), ValueError),
 ])
 def test_bad_input(call, exc):
     with pytest.raises(exc):

@@ -449,14 +449,6 @@ def _draw_balls_3d(ax, balls, tau, *, highlight=None, half=1.0):
                    linewidths=0.3, depthshade=True, zorder=2)
 
 
-def _boundary_faces(cells):
-    """Triangles on the boundary of a set of tetrahedra (faces used by one cell)."""
-    faces = np.concatenate([cells[:, [1, 2, 3]], cells[:, [0, 2, 3]], cells[:, [0, 1, 3]], cells[:, [0, 1, 2]]])
-    faces = np.sort(faces, axis=1)
-    u, cnt = np.unique(faces, axis=0, return_counts=True)
-    return u[cnt == 1]
-
-
 def _features_or_compute(balls, features, tau, fn_name, filtration=None, **kw):
     if features is None:
         import shapelab
