@@ -64,4 +64,4 @@ bench: $(VENV)/.installed-bench
 	$(PY) -m benchmarks $(CASE)
 
 clean:
-	rm -rf book/_build book/lessons book/_vendor dist .pytest_cache
+	rm -rf book/_build book/lessons book/_extra book/_gallery dist .pytest_cache
