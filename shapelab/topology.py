@@ -9,9 +9,9 @@ holes (:math:`k = 1`) and voids (:math:`k = 2` in 3D) of that union.  Persistenc
 each feature's birth with its death as :math:`\\tau` grows; this is the hierarchy "big
 voids against small ones" that the notes describe at the end of §23.1.
 
-Where the notes are imprecise: "the topology of :math:`K(\mathbb{P})` is the same as
-that of :math:`\mathbb{P}`" -- :math:`K_\tau` and the union are homotopy equivalent
-(the union deformation-retracts onto :math:`|K_\tau|`), not homeomorphic; homotopy
+Where the notes are imprecise: "the topology of :math:`K(\\mathbb{P})` is the same as
+that of :math:`\\mathbb{P}`" -- :math:`K_\\tau` and the union are homotopy equivalent
+(the union deformation-retracts onto :math:`|K_\\tau|`), not homeomorphic; homotopy
 equivalence is exactly what makes their Betti numbers and persistence agree.
 
 Algorithms (Delfinado & Edelsbrunner's incremental method, made array-friendly):
