@@ -93,3 +93,20 @@ def test_no_network(lesson):
         assert not re.search(r"\b(urllib|requests|http\.client|urlopen|wget|curl)\b", c.source), (
             f"{path.name}: lessons never use the network"
         )
+
+
+LINK = re.compile(r"\]\(([^)\s#]+\.(?:ipynb|md))(?:#[^)]*)?\)")
+
+
+def test_links_between_lessons_resolve(lesson):
+    """A cross-reference such as ``[Figure 23.1](01_power_diagrams.ipynb)`` must name a real
+    lesson: the book turns it into a page link, and a typo there is a dead link on the site."""
+    path, nb = lesson
+    dead = [
+        f"cell {i}: {m.group(0)}"
+        for i, c in enumerate(nb.cells)
+        if c.cell_type == "markdown"
+        for m in LINK.finditer(c.source)
+        if not (path.parent / m.group(1)).exists()
+    ]
+    assert not dead, f"{path.name} links to missing files: {dead}"
