@@ -188,7 +188,7 @@ def read_pdb(path, *, probe=0.0, default_radius=None) -> PDBStructure:
         raise ValueError(f"{os.fspath(path)!r} is empty: no ATOM or HETATM records")
     text = raw.decode("latin-1")  # never fails; non-ASCII bytes then fail as bad fields
 
-    xyz, names, resn, resi, chain, elem, het = [], [], [], [], [], [], []
+    xyz, names, resn, resi, chain, elem, het, where = [], [], [], [], [], [], [], []
     altloc_kept = None
     for lineno, line in enumerate(text.splitlines(), start=1):
         rec = line[:6].rstrip()
@@ -238,6 +238,7 @@ def read_pdb(path, *, probe=0.0, default_radius=None) -> PDBStructure:
         chain.append(line[21].strip())
         elem.append(e)
         het.append(rec == "HETATM")
+        where.append(lineno)
 
     if not xyz:
         raise ValueError(f"{os.fspath(path)!r} holds no ATOM or HETATM records (before END/ENDMDL)")
@@ -251,7 +252,7 @@ def read_pdb(path, *, probe=0.0, default_radius=None) -> PDBStructure:
             radii[i] = default_radius
         else:
             raise ValueError(
-                f"element {e!r} (atom {names[i]!r}, residue {resn[i]} {resi[i]}) has no van der "
+                f"line {where[i]}: element {e!r} (atom {names[i]!r}, residue {resn[i]} {resi[i]}) has no van der "
                 f"Waals radius in Bondi's (1964) table; pass default_radius= to use one"
             )
     balls = Balls(np.array(xyz, dtype=np.float64), radii + probe)

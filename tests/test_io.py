@@ -107,7 +107,7 @@ def test_element_from_atom_name_when_columns_blank(tmp_path):
 # --------------------------------------------------------------- errors
 def test_unknown_element(tmp_path):
     p = write(tmp_path, [atom(1), atom(2, "FE  ", resn="HEM", element="FE", rec="HETATM")])
-    with pytest.raises(ValueError, match="'Fe'.*default_radius"):
+    with pytest.raises(ValueError, match=r"line 2: element 'Fe'.*default_radius"):
         read_pdb(p)
     s = read_pdb(p, default_radius=2.0, probe=0.5)
     assert s.balls.radii.tolist() == [1.7 + 0.5, 2.0 + 0.5]
