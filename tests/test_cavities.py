@@ -447,6 +447,36 @@ def test_flat_inputs_have_no_voids_but_can_have_tunnels():
     assert sl.voids(line, 0.0) == () and sl.pockets(line, 0.0) == ()
 
 
+@pytest.mark.parametrize("offset", [0.0, 1e6])
+@pytest.mark.parametrize("dim, n, r", [(2, 5, 0.6), (3, 4, 0.75)])
+def test_grids_through_our_filtration(dim, n, r, offset):
+    """Integer grids, every square (cube) co-circular (co-spherical), through shapelab's own
+    alpha_filtration.  Counts from the geometry: neighbours overlap (r > 1/2); in 2D with
+    r < sqrt(2)/2 each unit square keeps its centre free, a hole; in 3D with
+    sqrt(2)/2 < r < sqrt(3)/2 every face is covered but each cube's centre is not, a void."""
+    g = np.stack(np.meshgrid(*[np.arange(n, dtype=float)] * dim, indexing="ij"), -1).reshape(-1, dim)
+    balls = sl.Balls(g + offset, r)
+    cells = (n - 1) ** dim
+    vs = sl.voids(balls, 0.0)
+    assert len(vs) == cells
+    assert sl.alpha_filtration(balls).betti(0.0) == ((1, cells, 0) if dim == 2 else (1, 0, cells, 0))
+    if dim == 3:
+        assert sl.tunnels(balls, 0.0) == ()
+    # all cells are congruent: the same free measure, and the centre of each is free
+    vols = np.array([v.volume for v in vs])
+    np.testing.assert_allclose(vols, vols[0], rtol=1e-9)
+
+
+def test_flat_ring_through_our_filtration():
+    """Twelve balls on a circle in the plane z = 0 (all centres coplanar and cocircular):
+    no void, one tunnel that winds around the axis."""
+    t = 2 * np.pi * np.arange(12) / 12
+    flat = sl.Balls(np.c_[3 * np.cos(t), 3 * np.sin(t), np.zeros(12)], 1.0)
+    assert sl.voids(flat, 0.0) == () and sl.pockets(flat, 0.0) == ()
+    tn = sl.tunnels(flat, 0.0)
+    assert len(tn) == 1 and winding_parity(tn[0].cycle, flat.centers) == 1
+
+
 def test_results_are_frozen():
     v = C.voids(ring(8, 3.0, 1.2), 0.0)[0]
     with pytest.raises(AttributeError):
