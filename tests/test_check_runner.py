@@ -190,3 +190,41 @@ def test_allclose_semantics():
     assert not eq(1.0, "one")
     assert not eq(1.0, None)
     assert eq(np.array([1.0, 2.0]), [1.0, 2.0]), "lists and arrays compare by value"
+
+
+def test_endless_loop_is_stopped_and_reported(capsys):
+    import signal
+    import time
+
+    def forever(v):
+        while True:  # the student's own broad except must not swallow the stop
+            try:
+                time.sleep(0.01)
+            except Exception:
+                pass
+
+    def sentinel(signum, frame):  # pragma: no cover - never fires
+        pass
+
+    previous = signal.signal(signal.SIGALRM, sentinel)
+    try:
+        t0 = time.perf_counter()
+        result, out, err = _run(forever, capsys, time_limit=0.3)
+        assert time.perf_counter() - t0 < 5
+        assert not result.passed and result.n_cases == 1
+        assert "more than 0.3 s" in out and "never ends" in out and err == ""
+        # the alarm is switched off and the caller's handler restored
+        assert signal.getitimer(signal.ITIMER_REAL) == (0.0, 0.0)
+        assert signal.getsignal(signal.SIGALRM) is sentinel
+    finally:
+        signal.signal(signal.SIGALRM, previous)
+
+
+def test_unprintable_answer_is_a_failure_not_a_crash(capsys):
+    class Weird:
+        def __repr__(self):
+            raise RuntimeError("no repr")
+
+    result, out, err = _run(lambda v: Weird(), capsys)
+    assert not result.passed
+    assert "cannot be shown" in out and "RuntimeError" in out and err == ""

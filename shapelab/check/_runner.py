@@ -6,7 +6,10 @@ it shows the first failing input, the expected value and the received value.
 """
 from __future__ import annotations
 
+import signal
+import threading
 import traceback
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any, Callable, Iterable
 
@@ -58,12 +61,45 @@ def allclose(atol: float = 1e-8, rtol: float = 1e-6) -> Callable[[Any, Any], boo
 
 
 def _short(x: Any, limit: int = 300) -> str:
-    if isinstance(x, np.ndarray):
-        with np.printoptions(precision=6, suppress=True, threshold=20):
-            text = np.array2string(x)
-    else:
-        text = repr(x)
+    try:
+        if isinstance(x, np.ndarray):
+            with np.printoptions(precision=6, suppress=True, threshold=20):
+                text = np.array2string(x)
+        else:
+            text = repr(x)
+    except Exception as exc:  # a student's object whose repr fails must not crash the check
+        text = f"<a {type(x).__name__} that cannot be shown: {type(exc).__name__}: {exc}>"
     return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+class _TooSlow(BaseException):
+    """Raised into the student's code when a case runs over its time limit.  A
+    BaseException, so that the student's own ``except Exception`` cannot swallow it."""
+
+
+@contextmanager
+def _time_limit(seconds: float | None):
+    """Interrupt the block after ``seconds`` (POSIX, main thread: where a kernel runs
+    cells).  Elsewhere, or with ``seconds=None``, there is no limit."""
+    usable = (
+        seconds is not None
+        and hasattr(signal, "setitimer")
+        and threading.current_thread() is threading.main_thread()
+    )
+    if not usable:
+        yield
+        return
+
+    def fire(signum, frame):
+        raise _TooSlow
+
+    previous = signal.signal(signal.SIGALRM, fire)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
 
 
 def run_check(
@@ -75,6 +111,7 @@ def run_check(
     *,
     describe: Callable[[tuple], str] | None = None,
     quiet: bool = False,
+    time_limit: float | None = 10.0,
 ) -> CheckResult:
     """Run ``student(*case)`` against ``reference(*case)`` for every case.
 
@@ -94,6 +131,9 @@ def run_check(
         Formats a case for the message; defaults to ``repr`` of the arguments.
     quiet : bool
         Do not print; only return the result.
+    time_limit : float or None
+        Seconds one case may take before the check stops it and reports a loop that
+        never ends (POSIX main thread only); None for no limit.
     """
     compare = compare or allclose()
     if not callable(student):
@@ -107,7 +147,16 @@ def run_check(
         shown = describe(case) if describe else ", ".join(_short(a) for a in case)
         expected = reference(*case)
         try:
-            received = student(*[np.copy(a) if isinstance(a, np.ndarray) else a for a in case])
+            with _time_limit(time_limit):
+                received = student(*[np.copy(a) if isinstance(a, np.ndarray) else a for a in case])
+        except _TooSlow:
+            msg = (
+                f"✗ {name}: your function ran for more than {time_limit:g} s on input: {shown}\n"
+                f"  Is there a loop that never ends?"
+            )
+            if not quiet:
+                print(msg)
+            return CheckResult(name, False, n, msg)
         except NotImplementedError:
             msg = f"… {name}: not implemented yet. Replace the placeholder with your code and run the cell again."
             if not quiet:
