@@ -161,3 +161,283 @@ class AlphaExplorer(W.VBox):
     def __repr__(self):
         return (f"AlphaExplorer(n_balls={len(self._balls)}, tau={self.slider.value:.3f}, "
                 f"range=({self.slider.min:.3f}, {self.slider.max:.3f}))")
+
+
+# --------------------------------------------------------------------------- power
+def power_explorer(balls, *, index=0, radius=None, radius_range=None, steps=100, mode="diagram", bbox=None):
+    """Change one disk's radius and watch its power cell (Notes §23.1).
+
+    The power distance :math:`\\pi_i(x) = \\|x - z_i\\|^2 - r_i^2` makes a larger disk
+    push the bisectors away from its centre; shrink it far enough and its cell
+    :math:`\\Pi(B_i)` empties: the disk is *hidden* and leaves the regular
+    triangulation.  With ``mode="dual"`` the figure is Figure 23.1 (i) instead: the
+    clipped cells :math:`B_i \\cap \\Pi(B_i)` and the dual complex K, whose edges
+    come and go as the disk grows and shrinks.
+
+    Parameters
+    ----------
+    balls : Balls
+        2D disks.
+    index : int
+        The disk whose radius the slider sets (a second slider picks another).
+    radius : float, optional
+        Its initial radius; default its own.
+    radius_range : (float, float), optional
+        Slider bounds, ``0 <= low < high``; default ``(0, 2 max r)``.
+    steps : int
+        Slider resolution.
+    mode : {"diagram", "dual"}
+        Draw the power diagram, or the dual complex of Figure 23.1 (i).
+    bbox : array_like (2, 2), optional
+        The view and clipping box; default from the disks at the largest radius, so
+        the frame stays still while the slider moves.
+
+    Returns
+    -------
+    PowerExplorer
+        An ``ipywidgets.VBox``: the two sliders, a status line and the figure.
+    """
+    from ..balls import Balls
+    from ..power import _as_bbox, _default_bbox
+
+    if not isinstance(balls, Balls):
+        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+    if balls.dim != 2:
+        raise ValueError(f"power_explorer draws disks: balls must be 2D, got {balls.dim}D")
+    if len(balls) < 2:
+        raise ValueError(f"balls must hold at least two disks to have a power diagram, got {len(balls)}")
+    if mode not in ("diagram", "dual"):
+        raise ValueError(f"mode must be 'diagram' or 'dual', got {mode!r}")
+    if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or not 0 <= index < len(balls):
+        raise ValueError(f"index must be an integer in [0, {len(balls)}), got {index!r}")
+    steps = as_positive_int(steps, "steps", minimum=2)
+    if radius_range is None:
+        lo, hi = 0.0, 2.0 * float(balls.radii.max()) or 1.0
+    else:
+        try:
+            lo, hi = (as_finite_scalar(v, "radius_range", nonnegative=True) for v in radius_range)
+        except TypeError:
+            raise TypeError("radius_range must be a pair (low, high) of numbers >= 0") from None
+        if not lo < hi:
+            raise ValueError(f"radius_range must have low < high, got {tuple(radius_range)!r}")
+    r0 = float(balls.radii[index]) if radius is None else as_finite_scalar(radius, "radius", nonnegative=True)
+    if bbox is None:
+        bbox = _default_bbox(Balls(balls.centers, np.full(len(balls), max(hi, float(balls.radii.max())))))
+    else:
+        bbox = _as_bbox(bbox, 2)
+    return PowerExplorer(balls, int(index), min(max(r0, lo), hi), lo, hi, (hi - lo) / steps, mode, bbox)
+
+
+class PowerExplorer(W.VBox):
+    """Disk selector + radius slider + status + figure; see :func:`power_explorer`.
+
+    Attributes
+    ----------
+    disk, slider : ipywidgets.IntSlider, ipywidgets.FloatSlider
+    status : ipywidgets.HTML
+    image : ipywidgets.Image
+    diagram : PowerDiagram
+        The power diagram drawn now.
+    """
+
+    SIZE = (7.2, 5.4)
+
+    def __init__(self, balls, index, radius, lo, hi, step, mode, bbox):
+        from . import _frame
+
+        self._balls = balls
+        self._radii = balls.radii.copy()
+        self._mode = mode
+        self._bbox = bbox
+        self.disk = W.IntSlider(value=index, min=0, max=len(balls) - 1, description="disk",
+                                continuous_update=False, layout=W.Layout(width="30%"))
+        self.slider = W.FloatSlider(value=radius, min=lo, max=hi, step=step, description="radius",
+                                    continuous_update=False, readout_format=".3f", layout=W.Layout(width="55%"))
+        self.status = W.HTML()
+        self.image = _frame.image(self.SIZE)
+        super().__init__([W.HBox([self.disk, self.slider]), self.status, self.image])
+        self.disk.observe(self._on_disk, names="value")
+        self.slider.observe(self._redraw, names="value")
+        self._redraw()
+
+    @property
+    def balls(self):
+        """The disks drawn now: the input with the chosen disk's radius replaced."""
+        from ..balls import Balls
+
+        r = self._radii.copy()
+        r[self.disk.value] = self.slider.value
+        return Balls(self._balls.centers, r)
+
+    def _on_disk(self, change):
+        # the new disk starts at its own radius; the redraw happens once
+        with self.slider.hold_trait_notifications():
+            self.slider.value = min(max(float(self._radii[self.disk.value]), self.slider.min), self.slider.max)
+        self._redraw()
+
+    def status_text(self) -> str:
+        i = self.disk.value
+        pd = self.diagram
+        parts = [f"disk {i}: r = {self.slider.value:.3f}"]
+        if pd.hidden[i]:
+            parts.append("its cell is empty: <b>hidden</b>")
+        else:
+            k = int(np.count_nonzero((pd.adjacency == i).any(axis=1)))
+            parts.append(f"{k} neighbouring cells")
+        hidden = np.flatnonzero(pd.hidden)
+        parts.append(f"hidden disks: {', '.join(map(str, hidden))}" if hidden.size else "no hidden disks")
+        if self._mode == "dual":
+            from ..filtration import alpha_filtration
+
+            n = alpha_filtration(self.balls).complex_at(0.0).counts()
+            n = tuple(n) + (0,) * (3 - len(n))
+            parts.append(f"K: {n[0]} vertices, {n[1]} edges, {n[2]} triangles")
+        return " · ".join(parts)
+
+    def figure(self):
+        """The current figure."""
+        from .. import plot
+
+        i = self.disk.value
+        if self._mode == "dual":
+            fig = plot.dual_complex(self.balls, 0.0, bbox=self._bbox, labels=True,
+                                    title=f"Disk {i} at radius {self.slider.value:.2f}: cells and dual complex K")
+        else:
+            fig = plot.power_diagram(self.diagram, labels=True,
+                                     title=f"Disk {i} at radius {self.slider.value:.2f}: the power diagram")
+        from matplotlib.patches import Circle
+
+        ax = fig.axes[0]
+        ax.add_patch(Circle(self._balls.centers[i], self.slider.value, fill=False, lw=2.5,
+                            color=plot.COLORS["accent"], zorder=6))
+        fig.set_size_inches(*self.SIZE)
+        return fig
+
+    def _redraw(self, change=None):
+        from . import _frame
+        from ..power import power_diagram
+
+        self.diagram = power_diagram(self.balls, bbox=self._bbox)
+        self.status.value = self.status_text()
+        self.image.value = _frame.png(self.figure())
+
+    def __repr__(self):
+        return (f"PowerExplorer(n_balls={len(self._balls)}, disk={self.disk.value}, "
+                f"radius={self.slider.value:.3f}, mode={self._mode!r})")
+
+
+# --------------------------------------------------------------------------- 3D
+def complex3d_explorer(balls, *, tau=0.0, tau_range=None, steps=60, azim=35.0, elev=20.0, filtration=None,
+                       show_balls=True, resolution=8):
+    """The growth model in 3D: a slider in τ and one for the view angle (Notes §23.1).
+
+    Draws the balls grown to :math:`\\sqrt{r_i^2+\\tau}` (translucent) and the dual
+    complex :math:`K_\\tau`, shaded by entry time, with its numbers of simplices and
+    Betti numbers (β₀ components, β₁ tunnels, β₂ voids) in the status line.
+
+    Parameters
+    ----------
+    balls : Balls
+        3D balls.
+    tau : float
+        Initial growth time.
+    tau_range : (float, float), optional
+        Slider bounds; default as for :func:`alpha_explorer`.
+    steps : int
+        Resolution of the τ slider.
+    azim, elev : float
+        Initial view angles in degrees; the second slider turns the azimuth.
+    filtration : Filtration, optional
+        ``alpha_filtration(balls)`` if already computed.
+    show_balls : bool
+        Draw the grown balls as well as the complex.
+    resolution : int
+        Sphere resolution of the balls.
+
+    Returns
+    -------
+    Complex3DExplorer
+        An ``ipywidgets.VBox``: the sliders, a status line and the figure.
+    """
+    from ..balls import Balls
+    from ..filtration import alpha_filtration
+
+    if not isinstance(balls, Balls):
+        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+    if balls.dim != 3:
+        raise ValueError(f"complex3d_explorer draws balls: balls must be 3D, got {balls.dim}D (see alpha_explorer)")
+    if len(balls) == 0:
+        raise ValueError("balls must hold at least one ball")
+    tau = as_finite_scalar(tau, "tau")
+    azim = as_finite_scalar(azim, "azim")
+    elev = as_finite_scalar(elev, "elev")
+    steps = as_positive_int(steps, "steps", minimum=2)
+    resolution = as_positive_int(resolution, "resolution", minimum=3)
+    F = alpha_filtration(balls) if filtration is None else filtration
+    if tau_range is None:
+        lo, hi = _default_range(F)
+    else:
+        try:
+            lo, hi = (as_finite_scalar(v, "tau_range") for v in tau_range)
+        except TypeError:
+            raise TypeError("tau_range must be a pair (low, high) of finite numbers") from None
+        if not lo < hi:
+            raise ValueError(f"tau_range must have low < high, got {tuple(tau_range)!r}")
+    return Complex3DExplorer(balls, F, min(max(tau, lo), hi), lo, hi, (hi - lo) / steps, azim % 360.0, elev,
+                             bool(show_balls), resolution)
+
+
+class Complex3DExplorer(W.VBox):
+    """τ slider + azimuth slider + status + figure; see :func:`complex3d_explorer`."""
+
+    SIZE = (7.0, 5.6)
+
+    def __init__(self, balls, F, tau, lo, hi, step, azim, elev, show_balls, resolution):
+        from . import _frame
+
+        self._balls = balls
+        self._F = F
+        self._elev = elev
+        self._show_balls = show_balls
+        self._resolution = resolution
+        self.slider = W.FloatSlider(value=tau, min=lo, max=hi, step=step, description="τ",
+                                    continuous_update=False, readout_format=".3f", layout=W.Layout(width="50%"))
+        self.azim = W.FloatSlider(value=azim, min=0.0, max=360.0, step=5.0, description="turn",
+                                  continuous_update=False, readout_format=".0f", layout=W.Layout(width="35%"))
+        self.status = W.HTML()
+        self.image = _frame.image(self.SIZE)
+        super().__init__([W.HBox([self.slider, self.azim]), self.status, self.image])
+        self.slider.observe(self._redraw, names="value")
+        self.azim.observe(self._redraw, names="value")
+        self._redraw()
+
+    @property
+    def tau(self) -> float:
+        return float(self.slider.value)
+
+    def status_text(self) -> str:
+        t = self.tau
+        n = tuple(self._F.complex_at(t).counts()) + (0,) * 4
+        alpha = f"α = √τ = {np.sqrt(t):.3f}" if t >= 0 else "α undefined (τ < 0)"
+        b = self._F.betti(t)
+        return (f"τ = {t:.3f} · {alpha} · K: {n[0]} vertices, {n[1]} edges, {n[2]} triangles, "
+                f"{n[3]} tetrahedra · β₀ = {b[0]} components, β₁ = {b[1]} tunnels, β₂ = {b[2]} voids")
+
+    def figure(self):
+        from .. import plot
+
+        fig = plot.complex3d(self._F, tau=self.tau, show_balls=self._show_balls, elev=self._elev,
+                             azim=float(self.azim.value), resolution=self._resolution,
+                             title="The balls grown to time τ and their dual complex $K_\\tau$")
+        fig.set_size_inches(*self.SIZE)
+        return fig
+
+    def _redraw(self, change=None):
+        from . import _frame
+
+        self.status.value = self.status_text()
+        self.image.value = _frame.png(self.figure())
+
+    def __repr__(self):
+        return (f"Complex3DExplorer(n_balls={len(self._balls)}, tau={self.slider.value:.3f}, "
+                f"range=({self.slider.min:.3f}, {self.slider.max:.3f}))")

@@ -132,3 +132,118 @@ class PocketExplorer(W.VBox):
     def __repr__(self):
         return (f"PocketExplorer(n_balls={len(self._balls)}, tau={self.slider.value:.2f}, "
                 f"range=({self.slider.min:.2f}, {self.slider.max:.2f}))")
+
+
+# --------------------------------------------------------------------------- persistence
+def persistence_explorer(filtration, *, threshold=0.0, threshold_range=None, steps=100, dims=None):
+    """Topological simplification with a slider (Notes §23.1, "big voids against small ones").
+
+    Features whose persistence (death − birth) is below the threshold are what
+    simplification removes: they are greyed out in the persistence diagram (left) and
+    left out of the barcode (right); the status line counts what is kept in each
+    dimension.
+
+    Parameters
+    ----------
+    filtration : Filtration
+        An α-filtration (:func:`shapelab.alpha_filtration`).
+    threshold : float
+        Initial persistence threshold, >= 0.
+    threshold_range : (float, float), optional
+        Slider bounds; default from 0 to the largest finite persistence.
+    steps : int
+        Slider resolution.
+    dims : int or sequence of int, optional
+        Homology dimensions to show (default: those with at least one feature).
+
+    Returns
+    -------
+    PersistenceExplorer
+        An ``ipywidgets.VBox``: the slider, a status line and the figure.
+    """
+    from ..filtration import Filtration
+
+    if not isinstance(filtration, Filtration):
+        raise TypeError(f"filtration must be a shapelab Filtration (alpha_filtration(balls)), "
+                        f"got {type(filtration).__name__}")
+    threshold = as_finite_scalar(threshold, "threshold", nonnegative=True)
+    if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 2:
+        raise ValueError(f"steps must be an integer >= 2, got {steps!r}")
+    P = filtration.persistence()
+    if dims is None:  # the dimensions that have features (a 2D input has no H2)
+        dims = tuple(k for k in sorted(P) if len(P[k])) or tuple(sorted(P))
+    else:
+        dims = (dims,) if isinstance(dims, (int, np.integer)) and not isinstance(dims, bool) else tuple(dims)
+        bad = [k for k in dims if k not in P]
+        if bad:
+            raise ValueError(f"dims must be among {sorted(P)}, got {list(dims)!r}")
+    if threshold_range is None:
+        pers = np.concatenate([np.diff(np.asarray(P[k]).reshape(-1, 2), axis=1).ravel() for k in dims] or
+                              [np.zeros(0)])
+        pers = pers[np.isfinite(pers)]
+        lo, hi = 0.0, (float(pers.max()) * 1.05 if pers.size else 1.0)
+    else:
+        try:
+            lo, hi = (as_finite_scalar(v, "threshold_range", nonnegative=True) for v in threshold_range)
+        except TypeError:
+            raise TypeError("threshold_range must be a pair (low, high) of numbers >= 0") from None
+        if not lo < hi:
+            raise ValueError(f"threshold_range must have low < high, got {tuple(threshold_range)!r}")
+    return PersistenceExplorer(P, dims, min(max(threshold, lo), hi), lo, hi, (hi - lo) / steps)
+
+
+class PersistenceExplorer(W.VBox):
+    """Threshold slider + status + diagram and barcode; see :func:`persistence_explorer`."""
+
+    SIZE = (10.0, 4.6)
+
+    def __init__(self, pairs, dims, threshold, lo, hi, step):
+        from . import _frame
+
+        self._P = pairs
+        self._dims = dims
+        self.slider = W.FloatSlider(value=threshold, min=lo, max=hi, step=step, description="threshold",
+                                    continuous_update=False, readout_format=".3f", layout=W.Layout(width="60%"))
+        self.status = W.HTML()
+        self.image = _frame.image(self.SIZE)
+        super().__init__([self.slider, self.status, self.image])
+        self.slider.observe(self._redraw, names="value")
+        self._redraw()
+
+    @property
+    def threshold(self) -> float:
+        return float(self.slider.value)
+
+    def kept(self) -> dict:
+        """``{k: number of features with persistence >= threshold}`` (essential ones always stay)."""
+        out = {}
+        for k in self._dims:
+            a = np.asarray(self._P[k]).reshape(-1, 2)
+            out[k] = int(np.count_nonzero(a[:, 1] - a[:, 0] >= self.threshold))
+        return out
+
+    def status_text(self) -> str:
+        kept = self.kept()
+        total = {k: len(np.asarray(self._P[k]).reshape(-1, 2)) for k in self._dims}
+        return (f"persistence ≥ {self.threshold:.3f} keeps "
+                + ", ".join(f"{kept[k]} of {total[k]} in H{k}" for k in self._dims))
+
+    def figure(self):
+        from ..plot import new_figure
+        from ..plot.topology import barcode, persistence_diagram
+
+        fig, (a, b) = new_figure(1, 2, size=self.SIZE)
+        t = self.threshold
+        persistence_diagram(self._P, dims=self._dims, min_persistence=t if t > 0 else None, ax=a,
+                            title="Diagram: greyed points are removed")
+        barcode(self._P, dims=self._dims, min_persistence=t, ax=b, title="Barcode")
+        return fig
+
+    def _redraw(self, change=None):
+        from . import _frame
+
+        self.status.value = self.status_text()
+        self.image.value = _frame.png(self.figure())
+
+    def __repr__(self):
+        return f"PersistenceExplorer(dims={self._dims}, threshold={self.threshold:.3f})"
