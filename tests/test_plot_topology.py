@@ -274,11 +274,11 @@ def test_pocket_explorer_widget():
     left, _ = D.figure_23_2()
     w = pocket_explorer(left, tau=0.0, steps=20)
     assert repr(w).startswith("PocketExplorer(n_balls=112, tau=0.00")
-    assert "1 pockets, 0 holes" in w.status.value
+    assert "1 pocket, 0 holes" in w.status.value
     png = w.image.value
     assert png[:8] == b"\x89PNG\r\n\x1a\n"
     w.slider.value = 2.0  # the mouth has closed: a hole, no pocket
-    assert "0 pockets, 1 holes" in w.status.value
+    assert "0 pockets, 1 hole" in w.status.value
     assert w.image.value != png
     with pytest.raises(ValueError):
         pocket_explorer(left, tau_range=(1.0, 0.0))

@@ -123,8 +123,9 @@ class PocketExplorer(W.VBox):
 
     def _redraw(self, change=None):
         P, V = self.features()
-        word = "holes" if self._balls.dim == 2 else "voids"
-        self.status.value = f"&nbsp;{len(P)} pockets, {len(V)} {word}"
+        word = "hole" if self._balls.dim == 2 else "void"
+        self.status.value = (f"&nbsp;{len(P)} pocket{'' if len(P) == 1 else 's'}, "
+                             f"{len(V)} {word}{'' if len(V) == 1 else 's'}")
         buf = io.BytesIO()
         self.figure().savefig(buf, format="png", dpi=_DPI)
         self.image.value = buf.getvalue()
