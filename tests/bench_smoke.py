@@ -23,3 +23,23 @@ def peer(x):
 
 def check(a, b):
     return f"max diff {np.abs(a - b).max():.0e}"
+
+
+# peak memory: the setup's 400 MB transient must not count; the timed calls hold 40 and 160 MB
+CASES.append(
+    Case(name="smoke_memory", module="tests.bench_smoke", peer_name="a larger allocation", setup="setup_big",
+         ours="ours_40mb", peer="peer_160mb", params={}, description="harness self-test: peak memory"),
+)
+
+
+def setup_big(seed):
+    transient = np.ones(50_000_000)  # 400 MB, freed before the timed call
+    return float(transient[seed])
+
+
+def ours_40mb(_):
+    return float(np.ones(5_000_000).sum())
+
+
+def peer_160mb(_):
+    return float(np.ones(20_000_000).sum())

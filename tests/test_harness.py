@@ -24,3 +24,16 @@ def test_case_names_are_unique_and_targets_sane():
     for case in harness.all_cases():
         assert case.repeats >= 5
         assert case.target is None or case.target > 0
+
+
+def test_peak_memory_is_the_timed_calls_not_the_setups(monkeypatch):
+    """Setup allocates and frees 400 MB; the timed calls hold 40 MB (ours) and 160 MB (peer).
+    The reported peaks must be about those, not the setup's transient."""
+    monkeypatch.setenv("SHAPELAB_BENCH_MODULES", "tests.bench_smoke")
+    case = {c.name: c for c in harness.all_cases()}["smoke_memory"]
+    row = harness.run_case(case, repeats=5)
+    ours = [r["peak_kib"] / 1024 for r in row["runs"]["ours"]]
+    peer = [r["peak_kib"] / 1024 for r in row["runs"]["peer"]]
+    assert all(30 < m < 80 for m in ours), ours
+    assert all(140 < m < 200 for m in peer), peer
+    assert 30 < row["ours_peak_mib"] < 80 and 0.15 < row["memory_ratio"] < 0.4
