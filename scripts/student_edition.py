@@ -6,7 +6,8 @@
 
 For every lesson:
 
-* markdown cells tagged ``solution`` are dropped;
+* markdown cells tagged ``solution`` are dropped, and so are the instructor's speaker
+  notes (``slideshow.slide_type`` ``notes``);
 * in every code cell, what lies between ``# BEGIN SOLUTION`` and ``# END SOLUTION`` is
   replaced by a placeholder, and the code after ``# END SOLUTION`` (the self-check
   call) stays.  The placeholder keeps that call meaningful:
@@ -171,7 +172,8 @@ def student_notebook(nb) -> tuple[nbformat.NotebookNode, dict]:
     cells = []
     for i, cell in enumerate(nb.cells):
         tags = list(cell.get("metadata", {}).get("tags", []))
-        if cell.cell_type == "markdown" and TAG in tags:
+        speaker_notes = cell.get("metadata", {}).get("slideshow", {}).get("slide_type") == "notes"
+        if cell.cell_type == "markdown" and (TAG in tags or speaker_notes):
             stats["markdown removed"] += 1
             continue
         if cell.cell_type == "code":

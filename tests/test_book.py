@@ -53,6 +53,12 @@ def test_every_lesson_has_a_page(site):
     assert (site / "references.html").exists()
 
 
+def test_speaker_notes_stay_off_the_site(site):
+    """Speaker notes (tagged remove-cell) are for the decks; students read the site."""
+    pages = [p for p in _pages(site) if "Speaker notes." in p.read_text(encoding="utf-8", errors="replace")]
+    assert not pages, f"speaker notes on {[str(p.relative_to(site)) for p in pages]}"
+
+
 def test_no_page_references_the_network(site):
     offenders = []
     for page in _pages(site):

@@ -110,3 +110,14 @@ def test_links_between_lessons_resolve(lesson):
         if not (path.parent / m.group(1)).exists()
     ]
     assert not dead, f"{path.name} links to missing files: {dead}"
+
+
+def test_has_speaker_notes_for_the_deck_only(lesson):
+    """Each lesson carries speaker notes (slide type ``notes``) for its deck; they are tagged
+    ``remove-cell`` so the course website, which students read, leaves them out."""
+    path, nb = lesson
+    notes = [c for c in nb.cells if c.get("metadata", {}).get("slideshow", {}).get("slide_type") == "notes"]
+    assert notes, f"{path.name}: no speaker notes (a markdown cell with slide type 'notes')"
+    for c in notes:
+        assert c.cell_type == "markdown" and "remove-cell" in c.metadata.get("tags", []), (
+            f"{path.name}: speaker notes must be markdown tagged 'remove-cell'")

@@ -99,13 +99,16 @@ def test_student_edition_keeps_exercises_and_checks(editions):
         assert "NotImplementedError" in ex.source, "the placeholder is there"
     n_md = sum(1 for c in instructor.cells if c.cell_type == "markdown")
     n_md_sol = sum(1 for c in instructor.cells if c.cell_type == "markdown" and "solution" in c.metadata.get("tags", []))
-    assert sum(1 for c in student.cells if c.cell_type == "markdown") == n_md - n_md_sol
+    n_notes = sum(1 for c in instructor.cells if c.metadata.get("slideshow", {}).get("slide_type") == "notes")
+    assert sum(1 for c in student.cells if c.cell_type == "markdown") == n_md - n_md_sol - n_notes
 
 
 def test_student_edition_is_clean(editions):
     path, _, student, _ = editions
     nbformat.validate(student)
     assert "widgets" not in student.metadata, "widget state removed"
+    assert not [c for c in student.cells if c.metadata.get("slideshow", {}).get("slide_type") == "notes"
+                or "**Speaker notes.**" in c.source], f"{path.name}: the instructor's speaker notes stay out"
     for i, cell in enumerate(student.cells):
         if cell.cell_type != "code":
             continue
