@@ -1,7 +1,7 @@
 """The lecture decks (scripts/slides.py) are reveal.js slide shows that work offline.
 
-One or two lessons are rendered into a temporary folder (not all: this file stays
-fast), then: no deck references an http(s) asset, every local asset exists, the
+Every lesson is rendered into a temporary folder (about 6 s), then: no deck
+references an http(s) asset, every local asset exists, the
 solutions stay out unless asked for, the lessons' slide metadata makes the slides,
 and headless Chromium with the network off shows a slide show (reveal.js ready,
 MathJax typeset).  A stock nbconvert deck, which loads reveal.js from a CDN, is the
@@ -23,12 +23,9 @@ ROOT = Path(__file__).resolve().parent.parent
 pytest.importorskip("nbconvert")
 
 LESSONS = sorted((ROOT / "lessons").glob("[0-9][0-9]_*.ipynb"))
-# lesson 00 plus the first lesson with displayed math, if there is one besides
-DECK_LESSONS = LESSONS[:1] + [p for p in LESSONS[1:] if "$$" in p.read_text(encoding="utf-8")][:1]
-# and the first lesson whose widgets are stored with their state, to see them in a deck
+# every deck is checked; Chromium opens lesson 00 and the first lesson with stored widgets
+DECK_LESSONS = LESSONS
 WIDGET_LESSON = next((p for p in LESSONS if "application/vnd.jupyter.widget-state+json" in p.read_text(encoding="utf-8")), None)
-if WIDGET_LESSON is not None and WIDGET_LESSON not in DECK_LESSONS:
-    DECK_LESSONS.append(WIDGET_LESSON)
 
 REMOTE = re.compile(r"^(https?:)?//", re.I)
 TAG = re.compile(r"<(script|link|img|source|iframe|video|audio|embed)\b[^>]*>", re.I)
