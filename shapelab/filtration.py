@@ -270,6 +270,7 @@ def _orthospheres(x: np.ndarray, w: np.ndarray, S: np.ndarray):
         # test done facet by facet.
         idx = np.flatnonzero(flat)
         Sf = S[idx]
+        x, w = np.asarray(x, dtype=np.float64), np.asarray(w, dtype=np.float64)  # pinv: float64 only
         u, r = _ortho_generic(x, w, Sf)
         rho = rho.copy()
         rho[idx] = r
@@ -283,6 +284,12 @@ def _orthospheres(x: np.ndarray, w: np.ndarray, S: np.ndarray):
 
 
 _CHUNK = 1 << 15
+
+# rho = |u|^2 - w0 cancels when the orthosphere's power is near zero: its absolute error
+# is about eps * w0 however small rho is, and the frame's own rounding adds as much.  Rows
+# with |rho| below this fraction of their largest weight are recomputed in extended
+# precision from the input coordinates (see _refine_near_zero).
+_NEAR_ZERO = 1e-3
 
 
 def _orthospheres_chunked(x: np.ndarray, w: np.ndarray, S: np.ndarray):
@@ -301,6 +308,31 @@ def _orthospheres_chunked(x: np.ndarray, w: np.ndarray, S: np.ndarray):
 # ----------------------------------------------------------------------------------
 # Results
 # ----------------------------------------------------------------------------------
+def _refine_near_zero(balls: Balls, fr, S: np.ndarray, rho: np.ndarray, att: np.ndarray) -> None:
+    """Recompute, in place, the rows of ``rho``/``att`` whose value cancels (|rho| small
+    against the weights) with :func:`_orthospheres` in ``np.longdouble`` (80-bit on
+    x86-64), on a frame rebuilt from the input centres.  Power distances do not depend
+    on the origin, so the frame need only share ``fr.scale``.  Full-dimensional frames
+    only (the others are projected); where ``longdouble`` is plain double, this changes
+    nothing."""
+    if np.finfo(np.longdouble).eps >= np.finfo(np.float64).eps or fr.x.shape[1] != balls.dim:
+        return
+    w = fr.w
+    near = np.flatnonzero(np.abs(rho) < _NEAR_ZERO * w[S].max(axis=1))
+    if near.size == 0:
+        return
+    Sn = S[near]
+    used, local = np.unique(Sn, return_inverse=True)
+    ld = np.longdouble
+    c = balls.centers[fr.keep[used]].astype(ld)
+    xl = (c - c[0]) / ld(fr.scale)
+    # the weights are the float64 r^2 (as in the frame, and as GUDHI is given them)
+    wl = (balls.radii[fr.keep[used]] ** 2).astype(ld) / ld(fr.scale) ** 2
+    r, a = _orthospheres(xl, wl, local.reshape(Sn.shape))
+    rho[near] = r.astype(np.float64)
+    att[near] = a
+
+
 def _ro(a: np.ndarray) -> np.ndarray:
     a.flags.writeable = False
     return a
@@ -515,10 +547,15 @@ def alpha_filtration(balls: Balls) -> Filtration:
     # 2. smallest orthogonal spheres and attachment, 3. top-down propagation
     vals = [None] * (dim + 1)
     rho, att = _orthospheres_chunked(x, w, faces[dim])
+    _refine_near_zero(balls, fr, faces[dim], rho, att)
     vals[dim] = rho
     for j in range(dim, 0, -1):
         B = bnd[j]
-        rho_f, att_f = _orthospheres_chunked(x, w, faces[j - 1]) if j > 1 else (-w[faces[0][:, 0]], None)
+        if j > 1:
+            rho_f, att_f = _orthospheres_chunked(x, w, faces[j - 1])
+            _refine_near_zero(balls, fr, faces[j - 1], rho_f, att_f)
+        else:
+            rho_f, att_f = -w[faces[0][:, 0]], None
         nf = faces[j - 1].shape[0]
         attached = np.zeros(nf, dtype=bool)
         attached[B[att]] = True

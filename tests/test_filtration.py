@@ -480,3 +480,54 @@ def test_empty_balls():
     assert len(F) == 0 and F.dimension == -1
     assert F.simplices(2).shape == (0, 3)
     assert F.complex_at(0.0).euler_characteristic() == 0
+
+
+# ------------------------------------------------------------------ values near zero
+def _exact_orthosphere_power(centers, weights):
+    """The power of the smallest orthogonal sphere of one simplex, in exact rational
+    arithmetic on the given float64 inputs: solve 2 (z_i - z_0) . c = |z_i|^2 - w_i -
+    |z_0|^2 + w_0 for the centre c in the simplex's span, return |c - z_0|^2 - w_0."""
+    from fractions import Fraction as Q
+
+    z = [[Q(float(v)) for v in row] for row in centers]
+    w = [Q(float(v)) for v in weights]
+    a = [[zi[t] - z[0][t] for t in range(len(z[0]))] for zi in z[1:]]
+    b = [(sum(v * v for v in zi) - w[i + 1] - sum(v * v for v in z[0]) + w[0]) / 2
+         for i, zi in enumerate(z[1:])]
+    # c - z0 = sum_j lam_j a_j with Gram system G lam = b - a . z0
+    rhs = [b[i] - sum(a[i][t] * z[0][t] for t in range(len(z[0]))) for i in range(len(a))]
+    G = [[sum(p * q for p, q in zip(ai, aj)) for aj in a] for ai in a]
+    n = len(G)
+    for col in range(n):  # Gauss-Jordan, exact
+        piv = next(r for r in range(col, n) if G[r][col] != 0)
+        G[col], G[piv], rhs[col], rhs[piv] = G[piv], G[col], rhs[piv], rhs[col]
+        for r in range(n):
+            if r != col and G[r][col] != 0:
+                f = G[r][col] / G[col][col]
+                G[r] = [x - f * y for x, y in zip(G[r], G[col])]
+                rhs[r] -= f * rhs[col]
+    lam = [rhs[i] / G[i][i] for i in range(n)]
+    u = [sum(lam[j] * a[j][t] for j in range(n)) for t in range(len(z[0]))]
+    return float(sum(v * v for v in u) - w[0])
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("delta", [1e-6, 1e-7, 1e-8])
+def test_values_that_cancel_to_near_zero_are_still_exact(dim, delta):
+    """Equal balls on a regular simplex (circumradius R) with r^2 = R^2 (1 - delta): the top
+    simplex enters at tau = R^2 - r^2, about delta R^2, a difference of two nearly equal
+    numbers.  Plain float64 loses ~eps/delta of it; the value must match the exact
+    rational answer for the same float64 inputs to 1e-9 relative, at an offset of 1e3."""
+    if dim == 2:
+        unit = np.array([[np.cos(t), np.sin(t)] for t in 2 * np.pi * np.arange(3) / 3 + 0.3])
+    else:
+        unit = np.array([[1, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1]], dtype=float) / np.sqrt(3)
+    rng = np.random.default_rng(int(-np.log10(delta)) + 10 * dim)
+    R = rng.uniform(1.0, 2.0)
+    centers = 1e3 + R * unit
+    radii = np.full(dim + 1, R * np.sqrt(1.0 - delta))
+    F = alpha_filtration(Balls(centers, radii))
+    (top,) = F.values(dim)
+    exact = _exact_orthosphere_power(centers, radii**2)
+    assert 0 < exact < 10 * delta * R**2
+    assert top == pytest.approx(exact, rel=1e-9, abs=0)
