@@ -37,7 +37,7 @@ env: $(VENV)/.installed-test
 test: $(VENV)/.installed-test $(VENV)/.installed-book book/node_modules/.installed
 	$(PY) -m pytest -n $(JOBS) --dist loadscope \
 	    --nbval --nbval-current-env --nbval-sanitize-with tests/nbval_sanitize.cfg \
-	    --nbval-cell-timeout 120 tests lessons
+	    --nbval-cell-timeout 120 --doctest-modules tests lessons shapelab
 
 lessons: $(VENV)/.installed-book
 	$(PY) scripts/execute_lessons.py
