@@ -3,7 +3,6 @@ independent means (closed forms, symmetry, a voxel flood fill, GUDHI's weighted 
 persistence), and the topology the lessons rely on."""
 from __future__ import annotations
 
-import importlib.util
 
 import numpy as np
 import pytest
@@ -14,7 +13,6 @@ from scipy.spatial.distance import pdist, squareform
 from shapelab import Balls, datasets as D
 
 PHI = (1 + 5**0.5) / 2
-HAS_CAVITIES = importlib.util.find_spec("shapelab.cavities") is not None
 
 
 # ------------------------------------------------------------------ oracles
@@ -128,7 +126,6 @@ def test_c60_void_lifetime_closed_form():
     assert len(alive(P[1], 0.0)) == 0
 
 
-@pytest.mark.skipif(not HAS_CAVITIES, reason="shapelab.cavities (topology engineer) not written yet")
 def test_c60_exactly_one_void_with_shapelab():
     import shapelab
     v = shapelab.voids(D.fullerene_c60(), 0.0)
@@ -137,7 +134,6 @@ def test_c60_exactly_one_void_with_shapelab():
     assert len(v) == 1
 
 
-@pytest.mark.skipif(not HAS_CAVITIES, reason="shapelab.cavities (topology engineer) not written yet")
 @pytest.mark.parametrize("tau", [2.0, 5.0])
 def test_c60_one_void_while_it_lives_degenerate(tau):
     import shapelab
@@ -211,14 +207,12 @@ def test_nanotube_slit_groove_becomes_a_tunnel_only_if_narrow():
     assert len(w) == 0                                        # a half-pipe never closes
 
 
-@pytest.mark.skipif(not HAS_CAVITIES, reason="shapelab.cavities (topology engineer) not written yet")
 def test_nanotube_one_tunnel_with_shapelab():
     import shapelab
     assert len(shapelab.tunnels(D.nanotube(), 0.0)) == 1
     assert len(shapelab.voids(D.nanotube(), 0.0)) == 0
 
 
-@pytest.mark.skipif(not HAS_CAVITIES, reason="shapelab.cavities (topology engineer) not written yet")
 def test_nanotube_no_late_voids_degenerate():
     import shapelab
     b = D.nanotube()
@@ -308,7 +302,6 @@ def test_figure_23_2_left_is_a_pocket_right_is_not():
     assert bounded_free_components(right, mid, h=0.05) == 0
 
 
-@pytest.mark.skipif(not HAS_CAVITIES, reason="shapelab.cavities (topology engineer) not written yet")
 def test_figure_23_2_pockets_with_shapelab():
     import shapelab
     left, right = D.figure_23_2()

@@ -2,7 +2,6 @@
 exactly the data they are given (counted from the artists), and bad input is refused."""
 from __future__ import annotations
 
-import importlib.util
 from dataclasses import dataclass
 
 import matplotlib
@@ -17,7 +16,6 @@ from shapelab.plot import topology as PT
 from shapelab.plot._style import COLORS, new_figure
 
 matplotlib.use("Agg")
-HAS_CAVITIES = importlib.util.find_spec("shapelab.cavities") is not None
 
 PAIRS = {
     0: np.array([[0.0, np.inf], [0.0, 1.0], [0.5, 2.0]]),
@@ -257,7 +255,6 @@ def test_voids_3d_draws_the_free_space_of_the_cells():
 
 
 # ------------------------------------------------------------ with the library
-@pytest.mark.skipif(not HAS_CAVITIES, reason="shapelab.cavities (topology engineer) not written yet")
 def test_plots_of_real_features():
     left, _ = D.figure_23_2()
     P = shapelab.pockets(left, 0.0, min_persistence=1e-9)
@@ -268,7 +265,6 @@ def test_plots_of_real_features():
     assert isinstance(PT.tunnels(D.nanotube()), Figure)
 
 
-@pytest.mark.skipif(not HAS_CAVITIES, reason="shapelab.cavities (topology engineer) not written yet")
 def test_pocket_explorer_widget():
     from shapelab.widgets import pocket_explorer
     left, _ = D.figure_23_2()
