@@ -102,6 +102,12 @@ def _time_limit(seconds: float | None):
         signal.signal(signal.SIGALRM, previous)
 
 
+def _finish(name: str, passed: bool, n: int, msg: str, quiet: bool) -> CheckResult:
+    if not quiet:
+        print(msg)
+    return CheckResult(name, passed, n, msg)
+
+
 def run_check(
     name: str,
     student: Callable,
@@ -138,9 +144,7 @@ def run_check(
     compare = compare or allclose()
     if not callable(student):
         msg = f"✗ {name}: expected a function, got {type(student).__name__}. Pass the function itself, without calling it."
-        if not quiet:
-            print(msg)
-        return CheckResult(name, False, 0, msg)
+        return _finish(name, False, 0, msg, quiet)
     n = 0
     for case in cases:
         n += 1
@@ -154,23 +158,17 @@ def run_check(
                 f"✗ {name}: your function ran for more than {time_limit:g} s on input: {shown}\n"
                 f"  Is there a loop that never ends?"
             )
-            if not quiet:
-                print(msg)
-            return CheckResult(name, False, n, msg)
+            return _finish(name, False, n, msg, quiet)
         except NotImplementedError:
             msg = f"… {name}: not implemented yet. Replace the placeholder with your code and run the cell again."
-            if not quiet:
-                print(msg)
-            return CheckResult(name, False, n, msg)
+            return _finish(name, False, n, msg, quiet)
         except Exception as exc:  # report, never crash
             where = traceback.extract_tb(exc.__traceback__)[-1]
             msg = (
                 f"✗ {name}: your function raised {type(exc).__name__}: {exc}\n"
                 f"  on input: {shown}\n  (line {where.lineno}: {where.line})"
             )
-            if not quiet:
-                print(msg)
-            return CheckResult(name, False, n, msg)
+            return _finish(name, False, n, msg, quiet)
         try:
             ok = bool(compare(expected, received))
         except Exception:
@@ -180,10 +178,6 @@ def run_check(
                 f"✗ {name}: not quite. First failing input (case {n}):\n  {shown}\n"
                 f"  expected: {_short(expected)}\n  received: {_short(received)}"
             )
-            if not quiet:
-                print(msg)
-            return CheckResult(name, False, n, msg)
+            return _finish(name, False, n, msg, quiet)
     msg = f"✓ {name}: correct on all {n} cases."
-    if not quiet:
-        print(msg)
-    return CheckResult(name, True, n, msg)
+    return _finish(name, True, n, msg, quiet)

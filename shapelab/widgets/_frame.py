@@ -25,3 +25,33 @@ def png(fig, dpi: int = DPI) -> bytes:
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=dpi, bbox_inches=None)
     return buf.getvalue()
+
+
+def check_balls(balls, *, dim: int | None, who: str, minimum: int = 1, what: str = "ball"):
+    """Validate an explorer's ``balls``: a shapelab.Balls, of dimension ``dim`` (any if
+    None), holding at least ``minimum`` of them."""
+    from ..balls import Balls
+
+    if not isinstance(balls, Balls):
+        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+    if dim is not None and balls.dim != dim:
+        raise ValueError(f"{who} draws {what}s in {dim}D: balls must be {dim}D, got {balls.dim}D")
+    if len(balls) < minimum:
+        count = {1: "one", 2: "two"}.get(minimum, str(minimum))
+        raise ValueError(f"balls must hold at least {count} {what}{'' if minimum == 1 else 's'}, got {len(balls)}")
+    return balls
+
+
+def value_range(pair, name: str, *, nonnegative: bool = False) -> tuple[float, float]:
+    """A slider's ``(low, high)`` argument, validated: finite numbers (>= 0 where asked)
+    with low < high."""
+    from .._validate import as_finite_scalar
+
+    try:
+        lo, hi = (as_finite_scalar(v, name, nonnegative=nonnegative) for v in pair)
+    except TypeError:
+        kind = "numbers >= 0" if nonnegative else "finite numbers"
+        raise TypeError(f"{name} must be a pair (low, high) of {kind}") from None
+    if not lo < hi:
+        raise ValueError(f"{name} must have low < high, got {tuple(pair)!r}")
+    return lo, hi

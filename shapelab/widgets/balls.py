@@ -67,27 +67,14 @@ def alpha_explorer(balls, *, tau=0.0, tau_range=None, steps=100, filtration=None
     AlphaExplorer
         An ``ipywidgets.VBox``: the slider, a status line and the figure.
     """
-    from ..balls import Balls
     from ..filtration import alpha_filtration
+    from ._frame import check_balls, value_range
 
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
-    if balls.dim != 2:
-        raise ValueError(f"alpha_explorer draws disks: balls must be 2D, got {balls.dim}D (see plot.complex3d for 3D)")
-    if len(balls) == 0:
-        raise ValueError("balls must hold at least one disk")
+    check_balls(balls, dim=2, who="alpha_explorer", what="disk")
     tau = as_finite_scalar(tau, "tau")
     steps = as_positive_int(steps, "steps", minimum=2)
     F = alpha_filtration(balls) if filtration is None else filtration
-    if tau_range is None:
-        lo, hi = _default_range(F)
-    else:
-        try:
-            lo, hi = (as_finite_scalar(v, "tau_range") for v in tau_range)
-        except (TypeError, ValueError):
-            raise TypeError("tau_range must be a pair (low, high) of finite numbers") from None
-        if not lo < hi:
-            raise ValueError(f"tau_range must have low < high, got {tuple(tau_range)!r}")
+    lo, hi = _default_range(F) if tau_range is None else value_range(tau_range, "tau_range")
     tau = min(max(tau, lo), hi)
     return AlphaExplorer(balls, F, tau, lo, hi, (hi - lo) / steps, bool(show_cells), bool(show_measure), bbox)
 
@@ -199,13 +186,9 @@ def power_explorer(balls, *, index=0, radius=None, radius_range=None, steps=100,
     """
     from ..balls import Balls
     from ..power import _as_bbox, _default_bbox
+    from ._frame import check_balls, value_range
 
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
-    if balls.dim != 2:
-        raise ValueError(f"power_explorer draws disks: balls must be 2D, got {balls.dim}D")
-    if len(balls) < 2:
-        raise ValueError(f"balls must hold at least two disks to have a power diagram, got {len(balls)}")
+    check_balls(balls, dim=2, who="power_explorer", minimum=2, what="disk")
     if mode not in ("diagram", "dual"):
         raise ValueError(f"mode must be 'diagram' or 'dual', got {mode!r}")
     if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or not 0 <= index < len(balls):
@@ -214,12 +197,7 @@ def power_explorer(balls, *, index=0, radius=None, radius_range=None, steps=100,
     if radius_range is None:
         lo, hi = 0.0, 2.0 * float(balls.radii.max()) or 1.0
     else:
-        try:
-            lo, hi = (as_finite_scalar(v, "radius_range", nonnegative=True) for v in radius_range)
-        except TypeError:
-            raise TypeError("radius_range must be a pair (low, high) of numbers >= 0") from None
-        if not lo < hi:
-            raise ValueError(f"radius_range must have low < high, got {tuple(radius_range)!r}")
+        lo, hi = value_range(radius_range, "radius_range", nonnegative=True)
     r0 = float(balls.radii[index]) if radius is None else as_finite_scalar(radius, "radius", nonnegative=True)
     if bbox is None:
         bbox = _default_bbox(Balls(balls.centers, np.full(len(balls), max(hi, float(balls.radii.max())))))
@@ -359,30 +337,17 @@ def complex3d_explorer(balls, *, tau=0.0, tau_range=None, steps=60, azim=35.0, e
     Complex3DExplorer
         An ``ipywidgets.VBox``: the sliders, a status line and the figure.
     """
-    from ..balls import Balls
     from ..filtration import alpha_filtration
+    from ._frame import check_balls, value_range
 
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
-    if balls.dim != 3:
-        raise ValueError(f"complex3d_explorer draws balls: balls must be 3D, got {balls.dim}D (see alpha_explorer)")
-    if len(balls) == 0:
-        raise ValueError("balls must hold at least one ball")
+    check_balls(balls, dim=3, who="complex3d_explorer")
     tau = as_finite_scalar(tau, "tau")
     azim = as_finite_scalar(azim, "azim")
     elev = as_finite_scalar(elev, "elev")
     steps = as_positive_int(steps, "steps", minimum=2)
     resolution = as_positive_int(resolution, "resolution", minimum=3)
     F = alpha_filtration(balls) if filtration is None else filtration
-    if tau_range is None:
-        lo, hi = _default_range(F)
-    else:
-        try:
-            lo, hi = (as_finite_scalar(v, "tau_range") for v in tau_range)
-        except TypeError:
-            raise TypeError("tau_range must be a pair (low, high) of finite numbers") from None
-        if not lo < hi:
-            raise ValueError(f"tau_range must have low < high, got {tuple(tau_range)!r}")
+    lo, hi = _default_range(F) if tau_range is None else value_range(tau_range, "tau_range")
     return Complex3DExplorer(balls, F, min(max(tau, lo), hi), lo, hi, (hi - lo) / steps, azim % 360.0, elev,
                              bool(show_balls), resolution)
 

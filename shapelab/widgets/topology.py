@@ -56,23 +56,15 @@ def pocket_explorer(balls, *, tau=0.0, tau_range=None, steps=100, min_persistenc
     PocketExplorer
         An ``ipywidgets.VBox`` holding the slider and the figure.
     """
-    from ..balls import Balls
-
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
     import shapelab
+
+    from ._frame import check_balls, value_range
+
+    check_balls(balls, dim=None, who="pocket_explorer")
 
     tau = as_finite_scalar(tau, "tau")
     F = shapelab.alpha_filtration(balls)
-    if tau_range is None:
-        lo, hi = _default_range(balls, F)
-    else:
-        try:
-            lo, hi = (as_finite_scalar(v, "tau_range") for v in tau_range)
-        except TypeError:
-            raise TypeError("tau_range must be a pair (low, high) of numbers") from None
-        if not lo < hi:
-            raise ValueError(f"tau_range must have low < high, got {tuple(tau_range)!r}")
+    lo, hi = _default_range(balls, F) if tau_range is None else value_range(tau_range, "tau_range")
     if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 2:
         raise ValueError(f"steps must be an integer >= 2, got {steps!r}")
     lo = max(lo, -float(balls.weights.min()))
@@ -184,12 +176,9 @@ def persistence_explorer(filtration, *, threshold=0.0, threshold_range=None, ste
         pers = pers[np.isfinite(pers)]
         lo, hi = 0.0, (float(pers.max()) * 1.05 if pers.size else 1.0)
     else:
-        try:
-            lo, hi = (as_finite_scalar(v, "threshold_range", nonnegative=True) for v in threshold_range)
-        except TypeError:
-            raise TypeError("threshold_range must be a pair (low, high) of numbers >= 0") from None
-        if not lo < hi:
-            raise ValueError(f"threshold_range must have low < high, got {tuple(threshold_range)!r}")
+        from ._frame import value_range
+
+        lo, hi = value_range(threshold_range, "threshold_range", nonnegative=True)
     return PersistenceExplorer(P, dims, min(max(threshold, lo), hi), lo, hi, (hi - lo) / steps)
 
 
