@@ -228,3 +228,35 @@ def test_unprintable_answer_is_a_failure_not_a_crash(capsys):
     result, out, err = _run(lambda v: Weird(), capsys)
     assert not result.passed
     assert "cannot be shown" in out and "RuntimeError" in out and err == ""
+
+
+# ------------------------------------------------------------------ check.value
+from shapelab import check  # noqa: E402
+
+
+@pytest.mark.parametrize("received, expected", [
+    (1.0 + 1e-12, 1.0), (np.array([1.0, 2.0]), [1.0, 2.0]), ((1, 4, 0), (1, 4, 0)), (True, True), (np.True_, True),
+])
+def test_value_accepts_the_right_answer(received, expected, capsys):
+    r = check.value("answer", received, expected)
+    assert r.passed and capsys.readouterr().out.strip() == "✓ answer: correct."
+
+
+@pytest.mark.parametrize("received, expected, hint", [
+    (3.5, 1.8271, "too large"),
+    (0.5, 1.8271, "too small"),
+    (np.array([1.0, 9.0, 3.0]), np.array([1.0, 2.5, 3.0]), "1 of 3 entries differ, the first at index 1"),
+    (np.zeros(3), np.zeros(2), "expected shape (2,), got shape (3,)"),
+    (np.zeros(2), 0.25, "expected a single number"),
+    (float("nan"), 0.25, "NaN or inf"),
+    ("0.25", 0.25, "expected a number"),
+    (False, True, "that is not the answer"),
+    (1, True, "expected a bool"),
+])
+def test_value_hints_without_revealing(received, expected, hint, capsys):
+    r = check.value("answer", received, expected)
+    out = capsys.readouterr().out
+    assert not r.passed and out.startswith("✗ answer: not quite") and hint in out
+    for shown in np.atleast_1d(np.asarray(expected, dtype=float)).tolist():
+        if shown not in (0.0, 1.0, 3.0):  # values also in the student's own answer or the shape
+            assert f"{shown}" not in out and f"{shown:g}" not in out

@@ -249,9 +249,10 @@ def test_every_solution_passes_its_own_self_check(path):
         verdicts = [ln for ln in text.splitlines() if CHECK_LINE.match(ln)]
         assert not [v for v in verdicts if not v.startswith("✓")], f"{path.name}: {verdicts}"
         assert "passed=False" not in text
-        if re.search(r"\bcheck\.\w+\(", cell.source.split("# END SOLUTION")[-1]):
-            assert verdicts, f"{path.name}: a solution calls a check but no verdict was printed"
-            checked += 1
+        assert re.search(r"\bcheck\.\w+\(", cell.source.split("# END SOLUTION")[-1]), (
+            f"{path.name}: every exercise ends with a self-check call after its solution:\n{cell.source[-300:]}")
+        assert verdicts, f"{path.name}: a solution calls a check but no verdict was printed"
+        checked += 1
     assert checked >= 1, f"{path.name}: no exercise has a self-check"
 
 
@@ -275,10 +276,18 @@ def test_student_edition_of_lesson_00_says_not_implemented(tmp_path, monkeypatch
     exercises = [c for c in student.cells if "exercise" in c.metadata.get("tags", [])]
     with_check = [c for c in exercises if "check." in c.source.split("# END SOLUTION")[-1]]
     assert with_check
+    kinds = set()
     for cell in with_check:
         text = "".join(o.get("text", "") for o in cell.outputs if o.output_type == "stream")
-        assert "not implemented yet" in text, text
-        assert not [o for o in cell.outputs if o.output_type == "error"], "the check reports, never raises"
+        errors = [o for o in cell.outputs if o.output_type == "error"]
+        if errors:  # a value exercise: its placeholder stops the cell before the check runs
+            assert len(errors) == 1 and errors[0].ename == "NotImplementedError", errors
+            assert errors[0].evalue.startswith("your code here"), errors[0].evalue
+            kinds.add("value")
+        else:  # a function exercise: the check runs the stub and reports, never raises
+            assert "not implemented yet" in text, text
+            kinds.add("function")
+    assert kinds == {"value", "function"}, kinds  # lesson 00 shows students both kinds
     for i, cell in enumerate(student.cells):
         for o in cell.get("outputs", []):
             if o.output_type == "error":

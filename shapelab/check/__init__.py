@@ -3,6 +3,8 @@
 Call a check with *your* function, e.g. ``check.quaternion_product(my_product)``.
 It runs your function on random and edge cases against the library and prints
 "correct" or the first failing input with the expected and received values.
+An exercise whose answer is a value uses ``check.value(name, yours, library's)``,
+which says how a wrong answer is off but never what it should be.
 
 One module per topic holds the checks; all are re-exported here.
 """
@@ -10,7 +12,7 @@ from __future__ import annotations
 
 import importlib
 
-from ._runner import CheckResult, allclose, run_check
+from ._runner import CheckResult, allclose, run_check, value
 
 _EXPORTS = {
     # balls.py: power distance, dual complex, union measure
@@ -30,7 +32,7 @@ _EXPORTS = {
     "optimal_rotation": "rotation",
     "centroid_alignment": "rotation",
 }
-__all__ = ["CheckResult", "allclose", "run_check", *sorted(_EXPORTS)]
+__all__ = ["CheckResult", "allclose", "run_check", "value", *sorted(_EXPORTS)]
 
 
 def __getattr__(name: str):

@@ -15,7 +15,7 @@ from typing import Any, Callable, Iterable
 
 import numpy as np
 
-__all__ = ["CheckResult", "run_check", "allclose"]
+__all__ = ["CheckResult", "run_check", "allclose", "value"]
 
 
 @dataclass(frozen=True)
@@ -181,3 +181,58 @@ def run_check(
             return _finish(name, False, n, msg, quiet)
     msg = f"✓ {name}: correct on all {n} cases."
     return _finish(name, True, n, msg, quiet)
+
+
+def _hint(received, expected, rtol: float, atol: float) -> str | None:
+    """None if ``received`` matches ``expected``, else a hint that does not give the
+    expected value away."""
+    if isinstance(expected, (bool, np.bool_, str)):
+        if type(received) is not type(expected) and not (
+                isinstance(expected, (bool, np.bool_)) and isinstance(received, (bool, np.bool_))):
+            return f"expected a {type(expected).__name__}, got a {type(received).__name__}"
+        return None if received == expected else "that is not the answer"
+    try:
+        if isinstance(received, (str, bytes)):  # "0.25" would parse; it is not a number
+            raise TypeError
+        e = np.asarray(expected, dtype=float)
+        r = np.asarray(received, dtype=float)
+    except (TypeError, ValueError):
+        return f"expected a number or an array of numbers, got a {type(received).__name__}"
+    if e.shape != r.shape:
+        return f"expected {'a single number' if e.ndim == 0 else f'shape {e.shape}'}, got shape {r.shape}"
+    if not np.all(np.isfinite(r)) and np.all(np.isfinite(e)):
+        return "yours contains NaN or inf"
+    close = np.isclose(r, e, rtol=rtol, atol=atol)
+    if np.all(close):
+        return None
+    if e.ndim == 0:
+        return "yours is too large" if r > e else "yours is too small"
+    first = tuple(int(i) for i in np.argwhere(~close)[0])
+    return f"{int(np.count_nonzero(~close))} of {e.size} entries differ, the first at index {first[0] if len(first) == 1 else first}"
+
+
+def value(name: str, received, expected, *, rtol: float = 1e-6, atol: float = 1e-9, quiet: bool = False) -> CheckResult:
+    """Check a computed answer against the library's value, without revealing it.
+
+    For exercises whose answer is a value (a number, an array, a truth value) rather
+    than a function.  On a mismatch it says how the answer is off ("too large",
+    "3 of 10 entries differ", "expected shape (2,)"), never what it should be.
+
+    Parameters
+    ----------
+    name : str
+        What is checked, shown in the message.
+    received
+        The student's answer.
+    expected
+        The library's answer (numbers and arrays compare with ``rtol``/``atol``;
+        truth values and strings exactly).
+    rtol, atol : float
+        Tolerances for numbers.
+    quiet : bool
+        Do not print; only return the result.
+    """
+    hint = _hint(received, expected, rtol, atol)
+    if hint is None:
+        return _finish(name, True, 1, f"✓ {name}: correct.", quiet)
+    return _finish(name, False, 1, f"✗ {name}: not quite: {hint}.", quiet)
