@@ -363,7 +363,11 @@ class _SimplicialMixin:
     """Accessors shared by :class:`Filtration` and :class:`Complex`."""
 
     def simplices(self, k: int) -> np.ndarray:
-        """The k-simplices, shape (n_k, k+1), int64 indices into ``balls``.
+        """The k-simplices, shape (n_k, k+1), int32 indices into ``balls``.
+
+        int32, as in ``scipy.spatial.Delaunay.simplices``: it halves the memory of
+        the filtration (a ball index never needs more; ``Balls`` holds fewer than
+        2**31 balls in any machine's memory).
 
         Vertices ascend within each row; rows are in filtration order
         (non-decreasing entry time, ties broken lexicographically).  For
@@ -371,7 +375,7 @@ class _SimplicialMixin:
         """
         k = _check_k(k, self.balls.dim)
         if k > self.dimension:
-            return _ro(np.zeros((0, k + 1), dtype=np.int64))
+            return _ro(np.zeros((0, k + 1), dtype=np.int32))
         return self._simplices[k][: self._counts[k]]
 
     def values(self, k: int) -> np.ndarray:
@@ -382,7 +386,7 @@ class _SimplicialMixin:
         return self._values[k][: self._counts[k]]
 
     def boundary(self, k: int) -> np.ndarray:
-        """Facet rows of the k-simplices, shape (n_k, k+1), for k >= 1.
+        """Facet rows of the k-simplices, shape (n_k, k+1), int32, for k >= 1.
 
         Entry ``[i, j]`` is the row index into ``simplices(k-1)`` of the facet of
         simplex ``i`` opposite its vertex ``simplices(k)[i, j]``.
@@ -391,7 +395,7 @@ class _SimplicialMixin:
         if k == 0:
             raise ValueError("k must be >= 1 for boundary(k): vertices have no facets")
         if k > self.dimension:
-            return _ro(np.zeros((0, k + 1), dtype=np.int64))
+            return _ro(np.zeros((0, k + 1), dtype=np.int32))
         return self._boundary[k][: self._counts[k]]
 
     def __len__(self) -> int:
@@ -495,9 +499,9 @@ class Filtration(_SimplicialMixin):
 # ----------------------------------------------------------------------------------
 def _empty_filtration(balls: Balls) -> Filtration:
     d = balls.dim
-    simp = tuple(_ro(np.zeros((0, k + 1), dtype=np.int64)) for k in range(d + 1))
+    simp = tuple(_ro(np.zeros((0, k + 1), dtype=np.int32)) for k in range(d + 1))
     vals = tuple(_ro(np.zeros(0)) for _ in range(d + 1))
-    bnd = (None,) + tuple(_ro(np.zeros((0, k + 1), dtype=np.int64)) for k in range(1, d + 1))
+    bnd = (None,) + tuple(_ro(np.zeros((0, k + 1), dtype=np.int32)) for k in range(1, d + 1))
     return Filtration(balls, -1, simp, vals, bnd, tuple(0 for _ in range(d + 1)))
 
 
@@ -580,13 +584,13 @@ def alpha_filtration(balls: Balls) -> Filtration:
         # local indices are ordered like input indices (keep is ascending), so the
         # lexicographic tie-break can use them
         order = _filtration_order(v, faces[j])
-        out = np.empty(faces[j].shape, dtype=np.int64)
+        out = np.empty(faces[j].shape, dtype=np.int32)
         out[...] = faces[j][order] if identity else fr.keep[faces[j][order]]
         simp_out.append(_ro(out))
         vals_out.append(_ro(v[order]))
         faces[j] = vals[j] = v = None  # free as we go
         if j >= 1:
-            out = np.empty(bnd[j].shape, dtype=np.int64)
+            out = np.empty(bnd[j].shape, dtype=np.int32)
             out[...] = inv_prev[bnd[j][order]]
             bnd_out.append(_ro(out))
             bnd[j] = None
@@ -594,9 +598,9 @@ def alpha_filtration(balls: Balls) -> Filtration:
         inv_prev[order] = np.arange(order.size, dtype=np.int32)
         del order
     for j in range(dim + 1, balls.dim + 1):
-        simp_out.append(_ro(np.zeros((0, j + 1), dtype=np.int64)))
+        simp_out.append(_ro(np.zeros((0, j + 1), dtype=np.int32)))
         vals_out.append(_ro(np.zeros(0)))
-        bnd_out.append(_ro(np.zeros((0, j + 1), dtype=np.int64)))
+        bnd_out.append(_ro(np.zeros((0, j + 1), dtype=np.int32)))
     counts = tuple(int(a.shape[0]) for a in simp_out)
     return Filtration(balls, dim, tuple(simp_out), tuple(vals_out), tuple(bnd_out), counts)
 

@@ -66,7 +66,7 @@ def assert_valid(F):
     assert isinstance(F, (Filtration, Complex))
     for k in range(F.dimension + 1):
         S, v = F.simplices(k), F.values(k)
-        assert S.shape == (v.size, k + 1) and S.dtype == np.int64
+        assert S.shape == (v.size, k + 1) and S.dtype == np.int32
         assert np.all(np.isfinite(v))
         assert np.all(np.diff(v) >= 0)
         assert np.all(np.diff(S, axis=1) > 0)
