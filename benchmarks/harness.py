@@ -12,7 +12,8 @@ Each side's wall time is the median of ``repeats`` (at least 5) processes; peak
 memory is the growth of the resident set size during the timed call: the peak
 (VmHWM, reset just before the call through ``/proc/self/clear_refs``, so neither the
 setup nor the warm-up counts) minus the resident size just before it, median over
-the runs.
+the runs.  Memory the warm-up freed is handed back to the system first
+(``malloc_trim``), so that it is not silently reused by the timed call.
 
 ``python -m benchmarks`` runs every case; ``python -m benchmarks NAME`` one case.
 It prints a markdown table with the ratio ours/peer and writes JSON to
@@ -21,6 +22,9 @@ It prints a markdown table with the ratio ours/peer and writes JSON to
 from __future__ import annotations
 
 import argparse
+import ctypes
+import ctypes.util
+import gc
 import importlib
 import json
 import os
@@ -105,6 +109,22 @@ def _rss_now() -> int:
         return 0
 
 
+def _release_freed() -> bool:
+    """Hand memory that is freed but still resident back to the system: Python's
+    garbage, then glibc's free heap pages (``malloc_trim(0)``).  Without it the timed
+    call silently reuses what the warm-up freed, and a peer that allocates on the
+    heap (C++ nodes, as GUDHI's simplex tree) looks several times smaller than it is,
+    while NumPy's large arrays, which are returned to the system at once, do not
+    profit.  Returns False where there is no glibc (the peak may then be too low)."""
+    gc.collect()
+    try:
+        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6")
+        libc.malloc_trim(ctypes.c_size_t(0))
+        return True
+    except (OSError, AttributeError):
+        return False
+
+
 def _reset_peak() -> bool:
     """Reset the kernel's record of this process's peak RSS (VmHWM), so the next peak read
     belongs to the timed call alone, not to the setup or the warm-up (Linux >= 4.0)."""
@@ -138,6 +158,7 @@ def _worker(case_name: str, side: str, seed: int) -> None:
     data = getattr(mod, case.setup)(seed=seed, **case.params)
     fn = getattr(mod, getattr(case, side))
     fn(data)  # warm-up: imports, JIT-free caches, page faults of the input
+    _release_freed()
     before = _rss_now()
     _reset_peak()  # where it fails, the peak is the process's, and may include setup's
     t0 = time.perf_counter()

@@ -43,3 +43,21 @@ def ours_40mb(_):
 
 def peer_160mb(_):
     return float(np.ones(20_000_000).sum())
+
+
+# peak memory of a heap allocator: the warm-up's freed malloc chunks must not be reused
+# unseen by the timed call (they would be, were they left resident)
+CASES.append(
+    Case(name="smoke_heap", module="tests.bench_smoke", peer_name="100 MB of small malloc chunks",
+         ours="ours_40mb", peer="peer_heap_100mb", params={"n": 1}, description="harness self-test: heap peak"),
+)
+
+_PINNED = []
+
+
+def peer_heap_100mb(_):
+    """Allocate 25,000 chunks of 4 kB (system malloc, below the mmap threshold), keep
+    every 50th alive so that the heap cannot shrink from its top, and free the rest."""
+    chunks = [bytearray(4000) for _ in range(25_000)]
+    _PINNED.extend(chunks[::50])
+    return len(chunks)
