@@ -533,9 +533,48 @@ def alpha_filtration(balls: Balls) -> Filtration:
     """
     if not isinstance(balls, Balls):
         raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+    res = _entry_times(balls)
+    if res is None:
+        return _empty_filtration(balls)
+    fr, faces, bnd, vals, dim = res
+
+    # 5. filtration order per dimension, back to input indices and scale
+    s2 = fr.scale**2
+    simp_out, vals_out, bnd_out = [], [], [None]
+    inv_prev = None
+    identity = fr.keep.size == len(balls)  # no duplicate centres: local = input
+    for j in range(dim + 1):
+        v = vals[j] * s2 if s2 != 1.0 else vals[j]
+        # local indices are ordered like input indices (keep is ascending), so the
+        # lexicographic tie-break can use them
+        order = _filtration_order(v, faces[j])
+        out = np.empty(faces[j].shape, dtype=np.int32)
+        out[...] = faces[j][order] if identity else fr.keep[faces[j][order]]
+        simp_out.append(_ro(out))
+        vals_out.append(_ro(v[order]))
+        faces[j] = vals[j] = v = None  # free as we go
+        if j >= 1:
+            out = np.empty(bnd[j].shape, dtype=np.int32)
+            out[...] = inv_prev[bnd[j][order]]
+            bnd_out.append(_ro(out))
+            bnd[j] = None
+        inv_prev = np.empty(order.size, dtype=np.int32)
+        inv_prev[order] = np.arange(order.size, dtype=np.int32)
+        del order
+    for j in range(dim + 1, balls.dim + 1):
+        simp_out.append(_ro(np.zeros((0, j + 1), dtype=np.int32)))
+        vals_out.append(_ro(np.zeros(0)))
+        bnd_out.append(_ro(np.zeros((0, j + 1), dtype=np.int32)))
+    counts = tuple(int(a.shape[0]) for a in simp_out)
+    return Filtration(balls, dim, tuple(simp_out), tuple(vals_out), tuple(bnd_out), counts)
+
+
+def _entry_times(balls: Balls):
+    """Steps 1-4 of :func:`alpha_filtration`: faces, boundary matrices and entry times
+    per dimension, in frame-local indices and units (``None`` if there are no balls)."""
     fr, simp, nbr = _triangulate_local(balls)
     if simp.shape[0] == 0:
-        return _empty_filtration(balls)
+        return None
     dim = simp.shape[1] - 1
     nv = fr.keep.size
     x, w = fr.x, fr.w
@@ -573,36 +612,26 @@ def alpha_filtration(balls: Balls) -> Filtration:
     for j in range(1, dim + 1):
         for i in range(j + 1):
             np.maximum(vals[j], vals[j - 1][bnd[j][:, i]], out=vals[j])
+    return fr, faces, bnd, vals, dim
 
-    # 5. filtration order per dimension, back to input indices and scale
+
+def _simplices_up_to(balls: Balls, tau: float) -> list:
+    """The simplices of :math:`K(\tau)` per dimension (input indices, unordered),
+    without building the :class:`Filtration`: what :func:`shapelab.union_measure`
+    needs.  Same entry times, and the same comparison as :meth:`Filtration.complex_at`."""
+    res = _entry_times(balls)
+    if res is None:
+        return []
+    fr, faces, _, vals, dim = res
     s2 = fr.scale**2
-    simp_out, vals_out, bnd_out = [], [], [None]
-    inv_prev = None
-    identity = fr.keep.size == len(balls)  # no duplicate centres: local = input
+    out = []
     for j in range(dim + 1):
         v = vals[j] * s2 if s2 != 1.0 else vals[j]
-        # local indices are ordered like input indices (keep is ascending), so the
-        # lexicographic tie-break can use them
-        order = _filtration_order(v, faces[j])
-        out = np.empty(faces[j].shape, dtype=np.int32)
-        out[...] = faces[j][order] if identity else fr.keep[faces[j][order]]
-        simp_out.append(_ro(out))
-        vals_out.append(_ro(v[order]))
-        faces[j] = vals[j] = v = None  # free as we go
-        if j >= 1:
-            out = np.empty(bnd[j].shape, dtype=np.int32)
-            out[...] = inv_prev[bnd[j][order]]
-            bnd_out.append(_ro(out))
-            bnd[j] = None
-        inv_prev = np.empty(order.size, dtype=np.int32)
-        inv_prev[order] = np.arange(order.size, dtype=np.int32)
-        del order
-    for j in range(dim + 1, balls.dim + 1):
-        simp_out.append(_ro(np.zeros((0, j + 1), dtype=np.int32)))
-        vals_out.append(_ro(np.zeros(0)))
-        bnd_out.append(_ro(np.zeros((0, j + 1), dtype=np.int32)))
-    counts = tuple(int(a.shape[0]) for a in simp_out)
-    return Filtration(balls, dim, tuple(simp_out), tuple(vals_out), tuple(bnd_out), counts)
+        rows = faces[j][v <= tau]
+        if rows.shape[0] == 0:
+            break
+        out.append(fr.keep[rows] if fr.keep.size != len(balls) else rows)
+    return out
 
 
 def _filtration_order(v: np.ndarray, rows: np.ndarray) -> np.ndarray:

@@ -649,10 +649,15 @@ def union_measure(balls: Balls, *, tau=0.0, filtration=None) -> UnionMeasure:
         z = np.zeros(0)
         z.flags.writeable = False
         return UnionMeasure(d, t, 0.0, 0.0, z, z, (0.0,) * (d + 1), (0,) * (d + 1))
+    ext = float(np.ptp(balls.centers, axis=0).max()) if n > 1 else 0.0
+    delta = TIE_TOL * max(float(balls.weights.max()), ext * ext, 1e-300)
     if filtration is None:
-        from .filtration import alpha_filtration
+        # only K(tau - delta) is needed: the entry times without the Filtration's
+        # ordering and boundary matrices (same values, same comparison)
+        from .filtration import _simplices_up_to
 
-        filtration = alpha_filtration(balls)
+        simplices = _simplices_up_to(balls, t - delta)
+        return measure_from_simplices(balls.centers, balls.weights + t, simplices, tau=t)
     else:
         fb = getattr(filtration, "balls", None)
         if fb is None or not hasattr(filtration, "complex_at"):
@@ -665,8 +670,6 @@ def union_measure(balls: Balls, *, tau=0.0, filtration=None) -> UnionMeasure:
     # have measure O(delta) (attached pairs cancel), while at exact ties (cospherical
     # input, tangent balls) round-off would otherwise decide their membership one by
     # one, inconsistently.
-    ext = float(np.ptp(balls.centers, axis=0).max()) if n > 1 else 0.0
-    delta = TIE_TOL * max(float(balls.weights.max()), ext * ext, 1e-300)
     K = filtration.complex_at(t - delta)
     simplices = [K.simplices(k) for k in range(min(K.dimension, d) + 1)] if len(K) else []
     return measure_from_simplices(balls.centers, balls.weights + t, simplices, tau=t)

@@ -204,6 +204,32 @@ def _flat_rows(x: np.ndarray, simp: np.ndarray) -> np.ndarray:
     return np.abs(det) <= 1e-12 * size
 
 
+def _qhull_facets(points: np.ndarray):
+    """Facets of the convex hull of ``points`` (Qhull, options ``_QHULL_OPTIONS``):
+    simplices, neighbours and hyperplane equations, as ``scipy.spatial.ConvexHull``
+    gives them.
+
+    ``ConvexHull`` also computes the hull's volume and area, which we never use and
+    which cost ~15 % of the time; scipy's Qhull wrapper underneath it does not.
+    That wrapper is private, so this falls back to ``ConvexHull`` if it changes
+    (``tests/test_power.py`` checks that both give the same arrays)."""
+    try:
+        from scipy.spatial._qhull import _Qhull
+
+        q = _Qhull(b"i", points, _QHULL_OPTIONS.encode(), required_options=b"Qt")
+    except QhullError:
+        raise
+    except Exception:  # pragma: no cover - a scipy without the private wrapper
+        hull = ConvexHull(points, qhull_options=_QHULL_OPTIONS)
+        return hull.simplices, hull.neighbors, hull.equations
+    try:
+        q.triangulate()
+        simplices, neighbors, equations = q.get_simplex_facet_array()[:3]
+    finally:
+        q.close()
+    return simplices, neighbors, equations
+
+
 def _hull_once(x: np.ndarray, h: np.ndarray, perm: np.ndarray):
     n, k = x.shape
     lifted = np.empty((n + 1, k + 1))
@@ -214,15 +240,14 @@ def _hull_once(x: np.ndarray, h: np.ndarray, perm: np.ndarray):
     lifted[n, :k] = x.mean(axis=0)
     lifted[n, k] = h.max() + 4.0 + 2.0 * (h.max() - h.min())
     try:
-        hull = ConvexHull(lifted, qhull_options=_QHULL_OPTIONS)
+        simp, neighbors, equations = _qhull_facets(lifted)
     except QhullError as exc:  # pragma: no cover - should not happen after conditioning
         raise RuntimeError(f"Qhull failed on the lifted balls: {exc}") from None
-    simp = hull.simplices
     # Lower facets: downward unit normal.  Vertical facets (normal's last component
     # zero up to round-off) project to flat simplices, e.g. over collinear points on
     # the boundary of the hull, and are not part of DT.  In the conditioned frame a
     # genuine facet this steep would have an orthoradius above ~1e10.
-    nz = hull.equations[:, k]
+    nz = equations[:, k]
     lower = ~np.any(simp == n, axis=1) & (nz < -_VERTICAL_TOL)
     # Qhull's normal of such a vertical facet can be far from horizontal-zero (we saw
     # -2e-6) when it is computed from points whose projections are coplanar only up
@@ -234,13 +259,13 @@ def _hull_once(x: np.ndarray, h: np.ndarray, perm: np.ndarray):
         lower[steep[_flat_rows(x[perm], simp[steep])]] = False
     newid = np.cumsum(lower, dtype=np.int32) - 1
     simp = simp[lower]
-    nbr = hull.neighbors[lower]
+    nbr = neighbors[lower]
     nbr = np.where(nbr >= 0, np.where(lower[nbr], newid[nbr], -1), -1)
     # back to the caller's indices; vertices ascending in each row, neighbours
     # permuted alongside
     # Qt's pieces of one merged facet share its hyperplane (bit for bit): only those
     # can be flat, so only they need the flatness test
-    e0 = hull.equations[lower, 0]
+    e0 = equations[lower, 0]
     srt = np.sort(e0)
     dup = srt[1:][srt[1:] == srt[:-1]]
     tricoplanar = np.isin(e0, dup) if dup.size else np.zeros(e0.size, dtype=bool)

@@ -72,6 +72,24 @@ def test_unweighted_is_scipy_delaunay(d):
 
 
 @pytest.mark.parametrize("d", [2, 3])
+def test_qhull_facets_are_convexhulls(d):
+    """Our direct use of scipy's (private) Qhull wrapper gives ConvexHull's arrays."""
+    from scipy.spatial import ConvexHull
+
+    from shapelab.power import _QHULL_OPTIONS, _qhull_facets
+
+    rng = np.random.default_rng(7)
+    pts = np.c_[rng.uniform(size=(300, d)), rng.normal(size=300)]
+    pts = np.vstack([pts, np.floor(pts[:40] * 4) / 4])  # and some grid-like points
+    s, nb, eq = _qhull_facets(pts)
+    hull = ConvexHull(pts, qhull_options=_QHULL_OPTIONS)
+    np.testing.assert_array_equal(s, hull.simplices)
+    np.testing.assert_array_equal(nb, hull.neighbors)
+    # ConvexHull's equations themselves differ in the last bits from run to run
+    np.testing.assert_allclose(eq, hull.equations, rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("d", [2, 3])
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_orthospheres_are_empty_and_hidden_balls_by_lp(d, seed):
     balls = random_balls(seed, 25, d, 0.35)
