@@ -537,6 +537,9 @@ def _pieces(Z, W, R, d, k):
 TIE_TOL = 1e-11
 
 
+_BLOCK = 8192
+
+
 def measure_from_simplices(centers, weights, simplices, *, tau: float = 0.0) -> UnionMeasure:
     """The short inclusion–exclusion formula over a given dual complex.
 
@@ -572,11 +575,15 @@ def measure_from_simplices(centers, weights, simplices, *, tau: float = 0.0) -> 
             terms.append(0.0)
             continue
         st = np.ascontiguousarray(simp.T)  # (k+1, m)
-        # relative coordinates, component-first (k+1, d, m): exact for huge offsets
-        Z = np.ascontiguousarray((Zall[st] - Zall[st[0]][None]).transpose(0, 2, 1))
-        W = np.maximum(Wall[st], 0.0)
-        R = Rall[st]
-        P, S = _pieces(Z, W, R, d, k)
+        P = np.empty(st.shape)
+        S = np.empty(st.shape)
+        # in blocks: the ~100 temporaries of a block stay in cache and are reused
+        # from the heap instead of being mapped (and page-faulted) afresh
+        for a in range(0, st.shape[1], _BLOCK):
+            sb = st[:, a:a + _BLOCK]
+            # relative coordinates, component-first (k+1, d, m): exact for huge offsets
+            Z = np.ascontiguousarray((Zall[sb] - Zall[sb[0]][None]).transpose(0, 2, 1))
+            P[:, a:a + _BLOCK], S[:, a:a + _BLOCK] = _pieces(Z, np.maximum(Wall[sb], 0.0), Rall[sb], d, k)
         sign = -1.0 if k % 2 else 1.0
         ball_measure += sign * np.bincount(st.ravel(), weights=P.ravel(), minlength=n)
         ball_boundary += sign * np.bincount(st.ravel(), weights=S.ravel(), minlength=n)
