@@ -339,6 +339,21 @@ def test_duplicates_give_the_same_union():
     assert dup.boundary == pytest.approx(m.boundary, rel=1e-12)
 
 
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("tau", [-0.5, 0.0, 0.7])
+def test_without_a_filtration_is_the_same_as_with_one(dim, tau):
+    """union_measure builds only K(tau) when not given the Filtration: same complex,
+    same numbers (duplicates and a 1e6 offset included)."""
+    b = random_balls(40, 30, dim)
+    b = Balls(np.vstack([b.centers, b.centers[:4]]) + 1e6, np.append(b.radii, b.radii[:4] * 0.5))
+    fast = union_measure(b, tau=tau)
+    full = union_measure(b, tau=tau, filtration=alpha_filtration(b))
+    assert fast.counts == full.counts
+    assert fast.measure == pytest.approx(full.measure, rel=1e-12)
+    assert fast.boundary == pytest.approx(full.boundary, rel=1e-12)
+    np.testing.assert_allclose(fast.ball_measure, full.ball_measure, rtol=1e-10, atol=1e-12)
+
+
 @pytest.mark.parametrize("radius", [0.5, 0.6, 2**0.5 / 2, 0.8, 3**0.5 / 2, 0.9, 1.2])
 def test_cubic_grid_rotated_equals_axis_aligned(radius):
     """A 3x3x3 grid is maximally degenerate (cospherical, coplanar, tangent balls);
