@@ -4,7 +4,9 @@ A *case* names three module-level functions:
 
 * ``setup(seed) -> data``: builds the input (not timed), deterministic in ``seed``;
 * ``ours(data) -> result`` and ``peer(data) -> result``: the two timed calls;
-* optionally ``check(ours_result, peer_result) -> str``: a one-line accuracy note.
+* optionally ``check(ours_result, peer_result) -> str``: a one-line accuracy note; a
+  note that starts with ``MISMATCH`` (the two sides disagree beyond the case's
+  tolerance) marks the case as not met, however fast it is.
 
 Every repetition runs in a fresh Python process, after one untimed warm-up call
 in that process, so neither side profits from the other's caches or allocator.
@@ -109,6 +111,10 @@ def _rss_now() -> int:
         return 0
 
 
+#: A check's note starting with this says that ours and the peer disagree.
+MISMATCH = "MISMATCH"
+
+
 def _release_freed() -> bool:
     """Hand memory that is freed but still resident back to the system: Python's
     garbage, then glibc's free heap pages (``malloc_trim(0)``).  Without it the timed
@@ -194,7 +200,8 @@ def run_case(case: Case, repeats: int | None = None) -> dict:
     ratio = med["ours"] / med["peer"] if med["peer"] > 0 else float("inf")
     mem_ratio = mem["ours"] / mem["peer"] if mem["peer"] > 0 else None
     notes = sorted({r["note"] for r in runs["ours"] if r.get("note")})
-    ok = (case.target is None or ratio <= case.target) and (
+    agree = not any(note.startswith(MISMATCH) for note in notes)
+    ok = agree and (case.target is None or ratio <= case.target) and (
         case.memory_target is None or (mem_ratio is not None and mem_ratio <= case.memory_target)
     )
     return {

@@ -61,3 +61,21 @@ def peer_heap_100mb(_):
     chunks = [bytearray(4000) for _ in range(25_000)]
     _PINNED.extend(chunks[::50])
     return len(chunks)
+
+
+# a check that reports a disagreement: the case is not met, however fast ours is
+CASES.append(
+    Case(name="smoke_mismatch", module="tests.bench_smoke", peer_name="a different function", target=1e6,
+         params={"n": 2000}, peer="peer_wrong", check="check_mismatch", description="harness self-test: mismatch"),
+)
+
+
+def peer_wrong(x):
+    return np.abs(x).sum(axis=1)
+
+
+def check_mismatch(a, b):
+    from benchmarks.harness import MISMATCH
+
+    diff = float(np.abs(a - b).max())
+    return f"{MISMATCH}: max diff {diff:.1e}" if diff > 1e-12 else f"max diff {diff:.0e}"

@@ -49,3 +49,15 @@ def test_peak_memory_counts_heap_memory_the_warm_up_freed(monkeypatch):
     row = harness.run_case(case, repeats=5)
     peer = [r["peak_kib"] / 1024 for r in row["runs"]["peer"]]
     assert all(85 < m < 140 for m in peer), peer
+
+
+def test_a_case_whose_results_disagree_is_not_met(monkeypatch):
+    """Speed is no use if the answer is wrong: a check note starting with MISMATCH fails
+    the case, while the same check on agreeing results (smoke_norm) passes it."""
+    monkeypatch.setenv("SHAPELAB_BENCH_MODULES", "tests.bench_smoke")
+    cases = {c.name: c for c in harness.all_cases()}
+    row = harness.run_case(cases["smoke_mismatch"], repeats=5)
+    assert row["ratio"] <= cases["smoke_mismatch"].target
+    assert row["notes"] and row["notes"][0].startswith(harness.MISMATCH)
+    assert row["met"] is False
+    assert "| NO |" in harness._table([row])

@@ -50,12 +50,15 @@ def check(ours_result, peer_result) -> str:
         elif k == 0:
             vert_vals.append(f)
     if tuple(theirs) != ours_counts:
-        return f"COUNTS DIFFER ours {ours_counts} gudhi {tuple(theirs)}"
+        return f"MISMATCH: counts ours {ours_counts} gudhi {tuple(theirs)}"
     errs = []
     for mine, their in ((F.values(0), vert_vals), (F.values(F.dimension), top_vals)):
         their = np.sort(np.asarray(their))
         errs.append(np.max(np.abs(np.sort(mine) - their) / np.maximum(1.0, np.abs(their))))
-    return f"counts equal {ours_counts}; max rel err (sorted values, dims 0 and top) {max(errs):.1e}"
+    # GUDHI's default ("safe") precision is itself off by up to ~5e-7 on these inputs
+    # (python -m benchmarks.accuracy), so 1e-6 is the tolerance
+    tag = "MISMATCH: " if max(errs) > 1e-6 else ""
+    return f"{tag}counts equal {ours_counts}; max rel err (sorted values, dims 0 and top) {max(errs):.1e}"
 
 
 CASES = [

@@ -73,7 +73,8 @@ def check(ours_result, peer_result) -> str:
     if ours_result == peer_result:
         return f"H = {ours_result:.12g}, equal to the last bit"
     rel = abs(ours_result - peer_result) / max(abs(peer_result), 1e-300)
-    return f"H = {ours_result:.12g}, peer {peer_result:.12g}, rel. diff {rel:.1e}"
+    tag = "MISMATCH: " if rel > 1e-12 else ""
+    return f"{tag}H = {ours_result:.12g}, peer {peer_result:.12g}, rel. diff {rel:.1e}"
 
 
 CASES = [

@@ -47,8 +47,10 @@ def check(ours_result, peer_result) -> str:
     theirs = peer_result.totalArea()
     per_ball = np.array([peer_result.atomArea(i) for i in range(len(ours_result.ball_boundary))])
     worst = np.max(np.abs(ours_result.ball_boundary - per_ball))
+    # Lee-Richards at 100 slices is good to ~1e-4 relative in total area
+    tag = "MISMATCH: " if abs(ours_area - theirs) > 1e-3 * theirs else ""
     return (
-        f"surface area ours {ours_area:.6f} vs freesasa LR(100) {theirs:.6f}: "
+        f"{tag}surface area ours {ours_area:.6f} vs freesasa LR(100) {theirs:.6f}: "
         f"rel diff {abs(ours_area - theirs) / theirs:.1e}; worst per-ball diff {worst:.1e} Å²; "
         f"our volume {ours_result.volume:.3f}"
     )

@@ -77,7 +77,8 @@ def check_rotation(ours, peer) -> str:
     from shapelab import Quaternion
 
     deg = np.degrees(Quaternion.from_matrix(ours).angle_to(Quaternion.from_matrix(peer)))
-    return f"ours vs scipy rotation differ by {deg:.1e}°"
+    tag = "MISMATCH: " if deg > 1e-6 else ""
+    return f"{tag}ours vs scipy rotation differ by {deg:.1e}°"
 
 
 # --------------------------------------------------------------------------- ICP
@@ -181,7 +182,8 @@ def check_icp(ours, peer) -> str:
         ok = "reached" if r["err"] < THRESHOLD_DEG else "NOT reached"
         return f"{name}: {r['k']} it, {r['err']:.4f}° ({ok})"
 
-    return f"{side('ours', ours)}; {side('open3d', peer)}; ours' fixed point {ours['cal']['floor_ours']:.4f}°"
+    tag = "MISMATCH: " if ours["err"] >= THRESHOLD_DEG else ""   # ours must reach the goal
+    return f"{tag}{side('ours', ours)}; {side('open3d', peer)}; ours' fixed point {ours['cal']['floor_ours']:.4f}°"
 
 
 CASES = [

@@ -83,16 +83,17 @@ def check_persistence(ours_result, st) -> str:
         ref = ref[keep]
         mine = ours_result[k]
         if mine.shape != ref.shape:
-            return f"H{k}: {len(mine)} pairs, GUDHI {len(ref)}"
+            return f"MISMATCH: H{k}: {len(mine)} pairs, GUDHI {len(ref)}"
         a = mine[np.lexsort((mine[:, 1], mine[:, 0]))]
         b = ref[np.lexsort((ref[:, 1], ref[:, 0]))]
         fin = np.isfinite(b)
         if not np.array_equal(fin, np.isfinite(a)):
-            return f"H{k}: essential classes differ"
+            return f"MISMATCH: H{k}: essential classes differ"
         if fin.any():
             worst = max(worst, float(np.max(np.abs(a[fin] - b[fin]) / np.maximum(1.0, np.abs(b[fin])))))
         counts.append(len(mine))
-    return f"pairs per dim {counts} equal GUDHI's; max rel diff {worst:.1e}"
+    tag = "MISMATCH: " if worst > 1e-6 else ""
+    return f"{tag}pairs per dim {counts} equal GUDHI's; max rel diff {worst:.1e}"
 
 
 # ---------------------------------------------------------------- Betti curves
@@ -111,7 +112,8 @@ def check_betti(ours_result, st) -> str:
         I = np.asarray(st.persistence_intervals_in_dimension(k), float).reshape(-1, 2)
         alive = np.searchsorted(np.sort(I[:, 0]), mids, side="right") - np.searchsorted(np.sort(I[:, 1]), mids, side="right")
         bad += int(np.sum(alive != B[:, k]))
-    return f"{len(taus)} values of tau; Betti numbers differing from GUDHI's intervals: {bad}"
+    tag = "MISMATCH: " if bad else ""
+    return f"{tag}{len(taus)} values of tau; Betti numbers differing from GUDHI's intervals: {bad}"
 
 
 # ------------------------------------------------------------------- cavities
