@@ -67,8 +67,8 @@ def vendor_assets(assets: dict[str, str] = ASSETS, dest: Path = VENDOR) -> Path:
     return dest
 
 
-def lessons_into_book(execute: bool) -> None:
-    out = BOOK / "lessons"
+def lessons_into_book(execute: bool, book: Path = BOOK) -> None:
+    out = book / "lessons"
     out.mkdir(parents=True, exist_ok=True)
     for old in out.glob("*.ipynb"):
         old.unlink()
@@ -96,16 +96,27 @@ def build_gallery(out: Path = GALLERY) -> bool:
     return rc == 0
 
 
-def build_book(path_output: Path | None = None, gallery: bool = True) -> Path:
-    vendor_assets()
+def book_copy(dest: Path) -> Path:
+    """A copy of the book's sources (no build output, lessons or JavaScript) in ``dest``,
+    for building somewhere else than the working tree (the tests do)."""
+    skip = shutil.ignore_patterns("node_modules", "_build", "_extra", "_gallery", "lessons")
+    shutil.copytree(BOOK, dest, ignore=skip, dirs_exist_ok=True)
+    return dest
+
+
+def build_book(path_output: Path | None = None, gallery: bool = True, book: Path = BOOK) -> Path:
+    """Build the site from the book sources in ``book`` (default ``book/``) into
+    ``path_output/_build/html`` (default: inside ``book``); the offline JavaScript and
+    the gallery's figures go into ``book`` too."""
+    vendor_assets(dest=VENDOR if book == BOOK else book / "_extra" / "vendor")
     if gallery:
-        build_gallery()
-    cmd = [str(Path(sys.executable).parent / "jupyter-book"), "build", str(BOOK), "--keep-going"]
+        build_gallery(GALLERY if book == BOOK else book / "_gallery")
+    cmd = [str(Path(sys.executable).parent / "jupyter-book"), "build", str(book), "--keep-going"]
     if path_output is not None:
         cmd += ["--path-output", str(path_output)]
     env = dict(os.environ, PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
     rc = subprocess.call(cmd, cwd=ROOT, env=env)
-    html = (path_output or BOOK) / "_build" / "html"
+    html = (path_output or book) / "_build" / "html"
     if rc or not (html / "index.html").exists():
         raise SystemExit("the book failed to build; see above")
     return html

@@ -1,7 +1,7 @@
 """The course site builds from the committed lessons and works offline.
 
-This builds the whole book once (rendering the committed outputs, no execution) into a
-temporary directory, then checks every page: no script, stylesheet or font comes from
+This builds the whole book once (rendering the committed outputs, no execution) from a
+copy of its sources in a temporary directory, then checks every page: no script, stylesheet or font comes from
 http(s), every local asset a page references exists, and widget state is embedded.
 """
 from __future__ import annotations
@@ -36,8 +36,11 @@ def site(tmp_path_factory):
     if shutil.which("npm") is None and not (ROOT / "book" / "node_modules").exists():
         pytest.skip("npm is needed to install the book's offline JavaScript")
     bc = _build_course()
-    bc.lessons_into_book(execute=False)
-    return bc.build_book(path_output=tmp_path_factory.mktemp("book"))
+    # a private copy of the book's sources: the working tree's book/ (where `make course`
+    # may be building at the same time) is left alone
+    src = bc.book_copy(tmp_path_factory.mktemp("book-src"))
+    bc.lessons_into_book(execute=False, book=src)
+    return bc.build_book(path_output=tmp_path_factory.mktemp("book"), book=src)
 
 
 def _pages(site: Path):
