@@ -237,6 +237,15 @@ def _angle(a, b):
     return np.arctan2(_cross_norm(a, b), _dot(a, b))
 
 
+def _tangent_angle(um, uk, p):
+    """The angle between the projections of ``um`` and ``uk`` on the plane orthogonal
+    to the unit vector ``p``: ``_angle(um - (um.p) p, uk - (uk.p) p)`` without forming
+    them.  The projections' cross product is parallel to p, of length
+    :math:`|\det(u_m, u_k, p)|`, and their dot product is
+    :math:`u_m\cdot u_k - (u_m\cdot p)(u_k\cdot p)`."""
+    return np.arctan2(np.abs(_dot(_cross(um, uk), p)), _dot(um, uk) - _dot(um, p) * _dot(uk, p))
+
+
 # ============================================================ pair geometry
 #: A pair of balls whose chord disk has squared radius below this fraction of
 #: max(r_a^2, r_b^2, d_ab^2) is treated as tangent: rounding noise of relative size
@@ -423,7 +432,7 @@ def _pieces_top(Z, W, R, d, geo):
                 mm, kk = [v for v in others if v != n]
                 ph = (corner[n] - Z[l]) / rs
                 um, uk = geo[l, mm][0], geo[l, kk][0]
-                ext += _angle(um - _dot(um, ph) * ph, uk - _dot(uk, ph) * ph)
+                ext += _tangent_angle(um, uk, ph)
             turn = sum(geo[l, mm][1] * phi[l, mm] for mm in others)
             S[l] = np.where(r > 0, r * r * (_TWO_PI - ext) - r * turn, 0.0)
         flat = sum(geo[l, mm][1] * G[l, mm] for mm in others)
@@ -453,7 +462,7 @@ def _pieces_triangle3d(Z, W, R, geo=None):
         r = R[l]
         ph = (corner - Z[l]) / np.where(r > 0, r, 1.0)
         um, uk = geo[l, mm][0], geo[l, kk][0]
-        ext = 2.0 * _angle(um - _dot(um, ph) * ph, uk - _dot(uk, ph) * ph)
+        ext = 2.0 * _tangent_angle(um, uk, ph)
         turn = geo[l, mm][1] * phi[l, mm] + geo[l, kk][1] * phi[l, kk]
         S[l] = np.where(r > 0, r * r * (_TWO_PI - ext) - r * turn, 0.0)
         P[l] = (r * S[l] - geo[l, mm][1] * G[l, mm] - geo[l, kk][1] * G[l, kk]) / 3.0
