@@ -564,3 +564,18 @@ def test_low_dimensional_balls(centers):
     m = union_measure(b)
     V, S = union_balls_by_slices(b.centers, b.radii)
     assert rel(m.volume, V) < 1e-7 and rel(m.surface_area, S) < 3e-5
+
+
+def test_tangent_angle_is_the_angle_of_the_projections():
+    from shapelab.measure import _angle, _dot, _tangent_angle
+
+    rng = np.random.default_rng(3)
+    um, uk, p = (rng.normal(size=(3, 500)) for _ in range(3))
+    um, uk, p = (v / np.sqrt(_dot(v, v)) for v in (um, uk, p))
+    projected = _angle(um - _dot(um, p) * p, uk - _dot(uk, p) * p)
+    np.testing.assert_allclose(_tangent_angle(um, uk, p), projected, rtol=0, atol=1e-12)
+    # right angle about the z axis, whatever the components along it
+    ez = np.array([[0.0], [0.0], [1.0]])
+    a = np.array([[1.0], [0.0], [5.0]]) / np.sqrt(26.0)
+    b = np.array([[0.0], [1.0], [-2.0]]) / np.sqrt(5.0)
+    assert _tangent_angle(a, b, ez)[0] == pytest.approx(np.pi / 2, abs=1e-15)
