@@ -336,12 +336,6 @@ def _arc_angle(center, p, q, bisector):
     return 2.0 * np.arctan2(0.5 * c, _dot(0.5 * (p + q) - center, n))
 
 
-def _segment(rho2, h, delta):
-    """Area of the part of a disk of squared radius rho2 beyond a chord at signed
-    distance delta from its centre (half-chord h = sqrt(rho2 - delta^2))."""
-    return rho2 * np.arctan2(h, delta) - delta * h
-
-
 def _e_dir(Z, geo, a, b, c):
     """Unit vector perpendicular to z_a z_b in aff(a, b, c), pointing to z_c."""
     u = geo[a, b][0]
@@ -452,8 +446,11 @@ def _pieces_triangle3d(Z, W, R, geo=None):
         (c,) = [v for v in range(3) if v not in (a, b)]
         f, rho2 = geo[a, b][2], geo[a, b][3]
         delta = _dot(y - f, _e_dir(Z, geo, a, b, c))
-        G[a, b] = G[b, a] = _segment(rho2, h, delta)
-        phi[a, b] = phi[b, a] = 2.0 * np.arctan2(h, delta)
+        # the chord disk beyond a chord at signed distance delta from its centre
+        # (half-chord h): area rho2 * half - delta * h, arc angle 2 * half
+        half = np.arctan2(h, delta)
+        G[a, b] = G[b, a] = rho2 * half - delta * h
+        phi[a, b] = phi[b, a] = 2.0 * half
     corner = y + h * nrm
     P = np.empty((3, m))
     S = np.empty((3, m))
