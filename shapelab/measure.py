@@ -241,8 +241,8 @@ def _tangent_angle(um, uk, p):
     """The angle between the projections of ``um`` and ``uk`` on the plane orthogonal
     to the unit vector ``p``: ``_angle(um - (um.p) p, uk - (uk.p) p)`` without forming
     them.  The projections' cross product is parallel to p, of length
-    :math:`|\det(u_m, u_k, p)|`, and their dot product is
-    :math:`u_m\cdot u_k - (u_m\cdot p)(u_k\cdot p)`."""
+    :math:`|\\det(u_m, u_k, p)|`, and their dot product is
+    :math:`u_m\\cdot u_k - (u_m\\cdot p)(u_k\\cdot p)`."""
     return np.arctan2(np.abs(_dot(_cross(um, uk), p)), _dot(um, uk) - _dot(um, p) * _dot(uk, p))
 
 

@@ -1,6 +1,6 @@
 """Shared pytest configuration.
 
-Besides fixtures, this enforces the course's notebook budget: a lesson whose cells
+Besides fixtures and the Hypothesis profile, this enforces the course's notebook budget: a lesson whose cells
 take more than 60 s in total under nbval fails (the budget is for 2 cores).
 """
 from __future__ import annotations
@@ -11,8 +11,16 @@ from collections import defaultdict
 
 import matplotlib
 import pytest
+from hypothesis import settings
 
 matplotlib.use("Agg")
+
+# Hypothesis draws the same examples on every run, so that CI is reproducible (a random
+# draw once failed a test whose tolerance was wrong, on one run in many).  To explore new
+# examples: SHAPELAB_HYPOTHESIS=explore make test (see CONTRIBUTING.md).
+settings.register_profile("ci", derandomize=True, print_blob=True)
+settings.register_profile("explore", derandomize=False, max_examples=400, print_blob=True)
+settings.load_profile(os.environ.get("SHAPELAB_HYPOTHESIS", "ci"))
 os.environ.setdefault("PYDEVD_DISABLE_FILE_VALIDATION", "1")
 
 NOTEBOOK_BUDGET_S = 60.0

@@ -134,10 +134,12 @@ def test_polylines_against_dense_sampling(seed, n, sx, sy):
     r = critical_points(P, S)
     X = dense_samples(P)
     F = np.linalg.norm(X - S, axis=1)
-    # global extrema
+    # global extrema: the maximum is at a vertex, which is sampled exactly; the sampled
+    # minimum is within half a sample spacing of the true one (triangle inequality)
+    spacing = np.linalg.norm(np.diff(P, axis=0), axis=1).max() / 400
     assert r.values.max() == pytest.approx(F.max(), abs=1e-12)
     assert r.values.min() <= F.min() + 1e-12
-    assert r.values.min() >= F.min() - 1e-4
+    assert r.values.min() >= F.min() - spacing / 2 - 1e-12
     # minima and maxima alternate along the curve; as many of each
     assert r.n_min == r.n_max and r.euler_characteristic == 0
     assert all(k1 != k2 for k1, k2 in zip(r.kinds, np.roll(r.kinds, 1)))
