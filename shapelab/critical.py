@@ -251,6 +251,10 @@ def _evaluate(fn: Callable, t: np.ndarray, dim: int | None = None) -> np.ndarray
     """
     t = np.asarray(t, dtype=float)
     try:
+        if t.size == 1:
+            # one parameter: call with a float, which suits both kinds of function (a
+            # scalar one given a 1-element array converts it with a DeprecationWarning)
+            raise ValueError
         out = np.asarray(fn(t), dtype=float)
         if out.ndim == 2 and out.shape[1] == t.size and (dim is None or out.shape[0] == dim) and t.size != out.shape[0]:
             out = out.T
