@@ -111,3 +111,48 @@ def test_sanitize_equates_what_changes_between_runs(a, b):
 ])
 def test_sanitize_keeps_the_numbers_a_lesson_teaches(a, b):
     assert _sanitize(a) != _sanitize(b)
+
+
+def _pin_versions():
+    spec = importlib.util.spec_from_file_location("pin_versions", ROOT / "scripts" / "pin_versions.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_pin_versions_marks_only_what_differs(tmp_path):
+    pv = _pin_versions()
+    new = tmp_path / "311.txt"
+    old = tmp_path / "310.txt"
+    new.write_text("numpy==2.4.6\nSciPy==1.17.1\nsix==1.17.0\n")
+    old.write_text("numpy==2.2.6\nscipy==1.17.1\ntomli==2.5.0\nshapelab==0.1.0\n")
+    lines = pv.merge(pv._read(str(new)), pv._read(str(old)))
+    assert lines == [
+        'numpy==2.4.6 ; python_version >= "3.11"',
+        'numpy==2.2.6 ; python_version < "3.11"',
+        "SciPy==1.17.1",
+        "six==1.17.0 ; python_version >= \"3.11\"",
+        'tomli==2.5.0 ; python_version < "3.11"',
+    ]
+    bad = tmp_path / "bad.txt"
+    bad.write_text("numpy==2.4.6\nnumpy>=2\n")
+    with pytest.raises(SystemExit, match=r"bad\.txt:2: expected 'name==version'"):
+        pv._read(str(bad))
+
+
+def test_constraints_pin_each_package_once_per_python():
+    """Every package is pinned exactly once for 3.10 and once for 3.11+."""
+    seen = {"3.10": {}, "3.11": {}}
+    for n, line in enumerate((ROOT / "requirements" / "constraints.txt").read_text().splitlines(), 1):
+        line = line.strip()
+        if not line or line.startswith("#"):
+            continue
+        spec, _, marker = line.partition(";")
+        name = spec.split("==")[0].strip().lower().replace("_", "-")
+        assert "==" in spec, f"line {n}: {line}"
+        targets = {"": ["3.10", "3.11"], 'python_version >= "3.11"': ["3.11"], 'python_version < "3.11"': ["3.10"]}
+        assert marker.strip() in targets, f"line {n}: unexpected marker {marker!r}"
+        for py in targets[marker.strip()]:
+            assert name not in seen[py], f"line {n}: {name} pinned twice for Python {py}"
+            seen[py][name] = n
+    assert "numpy" in seen["3.10"] and "numpy" in seen["3.11"]
