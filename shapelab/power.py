@@ -51,8 +51,11 @@ import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
 from .balls import Balls
+from .certify import certify, facet_adjacency
+from .incremental import incremental_triangulation
+from .predicates import WeightedPoints
 
-__all__ = ["regular_triangulation", "power_diagram", "PowerDiagram"]
+__all__ = ["regular_triangulation", "power_diagram", "PowerDiagram", "triangulation_report", "TriangulationReport"]
 
 _QHULL_OPTIONS = "Qt Qbb Q12 Q5 Q8"
 _VERTICAL_TOL = 1e-10
@@ -82,6 +85,7 @@ class _Frame:
     w: np.ndarray         # (n_k,) conditioned weights
     scale: float
     k: int                # affine dimension
+    axes: tuple = ()      # k < d: the input axes the exact predicates project to
 
 
 def _dedupe(centers: np.ndarray, radii: np.ndarray) -> np.ndarray:
@@ -131,9 +135,29 @@ def _frame(balls: Balls) -> _Frame:
     _, sv, vt = np.linalg.svd(y, full_matrices=False)
     tol = max(y.shape) * np.finfo(float).eps * 64 * sv[0]
     k = int(np.sum(sv > tol))
+    axes = tuple(range(y.shape[1]))
     if k < y.shape[1]:
         y = y @ vt[:k].T
-    return _Frame(keep, np.ascontiguousarray(y), w / scale**2, scale, k)
+        axes = _projection_axes(vt[:k], k)
+    return _Frame(keep, np.ascontiguousarray(y), w / scale**2, scale, k, axes)
+
+
+def _projection_axes(basis: np.ndarray, k: int) -> tuple:
+    """The k coordinate axes onto which a k-flat (orthonormal ``basis`` rows)
+    projects best: the exact predicates of a line or plane in 3D (or a line in 2D)
+    are evaluated on the input's own coordinates along these axes.  Near ties
+    (within 1e-9) go to the lower axis, so round-off cannot change the choice."""
+    d = basis.shape[1]
+    if k == 0:
+        return ()
+    from itertools import combinations
+
+    best, best_v = None, -1.0
+    for axes in combinations(range(d), k):
+        v = abs(float(np.linalg.det(basis[:, list(axes)])))
+        if v > best_v * (1.0 + 1e-9):
+            best, best_v = axes, v
+    return tuple(best)
 
 
 # ----------------------------------------------------------------------------------
@@ -156,7 +180,7 @@ def _spread_bits(v: np.ndarray, k: int) -> np.ndarray:
     return v
 
 
-def _morton_order(x: np.ndarray) -> np.ndarray:
+def _morton_order(x: np.ndarray, min_n: int = 2048) -> np.ndarray:
     """A permutation sorting the points along a Z-order (Morton) curve.
 
     Qhull is faster when nearby points are nearby in memory (~15 % at 10^5 balls in
@@ -166,7 +190,7 @@ def _morton_order(x: np.ndarray) -> np.ndarray:
     replaces ``argsort``.
     """
     n, k = x.shape
-    if n < 2048 or k not in (2, 3):
+    if n < min_n or k not in (2, 3):
         return np.arange(n)
     ib = int(n - 1).bit_length()
     bits = min((63 - ib) // k, 32 if k == 2 else 21)
@@ -252,57 +276,29 @@ def _hull_once(x: np.ndarray, h: np.ndarray, perm: np.ndarray):
     # Qhull's normal of such a vertical facet can be far from horizontal-zero (we saw
     # -2e-6) when it is computed from points whose projections are coplanar only up
     # to round-off: a steep facet (slope above ~1000) that is flat in projection is
-    # vertical.  (A flat facet can only be non-vertical if it is a piece of a merged
-    # facet, handled in _lower_hull.)
+    # vertical.  (These are guesses for a candidate; the certificate decides.)
     steep = np.flatnonzero(lower & (nz > -1e-3))
     if steep.size:
         lower[steep[_flat_rows(x[perm], simp[steep])]] = False
-    newid = np.cumsum(lower, dtype=np.int32) - 1
-    simp = simp[lower]
-    nbr = neighbors[lower]
-    nbr = np.where(nbr >= 0, np.where(lower[nbr], newid[nbr], -1), -1)
-    # back to the caller's indices; vertices ascending in each row, neighbours
-    # permuted alongside
-    # Qt's pieces of one merged facet share its hyperplane (bit for bit): only those
-    # can be flat, so only they need the flatness test
-    e0 = equations[lower, 0]
-    srt = np.sort(e0)
-    dup = srt[1:][srt[1:] == srt[:-1]]
-    tricoplanar = np.isin(e0, dup) if dup.size else np.zeros(e0.size, dtype=bool)
-    simp = np.asarray(perm, dtype=np.int32)[simp]
-    order = np.argsort(simp, axis=1)
-    simp = np.take_along_axis(simp, order, axis=1)
-    nbr = np.take_along_axis(nbr.astype(np.int32, copy=False), order, axis=1)
-    return simp, nbr, tricoplanar
+    simp = np.asarray(perm, dtype=np.int32)[simp[lower]]
+    simp.sort(axis=1)
+    return simp
 
 
 def _lower_hull(x: np.ndarray, w: np.ndarray):
-    """Regular triangulation of the weighted points (x, w), x of full affine
-    dimension k = x.shape[1] >= 1.
+    """Qhull's lower hull of the lifted weighted points (x, w), x of full affine
+    dimension k = x.shape[1] >= 1: candidate top simplices (local indices, vertices
+    ascending in each row), or ``None`` if Qhull gives up.
 
-    Returns
-    -------
-    simp : (m, k+1) int64
-        Top simplices, local indices, vertices ascending in each row.
-    nbr : (m, k+1) int64
-        ``nbr[t, i]`` is the top simplex sharing the facet of ``t`` opposite its
-        vertex ``simp[t, i]``, or -1 on the hull.
-
-    Notes
-    -----
-    On cospherical input (grids) Qhull merges facets and ``Qt`` triangulates the
-    merged facets; in 3D that triangulation may contain *flat* tetrahedra (four
-    cocircular points) that glue two different diagonal splits of a square.  Such a
-    "pillow" is not a triangulation, and the local Gabriel test of the α-filtration
-    is wrong on it.  When flat simplices appear, the lower hull is recomputed with
-    the lifted heights perturbed by a deterministic pseudo-random amount of 1e-9
-    (relative), far above Qhull's round-off, so that no facets merge; the result is
-    one of the valid regular triangulations of the degenerate input (any
-    perturbation small against the input's non-degenerate gaps gives one).
+    The answer is computed in floating point and is only a *candidate*:
+    :func:`_triangulate_local` certifies it exactly (:mod:`shapelab.certify`).  On
+    co-spherical input (cages, grids) Qhull merges facets and ``Qt`` triangulates
+    the merged ones, which can leave overlapping or flat tetrahedra; the certificate
+    rejects such an answer and the exact incremental algorithm takes over.
     """
     n, k = x.shape
     if n == k + 1:  # one simplex, no point can be hidden
-        return np.arange(n, dtype=np.int32)[None, :], np.full((1, n), -1, dtype=np.int32)
+        return np.arange(n, dtype=np.int32)[None, :]
     h = np.einsum("ij,ij->i", x, x) - w
     # affine normalisation of the height (keeps the lower hull): centre and scale
     h = h - h.mean()
@@ -310,25 +306,77 @@ def _lower_hull(x: np.ndarray, w: np.ndarray):
     if hs > 0:
         h = h / hs
     perm = _morton_order(x)
-    simp, nbr, tricoplanar = _hull_once(x, h, perm)
-    if k >= 3:
-        jitter = np.random.default_rng(20231).random(n)
-        for delta in (1e-9, 1e-7):
-            if not tricoplanar.any() or not np.any(_flat_rows(x, simp[tricoplanar])):
-                break
-            simp, nbr, tricoplanar = _hull_once(x, h - delta * jitter, perm)
-    return simp, nbr
+    try:
+        simp = _hull_once(x, h, perm)
+    except RuntimeError:
+        return None
+    return simp
 
 
-def _triangulate_local(balls: Balls):
-    """Frame, top simplices in frame-local indices and their neighbours."""
+@dataclass(frozen=True)
+class TriangulationReport:
+    """How :func:`regular_triangulation` obtained its answer.
+
+    Attributes
+    ----------
+    method : str
+        ``"qhull"`` (Qhull's lower hull passed the exact certificate) or
+        ``"incremental"`` (it did not, or Qhull failed, and the exact incremental
+        algorithm of :mod:`shapelab.incremental` computed it).
+    reason : str
+        Why Qhull's answer was rejected ("" if it was not).
+    counts : dict
+        Tests decided by the floating-point filter and exactly, ties broken by
+        Simulation of Simplicity.
+    """
+
+    method: str
+    reason: str
+    counts: dict
+
+
+def _exact_points(balls: Balls, fr: _Frame) -> WeightedPoints:
+    axes = None if fr.k == balls.dim else fr.axes
+    return WeightedPoints(balls.centers[fr.keep], balls.radii[fr.keep], axes=axes, priority=fr.keep)
+
+
+def _certified(balls: Balls, fr: _Frame):
+    """Top simplices (local indices), neighbours and the report."""
+    P = _exact_points(balls, fr)
+    simp = _lower_hull(fr.x, fr.w)
+    reason = "Qhull failed"
+    if simp is not None:
+        cert = certify(P, simp)
+        if cert.ok:
+            return simp.astype(np.int32), cert.neighbors, TriangulationReport("qhull", "", dict(P.stats))
+        reason = cert.reason
+    order = np.argsort(fr.x[:, 0], kind="stable") if fr.k == 1 else _morton_order(fr.x, min_n=0)
+    simp = incremental_triangulation(P, order).astype(np.int32)
+    nbr, _ = facet_adjacency(simp)
+    return simp, nbr, TriangulationReport("incremental", reason, dict(P.stats))
+
+
+def _triangulate_local(balls: Balls, report: bool = False):
+    """Frame, top simplices in frame-local indices and their neighbours (and, with
+    ``report``, the :class:`TriangulationReport`)."""
     fr = _frame(balls)
+    rep = TriangulationReport("trivial", "", {})
     if fr.k < 0:
-        return fr, np.zeros((0, 1), dtype=np.int64), np.zeros((0, 1), dtype=np.int64)
-    if fr.k == 0:  # one distinct centre: keep[0] is the largest ball there
-        return fr, np.zeros((1, 1), dtype=np.int32), np.full((1, 1), -1, dtype=np.int32)
-    simp, nbr = _lower_hull(fr.x, fr.w)
-    return fr, simp, nbr
+        out = fr, np.zeros((0, 1), dtype=np.int32), np.zeros((0, 1), dtype=np.int32)
+    elif fr.k == 0:  # one distinct centre: keep[0] is the largest ball there
+        out = fr, np.zeros((1, 1), dtype=np.int32), np.full((1, 1), -1, dtype=np.int32)
+    else:
+        simp, nbr, rep = _certified(balls, fr)
+        out = fr, simp, nbr
+    return (*out, rep) if report else out
+
+
+def triangulation_report(balls: Balls) -> TriangulationReport:
+    """How the regular triangulation of ``balls`` is computed and certified
+    (Notes §23.1): Qhull's answer certified exactly, or the exact incremental
+    algorithm where the certificate failed; see :class:`TriangulationReport`."""
+    _check_balls(balls)
+    return _triangulate_local(balls, report=True)[3]
 
 
 def _triangulate(balls: Balls):

@@ -1,0 +1,296 @@
+"""A certificate that a set of simplices is the regular triangulation (Notes §23.1).
+
+Qhull computes the lower hull of the lifted balls in floating point, and on
+co-spherical or nearly degenerate input its answer can be wrong in ways that depend
+on the last bits of the coordinates (overlapping tetrahedra, facets that are not
+locally regular).  :func:`certify` checks an answer with the exact predicates of
+:mod:`shapelab.predicates` (ties broken by Simulation of Simplicity), so that an
+answer that passes is *the* regular triangulation of the (symbolically perturbed)
+input, whatever machine computed it:
+
+1. every top simplex has non-zero orientation (exact);
+2. every facet lies in one or two top simplices; the two simplices of an interior
+   facet lie on opposite sides of it;
+3. every interior facet is *locally regular*: the lifted apex of one simplex lies
+   strictly above the lifted hyperplane of the other (the power test);
+4. the boundary (the facets in one simplex) is closed and locally convex: at every
+   ridge of it, the neighbouring boundary facet does not bend outwards, and two
+   coplanar neighbours do not fold over each other;
+5. the centroid of one simplex lies in exactly one closed simplex: with 2 and 4
+   the simplices cover every point of their union the same number of times, so they
+   tile it exactly once, and with 4 the union is the convex hull of the vertices;
+6. every centre that is not a vertex lies in a simplex (so the hull is the hull of
+   all centres) and strictly above its lifted hyperplane: the ball is hidden.
+
+By the *Delaunay lemma* (for weights: Edelsbrunner and Shah 1996), a triangulation
+of the convex hull whose facets are all locally regular is the regular
+triangulation, and 6 shows its vertex set is right.  Each condition is decided
+exactly, so the certificate is a function of the input alone.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .predicates import WeightedPoints, det
+
+__all__ = ["Certificate", "certify", "facet_adjacency"]
+
+
+@dataclass(frozen=True)
+class Certificate:
+    """The outcome of :func:`certify`.
+
+    Attributes
+    ----------
+    ok : bool
+        True when every condition holds.
+    reason : str
+        The first condition that failed ("" when ``ok``).
+    neighbors : ndarray of int32, shape (m, k+1)
+        ``neighbors[t, i]``: the simplex across the facet of ``t`` opposite its
+        ``i``-th vertex, or -1 on the boundary (computed, not taken from Qhull).
+    counts : dict
+        How many tests were decided by the floating-point filter and how many
+        exactly (see :attr:`shapelab.predicates.WeightedPoints.stats`).
+    """
+
+    ok: bool
+    reason: str
+    neighbors: np.ndarray
+    counts: dict
+
+
+def _row_keys(F: np.ndarray, n: int) -> np.ndarray:
+    """One integer per row of ``F`` (entries in [0, n)), equal iff the rows are."""
+    F = np.asarray(F, dtype=np.int64)
+    if F.shape[1] * max(1, int(n).bit_length()) <= 62:
+        key = np.zeros(F.shape[0], dtype=np.int64)
+        for c in range(F.shape[1]):
+            key *= np.int64(n)
+            key += F[:, c]
+        return key
+    return np.unique(F, axis=0, return_inverse=True)[1].ravel()  # pragma: no cover - > 2e6 balls
+
+
+def _group(keys: np.ndarray):
+    """``order, inv, cnt``: a sorting permutation of the keys, the rank of each key
+    among the distinct keys, and their counts."""
+    order = np.argsort(keys)
+    ks = keys[order]
+    first = np.r_[True, ks[1:] != ks[:-1]]
+    rank = np.cumsum(first) - 1
+    inv = np.empty(keys.size, dtype=np.int64)
+    inv[order] = rank
+    return order, inv, np.bincount(rank)
+
+
+def facet_adjacency(simp: np.ndarray):
+    """Facets of the rows of ``simp`` (vertices ascending in each row).
+
+    Returns
+    -------
+    nbr : (m, k+1) int32
+        The simplex across each facet, -1 if none, or -2 where a facet lies in more
+        than two simplices.
+    pos : (m, k+1) int32
+        For an interior facet, its column in the neighbour's row (else -1).
+    """
+    m, w = simp.shape
+    nbr = np.full((m, w), -1, dtype=np.int32)
+    pos = np.full((m, w), -1, dtype=np.int32)
+    if m == 0 or w == 1:
+        return nbr, pos
+    cols = [[c for c in range(w) if c != i] for i in range(w)]
+    allf = np.concatenate([simp[:, c] for c in cols]).astype(np.int64)  # (w*m, w-1), block i = facet opp. i
+    order, inv, cnt = _group(_row_keys(allf, int(simp.max()) + 1))
+    owner_t = np.tile(np.arange(m), w)
+    owner_i = np.repeat(np.arange(w), m)
+    c = cnt[inv[order]]
+    multi = c > 2
+    if np.any(multi):
+        bad = order[multi]
+        nbr[owner_t[bad], owner_i[bad]] = -2
+    starts = np.flatnonzero(np.r_[True, inv[order][1:] != inv[order][:-1]])
+    pairs = starts[cnt[inv[order[starts]]] == 2]
+    a, b = order[pairs], order[pairs + 1]
+    nbr[owner_t[a], owner_i[a]] = owner_t[b]
+    nbr[owner_t[b], owner_i[b]] = owner_t[a]
+    pos[owner_t[a], owner_i[a]] = owner_i[b]
+    pos[owner_t[b], owner_i[b]] = owner_i[a]
+    return nbr, pos
+
+
+def _fail(reason, nbr, P):
+    return Certificate(False, reason, nbr, dict(P.stats))
+
+
+def _locate(P: WeightedPoints, simp, nbr, s, q: np.ndarray, start: np.ndarray):
+    """Visibility walk of the points ``q`` (local indices) from the simplices
+    ``start``: the closed simplex containing each point, or -1 (outside the union,
+    or no convergence)."""
+    m, w = simp.shape
+    cur = start.astype(np.int64).copy()
+    out = np.full(q.size, -1, dtype=np.int64)
+    active = np.arange(q.size)
+    for step in range(4 * m + 16):
+        if active.size == 0:
+            break
+        t = cur[active]
+        qa = q[active]
+        sg = np.empty((active.size, w), dtype=np.int8)
+        for i in range(w):
+            rows = simp[t].astype(np.int64).copy()
+            rows[:, i] = qa
+            sg[:, i] = P.orient(rows)
+        sg *= s[t][:, None]
+        neg = sg < 0
+        done = ~neg.any(axis=1)
+        out[active[done]] = t[done]
+        go = ~done
+        # cross a negative facet; which one rotates with the step (no cycles)
+        o = step % w
+        first = np.argmax(np.roll(neg[go], -o, axis=1), axis=1)
+        col = (first + o) % w
+        nxt = nbr[t[go], col]
+        lost = nxt < 0
+        cur[active[go]] = nxt
+        keep = active[go][~lost]
+        active = keep
+    return out
+
+
+def certify(P: WeightedPoints, simp: np.ndarray) -> Certificate:
+    """Check that ``simp`` is the regular triangulation of the weighted points ``P``.
+
+    Parameters
+    ----------
+    P : WeightedPoints
+        The weighted centres (local indices), with their exact predicates.
+    simp : ndarray of int, shape (m, k+1)
+        The candidate top simplices, vertices ascending in each row.
+
+    Returns
+    -------
+    Certificate
+    """
+    simp = np.asarray(simp, dtype=np.int64)
+    m, w = simp.shape
+    k = w - 1
+    n = P.n
+    nbr, pos = facet_adjacency(simp)
+    if k == 0:
+        ok = m == 1
+        return Certificate(ok, "" if ok else "a single centre needs one vertex", nbr, dict(P.stats))
+    if m == 0:
+        return _fail("no simplices", nbr, P)
+    if np.any(nbr == -2):
+        return _fail("a facet lies in more than two simplices", nbr, P)
+    # 1. orientation
+    s = P.orient(simp).astype(np.int64)
+    if np.any(s == 0):
+        return _fail(f"{int(np.sum(s == 0))} simplices have zero volume", nbr, P)
+    # 2. interior facets: opposite sides
+    t1, i1 = np.nonzero(nbr >= 0)
+    keep = t1 < nbr[t1, i1]
+    t1, i1 = t1[keep], i1[keep]
+    t2, i2 = nbr[t1, i1].astype(np.int64), pos[t1, i1].astype(np.int64)
+    par = lambda i: 1 - 2 * (i % 2)  # noqa: E731  (-1)**i
+    if np.any(s[t1] * par(i1) != -s[t2] * par(i2)):
+        return _fail("two simplices overlap across a facet", nbr, P)
+    # 3. local regularity: the apex of t2 above the lifted hyperplane of t1
+    rows = np.concatenate([simp[t1], simp[t2, i2][:, None]], axis=1)
+    pw = P.power(rows).astype(np.int64) * s[t1]
+    if np.any(pw <= 0):
+        return _fail(f"{int(np.sum(pw <= 0))} interior facets are not locally regular", nbr, P)
+    # 4. closed, locally convex boundary
+    bt, bi = np.nonzero(nbr == -1)
+    if k == 1:
+        if bt.size != 2:
+            return _fail("the boundary of a 1D triangulation must be two points", nbr, P)
+    else:
+        cols = [[c for c in range(w) if c != i] for i in range(w)]
+        F = np.take_along_axis(simp[bt], np.array(cols)[bi], axis=1)  # boundary facets
+        apex = simp[bt, bi]
+        # ridges: facet minus one vertex
+        rc = [[c for c in range(k) if c != j] for j in range(k)]
+        R = np.concatenate([F[:, c] for c in rc])
+        own = np.tile(np.arange(F.shape[0]), k)
+        extra = np.concatenate([F[:, j] for j in range(k)])
+        order, inv, cnt = _group(_row_keys(R, n))
+        if np.any(cnt != 2):
+            return _fail("the boundary is not closed", nbr, P)
+        a, b = order[0::2], order[1::2]
+        f1, u1, v2 = own[a], extra[a], extra[b]
+        ridge = R[a]
+        a1 = apex[f1]
+        o_in = P.orient(np.c_[F[f1], a1]).astype(np.int64)
+        o_v = P.orient(np.c_[F[f1], v2]).astype(np.int64)
+        if np.any(o_v == -o_in):
+            return _fail("the boundary is not convex", nbr, P)
+        flat = np.flatnonzero(o_v == 0)
+        if flat.size:
+            ou = P.orient(np.c_[ridge[flat], a1[flat], u1[flat]]).astype(np.int64)
+            ov = P.orient(np.c_[ridge[flat], a1[flat], v2[flat]]).astype(np.int64)
+            if np.any(ou * ov >= 0):
+                return _fail("the boundary folds over itself", nbr, P)
+    # 5. one cover: the centroid of simplex 0 lies in one closed simplex
+    cover = _count_cover(P, simp, s)
+    if cover != 1:
+        return _fail(f"the simplices cover a point {cover} times", nbr, P)
+    # 6. the centres that are not vertices are inside and hidden
+    present = np.zeros(n, dtype=bool)
+    present[simp.ravel()] = True
+    q = np.flatnonzero(~present)
+    if q.size:
+        start = _start_simplices(P, simp, q)
+        loc = _locate(P, simp, nbr, s, q, start)
+        if np.any(loc < 0):
+            return _fail("a centre that is not a vertex lies outside the triangulation", nbr, P)
+        hp = P.power(np.c_[simp[loc], q]).astype(np.int64) * s[loc]
+        if np.any(hp <= 0):
+            return _fail(f"{int(np.sum(hp <= 0))} balls left out are not hidden", nbr, P)
+    return Certificate(True, "", nbr, dict(P.stats))
+
+
+def _start_simplices(P, simp, q):
+    """For each query point, a simplex incident to its nearest vertex."""
+    from scipy.spatial import cKDTree
+
+    verts = np.unique(simp)
+    tree = cKDTree(P.u[verts])
+    _, j = tree.query(P.u[q])
+    inc = np.full(P.n, -1, dtype=np.int64)
+    inc[simp.ravel()] = np.repeat(np.arange(simp.shape[0]), simp.shape[1])
+    return inc[verts[j]]
+
+
+def _count_cover(P: WeightedPoints, simp, s) -> int:
+    """The number of closed simplices containing the centroid of ``simp[0]``, decided
+    exactly (float bounding boxes only pick the candidates)."""
+    m, w = simp.shape
+    U = P.u
+    c = U[simp[0]].mean(axis=0)
+    lo = U[simp].min(axis=1)
+    hi = U[simp].max(axis=1)
+    span = np.abs(hi - lo).max(axis=1, keepdims=True) + np.abs(c).max()
+    cand = np.flatnonzero(np.all((lo - 1e-6 * span <= c) & (c <= hi + 1e-6 * span), axis=1))
+    # exact: points scaled by (k+1), the centroid as the sum of simplex 0's vertices
+    k = w - 1
+    ui = [P.exact_u(int(i)) for i in simp[0]]
+    cs = tuple(sum(p[a] for p in ui) for a in range(k))
+    count = 0
+    for t in cand:
+        pts = [tuple((k + 1) * v for v in P.exact_u(int(i))) for i in simp[t]]
+        inside = True
+        for i in range(w):
+            rep = list(pts)
+            rep[i] = cs
+            M = [[a - b for a, b in zip(p, rep[0])] for p in rep[1:]]
+            dd = det(M)
+            if dd * int(s[t]) < 0:
+                inside = False
+                break
+        count += inside
+    return count

@@ -1,0 +1,372 @@
+"""Exact geometric predicates for the regular triangulation (Notes §23.1).
+
+Which simplex belongs to the regular triangulation DT, which ball is hidden, on which
+side of a facet a point lies: these are *signs of determinants*, and the lifting map
+of §23.1 turns all of them into two predicates on the weighted centres
+:math:`(z_i, w_i = r_i^2)`:
+
+* ``orient(p_0, ..., p_k)`` -- the sign of :math:`\\det[p_1 - p_0, \\dots, p_k - p_0]`,
+  positive when the simplex is positively oriented;
+* ``power(p_0, ..., p_k, q)`` -- the sign of the :math:`(k+2) \\times (k+2)`
+  determinant with rows :math:`(1, p_j, \\lVert p_j\\rVert^2 - w_j)`.  Subtracting
+  the first row gives
+
+  .. math:: D = \\operatorname{orient}(p_0..p_k) \\cdot
+            \\bigl(\\hat h_q - \\ell(q)\\bigr),
+
+  with :math:`\\ell` the affine function whose graph passes through the lifted
+  :math:`p_j`: for a positively oriented simplex, :math:`D < 0` iff the lifted
+  :math:`q` lies *below* the lifted hyperplane of the simplex, i.e. iff
+  :math:`\\pi_q(c) < \\rho` for the simplex's orthosphere :math:`(c, \\rho)`
+  (:math:`q` "in conflict": the facet between them is not locally regular, or
+  :math:`q` is not hidden).
+
+Both are evaluated the way Shewchuk's and CGAL's filtered predicates are: in floating
+point first, with a bound on the rounding error of the evaluation
+(:math:`C\\,u\\,\\operatorname{perm}`, ``perm`` the same expansion with absolute
+values, :math:`u = 2^{-53}`); only where :math:`|D|` does not exceed the bound is
+the determinant recomputed *exactly*, with Python integers, from the input's own
+binary values (every float64 is an integer times a power of two, so all inputs are
+integers at one common scale).  The sign is therefore a function of the input alone,
+the same on every CPU, BLAS and compiler.
+
+Ties (``D = 0``: five co-spherical centres in 3D, four cocircular in 2D, a ball whose
+lifted centre lies exactly on a lifted facet) are broken by *Simulation of
+Simplicity* (Edelsbrunner and Mücke 1990) applied to the heights only: each lifted
+height :math:`\\lVert z_j\\rVert^2 - w_j` is lowered by :math:`\\varepsilon_j` with
+:math:`\\varepsilon_{j} \\gg \\varepsilon_{j'}` when ball :math:`j` comes before
+:math:`j'` (the ``priority`` order, the input order).  Then
+
+.. math:: D(\\varepsilon) = D - \\sum_j \\varepsilon_j C_j,
+
+with :math:`C_j` the cofactor of :math:`h_j` (an orientation of the other
+:math:`k+1` points), so the sign of a tie is :math:`-\\operatorname{sign} C_{j^*}` for
+the first :math:`j^*` in priority whose cofactor is not zero.  Coordinates are never
+perturbed, so no zero-volume simplex can appear; and the perturbed weights are those
+of a nearby input in general position, so the result is the regular triangulation
+of that input: unique, and consistent across all tests.  Of two balls with the same
+centre and radius the earlier one wins (its weight is larger by :math:`\\varepsilon`),
+as in :func:`shapelab.regular_triangulation`'s treatment of duplicates.
+
+This module only answers signs; :mod:`shapelab.certify` checks a triangulation with
+them and :mod:`shapelab.incremental` builds one with them.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["WeightedPoints", "det", "permanent"]
+
+_U = 2.0**-53
+_TINY = 1e-280  # below this a float bound may be spoilt by underflow: decide exactly
+
+
+def _expand4(M, plus: bool):
+    """4x4 expansion through the six 2x2 minors of the last two rows."""
+    a, b, c, d = M
+    if plus:
+        m01, m02, m03 = c[0] * d[1] + c[1] * d[0], c[0] * d[2] + c[2] * d[0], c[0] * d[3] + c[3] * d[0]
+        m12, m13, m23 = c[1] * d[2] + c[2] * d[1], c[1] * d[3] + c[3] * d[1], c[2] * d[3] + c[3] * d[2]
+        return (a[0] * (b[1] * m23 + b[2] * m13 + b[3] * m12) + a[1] * (b[0] * m23 + b[2] * m03 + b[3] * m02)
+                + a[2] * (b[0] * m13 + b[1] * m03 + b[3] * m01) + a[3] * (b[0] * m12 + b[1] * m02 + b[2] * m01))
+    m01, m02, m03 = c[0] * d[1] - c[1] * d[0], c[0] * d[2] - c[2] * d[0], c[0] * d[3] - c[3] * d[0]
+    m12, m13, m23 = c[1] * d[2] - c[2] * d[1], c[1] * d[3] - c[3] * d[1], c[2] * d[3] - c[3] * d[2]
+    return (a[0] * (b[1] * m23 - b[2] * m13 + b[3] * m12) - a[1] * (b[0] * m23 - b[2] * m03 + b[3] * m02)
+            + a[2] * (b[0] * m13 - b[1] * m03 + b[3] * m01) - a[3] * (b[0] * m12 - b[1] * m02 + b[2] * m01))
+
+
+def det(M):
+    """Determinant of a small square matrix (n <= 4) given as a list of rows.
+
+    Entries may be floats, Python integers or numpy arrays of either (object arrays
+    of integers are evaluated exactly, elementwise).  The expansion is fixed, so a
+    float evaluation has the error bound of :func:`permanent`."""
+    n = len(M)
+    if n == 1:
+        return M[0][0]
+    if n == 2:
+        return M[0][0] * M[1][1] - M[0][1] * M[1][0]
+    if n == 3:
+        a, b, c = M
+        return (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                + a[2] * (b[0] * c[1] - b[1] * c[0]))
+    if n == 4:
+        return _expand4(M, False)
+    raise ValueError(f"det: matrices up to 4x4, got {n}x{n}")
+
+
+def permanent(M):
+    """The expansion of :func:`det` with every sign ``+``: for the absolute values of
+    the entries, a bound on every partial sum of the determinant's expansion."""
+    n = len(M)
+    if n == 1:
+        return M[0][0]
+    if n == 2:
+        return M[0][0] * M[1][1] + M[0][1] * M[1][0]
+    if n == 3:
+        a, b, c = M
+        return (a[0] * (b[1] * c[2] + b[2] * c[1]) + a[1] * (b[0] * c[2] + b[2] * c[0])
+                + a[2] * (b[0] * c[1] + b[1] * c[0]))
+    if n == 4:
+        return _expand4(M, True)
+    raise ValueError(f"permanent: matrices up to 4x4, got {n}x{n}")
+
+
+# error factors C of |fl(D) - D| <= C u perm, generous against the standard bounds
+# (gamma_n for n = entry errors + products + sums of the expansion), k = simplex dim
+_C_ORIENT = {1: 4.0, 2: 12.0, 3: 40.0}
+_C_POWER = {1: 24.0, 2: 48.0, 3: 128.0}
+
+
+def _sign(x) -> int:
+    return (x > 0) - (x < 0)
+
+
+def _exponent_ints(values: np.ndarray):
+    """Integer mantissas ``M`` (int64) and exponents ``e`` with ``values = M 2**e``."""
+    m, e = np.frexp(values)
+    M = np.ldexp(m, 53).astype(np.int64)
+    return M, e.astype(np.int64) - 53
+
+
+class WeightedPoints:
+    """Weighted points and their exact predicates.
+
+    Parameters
+    ----------
+    coords : ndarray, shape (n, d)
+        The centres, as given (their float64 values are the exact input).
+    radii : ndarray, shape (n,)
+        The radii; the weight is ``radii**2``, squared exactly.
+    axes : sequence of int, optional
+        The coordinate axes the triangulation lives in (``k = len(axes)``, default all
+        ``d``).  For centres that lie in a line or a plane of 3D the triangulation is
+        computed on their projection to the coordinate plane (or axis) most parallel
+        to it; the lifted height then uses the full coordinates, relative to point 0:
+        :math:`t_j = \\lVert z_j - z_0\\rVert^2 - w_j`, which for centres exactly in
+        the flat differs from :math:`\\lVert z_j\\rVert^2 - w_j` by an affine function,
+        so the triangulation is the same.
+    priority : ndarray of int, shape (n,), optional
+        The order of Simulation of Simplicity (default: the row order); smaller
+        comes first.
+
+    Attributes
+    ----------
+    stats : dict
+        Counts of rows decided by the floating-point filter and exactly.
+    """
+
+    def __init__(self, coords, radii, axes=None, priority=None):
+        x = np.ascontiguousarray(coords, dtype=np.float64)
+        r = np.ascontiguousarray(radii, dtype=np.float64)
+        n, d = x.shape
+        self.n, self.d = n, d
+        self.axes = tuple(range(d)) if axes is None else tuple(int(a) for a in axes)
+        self.k = len(self.axes)
+        self.x = x
+        self.r = r
+        self.w = r * r
+        self.u = np.ascontiguousarray(x[:, list(self.axes)]) if self.k != d else x
+        self.global_height = self.k != d
+        if self.global_height and n:
+            y = x - x[0]
+            sq = np.einsum("ij,ij->i", y, y)
+            self.t = sq - self.w
+            self.tmag = sq + self.w
+        self._lists = None
+        self.priority = np.arange(n, dtype=np.int64) if priority is None else np.asarray(priority, dtype=np.int64)
+        self.stats = {"orient_filtered": 0, "orient_exact": 0, "power_filtered": 0, "power_exact": 0, "power_ties": 0}
+        # exact integers at one common scale 2**E (lazily, per point)
+        allv = np.concatenate([x.ravel(), r])
+        nz = allv[allv != 0]
+        if nz.size:
+            _, e = _exponent_ints(nz)
+            self._E = int(e.min())
+        else:
+            self._E = 0
+        self._xi = [None] * n
+        self._w_int = [None] * n
+        self._t_int = [None] * n
+
+    # ------------------------------------------------------------------ exact ints
+    def _to_int(self, v: float) -> int:
+        if v == 0.0:
+            return 0
+        mant, ex = math.frexp(v)
+        return int(mant * 2**53) << (ex - 53 - self._E)
+
+    def point_int(self, i: int):
+        """Exact coordinates of point ``i`` (tuple of d ints, scale :math:`2^E`)."""
+        p = self._xi[i]
+        if p is None:
+            p = tuple(self._to_int(float(v)) for v in self.x[i])
+            self._xi[i] = p
+            ri = self._to_int(float(self.r[i]))
+            self._w_int[i] = ri * ri
+        return p
+
+    def _height_int(self, i: int) -> int:
+        """Global lifted height of point ``i`` (k < d only), scale :math:`2^{2E}`."""
+        t = self._t_int[i]
+        if t is None:
+            p, p0 = self.point_int(i), self.point_int(0)
+            t = sum((a - b) * (a - b) for a, b in zip(p, p0)) - self._w_int[i]
+            self._t_int[i] = t
+        return t
+
+    def exact_u(self, i: int):
+        """Exact triangulation coordinates of point ``i`` (k ints, scale :math:`2^E`)."""
+        p = self.point_int(i)
+        return p if self.k == self.d else tuple(p[a] for a in self.axes)
+
+    # ------------------------------------------------------------------ exact rows
+    def _orient_exact(self, row) -> int:
+        P = [self.exact_u(int(i)) for i in row]
+        return _sign(det([[a - b for a, b in zip(p, P[0])] for p in P[1:]]))
+
+    def _power_det_exact(self, row) -> int:
+        row = [int(i) for i in row]
+        P = [self.exact_u(i) for i in row]
+        if self.global_height:
+            T = [self._height_int(i) for i in row]
+            M = [[a - b for a, b in zip(p, P[0])] + [t - T[0]] for p, t in zip(P[1:], T[1:])]
+        else:
+            w0 = self._w_int[row[0]]
+            M = []
+            for i, p in zip(row[1:], P[1:]):
+                v = [a - b for a, b in zip(p, P[0])]
+                M.append(v + [sum(c * c for c in v) - self._w_int[i] + w0])
+        return _sign(det(M))
+
+    def _power_exact(self, row) -> int:
+        """Sign of D(ε) for one row (k+2 point indices), exactly."""
+        s = self._power_det_exact(row)
+        if s:
+            return s
+        self.stats["power_ties"] += 1
+        k = self.k
+        order = sorted(range(len(row)), key=lambda j: self.priority[int(row[j])])
+        for j in order:
+            rest = [row[a] for a in range(len(row)) if a != j]
+            o = self._orient_exact(rest)
+            if o:
+                cof = o if (j + k + 1) % 2 == 0 else -o
+                return -cof
+        return 0  # every (k+1)-subset flat: the points span less than k dimensions
+
+    # ------------------------------------------------------------------ vectorised
+    def orient(self, rows) -> np.ndarray:
+        """Orientation signs (int8) of the simplices ``rows`` (m, k+1)."""
+        rows = np.asarray(rows, dtype=np.int64)
+        m = rows.shape[0]
+        out = np.zeros(m, dtype=np.int8)
+        if m == 0:
+            return out
+        k = self.k
+        U = self.u
+        p0 = U[rows[:, 0]]
+        V = [[U[rows[:, i], c] - p0[:, c] for c in range(k)] for i in range(1, k + 1)]
+        D = det(V)
+        P = permanent([[np.abs(e) for e in r] for r in V])
+        bound = _C_ORIENT[k] * _U * P
+        ok = (np.abs(D) > bound) & (bound > _TINY) & np.isfinite(D)
+        out[ok] = np.sign(D[ok])
+        undecided = np.flatnonzero(~ok)
+        self.stats["orient_filtered"] += int(ok.sum())
+        self.stats["orient_exact"] += int(undecided.size)
+        for t in undecided:
+            out[t] = self._orient_exact(rows[t])
+        return out
+
+    def power(self, rows) -> np.ndarray:
+        """Signs (int8) of the power determinant D(ε) of the rows (m, k+2):
+        ``k+1`` simplex vertices, then the query point (see the module docstring)."""
+        rows = np.asarray(rows, dtype=np.int64)
+        m = rows.shape[0]
+        out = np.zeros(m, dtype=np.int8)
+        if m == 0:
+            return out
+        k = self.k
+        U = self.u
+        p0 = U[rows[:, 0]]
+        V, A = [], []
+        if self.global_height:
+            t0, m0 = self.t[rows[:, 0]], self.tmag[rows[:, 0]]
+        else:
+            w0 = self.w[rows[:, 0]]
+        for i in range(1, k + 2):
+            v = [U[rows[:, i], c] - p0[:, c] for c in range(k)]
+            if self.global_height:
+                h = self.t[rows[:, i]] - t0
+                hm = self.tmag[rows[:, i]] + m0
+            else:
+                sq = v[0] * v[0]
+                for c in range(1, k):
+                    sq = sq + v[c] * v[c]
+                wi = self.w[rows[:, i]]
+                h = sq - wi + w0
+                hm = sq + wi + w0
+            V.append(v + [h])
+            A.append([np.abs(e) for e in v] + [hm])
+        D = det(V)
+        P = permanent(A)
+        bound = _C_POWER[k] * _U * P
+        ok = (np.abs(D) > bound) & (bound > _TINY) & np.isfinite(D)
+        out[ok] = np.sign(D[ok])
+        undecided = np.flatnonzero(~ok)
+        self.stats["power_filtered"] += int(ok.sum())
+        self.stats["power_exact"] += int(undecided.size)
+        for t in undecided:
+            out[t] = self._power_exact(rows[t])
+        return out
+
+    # ------------------------------------------------------------------ scalar
+    def _as_lists(self):
+        if self._lists is None:
+            gh = self.global_height
+            self._lists = (self.u.tolist(), self.w.tolist(),
+                           self.t.tolist() if gh else None, self.tmag.tolist() if gh else None)
+        return self._lists
+
+    def orient1(self, row) -> int:
+        """:meth:`orient` of one row (a sequence of k+1 ints), without numpy."""
+        U = self._as_lists()[0]
+        p0 = U[row[0]]
+        k = self.k
+        V = [[U[i][c] - p0[c] for c in range(k)] for i in row[1:]]
+        D = det(V)
+        P = permanent([[abs(e) for e in r] for r in V])
+        bound = _C_ORIENT[k] * _U * P
+        if abs(D) > bound and bound > _TINY and math.isfinite(D):
+            return 1 if D > 0 else -1
+        self.stats["orient_exact"] += 1
+        return self._orient_exact(row)
+
+    def power1(self, row) -> int:
+        """:meth:`power` of one row (k+2 ints), without numpy."""
+        U, W, T, TM = self._as_lists()
+        k = self.k
+        i0 = row[0]
+        p0 = U[i0]
+        V, A = [], []
+        for i in row[1:]:
+            v = [U[i][c] - p0[c] for c in range(k)]
+            if T is not None:
+                h = T[i] - T[i0]
+                hm = TM[i] + TM[i0]
+            else:
+                sq = sum(c * c for c in v)
+                wi, w0 = W[i], W[i0]
+                h = sq - wi + w0
+                hm = sq + wi + w0
+            V.append(v + [h])
+            A.append([abs(e) for e in v] + [hm])
+        D = det(V)
+        P = permanent(A)
+        bound = _C_POWER[k] * _U * P
+        if abs(D) > bound and bound > _TINY and math.isfinite(D):
+            return 1 if D > 0 else -1
+        self.stats["power_exact"] += 1
+        return self._power_exact(row)
