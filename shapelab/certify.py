@@ -161,7 +161,53 @@ def _locate(P: WeightedPoints, simp, nbr, s, q: np.ndarray, start: np.ndarray):
     return out
 
 
-def certify(P: WeightedPoints, simp: np.ndarray) -> Certificate:
+def _verified_neighbors(simp: np.ndarray, hint: np.ndarray):
+    """``(nbr, pos)`` from a neighbour relation given with the simplices (Qhull's),
+    after checking it: symmetric, and both sides of each pair see the same facet.
+    ``None`` if it is not consistent."""
+    m, w = simp.shape
+    hint = np.asarray(hint)
+    if hint.shape != simp.shape or hint.min(initial=0) < -1 or hint.max(initial=-1) >= m:
+        return None
+    if w > 1 and not np.all(simp[:, 1:] > simp[:, :-1]):
+        return None
+    nbr = hint.astype(np.int32, copy=False)
+    t, i = np.nonzero(nbr > np.arange(m, dtype=np.int32)[:, None])   # each pair once
+    nb = nbr[t, i]
+    back = nbr[nb] == t[:, None].astype(np.int32)
+    if not np.all(back.sum(axis=1) == 1):
+        return None
+    j = np.argmax(back, axis=1)
+    # same facet on both sides: compare the facets' packed integer keys (exact)
+    n = int(simp.max()) + 1
+    if (w - 1) * max(1, n.bit_length()) <= 62:
+        K = np.empty((m, w), dtype=np.int64)
+        for a in range(w):
+            key = np.zeros(m, dtype=np.int64)
+            for c in range(w):
+                if c != a:
+                    key *= np.int64(n)
+                    key += simp[:, c]
+            K[:, a] = key
+        if not np.array_equal(K[t, i], K[nb, j]):
+            return None
+    else:  # pragma: no cover - beyond ~2e6 balls: compare the vertex sets
+        St, Sn = simp[t], simp[nb]
+        eq = St[:, :, None] == Sn[:, None, :]
+        inS, inN = eq.any(axis=2), eq.any(axis=1)
+        ar = np.arange(t.size)
+        if not (np.all(inS.sum(axis=1) == w - 1) and not inS[ar, i].any() and not inN[ar, j].any()):
+            return None
+    # every slot is either paired (seen from one side above) or on the boundary
+    if np.count_nonzero(nbr >= 0) != 2 * t.size:
+        return None
+    pos = np.full((m, w), -1, dtype=np.int32)
+    pos[t, i] = j
+    pos[nb, j] = i
+    return nbr, pos
+
+
+def certify(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None) -> Certificate:
     """Check that ``simp`` is the regular triangulation of the weighted points ``P``.
 
     Parameters
@@ -170,6 +216,13 @@ def certify(P: WeightedPoints, simp: np.ndarray) -> Certificate:
         The weighted centres (local indices), with their exact predicates.
     simp : ndarray of int, shape (m, k+1)
         The candidate top simplices, vertices ascending in each row.
+    neighbors : ndarray of int, shape (m, k+1), optional
+        A neighbour relation that came with the candidate (Qhull's).  It is checked
+        (symmetric, same facet on both sides), and then a facet cannot lie in three
+        simplices unless one of them is a boundary facet: condition 4 with a
+        *connected* boundary excludes that (a connected, closed, locally convex
+        surface bounds one convex body, van Heijenoort 1952, and the cover is 1 on
+        both sides of an interior facet).  Without it the facets are sorted.
 
     Returns
     -------
@@ -179,7 +232,8 @@ def certify(P: WeightedPoints, simp: np.ndarray) -> Certificate:
     m, w = simp.shape
     k = w - 1
     n = P.n
-    nbr, pos = facet_adjacency(simp)
+    given = None if neighbors is None or k < 1 else _verified_neighbors(simp, neighbors)
+    nbr, pos = given if given is not None else facet_adjacency(simp)
     if k == 0:
         ok = m == 1
         return Certificate(ok, "" if ok else "a single centre needs one vertex", nbr, dict(P.stats))
@@ -223,6 +277,14 @@ def certify(P: WeightedPoints, simp: np.ndarray) -> Certificate:
             return _fail("the boundary is not closed", nbr, P)
         a, b = order[0::2], order[1::2]
         f1, u1, v2 = own[a], extra[a], extra[b]
+        from scipy.sparse import coo_matrix
+        from scipy.sparse.csgraph import connected_components
+
+        nb_ = F.shape[0]
+        ncomp = connected_components(coo_matrix((np.ones(a.size), (own[a], own[b])), shape=(nb_, nb_)),
+                                     directed=False)[0]
+        if ncomp != 1:
+            return _fail("the boundary is not connected", nbr, P)
         ridge = R[a]
         a1 = apex[f1]
         o_in = P.orient(np.c_[F[f1], a1]).astype(np.int64)
@@ -244,7 +306,7 @@ def certify(P: WeightedPoints, simp: np.ndarray) -> Certificate:
     present[simp.ravel()] = True
     q = np.flatnonzero(~present)
     if q.size:
-        start = _start_simplices(P, simp, q)
+        start = _start_simplices(P, simp, q, order)
         loc = _locate(P, simp, nbr, s, q, start)
         if np.any(loc < 0):
             return _fail("a centre that is not a vertex lies outside the triangulation", nbr, P)
@@ -254,30 +316,41 @@ def certify(P: WeightedPoints, simp: np.ndarray) -> Certificate:
     return Certificate(True, "", nbr, dict(P.stats))
 
 
-def _start_simplices(P, simp, q):
-    """For each query point, a simplex incident to its nearest vertex."""
-    from scipy.spatial import cKDTree
-
-    verts = np.unique(simp)
-    tree = cKDTree(P.u[verts])
-    _, j = tree.query(P.u[q])
+def _start_simplices(P, simp, q, order=None):
+    """For each query point, a simplex incident to a vertex near it: its nearest
+    vertex (KD-tree), or, given a spatially coherent ``order`` of the points (the
+    Morton order Qhull was fed), the vertex next to it in that order."""
+    present = np.zeros(P.n, dtype=bool)
+    present[simp.ravel()] = True
     inc = np.full(P.n, -1, dtype=np.int64)
     inc[simp.ravel()] = np.repeat(np.arange(simp.shape[0]), simp.shape[1])
+    if order is not None and len(order) == P.n:
+        order = np.asarray(order)
+        rank = np.empty(P.n, dtype=np.int64)
+        rank[order] = np.arange(P.n)
+        vr = np.sort(rank[present])
+        j = np.clip(np.searchsorted(vr, rank[q]), 0, vr.size - 1)
+        return inc[order[vr[j]]]
+    from scipy.spatial import cKDTree
+
+    verts = np.flatnonzero(present)
+    _, j = cKDTree(P.u[verts]).query(P.u[q])
     return inc[verts[j]]
 
 
 def _count_cover(P: WeightedPoints, simp, s) -> int:
     """The number of closed simplices containing the centroid of ``simp[0]``, decided
-    exactly (float bounding boxes only pick the candidates)."""
+    exactly (float bounding boxes, one coordinate at a time, pick the candidates)."""
     m, w = simp.shape
+    k = w - 1
     U = P.u
     c = U[simp[0]].mean(axis=0)
-    lo = U[simp].min(axis=1)
-    hi = U[simp].max(axis=1)
-    span = np.abs(hi - lo).max(axis=1, keepdims=True) + np.abs(c).max()
-    cand = np.flatnonzero(np.all((lo - 1e-6 * span <= c) & (c <= hi + 1e-6 * span), axis=1))
+    tol = 1e-6 * (np.abs(U[simp[0]] - c).max() + np.abs(c).max())
+    cand = np.arange(m)
+    for a in range(k):
+        X = U[simp[cand], a]
+        cand = cand[(X.min(axis=1) <= c[a] + tol) & (X.max(axis=1) >= c[a] - tol)]
     # exact: points scaled by (k+1), the centroid as the sum of simplex 0's vertices
-    k = w - 1
     ui = [P.exact_u(int(i)) for i in simp[0]]
     cs = tuple(sum(p[a] for p in ui) for a in range(k))
     count = 0
@@ -287,9 +360,7 @@ def _count_cover(P: WeightedPoints, simp, s) -> int:
         for i in range(w):
             rep = list(pts)
             rep[i] = cs
-            M = [[a - b for a, b in zip(p, rep[0])] for p in rep[1:]]
-            dd = det(M)
-            if dd * int(s[t]) < 0:
+            if det([[a - b for a, b in zip(p, rep[0])] for p in rep[1:]]) * int(s[t]) < 0:
                 inside = False
                 break
         count += inside

@@ -280,9 +280,14 @@ def _hull_once(x: np.ndarray, h: np.ndarray, perm: np.ndarray):
     steep = np.flatnonzero(lower & (nz > -1e-3))
     if steep.size:
         lower[steep[_flat_rows(x[perm], simp[steep])]] = False
+    newid = np.cumsum(lower, dtype=np.int32) - 1
+    nbr = neighbors[lower]
+    nbr = np.where(nbr >= 0, np.where(lower[nbr], newid[nbr], -1), -1).astype(np.int32)
     simp = np.asarray(perm, dtype=np.int32)[simp[lower]]
-    simp.sort(axis=1)
-    return simp
+    order = np.argsort(simp, axis=1)
+    simp = np.take_along_axis(simp, order, axis=1)
+    nbr = np.take_along_axis(nbr, order, axis=1)
+    return simp, nbr
 
 
 def _lower_hull(x: np.ndarray, w: np.ndarray):
@@ -295,10 +300,13 @@ def _lower_hull(x: np.ndarray, w: np.ndarray):
     co-spherical input (cages, grids) Qhull merges facets and ``Qt`` triangulates
     the merged ones, which can leave overlapping or flat tetrahedra; the certificate
     rejects such an answer and the exact incremental algorithm takes over.
+    Returns ``(simp, nbr, perm)``, Qhull's neighbours of the lower facets aligned with
+    ``simp`` (-1 across the hull; the certificate verifies them too), and the
+    Morton order the points were given to Qhull in.
     """
     n, k = x.shape
     if n == k + 1:  # one simplex, no point can be hidden
-        return np.arange(n, dtype=np.int32)[None, :]
+        return np.arange(n, dtype=np.int32)[None, :], np.full((1, n), -1, dtype=np.int32), None
     h = np.einsum("ij,ij->i", x, x) - w
     # affine normalisation of the height (keeps the lower hull): centre and scale
     h = h - h.mean()
@@ -307,10 +315,9 @@ def _lower_hull(x: np.ndarray, w: np.ndarray):
         h = h / hs
     perm = _morton_order(x)
     try:
-        simp = _hull_once(x, h, perm)
+        return (*_hull_once(x, h, perm), perm)
     except RuntimeError:
         return None
-    return simp
 
 
 @dataclass(frozen=True)
@@ -343,10 +350,11 @@ def _exact_points(balls: Balls, fr: _Frame) -> WeightedPoints:
 def _certified(balls: Balls, fr: _Frame):
     """Top simplices (local indices), neighbours and the report."""
     P = _exact_points(balls, fr)
-    simp = _lower_hull(fr.x, fr.w)
+    cand = _lower_hull(fr.x, fr.w)
     reason = "Qhull failed"
-    if simp is not None:
-        cert = certify(P, simp)
+    if cand is not None:
+        simp, nbr, perm = cand
+        cert = certify(P, simp, nbr, order=perm)
         if cert.ok:
             return simp.astype(np.int32), cert.neighbors, TriangulationReport("qhull", "", dict(P.stats))
         reason = cert.reason

@@ -176,6 +176,7 @@ class WeightedPoints:
             self.t = sq - self.w
             self.tmag = sq + self.w
         self._lists = None
+        self._uT = None
         self.priority = np.arange(n, dtype=np.int64) if priority is None else np.asarray(priority, dtype=np.int64)
         self.stats = {"orient_filtered": 0, "orient_exact": 0, "power_filtered": 0, "power_exact": 0, "power_ties": 0}
         # exact integers at one common scale 2**E (lazily, per point)
@@ -257,24 +258,36 @@ class WeightedPoints:
         return 0  # every (k+1)-subset flat: the points span less than k dimensions
 
     # ------------------------------------------------------------------ vectorised
-    def orient(self, rows) -> np.ndarray:
-        """Orientation signs (int8) of the simplices ``rows`` (m, k+1)."""
-        rows = np.asarray(rows, dtype=np.int64)
+    _BLOCK = 1 << 15
+
+    def _blocks(self, rows, width: int, one):
+        rows = np.asarray(rows, dtype=np.int64).reshape(-1, width)
         m = rows.shape[0]
         out = np.zeros(m, dtype=np.int8)
-        if m == 0:
-            return out
+        for a in range(0, m, self._BLOCK):
+            out[a:a + self._BLOCK] = one(rows[a:a + self._BLOCK])
+        return out
+
+    def _coords_T(self):
+        if getattr(self, "_uT", None) is None:
+            self._uT = np.ascontiguousarray(self.u.T)
+        return self._uT
+
+    def orient(self, rows) -> np.ndarray:
+        """Orientation signs (int8) of the simplices ``rows`` (m, k+1)."""
+        return self._blocks(rows, self.k + 1, self._orient_block)
+
+    def _orient_block(self, rows):
         k = self.k
-        U = self.u
-        p0 = U[rows[:, 0]]
-        V = [[U[rows[:, i], c] - p0[:, c] for c in range(k)] for i in range(1, k + 1)]
+        G = self._coords_T()[:, rows.T]          # (k, k+1, m)
+        V = [[G[c, i] - G[c, 0] for c in range(k)] for i in range(1, k + 1)]
         D = det(V)
         P = permanent([[np.abs(e) for e in r] for r in V])
         bound = _C_ORIENT[k] * _U * P
         ok = (np.abs(D) > bound) & (bound > _TINY) & np.isfinite(D)
-        out[ok] = np.sign(D[ok])
+        out = np.sign(D).astype(np.int8)
         undecided = np.flatnonzero(~ok)
-        self.stats["orient_filtered"] += int(ok.sum())
+        self.stats["orient_filtered"] += int(ok.size - undecided.size)
         self.stats["orient_exact"] += int(undecided.size)
         for t in undecided:
             out[t] = self._orient_exact(rows[t])
@@ -283,40 +296,37 @@ class WeightedPoints:
     def power(self, rows) -> np.ndarray:
         """Signs (int8) of the power determinant D(ε) of the rows (m, k+2):
         ``k+1`` simplex vertices, then the query point (see the module docstring)."""
-        rows = np.asarray(rows, dtype=np.int64)
-        m = rows.shape[0]
-        out = np.zeros(m, dtype=np.int8)
-        if m == 0:
-            return out
+        return self._blocks(rows, self.k + 2, self._power_block)
+
+    def _power_block(self, rows):
         k = self.k
-        U = self.u
-        p0 = U[rows[:, 0]]
-        V, A = [], []
+        G = self._coords_T()[:, rows.T]          # (k, k+2, m)
         if self.global_height:
-            t0, m0 = self.t[rows[:, 0]], self.tmag[rows[:, 0]]
+            T = self.t[rows.T]
+            TM = self.tmag[rows.T]
         else:
-            w0 = self.w[rows[:, 0]]
+            W = self.w[rows.T]
+        V, A = [], []
         for i in range(1, k + 2):
-            v = [U[rows[:, i], c] - p0[:, c] for c in range(k)]
+            v = [G[c, i] - G[c, 0] for c in range(k)]
             if self.global_height:
-                h = self.t[rows[:, i]] - t0
-                hm = self.tmag[rows[:, i]] + m0
+                h = T[i] - T[0]
+                hm = TM[i] + TM[0]
             else:
                 sq = v[0] * v[0]
                 for c in range(1, k):
-                    sq = sq + v[c] * v[c]
-                wi = self.w[rows[:, i]]
-                h = sq - wi + w0
-                hm = sq + wi + w0
+                    sq += v[c] * v[c]
+                h = sq - W[i] + W[0]
+                hm = sq + W[i] + W[0]
             V.append(v + [h])
             A.append([np.abs(e) for e in v] + [hm])
         D = det(V)
         P = permanent(A)
         bound = _C_POWER[k] * _U * P
         ok = (np.abs(D) > bound) & (bound > _TINY) & np.isfinite(D)
-        out[ok] = np.sign(D[ok])
+        out = np.sign(D).astype(np.int8)
         undecided = np.flatnonzero(~ok)
-        self.stats["power_filtered"] += int(ok.sum())
+        self.stats["power_filtered"] += int(ok.size - undecided.size)
         self.stats["power_exact"] += int(undecided.size)
         for t in undecided:
             out[t] = self._power_exact(rows[t])
