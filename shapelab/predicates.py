@@ -131,6 +131,41 @@ def _exponent_ints(values: np.ndarray):
     return M, e.astype(np.int64) - 53
 
 
+def _power3(U, W, row):
+    """The 4x4 power determinant of one 3D row and its permanent, unrolled (the
+    incremental algorithm's inner loop)."""
+    a, b, c, d, e = row
+    ax, ay, az = U[a]
+    wa = W[a]
+    bx, by, bz = U[b]
+    bx -= ax; by -= ay; bz -= az  # noqa: E702
+    s = bx * bx + by * by + bz * bz
+    bh, bm = s - W[b] + wa, s + W[b] + wa
+    cx, cy, cz = U[c]
+    cx -= ax; cy -= ay; cz -= az  # noqa: E702
+    s = cx * cx + cy * cy + cz * cz
+    ch, cm = s - W[c] + wa, s + W[c] + wa
+    dx, dy, dz = U[d]
+    dx -= ax; dy -= ay; dz -= az  # noqa: E702
+    s = dx * dx + dy * dy + dz * dz
+    dh, dm = s - W[d] + wa, s + W[d] + wa
+    ex, ey, ez = U[e]
+    ex -= ax; ey -= ay; ez -= az  # noqa: E702
+    s = ex * ex + ey * ey + ez * ez
+    eh, em = s - W[e] + wa, s + W[e] + wa
+    m01, m02, m03 = dx * ey - dy * ex, dx * ez - dz * ex, dx * eh - dh * ex
+    m12, m13, m23 = dy * ez - dz * ey, dy * eh - dh * ey, dz * eh - dh * ez
+    D = (bx * (cy * m23 - cz * m13 + ch * m12) - by * (cx * m23 - cz * m03 + ch * m02)
+         + bz * (cx * m13 - cy * m03 + ch * m01) - bh * (cx * m12 - cy * m02 + cz * m01))
+    bx, by, bz, cx, cy, cz = abs(bx), abs(by), abs(bz), abs(cx), abs(cy), abs(cz)
+    dx, dy, dz, ex, ey, ez = abs(dx), abs(dy), abs(dz), abs(ex), abs(ey), abs(ez)
+    m01, m02, m03 = dx * ey + dy * ex, dx * ez + dz * ex, dx * em + dm * ex
+    m12, m13, m23 = dy * ez + dz * ey, dy * em + dm * ey, dz * em + dm * ez
+    P = (bx * (cy * m23 + cz * m13 + cm * m12) + by * (cx * m23 + cz * m03 + cm * m02)
+         + bz * (cx * m13 + cy * m03 + cm * m01) + bm * (cx * m12 + cy * m02 + cz * m01))
+    return D, P
+
+
 class WeightedPoints:
     """Weighted points and their exact predicates.
 
@@ -230,6 +265,8 @@ class WeightedPoints:
     def _power_det_exact(self, row) -> int:
         row = [int(i) for i in row]
         P = [self.exact_u(i) for i in row]
+        if self.k == 3 and not self.global_height:
+            return _sign(_power3(P, [self._w_int[i] for i in row], range(5))[0])
         if self.global_height:
             T = [self._height_int(i) for i in row]
             M = [[a - b for a, b in zip(p, P[0])] + [t - T[0]] for p, t in zip(P[1:], T[1:])]
@@ -358,6 +395,13 @@ class WeightedPoints:
         """:meth:`power` of one row (k+2 ints), without numpy."""
         U, W, T, TM = self._as_lists()
         k = self.k
+        if T is None and k == 3:
+            D, P = _power3(U, W, row)
+            bound = _C_POWER[3] * _U * P
+            if abs(D) > bound and bound > _TINY and D - D == 0.0:
+                return 1 if D > 0 else -1
+            self.stats["power_exact"] += 1
+            return self._power_exact(row)
         i0 = row[0]
         p0 = U[i0]
         V, A = [], []
