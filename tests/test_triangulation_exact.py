@@ -322,3 +322,27 @@ def test_cage_falls_back_and_matches_gudhi_betti():
         chi_g = sum((-1) ** (len(s) - 1) for s, v in st_.get_filtration() if v <= tau)
         chi_o = sum((-1) ** k * int(np.sum(F.values(k) <= tau)) for k in range(4))
         assert chi_o == chi_g
+
+
+@pytest.mark.parametrize("name", ["cage24", "cage150-mixed", "grid3d", "grid2d", "lattice-noise", "ico+centre",
+                                  "cylinder", "duplicates"])
+def test_euler_characteristic_matches_gudhi_between_critical_values(name):
+    """χ(K(τ)) from our filtration equals GUDHI's exact alpha complex strictly between
+    critical values (where both are the union's, whatever triangulation of ties)."""
+    gudhi = pytest.importorskip("gudhi")
+    balls = FAMILIES[name]
+    F = alpha_filtration(balls)
+    d = balls.dim
+    ac = gudhi.AlphaComplex(points=balls.centers, weights=balls.radii**2, precision="exact")
+    st_ = ac.create_simplex_tree()
+    gv = np.array([v for _, v in st_.get_filtration()])
+    gdim = np.array([len(s) - 1 for s, _ in st_.get_filtration()])
+    ov = [F.values(k) for k in range(d + 1)]
+    crit = np.unique(np.concatenate(ov + [gv]))
+    mids = (crit[:-1] + crit[1:]) / 2
+    gaps = crit[1:] - crit[:-1]
+    mids = mids[gaps > 1e-6 * (1 + np.abs(mids))]
+    for tau in mids[:: max(1, mids.size // 40)]:
+        chi_o = sum((-1) ** k * int(np.sum(ov[k] <= tau)) for k in range(d + 1))
+        chi_g = int(np.sum((-1) ** gdim[gv <= tau]))
+        assert chi_o == chi_g, tau
