@@ -18,6 +18,17 @@ the set of centers"; for balls of different radii that is imprecise: it is the
 
 Implementation notes
 --------------------
+* **Exact combinatorics.**  Qhull's lower hull is a floating-point *candidate*.
+  :mod:`shapelab.certify` checks it with exact predicates (:mod:`shapelab.predicates`:
+  a floating-point filter, then Python integers on the input's own binary values
+  where the filter cannot decide; ties broken by Simulation of Simplicity on the
+  heights, by input order): a tiling of the hull, every interior facet locally
+  regular, every ball left out hidden.  Where the certificate fails (co-spherical
+  cages, grids, lattices with round-off noise, nearly flat simplices) the exact
+  incremental algorithm of :mod:`shapelab.incremental` computes the triangulation.
+  Either way the result is the unique regular triangulation of the perturbed input:
+  the same on every CPU, BLAS and Qhull build.  :func:`triangulation_report` says
+  which road was taken.
 * **Conditioning.**  Before lifting, the centres are translated to their mean and
   scaled to unit size, and the lifted height is centred and scaled as well.  The lower
   hull is invariant under these maps (an affine change of the height by a function
@@ -25,23 +36,27 @@ Implementation notes
   :math:`s^2`, and translation does not change them.  This keeps Qhull's relative
   precision for inputs offset by :math:`10^6` or scaled by :math:`10^{-6}`.
 * **Lower dimension.**  If the centres span an affine subspace of dimension
-  :math:`k < d` (collinear or coplanar input), they are expressed in an orthonormal
-  basis of that subspace (SVD) and triangulated there; the triangulation then has
-  :math:`k`-simplices as top simplices.
+  :math:`k < d` (collinear or coplanar input, up to a relative 1e-8 of their
+  extent), they are expressed in an orthonormal basis of that subspace (SVD) and
+  triangulated there; the triangulation then has :math:`k`-simplices as top
+  simplices.  The exact predicates then work on the input coordinates along the k
+  axes most parallel to the subspace, with heights from all d coordinates.
 * **Qhull options** ``Qt Qbb Q12 Q5 Q8`` (``scipy.spatial.ConvexHull``, which
   always adds ``Qt``): ``Qt`` triangulates merged (non-simplicial) facets, which arise
-  for cospherical input such as integer grids (see :func:`_lower_hull` for the flat
-  tetrahedra this can leave and how they are removed); ``Qbb`` rescales the last
+  for cospherical input such as integer grids (where it can leave flat or
+  overlapping tetrahedra, which the certificate rejects); ``Qbb`` rescales the last
   (height) coordinate, which improves precision; ``Q12`` allows the wide facets that
   merging produces on grids instead of raising an error; ``Q5`` (no outer planes)
   and ``Q8`` (no near-inside points) skip bookkeeping that only serves ``Qc``'s list
   of coplanar non-vertices, which we do not use (~15 % faster at 10^5 balls).
-  ``Qz`` is a Delaunay-mode option and does not apply to our own lifting.  One extra point far above the centroid ("point at infinity", the role
+  ``Qz`` is a Delaunay-mode option and does not apply to our own lifting.  One
+  extra point far above the centroid ("point at infinity", the role
   ``Qz`` plays for Delaunay) makes the hull full-dimensional even when all lifted
   points are coplanar (e.g. four cocircular points).
 * **Duplicates.**  Of several balls with the same centre only the one with the
   largest radius can have a non-empty cell; among equal radii the lowest index is
-  kept (this is also what GUDHI does).  The others are reported as hidden.
+  kept (this is also what GUDHI does, and what Simulation of Simplicity decides).
+  The others are reported as hidden.
 """
 from __future__ import annotations
 
@@ -415,8 +430,19 @@ def regular_triangulation(balls: Balls) -> np.ndarray:
     Notes
     -----
     Computed by the lifting map :math:`z \\mapsto (z, |z|^2 - r^2)` and the lower
-    convex hull (Qhull), see the module docstring.  For cospherical input (grids) DT is
-    not unique; one of the valid triangulations is returned.
+    convex hull (Qhull), certified with exact predicates, see the module docstring.
+    For cospherical input (grids, cages) DT is not unique; the one returned is that
+    of the input with its weights perturbed symbolically (Simulation of Simplicity,
+    earlier balls slightly larger), so it depends on the input alone, never on the
+    machine.
+
+    Examples
+    --------
+    The four corners of a square are cocircular: two triangulations are regular, and
+    the perturbation picks the one with the diagonal at the first corner.
+
+    >>> regular_triangulation(Balls([[0, 0], [1, 0], [1, 1], [0, 1]], 0.0)).tolist()
+    [[0, 1, 2], [0, 2, 3]]
     """
     _check_balls(balls)
     return _triangulate(balls)[1]
