@@ -250,6 +250,8 @@ def _tangent_angle(um, uk, p):
 #: A pair of balls whose chord disk has squared radius below this fraction of
 #: max(r_a^2, r_b^2, d_ab^2) is treated as tangent: rounding noise of relative size
 #: eps in rho^2 would otherwise become noise of size sqrt(eps) in the angles.
+#: Relative to the pair's own size (its radii and distance, in coordinates relative
+#: to the simplex's first centre): the input's extent and offset do not enter.
 TANGENT_TOL = 1e-13
 
 
@@ -467,7 +469,9 @@ def _pieces_triangle3d(Z, W, R, geo=None):
 
 
 #: A top simplex whose volume is below this fraction of (longest edge)^d is treated
-#: as flat: its orthocentre would be determined by rounding noise only.
+#: as flat: its orthocentre would be determined by rounding noise only.  Relative to
+#: the simplex's own size (scale- and translation-invariant); the pieces of a flat
+#: simplex are the limits of the general formulas (:func:`_pieces_flat`).
 FLAT_TOL = 1e-9
 
 
@@ -538,9 +542,20 @@ def _pieces(Z, W, R, d, k):
 
 
 # ============================================================ public entry
-#: Simplices whose entry time is within TIE_TOL * (squared size of the input) of τ
-#: are treated as entering just after τ (see union_measure).
-TIE_TOL = 1e-11
+#: A simplex with entry time v is in the complex measured at τ iff
+#: ``v + TIE_TOL * |v| < tau``: K is taken just before τ, and a simplex entering
+#: within TIE_TOL of τ *relative to its own entry time* counts as entering after τ
+#: (see union_measure).  The entry times are certified to relative accuracy
+#: ``shapelab.filtration._RTOL`` (1e-9; exact zeros are exact), which TIE_TOL must
+#: exceed so that simplices whose exact entry times tie at τ are all left out.
+TIE_TOL = 1e-8
+
+
+def _before(values: np.ndarray, tau: float) -> np.ndarray:
+    """Which entry times count as before τ: ``v + TIE_TOL * |v| < tau`` (see
+    :data:`TIE_TOL`).  The left side increases with v, so the selection is closed
+    under faces (a face enters no later than its cofaces)."""
+    return values + TIE_TOL * np.abs(values) < tau
 
 
 _BLOCK = 8192
@@ -633,11 +648,15 @@ def union_measure(balls: Balls, *, tau=0.0, filtration=None) -> UnionMeasure:
 
     Notes
     -----
-    K is taken just before τ: simplices entering less than :data:`TIE_TOL` times
-    the squared size of the input before τ are left out (``counts`` reflects
-    this).  Their intersections have measure of that order at τ, and at exact ties
-    (tangent balls, cospherical centres whose orthosphere has power exactly τ)
-    round-off would otherwise decide their membership one by one.
+    K is taken just before τ: a simplex entering at v is left out unless
+    :math:`v + \\mathrm{TIE\\_TOL}\\,|v| < \\tau` (``counts`` reflects this), a
+    tolerance relative to the simplex's own entry time, so that balls of any size
+    in a scene of any extent are measured.  At exact ties (tangent balls,
+    cospherical centres whose orthosphere has power exactly τ) round-off would
+    otherwise decide their membership one by one; the intersections of the
+    simplices so left out have measure of order
+    :math:`(\\mathrm{TIE\\_TOL}\\,|\\tau|)^{d/2}` or less at τ, and attached pairs,
+    which enter together, are left out together.
 
     Returns
     -------
@@ -662,14 +681,12 @@ def union_measure(balls: Balls, *, tau=0.0, filtration=None) -> UnionMeasure:
         z = np.zeros(0)
         z.flags.writeable = False
         return UnionMeasure(d, t, 0.0, 0.0, z, z, (0.0,) * (d + 1), (0,) * (d + 1))
-    ext = float(np.ptp(balls.centers, axis=0).max()) if n > 1 else 0.0
-    delta = TIE_TOL * max(float(balls.weights.max()), ext * ext, 1e-300)
     if filtration is None:
-        # only K(tau - delta) is needed: the entry times without the Filtration's
+        # only K just before tau is needed: the entry times without the Filtration's
         # ordering and boundary matrices (same values, same comparison)
         from .filtration import _simplices_up_to
 
-        simplices = _simplices_up_to(balls, t - delta)
+        simplices = _simplices_up_to(balls, lambda v: _before(v, t))
         return measure_from_simplices(balls.centers, balls.weights + t, simplices, tau=t)
     else:
         fb = getattr(filtration, "balls", None)
@@ -679,12 +696,15 @@ def union_measure(balls: Balls, *, tau=0.0, filtration=None) -> UnionMeasure:
             np.array_equal(fb.centers, balls.centers) and np.array_equal(fb.radii, balls.radii)
         ):
             raise ValueError("filtration was computed for other balls than `balls`")
-    # Simplices entering within delta of tau are left out: at tau their intersections
-    # have measure O(delta) (attached pairs cancel), while at exact ties (cospherical
-    # input, tangent balls) round-off would otherwise decide their membership one by
-    # one, inconsistently.
-    K = filtration.complex_at(t - delta)
-    simplices = [K.simplices(k) for k in range(min(K.dimension, d) + 1)] if len(K) else []
+    # Simplices entering at or just before tau (relative to their own entry time) are
+    # left out, see TIE_TOL; the values are sorted, so each dimension's selection is
+    # a prefix.
+    simplices = []
+    for k in range(min(filtration.dimension, d) + 1):
+        c = int(np.count_nonzero(_before(filtration.values(k), t)))
+        if c == 0:
+            break
+        simplices.append(filtration.simplices(k)[:c])
     return measure_from_simplices(balls.centers, balls.weights + t, simplices, tau=t)
 
 

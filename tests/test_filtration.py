@@ -531,3 +531,166 @@ def test_values_that_cancel_to_near_zero_are_still_exact(dim, delta):
     exact = _exact_orthosphere_power(centers, radii**2)
     assert 0 < exact < 10 * delta * R**2
     assert top == pytest.approx(exact, rel=1e-9, abs=0)
+
+
+# ------------------------------------------------- nearly flat simplices (issue 10)
+# A simplex with a tiny relative determinant gets its own orthosphere, computed in
+# exact arithmetic where the floating-point error bound cannot certify it.  Oracles:
+# GUDHI's exact AlphaComplex (same float64 inputs, weights = balls.weights) and the
+# closed form below, in Fractions.
+def _cramer_orthosphere(centers, weights):
+    """Power and barycentric coordinates of the orthocentre of a full-dimensional
+    simplex (d + 1 points in R^d), exactly: Cramer's rule on the d x d system
+    2 (z_i - z_0) . c = |z_i - z_0|^2 - w_i + w_0 for the offset c of the orthocentre
+    from z_0, then rho = |c|^2 - w_0, and the barycentric coordinates of z_0 + c by
+    Cramer's rule on the edge matrix (sum_i lam_i (z_i - z_0) = c)."""
+    from fractions import Fraction as Q
+
+    z = [[Q(float(v)) for v in row] for row in centers]
+    w = [Q(float(v)) for v in weights]
+    d = len(z[0])
+    E = [[z[i][t] - z[0][t] for t in range(d)] for i in range(1, d + 1)]
+
+    def det(M):
+        if len(M) == 2:
+            return M[0][0] * M[1][1] - M[0][1] * M[1][0]
+        return (M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1])
+                - M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0])
+                + M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]))
+
+    rhs = [(sum(e * e for e in E[i]) - w[i + 1] + w[0]) / 2 for i in range(d)]
+    D = det(E)
+    assert D != 0
+    c = []
+    for t in range(d):  # replace column t of E by rhs
+        c.append(det([[rhs[i] if s == t else E[i][s] for s in range(d)] for i in range(d)]) / D)
+    rho = sum(v * v for v in c) - w[0]
+    ET = [[E[i][t] for i in range(d)] for t in range(d)]   # columns are the edges
+    lam = [det([[c[r] if s == i else ET[r][s] for s in range(d)] for r in range(d)]) / D for i in range(d)]
+    return rho, [1 - sum(lam)] + lam
+
+
+def _gudhi_exact(balls):
+    st_ = gudhi.AlphaComplex(points=balls.centers, weights=balls.weights, precision="exact").create_simplex_tree()
+    return {tuple(sorted(s)): f for s, f in st_.get_filtration()}
+
+
+def _relative_det(P):
+    A = P[1:] - P[0]
+    return abs(np.linalg.det(A)) / np.prod(np.linalg.norm(A, axis=1))
+
+
+def _assert_all_values_exact(balls, rtol=1e-13):
+    """Same simplices as GUDHI exact, every value within rtol (relative)."""
+    ours, theirs = as_dict(alpha_filtration(balls)), _gudhi_exact(balls)
+    assert set(ours) == set(theirs)
+    err = max(abs(ours[s] - v) / abs(v) if v else abs(ours[s]) for s, v in theirs.items())
+    assert err <= rtol, err
+    return ours
+
+
+def _sliver(h, seed=0):
+    """A unit square (cocircular) moved by ~h out of its plane and ~0.1 h in it, and an
+    apex on either side: the square's four points form a nearly flat tetrahedron with
+    a finite orthosphere (its centre is at height O(1)), in the triangulation."""
+    rng = np.random.default_rng(seed)
+    P = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], dtype=float)
+    P[:, 2] += rng.uniform(-h, h, 4)
+    P[:, :2] += rng.uniform(-0.1 * h, 0.1 * h, (4, 2))
+    return np.r_[P, [[0.5, 0.5, 1.0], [0.5, 0.5, -1.0]]]
+
+
+@pytest.mark.parametrize("h", [3e-13, 1e-13, 1e-15])
+@pytest.mark.parametrize("radii", [[0.0] * 6, [0.5] * 4 + [0.25, 0.375]])
+def test_nearly_flat_tetrahedron_has_its_own_orthosphere(h, radii):
+    """Relative determinant ~h: the value was that of the plane's orthosphere (0.25 /
+    0.5 against 0.2578 / 0.5078 exactly: 3 % off); it must be the exact value rounded."""
+    c = _sliver(h)
+    assert 0.1 * h < _relative_det(c[:4]) < 2 * h
+    balls = Balls(c, radii)
+    ours = _assert_all_values_exact(balls)
+    assert (0, 1, 2, 3) in ours
+    rho, lam = _cramer_orthosphere(c[:4], balls.weights[:4])
+    assert ours[(0, 1, 2, 3)] == pytest.approx(float(rho), rel=1e-15, abs=0)
+    # the Gabriel test of its facets (the sign of each barycentric coordinate) is exact
+    from shapelab.filtration import _orthospheres_certified
+    from shapelab.power import _triangulate_local
+
+    fr, simp, _ = _triangulate_local(balls)
+    row = simp[np.sort(fr.keep[simp], axis=1).tolist().index([0, 1, 2, 3])]
+    rho_f, att = _orthospheres_certified(balls, fr, row[None, :])
+    assert att[0].tolist() == [lam[list(fr.keep[row]).index(v)] < 0 for v in fr.keep[row]]
+    assert rho_f[0] * fr.scale**2 == pytest.approx(float(rho), rel=1e-15, abs=0)
+
+
+@pytest.mark.parametrize("h", [1e-13, 1e-15])
+def test_nearly_flat_triangles(h):
+    """2D: three nearly collinear centres (relative determinant h).  Unweighted, the
+    orthocircle is huge (rho ~ 1/h^2); weighted so that the lifted points are nearly
+    collinear too, rho is ~0.01.  Both against the exact values."""
+    c = np.array([[-1.0, 0.0], [0.0, h], [1.0, 0.0], [0.0, 1.0], [0.0, -1.0]])
+    assert 0.5 * h < _relative_det(c[:3]) < 2 * h
+    for balls in (Balls(c[:4], 0.0), Balls(c, [1.0, np.sqrt(0.2 * h), 1.0, 0.5, 0.5])):
+        ours = _assert_all_values_exact(balls)
+        assert (0, 1, 2) in ours
+        rho, _ = _cramer_orthosphere(c[:3], balls.weights[:3])
+        assert ours[(0, 1, 2)] == pytest.approx(float(rho), rel=1e-15, abs=0)
+        assert float(rho) > (1e20 if balls.radii[0] == 0 else 0.009)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+@pytest.mark.parametrize("radius", [0.0, 0.25])
+def test_lattice_with_noise_matches_gudhi_exact(seed, radius):
+    """The issue's lattice: a 5 x 5 x 5 integer grid moved by 1e-12 (as coordinates
+    read from a file are).  Every simplex's value against GUDHI exact (the old fixed
+    flat tolerance gave errors up to 100 % and values off by 1e29)."""
+    rng = np.random.default_rng(seed)
+    g = np.array(np.meshgrid(*[np.arange(5.0)] * 3, indexing="ij")).reshape(3, -1).T
+    c = g + rng.uniform(-1e-12, 1e-12, g.shape)
+    _assert_all_values_exact(Balls(c, radius))
+
+
+def test_lattice_with_noise_2d_offset():
+    """The same in 2D, at an offset of 1e3 (a 9 x 9 grid)."""
+    rng = np.random.default_rng(5)
+    g = np.array(np.meshgrid(*[np.arange(9.0)] * 2, indexing="ij")).reshape(2, -1).T
+    _assert_all_values_exact(Balls(1e3 + g + rng.uniform(-1e-12, 1e-12, g.shape), 0.3))
+
+
+def test_certificate_of_the_floating_point_orthospheres():
+    """The error bound of the vectorised path: every row it accepts is within _RTOL of
+    the exact value and has the exact attachment; rows it rejects are recomputed.
+    Random tetrahedra and triangles whose flatness (relative determinant 1 .. 1e-16)
+    and power (near 0 against the weights) vary over many orders of magnitude."""
+    from fractions import Fraction as Q
+
+    from shapelab.filtration import _RTOL, _orthospheres
+
+    rng = np.random.default_rng(123)
+    rows, ws = [], []
+    for _ in range(400):
+        d = int(rng.integers(2, 4))
+        P = rng.uniform(-1, 1, (d + 1, d))
+        flat = 10.0 ** -rng.uniform(0, 16)
+        P[-1] = P[:-1].mean(axis=0) + flat * (P[-1] - P[:-1].mean(axis=0))
+        w = rng.uniform(0, 1, d + 1)
+        if rng.uniform() < 0.5:  # shift the weights so that rho ~ 10^-k (cancellation)
+            rho, _ = _cramer_orthosphere(P, w)
+            w = w + (float(rho) - 10.0 ** -rng.uniform(0, 16))
+        rows.append(P)
+        ws.append(w)
+    accepted = 0
+    for d in (2, 3):
+        sel = [i for i, P in enumerate(rows) if P.shape[1] == d]
+        x = np.concatenate([rows[i] for i in sel])
+        w = np.concatenate([ws[i] for i in sel])
+        S = np.arange(x.shape[0]).reshape(-1, d + 1)
+        rho, att, bad = _orthospheres(x, w, S)
+        for t in range(S.shape[0]):
+            if bad[t]:
+                continue
+            accepted += 1
+            exact, lam = _cramer_orthosphere(x[S[t]], w[S[t]])
+            assert abs(Q(float(rho[t])) - exact) <= Q(_RTOL) * abs(exact), t
+            assert att[t].tolist() == [v < 0 for v in lam], t
+    assert 50 < accepted < 350   # both branches are exercised

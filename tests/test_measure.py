@@ -579,3 +579,119 @@ def test_tangent_angle_is_the_angle_of_the_projections():
     a = np.array([[1.0], [0.0], [5.0]]) / np.sqrt(26.0)
     b = np.array([[0.0], [1.0], [-2.0]]) / np.sqrt(5.0)
     assert _tangent_angle(a, b, ez)[0] == pytest.approx(np.pi / 2, abs=1e-15)
+
+
+# ------------------------------------------- tiny balls in a large scene (issue 10)
+# Every tolerance of union_measure is relative to the quantity it guards (a ball's own
+# radius, a simplex's own entry time), never to the input's extent: small balls far
+# apart are measured, not dropped.
+def _cap_area(d, r, R):
+    """Area of sphere r outside ball R at distance d (Archimedes: 2 pi r h)."""
+    t = (d**2 + r**2 - R**2) / (2 * d)
+    return 4 * PI * r**2 - 2 * PI * r * (r - t)
+
+
+def _arc_length(d, r, R):
+    """Length of circle r outside disk R at distance d."""
+    return r * (2 * PI - 2 * np.arccos((d**2 + r**2 - R**2) / (2 * d * r)))
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_two_tiny_balls_far_apart(dim):
+    """The issue's case: r = 3e-6 at distance 1 gave 0; the union is two balls."""
+    r = 3e-6
+    c = np.zeros((2, dim))
+    c[1, 0] = 1.0
+    m = union_measure(Balls(c, r))
+    if dim == 3:
+        assert m.volume == pytest.approx(2 * 4 / 3 * PI * r**3, rel=1e-14, abs=0)   # 2.26e-16
+        assert m.surface_area == pytest.approx(2 * 4 * PI * r**2, rel=1e-14, abs=0)
+    else:
+        assert m.area == pytest.approx(2 * PI * r**2, rel=1e-14, abs=0)
+        assert m.perimeter == pytest.approx(2 * 2 * PI * r, rel=1e-14, abs=0)
+    assert m.counts[0] == 2 and m.counts[1] == 0
+
+
+@pytest.mark.parametrize("dim, n", [(2, 20_000), (3, 20_000)])
+def test_many_tiny_disjoint_balls_in_the_unit_cube(dim, n):
+    """n balls of radius 1e-9 in the unit cube (the issue: 200,000 of them gave volume
+    and area 0): disjoint, so the sums of the closed forms, ball by ball."""
+    from scipy.spatial import cKDTree
+
+    rng = np.random.default_rng(2026)
+    c = rng.uniform(0.0, 1.0, (n, dim))
+    r = 1e-9
+    assert cKDTree(c).query(c, k=2)[0][:, 1].min() > 2 * r
+    m = union_measure(Balls(c, r))
+    vol1, bnd1 = (PI * r**2, 2 * PI * r) if dim == 2 else (4 / 3 * PI * r**3, 4 * PI * r**2)
+    assert m.measure == pytest.approx(n * vol1, rel=1e-12, abs=0)
+    assert m.boundary == pytest.approx(n * bnd1, rel=1e-12, abs=0)
+    np.testing.assert_allclose(m.ball_measure, vol1, rtol=1e-14, atol=0)
+    np.testing.assert_allclose(m.ball_boundary, bnd1, rtol=1e-14, atol=0)
+    assert m.counts[1:] == (0,) * dim
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("scale, offset", [(1e-6, 0.0), (1e-6, 1e6), (1.0, 1e6)])
+def test_overlapping_tiny_pairs_next_to_big_balls(dim, scale, offset):
+    """A cluster of unit-size balls at the origin and, at ``offset + 100 k`` (k = 1..5),
+    pairs of overlapping balls of radii ``scale * (1, 0.7)``: the union is the cluster
+    plus five lenses' complements, each by its two-ball closed form (with the distance
+    the float64 centres actually have)."""
+    rng = np.random.default_rng(7 + dim)
+    big = random_balls(11 + dim, 30, dim, 0.8, 1.5, box=4.0)
+    cs, rs, expect_m, expect_b = [big.centers], [big.radii], 0.0, 0.0
+    for k in range(1, 6):
+        a = np.full(dim, offset + 100.0 * k)
+        u = rng.normal(size=dim)
+        b = a + scale * rng.uniform(0.5, 1.5) * u / np.linalg.norm(u)
+        r, R = scale * 1.0, scale * 0.7
+        cs.append(np.array([a, b]))
+        rs.append(np.array([r, R]))
+        d = float(np.linalg.norm(b - a))
+        assert abs(r - R) < d < r + R
+        if dim == 3:
+            expect_m += 4 / 3 * PI * (r**3 + R**3) - lens_volume(d, r, R)
+            expect_b += _cap_area(d, r, R) + _cap_area(d, R, r)
+        else:
+            expect_m += PI * (r**2 + R**2) - lens_area(d, r, R)
+            expect_b += _arc_length(d, r, R) + _arc_length(d, R, r)
+    m = union_measure(Balls(np.concatenate(cs), np.concatenate(rs)))
+    mb = union_measure(big)
+    n_big = len(big)
+    assert m.ball_measure[:n_big] == pytest.approx(mb.ball_measure, rel=1e-9, abs=1e-12)
+    assert m.ball_boundary[:n_big] == pytest.approx(mb.ball_boundary, rel=1e-9, abs=1e-12)
+    assert m.ball_measure[n_big:].sum() == pytest.approx(expect_m, rel=1e-9, abs=0)
+    assert m.ball_boundary[n_big:].sum() == pytest.approx(expect_b, rel=1e-9, abs=0)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("scale, offset", [(1e-6, 0.0), (1e-6, 1e6), (1.0, 1e6), (1e6, 0.0)])
+def test_scaled_and_offset_copies(dim, scale, offset):
+    """``offset + scale * x`` measures scale^d times x's measure, where x is the
+    configuration the float64 centres really describe, ``(c - offset) / scale``
+    (the offset quantises them)."""
+    b = random_balls(40 + dim, 40, dim, 0.5, 1.3, box=5.0)
+    c = offset + scale * b.centers
+    r = scale * b.radii
+    m = union_measure(Balls(c, r))
+    unit = union_measure(Balls((c - offset) / scale, r / scale))
+    assert m.measure == pytest.approx(unit.measure * scale**dim, rel=1e-10)
+    assert m.boundary == pytest.approx(unit.boundary * scale ** (dim - 1), rel=1e-10)
+
+
+@pytest.mark.parametrize("scale", [1e-6, 1e-3])
+def test_tiny_balls_surface_against_freesasa(scale):
+    """freesasa's Lee–Richards area (a peer that knows nothing of dual complexes) for a
+    cluster at scale 1e-6, next to which a unit ball sits 10^3 away."""
+    freesasa = pytest.importorskip("freesasa")
+    freesasa.setVerbosity(freesasa.silent)
+    b = random_balls(201, 40, 3, 0.9, 1.7, box=5.0)
+    c, r = scale * b.centers, scale * b.radii
+    params = freesasa.Parameters({"algorithm": freesasa.LeeRichards, "n-slices": 2000, "probe-radius": 0.0})
+    res = freesasa.calcCoord(c.ravel(), r, params)
+    per_atom = np.array([res.atomArea(i) for i in range(len(b))])
+    m = union_measure(Balls(np.r_[c, [[1e3, 0.0, 0.0]]], np.r_[r, 1.0]))
+    assert rel(m.ball_boundary[:-1].sum(), res.totalArea()) < 1e-4
+    np.testing.assert_allclose(m.ball_boundary[:-1], per_atom, atol=2e-3 * (r**2).max())
+    assert m.ball_boundary[-1] == pytest.approx(4 * PI, rel=1e-14)
