@@ -17,13 +17,33 @@ in arbitrary units for the 2D figure inputs.
 :func:`nested_pockets` 2D: a pocket with two chambers, the inner behind a neck
 :func:`mixed_dent`     2D: a dent that is a pocket for one growth model only
 :func:`example_pdb`    path of the shipped example PDB file (the globule)
+:func:`structure`      a shipped *real* protein structure by name (see below)
 ====================  =========================================================
+
+Real structures
+---------------
+Eight PDB files are shipped in ``shapelab/data/`` (gzip-compressed), copied once from
+PyPI packages by ``scripts/fetch_structures.py``; :data:`STRUCTURES` records each one's
+PDB id, title, what it teaches and its provenance, and :func:`structure` reads it:
+
+===================  ======================================================
+``"1hvr"``           HIV-1 protease + inhibitor: an active-site pocket
+``"4ake"``, ``"1ake"``  adenylate kinase open / closed: a conformational change
+``"1grm"``           gramicidin A dimer: a channel (tunnel)
+``"t4l-l99a"``       T4 lysozyme L99A: an engineered buried cavity (void)
+``"t4l-l99a-ligand"``  p-xylene, the ligand that fills that cavity
+``"1fmo"``           protein kinase A: pockets, to compare with a peer
+``"1fmo-kvfinder"``  pyKVFinder's cavities of 1fmo (grid points, not atoms)
+===================  ======================================================
 
 The carbon radius used throughout is Bondi's van der Waals radius of carbon, 1.70 Å
 (A. Bondi, *J. Phys. Chem.* **68**, 441 (1964)); see :data:`shapelab.io.VDW_RADII`.
 """
 from __future__ import annotations
 
+import json
+import types
+from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
@@ -47,6 +67,10 @@ __all__ = [
     "nested_pockets",
     "mixed_dent",
     "example_pdb",
+    "STRUCTURES",
+    "StructureInfo",
+    "structure",
+    "structure_path",
     "GRAPHENE_LATTICE_CONSTANT",
     "CARBON_RADIUS",
 ]
@@ -701,3 +725,128 @@ def mixed_dent(*, small_radius=0.3, big_radius=3.0, bowl_radius=3.0, gap=3.6):
     small = np.column_stack([np.cos(ang), np.sin(ang)]) * rho
     big = np.array([[-(g / 2 + rb), 1.0], [g / 2 + rb, 1.0]])
     return Balls(np.vstack([small, big]), np.r_[np.full(n, rs), np.full(2, rb)])
+
+
+# ----------------------------------------------------------- real structures
+@dataclass(frozen=True)
+class StructureInfo:
+    """One shipped real structure and where it came from (``shapelab/data/STRUCTURES.json``).
+
+    Attributes
+    ----------
+    name : str
+        The key of :data:`STRUCTURES` and the argument of :func:`structure`.
+    pdb_id : str
+        The PDB entry (``pdb_id_certain`` False when it is inferred, not stated).
+    title, header_title : str
+        A short title, and the title the file's own header gives (or why it has none).
+    teaches : str
+        What the course shows with it.
+    ligands, modified_residues : tuple of str
+        Residue names of HETATM groups that are a ligand, or part of the chain.
+    file : str
+        The shipped file in ``shapelab/data/`` (gzip-compressed).
+    source : dict
+        ``package``, ``version``, ``archive`` (the file pip downloaded), ``path`` (inside
+        the package) and ``package_license``.
+    sha256, sha256_original : str
+        Of the shipped file, and of the package's file (= the uncompressed bytes).
+    size, size_original : int
+        In bytes.
+    atoms : dict
+        ATOM/HETATM record counts of the first model: ``records``, ``hetatm``,
+        ``hydrogens``, ``water``.
+    differs_from_pdb : bool
+    differences, evidence : str
+        How the file differs from the PDB's own entry, and how that is known.
+    read : dict
+        Keyword arguments :func:`structure` passes to :func:`shapelab.io.read_pdb`.
+    """
+
+    name: str
+    pdb_id: str
+    title: str
+    header_title: str
+    teaches: str
+    ligands: tuple
+    modified_residues: tuple
+    file: str
+    source: dict
+    sha256: str
+    sha256_original: str
+    size: int
+    size_original: int
+    atoms: dict
+    differs_from_pdb: bool
+    differences: str
+    evidence: str
+    read: dict
+    pdb_id_certain: bool = True
+
+
+def _load_structures():
+    text = resources.files("shapelab").joinpath("data", "STRUCTURES.json").read_text(encoding="utf-8")
+    out = {}
+    for e in json.loads(text)["structures"]:
+        e = dict(e)
+        e["ligands"] = tuple(e["ligands"])
+        e["modified_residues"] = tuple(e["modified_residues"])
+        for k in ("source", "atoms", "read"):
+            e[k] = types.MappingProxyType(dict(e[k]))
+        out[e["name"]] = StructureInfo(**e)
+    return types.MappingProxyType(out)
+
+
+#: The shipped real structures by name (read-only): each a :class:`StructureInfo`.
+STRUCTURES = _load_structures()
+
+
+def structure_path(name: str) -> Path:
+    """Path of the shipped file of structure ``name`` (a key of :data:`STRUCTURES`).
+
+    Examples
+    --------
+    >>> structure_path("1grm").name
+    '1grm_single.pdb.gz'
+    """
+    if not isinstance(name, str):
+        raise TypeError(f"name must be a str, got {type(name).__name__}")
+    info = STRUCTURES.get(name.strip().lower())
+    if info is None:
+        raise ValueError(f"no shipped structure {name!r}; choose one of {sorted(STRUCTURES)}")
+    return Path(str(resources.files("shapelab").joinpath("data", info.file)))
+
+
+def structure(name: str, **kwargs):
+    """Read a shipped real structure by name (Notes §23.1: a molecule as balls).
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`STRUCTURES`: ``"1hvr"``, ``"4ake"``, ``"1ake"``, ``"1grm"``,
+        ``"t4l-l99a"``, ``"t4l-l99a-ligand"``, ``"1fmo"``, ``"1fmo-kvfinder"``.
+    **kwargs
+        Passed to :func:`shapelab.io.read_pdb` (``probe``, ``chain``, ``hetatm``,
+        ``water``, ``hydrogens``, ``radii``, ...), over the entry's own defaults
+        (``STRUCTURES[name].read``; only ``"1fmo-kvfinder"`` has one, ``hydrogens=True``,
+        since its points are written as hydrogens).
+
+    Returns
+    -------
+    shapelab.io.PDBStructure
+        By default heavy atoms only, without water, HETATM groups included.
+
+    Examples
+    --------
+    >>> s = structure("t4l-l99a", probe=1.4)
+    >>> len(s), s.residue_label(0), float(s.balls.radii[0])
+    (1290, ':MET1', 2.95)
+    >>> STRUCTURES["1ake"].pdb_id, STRUCTURES["1ake"].source["package"]
+    ('1AKE', 'MDAnalysisTests')
+    """
+    from .io import read_pdb
+
+    path = structure_path(name)
+    options = dict(STRUCTURES[name.strip().lower()].read)
+    options.update(kwargs)
+    return read_pdb(path, **options)

@@ -18,17 +18,20 @@ not list (e.g. Ca, Fe, Mn, Co) raise unless a ``default_radius`` is given.
 """
 from __future__ import annotations
 
+import gzip
 import math
 import os
+import zlib
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from ._validate import as_finite_scalar
+from ._validate import as_finite_scalar, as_positive_int
 from .balls import Balls
 
-__all__ = ["VDW_RADII", "PDBStructure", "read_pdb", "write_pdb", "vdw_radius"]
+__all__ = ["VDW_RADII", "WATER_RESIDUES", "STANDARD_RESIDUES", "PDBStructure", "read_pdb",
+           "write_pdb", "vdw_radius"]
 
 #: van der Waals radii in Å, Bondi (1964), J. Phys. Chem. 68:441, Table I.
 VDW_RADII: dict[str, float] = {
@@ -66,22 +69,52 @@ def _readonly(a: np.ndarray) -> np.ndarray:
     return a
 
 
+#: Residue names (columns 18–21) that are water in PDB, AMBER, CHARMM and GROMACS files.
+WATER_RESIDUES = frozenset({
+    "HOH", "WAT", "H2O", "DOD", "D2O", "TIP", "TIP3", "TIP4", "TIP5", "T3P", "T4P", "T5P",
+    "SOL", "SPC", "SPCE",
+})
+#: Polymer residue names (amino acids with the protonation variants of AMBER and CHARMM,
+#: caps, nucleotides): their atoms are only H, C, N, O, S, P or Se, which decides the
+#: element of a left-justified atom name such as CHARMM's ``"CA  "`` (carbon, not calcium).
+STANDARD_RESIDUES = frozenset((
+    "ALA ARG ASN ASP CYS GLN GLU GLY HIS ILE LEU LYS MET PHE PRO SER THR TRP TYR VAL "
+    "HSD HSE HSP HID HIE HIP HSC CYX CYM ASH GLH LYN ARN MSE SEC PYL ACE NME NH2 NMA "
+    "DA DC DG DT DU DI A C G U I RA RC RG RU").split()) | WATER_RESIDUES
+# two-letter guesses kept even in a polymer residue (a halogen or Se is a real atom there)
+_POLYMER_TWO_LETTER = {"Se", "Cl", "Br"}
+
+
+def _fill(a, n, default, dtype):
+    return _readonly(np.full(n, default, dtype=dtype) if a is None else np.asarray(a, dtype=dtype))
+
+
 @dataclass(frozen=True, eq=False)
 class PDBStructure:
-    """Atoms of the first model of a PDB file, as balls plus their labels.
+    """Atoms of one model of a PDB file, as balls plus their labels.
 
     Attributes
     ----------
     balls : Balls
-        Centres in Å; radii = van der Waals radius (Bondi 1964) + probe.
+        Centres in Å; radii = van der Waals radius (Bondi 1964, or the ``radii=``
+        table of :func:`read_pdb`) + probe.
     atom_names, residue_names, chains, elements : ndarray of str, shape (n,)
-        Columns 13–16, 18–20, 22 and 77–78 (element symbols normalised, e.g. ``"Fe"``).
+        Columns 13–16, 18–21, 22 and 77–78 (element symbols normalised, e.g. ``"Fe"``).
     residue_numbers : ndarray of int64, shape (n,)
         Columns 23–26.
     hetero : ndarray of bool, shape (n,)
         True for HETATM records.
     probe : float
         The probe radius that was added to every van der Waals radius.
+    insertion_codes, altlocs : ndarray of str, shape (n,)
+        Columns 27 and 17 (``""`` when blank): a residue is identified by chain,
+        number and insertion code; ``altlocs`` is the alternate location kept.
+    occupancies, b_factors : ndarray of float64, shape (n,)
+        Columns 55–60 and 61–66 (NaN when blank).
+    model : int or None
+        Serial of the MODEL that was read (None if the file has no MODEL record).
+
+    The last five default to blanks/NaN for structures built in code.
     """
 
     balls: Balls
@@ -92,27 +125,93 @@ class PDBStructure:
     elements: np.ndarray
     hetero: np.ndarray
     probe: float = 0.0
+    insertion_codes: np.ndarray | None = None
+    altlocs: np.ndarray | None = None
+    occupancies: np.ndarray | None = None
+    b_factors: np.ndarray | None = None
+    model: int | None = None
+
+    def __post_init__(self):
+        n = len(self.balls)
+        for name, default, dtype in (("insertion_codes", "", str), ("altlocs", "", str),
+                                     ("occupancies", np.nan, np.float64),
+                                     ("b_factors", np.nan, np.float64)):
+            a = _fill(getattr(self, name), n, default, dtype)
+            if a.shape != (n,):
+                raise ValueError(f"{name} must have shape ({n},), got {a.shape}")
+            object.__setattr__(self, name, a)
 
     def __len__(self) -> int:
         return len(self.balls)
 
     def __repr__(self) -> str:
-        n_res = len(set(zip(self.chains.tolist(), self.residue_numbers.tolist())))
+        n_res = len(set(zip(self.chains.tolist(), self.residue_numbers.tolist(),
+                            self.insertion_codes.tolist())))
         return f"PDBStructure(n_atoms={len(self)}, n_residues={n_res}, probe={self.probe})"
 
     def label(self, i: int) -> str:
         """A human-readable label of atom ``i``, e.g. ``'A:LEU12:CD1'``."""
         i = int(i)
-        return (f"{self.chains[i]}:{self.residue_names[i]}{self.residue_numbers[i]}:"
-                f"{self.atom_names[i]}")
+        return f"{self.residue_label(i)}:{self.atom_names[i]}"
+
+    def residue_label(self, i: int) -> str:
+        """The residue of atom ``i``, e.g. ``'A:LEU99'`` or ``'B:GLY52A'`` (insertion code)."""
+        i = int(i)
+        return (f"{self.chains[i]}:{self.residue_names[i]}{self.residue_numbers[i]}"
+                f"{self.insertion_codes[i]}")
+
+    def residues(self, indices=None) -> list[str]:
+        """Distinct residue labels of the atoms ``indices`` (all atoms by default), in
+        file order: what a report lists as the lining residues of a feature.
+
+        Examples
+        --------
+        >>> from shapelab.datasets import structure
+        >>> s = structure("t4l-l99a")
+        >>> s.residues([i for i in range(len(s)) if s.residue_numbers[i] == 99])
+        [':ALA99']
+        """
+        idx = range(len(self)) if indices is None else np.unique(np.asarray(indices, dtype=np.int64))
+        seen = dict.fromkeys(self.residue_label(i) for i in idx)
+        return list(seen)
+
+    def select(self, mask) -> "PDBStructure":
+        """The atoms where ``mask`` (booleans, or indices) holds, as a new structure.
+
+        Examples
+        --------
+        >>> from shapelab.datasets import structure
+        >>> s = structure("1hvr")
+        >>> protein = s.select(~s.hetero | (s.residue_names == "CSO"))  # drop the inhibitor
+        >>> len(s) - len(protein)
+        46
+        """
+        m = np.asarray(mask)
+        if m.dtype == bool:
+            if m.shape != (len(self),):
+                raise ValueError(f"mask must have shape ({len(self)},), got {m.shape}")
+            idx = np.flatnonzero(m)
+        else:
+            idx = m.astype(np.int64).ravel()
+        return PDBStructure(
+            balls=self.balls[idx], atom_names=_readonly(self.atom_names[idx]),
+            residue_names=_readonly(self.residue_names[idx]),
+            residue_numbers=_readonly(self.residue_numbers[idx]),
+            chains=_readonly(self.chains[idx]), elements=_readonly(self.elements[idx]),
+            hetero=_readonly(self.hetero[idx]), probe=self.probe,
+            insertion_codes=self.insertion_codes[idx], altlocs=self.altlocs[idx],
+            occupancies=self.occupancies[idx], b_factors=self.b_factors[idx], model=self.model)
 
 
-def _element_from_name(name: str) -> str:
+def _element_from_name(name: str, residue: str | None = None) -> str:
     """Guess an element from a PDB atom name (columns 13–16).
 
     PDB convention: the element symbol is right-justified in columns 13–14, so
     ``" CA "`` is an alpha carbon and ``"CA  "`` is calcium.  Four-character hydrogen
-    names (``"HG21"``, ``"1HG2"``) are hydrogens.
+    names (``"HG21"``, ``"1HG2"``) are hydrogens.  Programs such as CHARMM write
+    names left-justified (``"CA  "``, ``"HE1 "``); in a polymer residue
+    (:data:`STANDARD_RESIDUES`, given as ``residue``) the first letter is then the
+    element, since those residues hold no calcium or helium.
     """
     name4 = name.ljust(4)[:4]
     first, second = name4[0], name4[1]
@@ -122,7 +221,9 @@ def _element_from_name(name: str) -> str:
         return "H"
     two = (first + second).strip()
     if len(two) == 2 and two.upper() in _SYMBOLS:
-        return _SYMBOLS[two.upper()]
+        sym = _SYMBOLS[two.upper()]
+        if residue is None or residue not in STANDARD_RESIDUES or sym in _POLYMER_TWO_LETTER:
+            return sym
     return first.upper() if first.isalpha() else ""
 
 
@@ -139,77 +240,206 @@ def _field_float(line: str, a: int, b: int, what: str, lineno: int) -> float:
     return v
 
 
-def read_pdb(path, *, probe=0.0, default_radius=None) -> PDBStructure:
+def _optional_float(line: str, a: int, b: int, what: str, lineno: int) -> float:
+    """A float from columns a+1..b, NaN if they are blank or absent."""
+    if not line[a:b].strip():
+        return math.nan
+    return _field_float(line, a, b, what, lineno)
+
+
+def _radius_table(radii):
+    """Validate ``radii=``: {element or (residue, atom): radius} -> two dicts."""
+    if radii is None:
+        return {}, {}
+    if not hasattr(radii, "items"):
+        raise TypeError(f"radii must be a mapping (element or (residue, atom) -> Å), "
+                        f"got {type(radii).__name__}")
+    by_element, by_atom = {}, {}
+    for key, value in radii.items():
+        r = as_finite_scalar(value, f"radii[{key!r}]", positive=True)
+        if isinstance(key, str) and key.strip():
+            by_element[key.strip().upper()] = r
+        elif (isinstance(key, tuple) and len(key) == 2
+              and all(isinstance(k, str) and k.strip() for k in key)):
+            by_atom[(key[0].strip().upper(), key[1].strip().upper())] = r
+        else:
+            raise TypeError(f"radii keys must be element symbols or (residue name, atom name) "
+                            f"pairs of str, got {key!r}")
+    return by_element, by_atom
+
+
+def _names_arg(value, name: str, width: int):
+    """None, one str, or an iterable of str -> frozenset of stripped names (or None)."""
+    if value is None:
+        return None
+    items = [value] if isinstance(value, str) else value
+    try:
+        items = list(items)
+    except TypeError:
+        raise TypeError(f"{name} must be a str or a collection of str, "
+                        f"got {type(value).__name__}") from None
+    out = set()
+    for v in items:
+        if not isinstance(v, str) or len(v.strip()) > width:
+            raise ValueError(f"{name} must hold strings of at most {width} characters, got {v!r}")
+        out.add(v.strip())
+    return frozenset(out)
+
+
+def _read_text(path) -> str:
+    raw = Path(path).read_bytes()
+    if raw[:2] == b"\x1f\x8b":
+        try:
+            raw = gzip.decompress(raw)
+        except (OSError, EOFError, zlib.error) as e:
+            raise ValueError(f"{os.fspath(path)!r} is not a readable gzip file: {e}") from None
+    if not raw.strip():
+        raise ValueError(f"{os.fspath(path)!r} is empty: no ATOM or HETATM records")
+    return raw.decode("latin-1")  # never fails; non-ASCII bytes then fail as bad fields
+
+
+def read_pdb(path, *, probe=0.0, default_radius=None, model=None, chain=None, hetatm=True,
+             water=False, hydrogens=False, radii=None) -> PDBStructure:
     """Read the atoms of a PDB file as balls (Notes §23.1: a molecule is a union of balls).
 
     Parameters
     ----------
     path : str or os.PathLike
-        The PDB file.
+        The PDB file, plain or gzip-compressed (recognised by its first bytes).
     probe : float, default 0
         Probe radius :math:`p \\ge 0` added to every van der Waals radius; ``probe=1.4``
         (water) gives the solvent-accessible model.
     default_radius : float, optional
-        Van der Waals radius for elements missing from Bondi's table.  Without it,
-        such an element raises.
+        Van der Waals radius for elements missing from Bondi's table (and from
+        ``radii``).  Without it, such an element raises.
+    model : int, optional
+        Serial number of the MODEL to read (columns 11–14 of the MODEL record).
+        Default: the first model.  Atoms outside any MODEL block count as model 1.
+    chain : str or collection of str, optional
+        Keep only these chain identifiers (column 22; ``""`` is the blank chain).
+    hetatm : bool or collection of str, default True
+        Keep HETATM records (ligands, ions, modified residues): all (True), none
+        (False), or only those whose residue name is in the collection, e.g.
+        ``{"CSO"}`` keeps a modified cysteine and drops an inhibitor.  Water is
+        governed by ``water`` alone.
+    water : bool, default False
+        Keep water molecules (residue names in :data:`WATER_RESIDUES`, ATOM or
+        HETATM).  Crystallographic waters are not part of the van der Waals model of
+        a protein, so they are dropped by default.
+    hydrogens : bool, default False
+        Keep hydrogen (and deuterium) atoms.  The van der Waals model of the notes
+        uses heavy atoms with united-atom-like radii, and X-ray entries mostly have
+        no hydrogens, so they are dropped by default.
+    radii : mapping, optional
+        Van der Waals radii (Å) that take precedence over Bondi's: keys are element
+        symbols (``{"Fe": 2.0}``) or ``(residue name, atom name)`` pairs
+        (``{("ALA", "CB"): 1.9}``), the latter winning.  Matching ignores case.
 
     Returns
     -------
     PDBStructure
+        The atoms in file order, with residue names, numbers, insertion codes and
+        chains, so that reports can name the residues lining a feature.
 
     Raises
     ------
     ValueError
-        Empty file or no atoms; a truncated or malformed ATOM/HETATM record (the message
-        starts with ``"line N:"``); an element without a radius.
+        Empty file or no atoms, or no atoms left by the selection; a truncated or
+        malformed ATOM/HETATM or MODEL record (the message starts with ``"line N:"``);
+        a requested model that is absent; an element without a radius.  Nothing is
+        returned in part: any error in the model read fails the whole call.
     FileNotFoundError, IsADirectoryError
         If ``path`` cannot be opened.
 
     Notes
     -----
     * ATOM and HETATM records are read by the PDB's fixed columns: name 13–16,
-      alternate location 17, residue name 18–20, chain 22, residue number 23–26,
-      x/y/z 31–38/39–46/47–54, element 77–78.  A record must reach column 54.
+      alternate location 17, residue name 18–21 (column 21 holds the fourth letter
+      some programs write), chain 22, residue number 23–26, insertion code 27,
+      x/y/z 31–38/39–46/47–54, occupancy 55–60, B-factor 61–66, element 77–78.
+      A record must reach column 54.  Every record of the model read is parsed
+      before any selection is applied, so a malformed line fails even if it would
+      have been filtered out.
     * The element comes from columns 77–78; if blank, from the atom name
       (:func:`_element_from_name`).
-    * Reading stops at the first ``END`` or ``ENDMDL``, so only the first model of an
-      NMR ensemble is read.
-    * Of alternate locations only the blank one and the first label seen
-      (usually ``A``) are kept.
+    * Reading stops at the first ``END``, or at the ``ENDMDL`` of the model read.
+    * Alternate locations: for each atom (chain, residue number, insertion code,
+      atom name) with labelled alternatives, the one of highest occupancy is kept;
+      ties go to the label seen first.  Unlabelled records are always kept.
     * Other records (HEADER, REMARK, ANISOU, TER, CONECT, ...) are ignored.
+
+    Examples
+    --------
+    >>> from shapelab.datasets import structure_path
+    >>> s = read_pdb(structure_path("1hvr"), chain="A", hetatm={"CSO"})  # no inhibitor
+    >>> len(s), s.residue_label(0), sorted(set(s.elements.tolist()))
+    (757, 'A:PRO1', ['C', 'N', 'O', 'S'])
     """
     if isinstance(path, (bytes, bytearray)) or not isinstance(path, (str, os.PathLike)):
         raise TypeError(f"path must be a str or os.PathLike, got {type(path).__name__}")
     probe = as_finite_scalar(probe, "probe", nonnegative=True)
     if default_radius is not None:
         default_radius = as_finite_scalar(default_radius, "default_radius", positive=True)
-    raw = Path(path).read_bytes()
-    if not raw.strip():
-        raise ValueError(f"{os.fspath(path)!r} is empty: no ATOM or HETATM records")
-    text = raw.decode("latin-1")  # never fails; non-ASCII bytes then fail as bad fields
+    if model is not None:
+        if isinstance(model, bool):
+            raise TypeError("model must be an int, got bool")
+        model = as_positive_int(model, "model", minimum=0)
+    chains_wanted = _names_arg(chain, "chain", 1)
+    if isinstance(hetatm, (bool, np.bool_)):
+        het_keep = bool(hetatm)
+    else:
+        het_keep = _names_arg(hetatm, "hetatm", 4)
+    for flag, fname in ((water, "water"), (hydrogens, "hydrogens")):
+        if not isinstance(flag, (bool, np.bool_)):
+            raise TypeError(f"{fname} must be a bool, got {type(flag).__name__}")
+    radii_element, radii_atom = _radius_table(radii)
+    text = _read_text(path)
 
-    xyz, names, resn, resi, chain, elem, het, where = [], [], [], [], [], [], [], []
-    altloc_kept = None
+    recs = []  # one tuple per ATOM/HETATM record of the model read
+    target = model          # the MODEL serial wanted (None: the first one met)
+    current = None          # serial of the open MODEL block (None: outside any)
+    models_seen = []
     for lineno, line in enumerate(text.splitlines(), start=1):
         rec = line[:6].rstrip()
-        if rec in ("END", "ENDMDL"):
+        if rec == "END":
             break
+        if rec == "MODEL":
+            if current is not None:
+                raise ValueError(f"line {lineno}: MODEL record inside MODEL {current} "
+                                 f"(missing ENDMDL)")
+            field = line[6:].strip()
+            if field:
+                try:
+                    current = int(field.split()[0])
+                except ValueError:
+                    raise ValueError(f"line {lineno}: could not read the model serial "
+                                     f"from the MODEL record: {field!r}") from None
+            else:
+                current = len(models_seen) + 1
+            models_seen.append(current)
+            if target is None:
+                target = current
+            continue
+        if rec == "ENDMDL":
+            if current is None or current == target:
+                break
+            current = None
+            continue
         if rec not in ("ATOM", "HETATM"):
+            continue
+        here = 1 if current is None else current
+        if (target if target is not None else 1) != here:
             continue
         if len(line) < 54:
             raise ValueError(
                 f"line {lineno}: truncated {rec} record (needs at least 54 columns for "
                 f"the coordinates, got {len(line.rstrip())})"
             )
-        alt = line[16]
-        if alt != " ":
-            if altloc_kept is None:
-                altloc_kept = alt
-            elif alt != altloc_kept:
-                continue
         x = _field_float(line, 30, 38, "x", lineno)
         y = _field_float(line, 38, 46, "y", lineno)
         z = _field_float(line, 46, 54, "z", lineno)
+        occ = _optional_float(line, 54, 60, "the occupancy", lineno)
+        bfac = _optional_float(line, 60, 66, "the B-factor", lineno)
         num_text = line[22:26]
         try:
             num = int(num_text)
@@ -219,52 +449,93 @@ def read_pdb(path, *, probe=0.0, default_radius=None) -> PDBStructure:
                 f"{num_text.strip()!r}"
             ) from None
         name = line[12:16]
+        resname = line[17:21].strip()
         e = line[76:78].strip() if len(line) >= 77 else ""
         if e:
             if not (e.isascii() and e.isalpha()):
                 raise ValueError(f"line {lineno}: element in columns 77-78 is not a symbol: {e!r}")
             e = e[0].upper() + e[1:].lower()
         else:
-            e = _element_from_name(name)
+            e = _element_from_name(name, resname.upper())
             if not e:
                 raise ValueError(
                     f"line {lineno}: no element in columns 77-78 and none can be read "
                     f"from the atom name {name!r}"
                 )
-        xyz.append((x, y, z))
-        names.append(name.strip())
-        resn.append(line[17:20].strip())
-        resi.append(num)
-        chain.append(line[21].strip())
-        elem.append(e)
-        het.append(rec == "HETATM")
-        where.append(lineno)
+        icode = line[26].strip() if len(line) > 26 else ""
+        recs.append((lineno, rec == "HETATM", line[16].strip(), name.strip(), resname,
+                     line[21].strip(), num, icode, x, y, z, occ, bfac, e))
 
-    if not xyz:
+    if model is not None and model not in models_seen and not (model == 1 and recs):
+        raise ValueError(f"{os.fspath(path)!r} has no MODEL {model} "
+                         f"(models read before END: {models_seen or 'none'})")
+    if not recs:
         raise ValueError(f"{os.fspath(path)!r} holds no ATOM or HETATM records (before END/ENDMDL)")
 
-    radii = np.empty(len(elem))
-    for i, e in enumerate(elem):
-        key = _UPPER.get(e.upper())
-        if key is not None:
-            radii[i] = VDW_RADII[key]
-        elif default_radius is not None:
-            radii[i] = default_radius
-        else:
+    # alternate locations: per atom, the highest occupancy (ties: the first label seen)
+    best = {}
+    for k, r in enumerate(recs):
+        if r[2]:
+            key = (r[5], r[6], r[7], r[3])
+            occ = -math.inf if math.isnan(r[11]) else r[11]
+            if key not in best or occ > best[key][1]:
+                best[key] = (k, occ)
+    keep_alt = {k for k, _ in best.values()}
+
+    kept = []
+    for k, r in enumerate(recs):
+        if r[2] and k not in keep_alt:
+            continue
+        is_water = r[4].upper() in WATER_RESIDUES
+        if is_water:
+            if not water:
+                continue
+        elif r[1] and not (het_keep is True or (het_keep and r[4] in het_keep)):
+            continue
+        if chains_wanted is not None and r[5] not in chains_wanted:
+            continue
+        if not hydrogens and r[13] in ("H", "D"):
+            continue
+        kept.append(r)
+    if not kept:
+        raise ValueError(
+            f"{os.fspath(path)!r}: none of its {len(recs)} atoms is left by the selection "
+            f"(chain={chain!r}, hetatm={hetatm!r}, water={water}, hydrogens={hydrogens}; "
+            f"chains present: {sorted({r[5] for r in recs})})")
+
+    rad = np.empty(len(kept))
+    for i, r in enumerate(kept):
+        lineno, e, resn, name = r[0], r[13], r[4], r[3]
+        eu = e.upper()
+        ra = radii_atom.get((resn.upper(), name.upper()))
+        if ra is None:
+            ra = radii_element.get(eu)
+        if ra is None:
+            key = _UPPER.get("H" if eu == "D" else eu)  # deuterium: hydrogen's radius
+            ra = VDW_RADII[key] if key is not None else default_radius
+        if ra is None:
             raise ValueError(
-                f"line {where[i]}: element {e!r} (atom {names[i]!r}, residue {resn[i]} {resi[i]}) has no van der "
-                f"Waals radius in Bondi's (1964) table; pass default_radius= to use one"
+                f"line {lineno}: element {e!r} (atom {name!r}, residue {resn} {r[6]}) has no van "
+                f"der Waals radius in Bondi's (1964) table; pass default_radius= (or radii=) "
+                f"to use one"
             )
-    balls = Balls(np.array(xyz, dtype=np.float64), radii + probe)
+        rad[i] = ra
+    col = list(zip(*kept))
+    balls = Balls(np.array([c[8:11] for c in kept], dtype=np.float64), rad + probe)
     return PDBStructure(
         balls=balls,
-        atom_names=_readonly(np.array(names, dtype=str)),
-        residue_names=_readonly(np.array(resn, dtype=str)),
-        residue_numbers=_readonly(np.array(resi, dtype=np.int64)),
-        chains=_readonly(np.array(chain, dtype=str)),
-        elements=_readonly(np.array(elem, dtype=str)),
-        hetero=_readonly(np.array(het, dtype=bool)),
+        atom_names=_readonly(np.array(col[3], dtype=str)),
+        residue_names=_readonly(np.array(col[4], dtype=str)),
+        residue_numbers=_readonly(np.array(col[6], dtype=np.int64)),
+        chains=_readonly(np.array(col[5], dtype=str)),
+        elements=_readonly(np.array(col[13], dtype=str)),
+        hetero=_readonly(np.array(col[1], dtype=bool)),
         probe=probe,
+        insertion_codes=np.array(col[7], dtype=str),
+        altlocs=np.array(col[2], dtype=str),
+        occupancies=np.array(col[11], dtype=np.float64),
+        b_factors=np.array(col[12], dtype=np.float64),
+        model=target if models_seen else None,
     )
 
 

@@ -404,3 +404,148 @@ def test_figure_23_1_has_two_triangles_at_zero():
 def test_bad_input(call, exc):
     with pytest.raises(exc):
         call()
+
+
+# -------------------------------------------------------------- real structures
+import gzip as _gzip  # noqa: E402
+import hashlib as _hashlib  # noqa: E402
+import json as _json  # noqa: E402
+from importlib import resources as _resources  # noqa: E402
+
+_WATER = {"HOH", "WAT", "H2O", "DOD", "D2O", "TIP", "TIP3", "TIP4", "TIP5", "T3P", "T4P",
+          "T5P", "SOL", "SPC", "SPCE"}
+
+
+def _slice_records(text, hydrogens):
+    """An independent reading: ATOM/HETATM records of the first model by column slicing
+    (wwPDB v3.3: x/y/z in columns 31-54, residue name 18-20(21), element 77-78).
+    Hydrogens are told by the element columns, else by a name whose first letter
+    (after digits) is H, which holds for every file shipped.  Waters are dropped."""
+    out = []
+    for line in text.splitlines():
+        if line.startswith("END"):
+            break
+        if line[:6] not in ("ATOM  ", "HETATM"):
+            continue
+        if line[17:21].strip() in _WATER:
+            continue
+        element = line[76:78].strip()
+        is_h = element in ("H", "D") if element else line[12:16].strip().lstrip("0123456789")[:1] == "H"
+        if is_h and not hydrogens:
+            continue
+        out.append((float(line[30:38]), float(line[38:46]), float(line[46:54]), line[17:21].strip(),
+                    int(line[22:26]), line[21].strip()))
+    return out
+
+
+def _shipped(info):
+    return _resources.files("shapelab").joinpath("data", info.file).read_bytes()
+
+
+def test_structures_table_matches_json():
+    raw = _json.loads(_resources.files("shapelab").joinpath("data", "STRUCTURES.json").read_text())
+    assert [e["name"] for e in raw["structures"]] == list(D.STRUCTURES)
+    assert len(D.STRUCTURES) >= 5
+    for name, info in D.STRUCTURES.items():
+        assert info.name == name and len(info.sha256) == 64 and len(info.sha256_original) == 64
+        assert set(info.source) >= {"package", "version", "archive", "path"}
+        assert info.title and info.teaches and info.differences and info.evidence
+        assert isinstance(info.differs_from_pdb, bool)
+    with pytest.raises(TypeError):
+        D.STRUCTURES["x"] = None
+
+
+def test_structures_cover_the_required_features():
+    ids = {info.pdb_id for info in D.STRUCTURES.values()}
+    assert {"1HVR", "4AKE", "1AKE", "1GRM", "1FMO"} <= ids
+    assert {"1hvr", "4ake", "1ake", "1grm", "t4l-l99a", "1fmo", "1fmo-kvfinder"} <= set(D.STRUCTURES)
+
+
+@pytest.mark.parametrize("name", list(D.STRUCTURES))
+def test_shipped_file_hashes(name):
+    info = D.STRUCTURES[name]
+    data = _shipped(info)
+    assert _hashlib.sha256(data).hexdigest() == info.sha256
+    assert len(data) == info.size
+    raw = _gzip.decompress(data)
+    assert _hashlib.sha256(raw).hexdigest() == info.sha256_original
+    assert len(raw) == info.size_original
+
+
+@pytest.mark.parametrize("name", list(D.STRUCTURES))
+def test_shipped_structure_atom_counts_against_column_slicing(name):
+    info = D.STRUCTURES[name]
+    text = _gzip.decompress(_shipped(info)).decode("latin-1")
+    hyd = bool(info.read.get("hydrogens", False))
+    want = _slice_records(text, hydrogens=hyd)
+    s = D.structure(name)
+    assert len(s) == len(want)
+    assert np.array_equal(s.balls.centers, np.array([w[:3] for w in want]))
+    assert s.residue_names.tolist() == [w[3] for w in want]
+    assert s.residue_numbers.tolist() == [w[4] for w in want]
+    assert s.chains.tolist() == [w[5] for w in want]
+    # and the counts recorded at copy time
+    a = info.atoms
+    assert len(_slice_records(text, hydrogens=True)) == a["records"] - a["water"]
+    assert len(D.structure(name, hydrogens=True, water=True)) == a["records"]
+    het = [ln for ln in text.splitlines() if ln.startswith("HETATM")]
+    assert len(het) == a["hetatm"]
+    het_kept = [ln for ln in het if ln[17:21].strip() not in _WATER
+                and (hyd or ln[76:78].strip() not in ("H", "D"))]
+    assert int(s.hetero.sum()) == len(het_kept)
+    assert np.all(s.balls.radii > 0) and np.all(np.isfinite(s.balls.centers))
+
+
+def test_structure_names_and_options():
+    s = D.structure("1hvr")
+    assert set(s.chains.tolist()) == {"A", "B"}
+    assert "XK2" in set(s.residue_names.tolist())
+    protein = D.structure("1hvr", hetatm={"CSO"})
+    assert "XK2" not in set(protein.residue_names.tolist()) and len(s) - len(protein) == 46
+    assert len(D.structure("1hvr", chain="A")) + len(D.structure("1hvr", chain="B")) == len(s)
+    assert D.structure(" 1HVR ").balls.centers.shape == s.balls.centers.shape
+    assert np.allclose(D.structure("1grm", probe=1.4).balls.radii, D.structure("1grm").balls.radii + 1.4)
+    t4 = D.structure("t4l-l99a")
+    assert set(t4.residue_names[t4.residue_numbers == 99].tolist()) == {"ALA"}  # L99A
+    kv = D.structure("1fmo-kvfinder")
+    assert len(set(kv.residue_names.tolist())) == 18 and set(kv.elements.tolist()) == {"H"}
+    with pytest.raises(ValueError, match="no shipped structure"):
+        D.structure("2xyz")
+    with pytest.raises(TypeError):
+        D.structure(4)
+
+
+def test_adenylate_kinase_two_conformations_pair_atom_by_atom():
+    a, b = D.structure("4ake"), D.structure("1ake")
+    assert len(a) == len(b) == 1656
+    assert a.atom_names.tolist() == b.atom_names.tolist()
+    assert a.residue_numbers.tolist() == b.residue_numbers.tolist()
+    ca = a.atom_names == "CA"
+    assert ca.sum() == 214
+    # closed is more compact, and the two differ by a large motion (not a copy)
+    rg = lambda c: np.sqrt(((c - c.mean(0)) ** 2).sum(1).mean())  # noqa: E731
+    assert rg(b.balls.centers) < rg(a.balls.centers) - 2.0
+    assert np.abs(a.balls.centers - b.balls.centers).max() > 10.0
+
+
+def test_l99a_ligand_sits_inside_the_receptor():
+    rec, lig = D.structure("t4l-l99a"), D.structure("t4l-l99a-ligand")
+    assert len(lig) == 8 and set(lig.elements.tolist()) == {"C"}
+    d = np.linalg.norm(lig.balls.centers[:, None] - rec.balls.centers[None], axis=-1)
+    # buried: every ligand carbon is within 4.5 Å of some receptor atom, none clashes
+    assert d.min() > 2.5 and d.min(axis=1).max() < 4.5
+    near = rec.residues(np.flatnonzero(d.min(axis=0) < 4.5))
+    # the residues that line the L99A cavity (Eriksson et al. 1992; Morton & Matthews 1995)
+    assert {":ALA99", ":LEU84", ":VAL87", ":TYR88", ":LEU118", ":PHE153"} <= set(near)
+
+
+def test_alpha_filtration_on_a_shipped_structure():
+    from shapelab import alpha_filtration
+    from shapelab.power import triangulation_report
+    s = D.structure("1grm", probe=1.4)
+    heavy = s.balls
+    f = alpha_filtration(heavy)
+    assert f is not None
+    report = triangulation_report(heavy)
+    assert report.method in ("qhull", "incremental")
+    assert isinstance(report.reason, str)

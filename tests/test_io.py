@@ -96,7 +96,7 @@ def test_element_from_atom_name_when_columns_blank(tmp_path):
              "CL  ": "Cl", "BR  ": "Br"}
     for name, want in cases.items():
         p = write(tmp_path, [bare(name)])
-        assert read_pdb(p).elements[0] == want, name
+        assert read_pdb(p, hydrogens=True).elements[0] == want, name
     # "CA  " left-justified is calcium, which Bondi does not list
     p = write(tmp_path, [bare("CA  ", "CA")])
     with pytest.raises(ValueError, match="'Ca'"):
@@ -162,7 +162,7 @@ def test_round_trip(tmp_path):
     het = rng.random(n) < 0.3
     p = write_pdb(tmp_path / "rt.pdb", b, elements, atom_names=names, residue_names=["GLY"] * n,
                   residue_numbers=np.arange(n) - 5, chains="B", hetero=het, title="round trip")
-    s = read_pdb(p)
+    s = read_pdb(p, hydrogens=True)  # hydrogens are dropped by default
     assert np.abs(s.balls.centers - c).max() <= 5e-4 + 1e-9
     assert np.array_equal(s.balls.radii, b.radii)
     assert list(s.elements) == list(elements)
@@ -216,3 +216,196 @@ def test_fuzz_random_lines_only_raise_value_error(tmp_path, lines):
         return
     assert len(s) >= 1
     assert np.all(np.isfinite(s.balls.centers)) and np.all(s.balls.radii > 0)
+
+
+# --------------------------------------------------------------- real files: selections
+def atom_occ(serial, name, alt, occ, x, resn="LEU", resi=99, chain="A", element="C"):
+    line = atom(serial, name, resn=resn, chain=chain, resi=resi, x=x, element=element, alt=alt)
+    return line[:54] + f"{occ:6.2f}" + line[60:]
+
+
+def test_model_selection(tmp_path):
+    p = write(tmp_path, [
+        "MODEL        1", atom(1, x=1), "ENDMDL",
+        "MODEL        2", atom(1, x=10), atom(2, x=20), "ENDMDL",
+        "MODEL        3", atom(1, x=100), "ENDMDL", "END",
+    ])
+    assert read_pdb(p).balls.centers[:, 0].tolist() == [1.0]
+    assert read_pdb(p).model == 1
+    s2 = read_pdb(p, model=2)
+    assert s2.balls.centers[:, 0].tolist() == [10.0, 20.0] and s2.model == 2
+    assert read_pdb(p, model=3).balls.centers[:, 0].tolist() == [100.0]
+    with pytest.raises(ValueError, match="no MODEL 4"):
+        read_pdb(p, model=4)
+    # a file without MODEL records is model 1
+    q = write(tmp_path, [atom(1, x=5)], "plain.pdb")
+    assert len(read_pdb(q, model=1)) == 1 and read_pdb(q).model is None
+    with pytest.raises(ValueError, match="no MODEL 2"):
+        read_pdb(q, model=2)
+    with pytest.raises(TypeError):
+        read_pdb(q, model=True)
+
+
+def test_model_not_read_is_not_parsed_but_the_read_one_is(tmp_path):
+    p = write(tmp_path, ["MODEL        1", atom(1), "ENDMDL",
+                         "MODEL        2", atom(1)[:40], "ENDMDL"])
+    assert len(read_pdb(p)) == 1
+    with pytest.raises(ValueError, match="^line 5: truncated"):
+        read_pdb(p, model=2)
+
+
+def test_malformed_model_records(tmp_path):
+    with pytest.raises(ValueError, match="^line 1: could not read the model serial"):
+        read_pdb(write(tmp_path, ["MODEL        x", atom(1), "ENDMDL"]))
+    with pytest.raises(ValueError, match="^line 3: MODEL record inside MODEL 1"):
+        read_pdb(write(tmp_path, ["MODEL        1", atom(1), "MODEL        2", atom(2)]))
+
+
+def test_alternate_locations_highest_occupancy(tmp_path):
+    p = write(tmp_path, [
+        atom(1, " N  ", element="N"),
+        atom_occ(2, " CB ", "A", 0.30, x=1), atom_occ(3, " CB ", "B", 0.70, x=2),
+        atom_occ(4, " CG ", "A", 0.30, x=3), atom_occ(5, " CG ", "B", 0.70, x=4),
+        atom_occ(6, " CD1", "A", 0.50, x=5), atom_occ(7, " CD1", "B", 0.50, x=6),  # tie: first
+        atom_occ(8, " CD2", "A", 0.20, x=7), atom_occ(9, " CD2", "B", 0.20, x=8),
+        atom_occ(10, " CD2", "C", 0.60, x=9),
+    ])
+    s = read_pdb(p)
+    assert s.balls.centers[:, 0].tolist() == [0.0, 2.0, 4.0, 5.0, 9.0]
+    assert s.altlocs.tolist() == ["", "B", "B", "A", "C"]
+    assert s.occupancies.tolist() == [1.0, 0.7, 0.7, 0.5, 0.6]
+    # alternatives of different residues or chains are not confused
+    q = write(tmp_path, [atom_occ(1, " CB ", "A", 0.4, x=1, resi=1), atom_occ(2, " CB ", "B", 0.6, x=2, resi=1),
+                         atom_occ(3, " CB ", "A", 0.9, x=3, resi=2), atom_occ(4, " CB ", "B", 0.1, x=4, resi=2),
+                         atom_occ(5, " CB ", "A", 0.2, x=5, resi=2, chain="B"),
+                         atom_occ(6, " CB ", "B", 0.8, x=6, resi=2, chain="B")], "q.pdb")
+    assert read_pdb(q).balls.centers[:, 0].tolist() == [2.0, 3.0, 6.0]
+
+
+def test_chain_selection(tmp_path):
+    p = write(tmp_path, [atom(1, chain="A", x=1), atom(2, chain="B", x=2), atom(3, chain="C", x=3),
+                         atom(4, chain=" ", x=4)])
+    assert read_pdb(p, chain="B").balls.centers[:, 0].tolist() == [2.0]
+    assert read_pdb(p, chain=["A", "C"]).balls.centers[:, 0].tolist() == [1.0, 3.0]
+    assert read_pdb(p, chain="").balls.centers[:, 0].tolist() == [4.0]
+    assert read_pdb(p).chains.tolist() == ["A", "B", "C", ""]
+    with pytest.raises(ValueError, match=r"none of its 4 atoms.*chains present: \['', 'A', 'B', 'C'\]"):
+        read_pdb(p, chain="Z")
+    with pytest.raises(ValueError, match="chain"):
+        read_pdb(p, chain="AB")
+    with pytest.raises(TypeError, match="chain"):
+        read_pdb(p, chain=1)
+
+
+def test_hetatm_and_water_selection(tmp_path):
+    def tip3(line):  # CHARMM's four-letter residue name reaches column 21
+        return line[:20] + "3" + line[21:]
+    p = write(tmp_path, [
+        atom(1, " CA ", x=1),
+        atom(2, " SG ", resn="CSO", element="S", rec="HETATM", x=2),
+        atom(3, " C1 ", resn="LIG", rec="HETATM", resi=200, x=3),
+        atom(4, " O  ", resn="HOH", element="O", rec="HETATM", resi=301, x=4),
+        tip3(atom(5, " OH2", resn="TIP", element="O", resi=302, x=5)),  # CHARMM water, ATOM
+        atom(6, "ZN  ", resn="ZN", element="ZN", rec="HETATM", resi=400, x=6),
+    ])
+    x = lambda **kw: read_pdb(p, **kw).balls.centers[:, 0].tolist()  # noqa: E731
+    assert x() == [1.0, 2.0, 3.0, 6.0]                    # waters dropped by default
+    assert x(water=True) == [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]
+    assert x(hetatm=False) == [1.0]
+    assert x(hetatm=False, water=True) == [1.0, 4.0, 5.0]
+    assert x(hetatm={"CSO"}) == [1.0, 2.0]
+    assert x(hetatm=["CSO", "ZN"]) == [1.0, 2.0, 6.0]
+    assert read_pdb(p, water=True).residue_names.tolist() == ["ALA", "CSO", "LIG", "HOH", "TIP3", "ZN"]
+    with pytest.raises(TypeError, match="water"):
+        read_pdb(p, water="yes")
+    with pytest.raises(TypeError, match="hetatm"):
+        read_pdb(p, hetatm=3)
+
+
+def test_hydrogens_dropped_by_default(tmp_path):
+    p = write(tmp_path, [atom(1, " N  ", element="N"), atom(2, " H  ", element="H", x=1),
+                         atom(3, " CA ", x=2), atom(4, " D  ", element="D", x=3),
+                         atom(5, "HG21", element="", x=4)[:66]])
+    assert read_pdb(p).elements.tolist() == ["N", "C"]
+    s = read_pdb(p, hydrogens=True)
+    assert s.elements.tolist() == ["N", "H", "C", "D", "H"]
+    assert s.balls.radii.tolist() == [1.55, 1.20, 1.70, 1.20, 1.20]  # deuterium: hydrogen's radius
+    only_h = write(tmp_path, [atom(1, " H  ", element="H")], "h.pdb")
+    with pytest.raises(ValueError, match="hydrogens=False"):
+        read_pdb(only_h)
+
+
+def test_radii_table(tmp_path):
+    p = write(tmp_path, [atom(1, " N  ", element="N"), atom(2, " CA ", x=1), atom(3, " CB ", x=2),
+                         atom(4, "FE  ", resn="HEM", element="FE", rec="HETATM", x=3)])
+    s = read_pdb(p, radii={"c": 1.9, "Fe": 2.0, ("ala", "cb"): 2.1}, probe=0.5)
+    assert s.balls.radii.tolist() == [1.55 + 0.5, 1.9 + 0.5, 2.1 + 0.5, 2.0 + 0.5]
+    with pytest.raises(ValueError, match="radii="):
+        read_pdb(p)
+    with pytest.raises(ValueError, match="radii"):
+        read_pdb(p, radii={"Fe": -1})
+    with pytest.raises(TypeError, match="radii"):
+        read_pdb(p, radii=[1.0])
+    with pytest.raises(TypeError, match="radii"):
+        read_pdb(p, radii={("ALA",): 1.0})
+
+
+def test_left_justified_names_in_polymer_residues(tmp_path):
+    # CHARMM writes names from column 13: "CA  " of a LEU is carbon, of residue CA calcium
+    def charmm(name, resn):
+        line = (f"ATOM  {1:>5} {name:<4} {resn:<4} {1:>4}    {0.0:8.3f}{0.0:8.3f}{0.0:8.3f}"
+                f"{1.0:6.2f}{0.0:6.2f}      PROT")
+        assert line[12:16] == f"{name:<4}" and line[17:21] == f"{resn:<4}" and line[72:76] == "PROT"
+        return line
+    cases = [("CA", "LEU", "C"), ("CD1", "LEU", "C"), ("NE2", "HSD", "N"), ("HE1", "HSD", "H"),
+             ("HG1", "THR", "H"), ("OT1", "GLY", "O"), ("SD", "MET", "S"), ("SE", "MSE", "Se"),
+             ("CA", "CA", "Ca"), ("HG", "HG", "Hg")]
+    for name, resn, want in cases:
+        p = write(tmp_path, [charmm(name, resn)])
+        s = read_pdb(p, hydrogens=True, default_radius=2.0)
+        assert s.elements.tolist() == [want], (name, resn)
+        assert s.residue_names.tolist() == [resn]
+
+
+def test_insertion_codes_and_labels(tmp_path):
+    line = atom(1, " CA ", resn="GLY", chain="B", resi=52)
+    p = write(tmp_path, [line, line[:26] + "A" + line[27:]])
+    s = read_pdb(p)
+    assert s.insertion_codes.tolist() == ["", "A"]
+    assert [s.label(i) for i in range(2)] == ["B:GLY52:CA", "B:GLY52A:CA"]
+    assert s.residues() == ["B:GLY52", "B:GLY52A"] and s.residues([1, 1]) == ["B:GLY52A"]
+    assert repr(s) == "PDBStructure(n_atoms=2, n_residues=2, probe=0.0)"
+    sub = s.select([1])
+    assert len(sub) == 1 and sub.label(0) == "B:GLY52A:CA"
+    assert len(s.select(np.array([True, False]))) == 1
+    with pytest.raises(ValueError, match="mask"):
+        s.select(np.array([True]))
+
+
+def test_gzip_files(tmp_path):
+    import gzip
+    lines = [atom(1, x=1), atom(2, x=2)]
+    p = tmp_path / "a.pdb.gz"
+    p.write_bytes(gzip.compress(("\n".join(lines) + "\n").encode()))
+    assert read_pdb(p).balls.centers[:, 0].tolist() == [1.0, 2.0]
+    bad = tmp_path / "bad.pdb.gz"
+    bad.write_bytes(gzip.compress(b"ATOM  " * 50)[:20])
+    with pytest.raises(ValueError, match="gzip"):
+        read_pdb(bad)
+
+
+@pytest.mark.parametrize("bad, what", [
+    (lambda l: l[:54] + "  x.00" + l[60:], "occupancy"),
+    (lambda l: l[:60] + " 2O.00" + l[66:], "B-factor"),
+])
+def test_malformed_occupancy_and_b_factor(tmp_path, bad, what):
+    p = write(tmp_path, ["HEADER    X", atom(1), bad(atom(2)), atom(3)])
+    with pytest.raises(ValueError, match=f"^line 3: .*{what}"):
+        read_pdb(p)
+
+
+def test_no_partial_result(tmp_path):
+    # an error on the last record of a long file fails the whole call
+    lines = [atom(i, x=i) for i in range(1, 200)] + [atom(200)[:30] + "   ?????" + atom(200)[38:]]
+    with pytest.raises(ValueError, match="^line 200: could not read x"):
+        read_pdb(write(tmp_path, lines))
