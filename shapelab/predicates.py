@@ -288,7 +288,7 @@ class WeightedPoints:
         order = sorted(range(len(row)), key=lambda j: self.priority[int(row[j])])
         for j in order:
             rest = [row[a] for a in range(len(row)) if a != j]
-            o = self._orient_exact(rest)
+            o = self.orient1(rest)  # filtered: the cofactors are usually not zero
             if o:
                 cof = o if (j + k + 1) % 2 == 0 else -o
                 return -cof
