@@ -91,6 +91,22 @@ def _rng(seed) -> np.random.Generator:
     return np.random.default_rng(as_positive_int(seed, "seed", minimum=0))
 
 
+def _cos_sin(t: np.ndarray):
+    """``cos t`` and ``sin t`` rounded to multiples of :math:`2^{-32}`, the same on every
+    machine.
+
+    NumPy's trigonometric functions may differ in the last bit between CPUs (SIMD
+    implementations), and the generated molecules are deliberately degenerate
+    (co-circular rings, co-cylindrical tubes), where the exact triangulation follows
+    those bits.  Rounding to a grid far coarser than one ulp makes the coordinates
+    identical everywhere, except for a value within one ulp of a half-grid point
+    (probability about :math:`2^{-20}` each); the shapes move by under
+    :math:`2^{-33}` of their size.
+    """
+    q = 2.0**32
+    return np.rint(np.cos(t) * q) / q, np.rint(np.sin(t) * q) / q
+
+
 # --------------------------------------------------------------------------- C60
 def _truncated_icosahedron() -> np.ndarray:
     """The 60 vertices of the truncated icosahedron with edge length 2.
@@ -256,7 +272,8 @@ def nanotube(n=8, m=8, *, length=12.0, atom_radius=CARBON_RADIUS,
         arc = np.minimum(u, C - u)
         keep = arc >= sl / 2.0
         theta, v = theta[keep], v[keep]
-    centers = np.column_stack([R * np.cos(theta), R * np.sin(theta), v])
+    cos_t, sin_t = _cos_sin(theta)
+    centers = np.column_stack([R * cos_t, R * sin_t, v])
     if len(centers) == 0:
         raise ValueError(f"length={L} is too short to hold a ring of atoms")
     jit = as_finite_scalar(jitter, "jitter", nonnegative=True)
@@ -271,7 +288,8 @@ def _fibonacci_sphere(N: int) -> np.ndarray:
     z = 1.0 - (2.0 * i + 1.0) / N
     phi = i * np.pi * (3.0 - np.sqrt(5.0))  # the golden angle
     s = np.sqrt(1.0 - z * z)
-    return np.column_stack([s * np.cos(phi), s * np.sin(phi), z])
+    cos_p, sin_p = _cos_sin(phi)
+    return np.column_stack([s * cos_p, s * sin_p, z])
 
 
 def bowl(*, radius=6.0, opening=50.0, spacing=2.0, atom_radius=CARBON_RADIUS,
@@ -548,7 +566,8 @@ def ring(n=12, *, radius=3.0, disk_radius=1.0, dim=2) -> Balls:
     if dim not in (2, 3) or isinstance(dim, bool):
         raise ValueError(f"dim must be 2 or 3, got {dim!r}")
     t = 2 * np.pi * np.arange(n) / n
-    c = np.column_stack([R * np.cos(t), R * np.sin(t)])
+    cos_t, sin_t = _cos_sin(t)
+    c = np.column_stack([R * cos_t, R * sin_t])
     if dim == 3:
         c = np.column_stack([c, np.zeros(n)])
     return Balls(c, r)
@@ -722,7 +741,7 @@ def mixed_dent(*, small_radius=0.3, big_radius=3.0, bowl_radius=3.0, gap=3.6):
     g = as_finite_scalar(gap, "gap", positive=True)
     n = int(round(np.pi * rho / 0.45)) + 1
     ang = np.linspace(np.pi, 2 * np.pi, n)
-    small = np.column_stack([np.cos(ang), np.sin(ang)]) * rho
+    small = np.column_stack(_cos_sin(ang)) * rho
     big = np.array([[-(g / 2 + rb), 1.0], [g / 2 + rb, 1.0]])
     return Balls(np.vstack([small, big]), np.r_[np.full(n, rs), np.full(2, rb)])
 
