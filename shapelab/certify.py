@@ -349,7 +349,11 @@ def _count_cover(P: WeightedPoints, simp, s) -> int:
     cand = np.arange(m)
     for a in range(k):
         X = U[simp[cand], a]
-        cand = cand[(X.min(axis=1) <= c[a] + tol) & (X.max(axis=1) >= c[a] - tol)]
+        lo, hi = X[:, 0].copy(), X[:, 0].copy()
+        for j in range(1, w):
+            np.minimum(lo, X[:, j], out=lo)
+            np.maximum(hi, X[:, j], out=hi)
+        cand = cand[(lo <= c[a] + tol) & (hi >= c[a] - tol)]
     # exact: points scaled by (k+1), the centroid as the sum of simplex 0's vertices
     ui = [P.exact_u(int(i)) for i in simp[0]]
     cs = tuple(sum(p[a] for p in ui) for a in range(k))

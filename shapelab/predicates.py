@@ -114,6 +114,19 @@ def permanent(M):
     raise ValueError(f"permanent: matrices up to 4x4, got {n}x{n}")
 
 
+def _rowsum_bound(A):
+    """Product of the row sums of a non-negative matrix: an upper bound of its
+    :func:`permanent` (every term takes one entry from each row), cheaper to
+    evaluate; the vectorised filters use it."""
+    out = None
+    for row in A:
+        s = row[0]
+        for e in row[1:]:
+            s = s + e
+        out = s if out is None else out * s
+    return out
+
+
 # error factors C of |fl(D) - D| <= C u perm, generous against the standard bounds
 # (gamma_n for n = entry errors + products + sums of the expansion), k = simplex dim
 _C_ORIENT = {1: 4.0, 2: 12.0, 3: 40.0}
@@ -316,10 +329,10 @@ class WeightedPoints:
 
     def _orient_block(self, rows):
         k = self.k
-        G = self._coords_T()[:, rows.T]          # (k, k+1, m)
+        G = self._coords_T()[:, np.ascontiguousarray(rows.T)]          # (k, k+1, m)
         V = [[G[c, i] - G[c, 0] for c in range(k)] for i in range(1, k + 1)]
         D = det(V)
-        P = permanent([[np.abs(e) for e in r] for r in V])
+        P = _rowsum_bound([[np.abs(e) for e in r] for r in V])
         bound = _C_ORIENT[k] * _U * P
         ok = (np.abs(D) > bound) & (bound > _TINY) & np.isfinite(D)
         out = np.sign(D).astype(np.int8)
@@ -337,12 +350,13 @@ class WeightedPoints:
 
     def _power_block(self, rows):
         k = self.k
-        G = self._coords_T()[:, rows.T]          # (k, k+2, m)
+        rT = np.ascontiguousarray(rows.T)
+        G = self._coords_T()[:, rT]          # (k, k+2, m)
         if self.global_height:
-            T = self.t[rows.T]
-            TM = self.tmag[rows.T]
+            T = self.t[rT]
+            TM = self.tmag[rT]
         else:
-            W = self.w[rows.T]
+            W = self.w[rT]
         V, A = [], []
         for i in range(1, k + 2):
             v = [G[c, i] - G[c, 0] for c in range(k)]
@@ -358,7 +372,7 @@ class WeightedPoints:
             V.append(v + [h])
             A.append([np.abs(e) for e in v] + [hm])
         D = det(V)
-        P = permanent(A)
+        P = _rowsum_bound(A)
         bound = _C_POWER[k] * _U * P
         ok = (np.abs(D) > bound) & (bound > _TINY) & np.isfinite(D)
         out = np.sign(D).astype(np.int8)
