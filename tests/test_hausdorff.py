@@ -29,7 +29,7 @@ from shapelab.hausdorff import (
     timings,
 )
 
-METHODS = ("auto", "brute", "pruned")
+METHODS = ("auto", "brute", "pruned", "grid")
 
 
 def brute_directed(A, B):
@@ -98,6 +98,45 @@ def test_every_stage_of_the_pruned_algorithm_is_exact(AB, stage, seed):
     assert np.sqrt(max(best.d2, floor)) == max(brute_directed(A, B), np.sqrt(floor))
 
 
+@settings(max_examples=80, deadline=None)
+@given(point_sets(max_n=60), st.integers(0, 6))
+def test_coarse_to_fine_stage_is_exact_with_and_without_a_floor(AB, cells_log2):
+    """Force the grid levels on small inputs (``auto`` would use brute force), with
+    grids from 1 to 64 cells, and with a lower bound from the other direction."""
+    from shapelab import hausdorff as H
+
+    A, B = AB
+    cells = 1 << cells_log2
+    old = H._GRID_CELLS
+    try:
+        H._GRID_CELLS = cells
+        best = H._directed_grid(A, B, H._Best(), H._Grid(A, cells), H._Grid(B, cells), force=True)
+        assert np.sqrt(best.d2) == brute_directed(A, B)
+        assert_witness(A, B, DirectedHausdorff(float(np.sqrt(best.d2)), best.i, best.j))
+        floor = brute_directed(B, A) ** 2
+        best = H._directed_grid(A, B, H._Best(floor), force=True)
+        assert np.sqrt(max(best.d2, floor)) == max(brute_directed(A, B), np.sqrt(floor))
+        if best.i >= 0:
+            assert_witness(A, B, DirectedHausdorff(float(np.sqrt(best.d2)), best.i, best.j))
+    finally:
+        H._GRID_CELLS = old
+
+
+@pytest.mark.parametrize("offset, scale", [(0.0, 1.0), (1e6, 1.0), (1e6, 1e-6), (-3e5, 1e3), (1e12, 1.0)])
+def test_grid_boxes_contain_their_points(offset, scale):
+    """The cell boxes are rigorous (widened for round-off) even far from the origin."""
+    from shapelab import hausdorff as H
+
+    rng = np.random.default_rng(8)
+    P = offset + scale * rng.standard_normal((5000, 3))
+    P[:7] = P[7]  # duplicates
+    for cells in (1, 7, 2048):
+        g = H._Grid(P, cells)
+        c, h = g.center[g.cell], g.half[g.cell]
+        assert np.all(np.abs(P - c) <= h)
+        assert np.all(g.cell[g.rep] == np.arange(g.center.shape[0]))
+
+
 @settings(max_examples=50, deadline=None)
 @given(point_sets(), st.sampled_from(METHODS))
 def test_symmetric_distance_is_max_of_directed_and_symmetric(AB, method):
@@ -146,7 +185,7 @@ def test_huge_offsets_and_tiny_scales(offset, scale):
     rng = np.random.default_rng(7)
     A = offset + scale * rng.standard_normal((400, 3))
     B = offset + scale * (rng.standard_normal((500, 3)) + [0.5, 0, 0])
-    for method in ("brute", "pruned"):
+    for method in ("brute", "pruned", "grid"):
         r = directed_hausdorff(A, B, method=method)
         assert r.distance == brute_directed(A, B)
         assert_witness(A, B, r)
@@ -168,6 +207,72 @@ def test_pruned_equals_scipy_on_sphere_samples(shift):
     h = hausdorff(A, B)
     assert h == max(scipy_dh(A, B)[0], scipy_dh(B, A)[0])
     assert h == pytest.approx(hausdorff_kdtree(A, B), rel=1e-14)
+
+
+@pytest.mark.parametrize("d, shift, alone", [(3, 3.0, True), (3, 1.2, True), (2, 2.5, True), (1, 4.0, True),
+                                            (4, 3.0, False)])
+def test_apart_sets_are_solved_by_the_grid_levels_alone(d, shift, alone, monkeypatch):
+    """Far apart (or touching) the coarse-to-fine stage finishes without the k-d
+    tree fallback in d <= 3, and agrees with scipy to the last bit, witness
+    included.  (In 4D the grid is too coarse and some level hands over.)"""
+    from shapelab import hausdorff as H
+
+    def no_fallback(*args, **kwargs):
+        raise AssertionError("fell back to the pruned algorithm")
+
+    if alone:
+        monkeypatch.setattr(H, "_directed_pruned", no_fallback)
+    rng = np.random.default_rng(30 + d)
+    A = rng.standard_normal((30000, d))
+    A /= np.linalg.norm(A, axis=1, keepdims=True)
+    A += 0.01 * rng.standard_normal(A.shape)
+    B = rng.standard_normal((20000, d))
+    B /= np.linalg.norm(B, axis=1, keepdims=True)
+    B[:, 0] += shift
+    for X, Y in ((A, B), (B, A)):
+        r = directed_hausdorff(X, Y)
+        assert r.distance == scipy_dh(X, Y)[0]
+        assert_witness(X, Y, r)
+    assert hausdorff(A, B) == max(scipy_dh(A, B)[0], scipy_dh(B, A)[0])
+
+
+def test_apart_sets_do_not_import_scipy():
+    """The first call pays no ``import scipy.spatial`` when no tree is needed."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, numpy as np\n"
+        "from shapelab.hausdorff import hausdorff, noisy_sphere\n"
+        "A = noisy_sphere(40000, seed=1); B = noisy_sphere(40000, seed=2, center=(3.0, 0, 0))\n"
+        "h = hausdorff(A, B)\n"
+        "print(h, 'scipy.spatial' in sys.modules)\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    h, imported = out.stdout.split()
+    assert imported == "False"
+    A = shapelab.hausdorff.noisy_sphere(40000, seed=1)
+    B = shapelab.hausdorff.noisy_sphere(40000, seed=2, center=(3.0, 0, 0))
+    assert float(h) == max(scipy_dh(A, B)[0], scipy_dh(B, A)[0])
+
+
+def test_overlapping_sets_fall_back_to_the_tree_with_shared_clouds(monkeypatch):
+    """Overlapping at the scale of the cells, the first grid level gives up and both
+    directions run the pruned algorithm on the same prepared clouds (one pair of trees)."""
+    from shapelab import hausdorff as H
+
+    calls = []
+    real = H._prepare
+
+    def spy(A, B):
+        calls.append((A.shape[0], B.shape[0]))
+        return real(A, B)
+
+    monkeypatch.setattr(H, "_prepare", spy)
+    rng = np.random.default_rng(14)
+    A, B = sphere(20000, rng), sphere(15000, rng)
+    assert hausdorff(A, B) == max(scipy_dh(A, B)[0], scipy_dh(B, A)[0])
+    assert calls == [(20000, 15000)]
 
 
 def test_pruned_on_a_small_cluster_against_a_large_set():
