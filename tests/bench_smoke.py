@@ -5,7 +5,8 @@ from benchmarks.harness import Case
 
 CASES = [
     Case(name="smoke_norm", module="tests.bench_smoke", peer_name="numpy.linalg.norm", target=1e6,
-         params={"n": 2000}, check="check", description="harness self-test"),
+         params={"n": 2000}, check="check", description="harness self-test",
+         ladder=(100_000, 300_000, 1_000_000)),
 ]
 
 

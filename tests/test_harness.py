@@ -2,6 +2,8 @@
 import json
 import os
 
+import pytest
+
 from benchmarks import harness
 
 
@@ -13,10 +15,14 @@ def test_harness_runs_a_case_in_fresh_processes(tmp_path, monkeypatch):
     assert len(row["runs"]["ours"]) == len(row["runs"]["peer"]) == 5
     assert row["ours_s"] > 0 and row["peer_s"] > 0
     assert abs(row["ratio"] - row["ours_s"] / row["peer_s"]) < 1e-12
+    # the first call in each fresh process is reported beside the warm median
+    assert row["ours_cold_s"] > 0 and row["peer_cold_s"] > 0
+    assert abs(row["cold_ratio"] - row["ours_cold_s"] / row["peer_cold_s"]) < 1e-12
+    assert all("cold_seconds" in r for r in row["runs"]["ours"] + row["runs"]["peer"])
     assert row["met"] is True
     assert row["notes"] and row["notes"][0].startswith("max diff")
     table = harness._table([row])
-    assert "| smoke_norm |" in table and "ours/peer" in table
+    assert "| smoke_norm |" in table and "warm ours/peer" in table and "cold ours/peer" in table
     json.dumps(row)  # serialisable as written to benchmarks/results/
 
 
@@ -61,3 +67,28 @@ def test_a_case_whose_results_disagree_is_not_met(monkeypatch):
     assert row["notes"] and row["notes"][0].startswith(harness.MISMATCH)
     assert row["met"] is False
     assert "| NO |" in harness._table([row])
+
+
+def test_scaling_ladder_fits_exponents_and_draws_the_figure(tmp_path, monkeypatch):
+    """One fresh process per side and rung; the fitted exponent of a linear-time
+    computation is near 1 (loose bounds: the machine is shared); the figure is written."""
+    from benchmarks import scaling
+
+    monkeypatch.setenv("SHAPELAB_BENCH_MODULES", "tests.bench_smoke")
+    case = {c.name: c for c in harness.all_cases()}["smoke_norm"]
+    points = harness.run_ladder(case)
+    assert [p["n"] for p in points] == [100_000, 100_000, 300_000, 300_000, 1_000_000, 1_000_000]
+    exps, name = scaling.draw(case, points, tmp_path)
+    assert (tmp_path / name).stat().st_size > 1000
+    assert 0.3 < exps["ours_time"] < 1.7 and 0.3 < exps["peer_time"] < 1.7
+    assert scaling.fit_exponent([10, 100, 1000], [5.0, 50.0, 500.0]) == 1.0
+    assert scaling.fit_exponent([10, 100], [1e-6, 1e-6], floor=1e-3) is None
+
+
+def test_machine_report_names_cpu_flags_and_blas():
+    info = harness.machine()
+    line = harness.machine_line(info)
+    assert info["cpus"] >= 1 and "cpu_flags" in info and "blas" in info
+    assert "BLAS:" in line and "CPU flags:" in line
+    pytest.importorskip("threadpoolctl")
+    assert "kernel" in info["blas"]

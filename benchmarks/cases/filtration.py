@@ -70,6 +70,7 @@ CASES = [
         memory_target=1.5,
         params={"n": 10_000, "dim": 3},
         check="check",
+        ladder=(1_000, 3_000, 10_000, 30_000, 100_000),
         description="3D weighted alpha filtration, 1e4 balls at protein-like density",
     ),
     Case(
@@ -89,6 +90,7 @@ CASES = [
         target=1.0,
         params={"n": 1_000_000, "dim": 2},
         check="check",
+        ladder=(10_000, 30_000, 100_000, 300_000),
         description="2D weighted alpha filtration, 1e6 disks at the analogous density",
     ),
 ]

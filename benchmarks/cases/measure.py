@@ -64,6 +64,7 @@ CASES = [
         target=0.5,
         params={"n": 5_000},
         check="check",
+        ladder=(500, 1_000, 2_000, 5_000, 20_000),
         description="surface area + volume of 5,000 balls at protein-like density, filtration included",
     ),
 ]

@@ -197,6 +197,7 @@ CASES = [
         ours="ours_rotation",
         peer="peer_rotation",
         check="check_rotation",
+        ladder=(10_000, 100_000, 1_000_000, 3_000_000),
         description="Horn's optimal rotation of 10^6 paired, centred, noisy points",
     ),
     Case(
