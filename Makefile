@@ -1,5 +1,6 @@
 # shapelab: the course's commands.  Everything runs inside .venv, made on first use.
 #   make test     library tests + strict nbval on every lesson (what CI runs)
+#   make test-lib the library's tests and doctests only (no Node, no book)
 #   make course   execute every lesson, build the book, slides, figures, student edition
 #   make lab      JupyterLab on 127.0.0.1 with a printed token
 #   make bench    benchmarks against the peer libraries (CASE=name for one)
@@ -12,10 +13,10 @@ CONSTRAINTS := requirements/constraints.txt
 JOBS   ?= 2
 CASE   ?=
 
-.PHONY: test course lab bench lessons book slides figures student env clean help
+.PHONY: test test-lib course lab bench lessons book slides figures student env clean help
 
 help:
-	@sed -n '2,6p' Makefile | sed 's/^# //'
+	@sed -n '2,7p' Makefile | sed 's/^# //'
 
 $(PY):
 	$(PYTHON) -m venv $(VENV)
@@ -38,6 +39,11 @@ test: $(VENV)/.installed-test $(VENV)/.installed-book book/node_modules/.install
 	$(PY) -m pytest -n $(JOBS) --dist loadscope \
 	    --nbval --nbval-current-env --nbval-sanitize-with tests/nbval_sanitize.cfg \
 	    --nbval-cell-timeout 120 --doctest-modules tests lessons shapelab
+
+test-lib: $(VENV)/.installed-test
+	$(PY) -m pytest -n $(JOBS) --dist loadscope --doctest-modules tests shapelab \
+	    --ignore=tests/test_book.py --ignore=tests/test_slides.py --ignore=tests/test_student.py \
+	    -p no:nbval
 
 lessons: $(VENV)/.installed-book
 	$(PY) scripts/execute_lessons.py

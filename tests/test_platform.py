@@ -156,3 +156,15 @@ def test_constraints_pin_each_package_once_per_python():
             assert name not in seen[py], f"line {n}: {name} pinned twice for Python {py}"
             seen[py][name] = n
     assert "numpy" in seen["3.10"] and "numpy" in seen["3.11"]
+
+
+def test_one_version_source():
+    """The version lives in shapelab/__init__.py only; pyproject.toml reads it."""
+    import importlib.metadata
+    from pathlib import Path
+
+    import shapelab
+
+    text = (Path(__file__).resolve().parents[1] / "pyproject.toml").read_text()
+    assert 'dynamic = ["version"]' in text and "\nversion =" not in text.split("[tool.setuptools.dynamic]")[0]
+    assert importlib.metadata.version("shapelab") == shapelab.__version__
