@@ -333,14 +333,17 @@ class WeightedPoints:
         V = [[G[c, i] - G[c, 0] for c in range(k)] for i in range(1, k + 1)]
         D = det(V)
         P = _rowsum_bound([[np.abs(e) for e in r] for r in V])
-        bound = _C_ORIENT[k] * _U * P
+        return self._decide(rows, D, _C_ORIENT[k] * _U * P, "orient", self._orient_exact)
+
+    def _decide(self, rows, D, bound, kind: str, exact):
+        """Signs of ``D`` where it exceeds its error ``bound``; ``exact(row)`` elsewhere."""
         ok = (np.abs(D) > bound) & (bound > _TINY) & np.isfinite(D)
         out = np.sign(D).astype(np.int8)
         undecided = np.flatnonzero(~ok)
-        self.stats["orient_filtered"] += int(ok.size - undecided.size)
-        self.stats["orient_exact"] += int(undecided.size)
+        self.stats[kind + "_filtered"] += int(ok.size - undecided.size)
+        self.stats[kind + "_exact"] += int(undecided.size)
         for t in undecided:
-            out[t] = self._orient_exact(rows[t])
+            out[t] = exact(rows[t])
         return out
 
     def power(self, rows) -> np.ndarray:
@@ -373,15 +376,7 @@ class WeightedPoints:
             A.append([np.abs(e) for e in v] + [hm])
         D = det(V)
         P = _rowsum_bound(A)
-        bound = _C_POWER[k] * _U * P
-        ok = (np.abs(D) > bound) & (bound > _TINY) & np.isfinite(D)
-        out = np.sign(D).astype(np.int8)
-        undecided = np.flatnonzero(~ok)
-        self.stats["power_filtered"] += int(ok.size - undecided.size)
-        self.stats["power_exact"] += int(undecided.size)
-        for t in undecided:
-            out[t] = self._power_exact(rows[t])
-        return out
+        return self._decide(rows, D, _C_POWER[k] * _U * P, "power", self._power_exact)
 
     # ------------------------------------------------------------------ scalar
     def _as_lists(self):
