@@ -314,8 +314,11 @@ class WeightedPoints:
         rows = np.asarray(rows, dtype=np.int64).reshape(-1, width)
         m = rows.shape[0]
         out = np.zeros(m, dtype=np.int8)
-        for a in range(0, m, self._BLOCK):
-            out[a:a + self._BLOCK] = one(rows[a:a + self._BLOCK])
+        # overflow or underflow (inputs near 1e±150) leaves a non-finite or tiny bound:
+        # those rows are decided exactly, so the floating-point warnings are noise
+        with np.errstate(all="ignore"):
+            for a in range(0, m, self._BLOCK):
+                out[a:a + self._BLOCK] = one(rows[a:a + self._BLOCK])
         return out
 
     def _coords_T(self):
@@ -337,8 +340,8 @@ class WeightedPoints:
 
     def _decide(self, rows, D, bound, kind: str, exact):
         """Signs of ``D`` where it exceeds its error ``bound``; ``exact(row)`` elsewhere."""
-        ok = (np.abs(D) > bound) & (bound > _TINY) & np.isfinite(D)
-        out = np.sign(D).astype(np.int8)
+        ok = (np.abs(D) > bound) & (bound > _TINY) & np.isfinite(D) & np.isfinite(bound)
+        out = np.where(ok, np.sign(np.where(ok, D, 0.0)), 0).astype(np.int8)
         undecided = np.flatnonzero(~ok)
         self.stats[kind + "_filtered"] += int(ok.size - undecided.size)
         self.stats[kind + "_exact"] += int(undecided.size)

@@ -346,3 +346,16 @@ def test_euler_characteristic_matches_gudhi_between_critical_values(name):
         chi_o = sum((-1) ** k * int(np.sum(ov[k] <= tau)) for k in range(d + 1))
         chi_g = int(np.sum((-1) ** gdim[gv <= tau]))
         assert chi_o == chi_g, tau
+
+
+@pytest.mark.parametrize("scale", [2.0**-500, 2.0**400])
+def test_extreme_scales_give_the_same_triangulation_without_warnings(scale):
+    """Squares of 1e-150 underflow and of 1e120 overflow in the float filter: those
+    tests go exact, silently (RuntimeWarnings from shapelab are errors here)."""
+    rng = np.random.default_rng(0)
+    c, r = rng.random((200, 3)), rng.random(200) * 0.05
+    T0 = regular_triangulation(Balls(c, r))
+    b = Balls(c * scale, r * scale)
+    assert np.array_equal(regular_triangulation(b), T0)
+    F0, F = alpha_filtration(Balls(c, r)), alpha_filtration(b)
+    np.testing.assert_allclose(F.values(3) / scale**2, F0.values(3), rtol=1e-9)
