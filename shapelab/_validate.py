@@ -6,6 +6,7 @@ that names the offending argument, so that a student sees *which* input is wrong
 """
 from __future__ import annotations
 
+import functools
 import numbers
 
 import numpy as np
@@ -16,6 +17,8 @@ __all__ = [
     "as_vector",
     "as_radii",
     "as_finite_scalar",
+    "as_tau",
+    "filtration_first",
     "as_positive_int",
     "check_same_shape",
 ]
@@ -145,3 +148,55 @@ def check_same_shape(a: np.ndarray, b: np.ndarray, name_a: str, name_b: str) -> 
         raise ValueError(
             f"{name_a} and {name_b} must have the same shape to be paired, got {a.shape} and {b.shape}"
         )
+
+
+def as_tau(tau, name: str = "tau", *, finite: bool = False) -> float:
+    """Return a growth time τ (Notes §23.1: radii :math:`\\sqrt{r_i^2 + \\tau}`) as a float.
+
+    The one rule for τ everywhere in shapelab: a real number (Python, NumPy scalar or
+    0-d array of numbers), never a bool or a string, never NaN.  ``±inf`` is accepted:
+    ``-inf`` is the start of the filtration (no ball yet, the empty complex) and
+    ``inf`` its end (the whole triangulation).
+
+    Parameters
+    ----------
+    tau : real
+    name : str
+        The argument's name, used in error messages.
+    finite : bool
+        Also reject ``±inf``: for what needs balls of finite radius (a measure of
+        the union, a picture of the grown balls).
+    """
+    if isinstance(tau, (bool, np.bool_)) or not isinstance(tau, (numbers.Real, np.floating, np.integer)):
+        if not (isinstance(tau, np.ndarray) and tau.ndim == 0 and tau.dtype.kind in "iuf"):
+            raise TypeError(f"{name} must be a real number, got {type(tau).__name__}")
+    t = float(tau)
+    if np.isnan(t):
+        raise ValueError(f"{name} must not be NaN")
+    if finite and not np.isfinite(t):
+        raise ValueError(f"{name} must be finite here (balls grown by {name} = {t!r} have no finite size)")
+    return t
+
+
+def filtration_first(fn=None, *, name: str | None = None):
+    """Decorator for functions that take the Filtration as their first argument.
+
+    They used to take ``(balls, tau, filtration=F)``; the ``filtration=`` keyword is
+    gone, and passing it raises a :class:`TypeError` that spells out the new call
+    (``voids(balls, filtration=F)`` is now ``voids(F)``).  The signature shown by
+    ``help()`` is the function's own.
+    """
+    if fn is None:
+        return functools.partial(filtration_first, name=name)
+    shown = name or fn.__name__
+
+    @functools.wraps(fn)
+    def wrapper(*args, **kwargs):
+        if "filtration" in kwargs:
+            raise TypeError(
+                f"{shown}(balls, filtration=F) is now {shown}(F): pass the Filtration "
+                "(from shapelab.alpha_filtration) as the first argument; the keyword filtration= is gone"
+            )
+        return fn(*args, **kwargs)
+
+    return wrapper

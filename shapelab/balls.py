@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import as_finite_scalar, as_point, as_points, as_radii
+from ._validate import as_finite_scalar, as_point, as_points, as_radii, as_tau
 
 __all__ = ["Balls", "power_distance"]
 
@@ -127,7 +127,7 @@ class Balls:
             the notes: "before time :math:`-r_i^2`, the radius of ball :math:`B_i` is
             imaginary").
         """
-        t = as_finite_scalar(tau, "tau")
+        t = as_tau(tau, finite=True)
         w = self.weights + t
         if np.any(w < 0):
             i = int(np.argmin(w))

@@ -54,7 +54,6 @@ on first access and cached.
 """
 from __future__ import annotations
 
-import weakref
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
 from itertools import combinations
@@ -64,7 +63,8 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
 from . import topology as _topo
-from ._validate import as_finite_scalar
+from ._validate import as_finite_scalar, as_tau, filtration_first
+from .filtration import as_filtration, derived
 
 __all__ = ["Void", "Pocket", "Tunnel", "voids", "pockets", "tunnels", "grooves", "free_measure"]
 
@@ -213,37 +213,6 @@ class Tunnel:
                 f"tau={self.tau:.6g})")
 
 
-# ============================================================================ inputs
-def _resolve(balls, filtration, fname: str):
-    from .balls import Balls
-
-    if filtration is None and balls is not None and not isinstance(balls, Balls) and hasattr(balls, "simplices"):
-        filtration, balls = balls, getattr(balls, "balls", None)
-    if filtration is not None:
-        _topo._check_filtration(filtration)
-        fb = getattr(filtration, "balls", None)
-        if balls is None:
-            balls = fb
-        elif fb is not None and fb is not balls:
-            same = (np.shape(fb.centers) == np.shape(balls.centers)
-                    and np.array_equal(fb.centers, balls.centers) and np.array_equal(fb.radii, balls.radii))
-            if not same:
-                raise ValueError(f"{fname}: the filtration was built from other balls than `balls`")
-    if balls is None:
-        raise TypeError(f"{fname}: give `balls` (a shapelab.Balls) or `filtration=`")
-    if not isinstance(balls, Balls):
-        raise TypeError(f"{fname}: balls must be a shapelab.Balls, got {type(balls).__name__}")
-    if filtration is None:
-        from .filtration import alpha_filtration
-
-        filtration = alpha_filtration(balls)
-    return balls, filtration
-
-
-def _tau(tau) -> float:
-    return as_finite_scalar(tau, "tau")
-
-
 # ===================================================================== merge tree
 @dataclass(frozen=True)
 class _Tree:
@@ -257,9 +226,6 @@ class _Tree:
     value: np.ndarray          # ... the merge value,
     lo: np.ndarray             # ... and its leaf run [lo, hi)
     hi: np.ndarray
-
-
-_TREES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 
 def _build_tree(F) -> _Tree:
@@ -329,7 +295,7 @@ def _build_tree(F) -> _Tree:
 
 
 def _tree(F) -> _Tree:
-    return _topo._cached(_TREES, F, _build_tree)
+    return derived(F, "cavities.merge_tree", _build_tree)
 
 
 def _run(T: _Tree, node: int):
@@ -370,7 +336,8 @@ def _full_dim(balls, F) -> bool:
 
 
 # ========================================================================== voids
-def voids(balls, tau=0.0, *, filtration=None) -> tuple:
+@filtration_first
+def voids(F, tau=0.0) -> tuple:
     """The voids (holes in 2D) of the union of the balls grown to ``tau``.
 
     Notes §23.1: "A void of :math:`\\mathbb{P}` is a bounded connected component of
@@ -381,13 +348,14 @@ def voids(balls, tau=0.0, *, filtration=None) -> tuple:
 
     Parameters
     ----------
-    balls : Balls
-        The balls (2D or 3D).  May be ``None`` if ``filtration`` is given.
+    F : Filtration
+        ``alpha_filtration(balls)`` of 2D or 3D balls; what is derived from it (the
+        merge tree of the complement) is kept on it, so asking again at another τ
+        is cheap.  A :class:`~shapelab.Balls` is accepted too: its filtration is
+        then built for this call only.
     tau : float, default 0.0
         Growth time: radii :math:`\\sqrt{r_i^2 + \\tau}`; balls with
-        :math:`r_i^2 + \\tau < 0` do not exist yet.
-    filtration : Filtration, optional
-        ``alpha_filtration(balls)``, to avoid recomputing it.
+        :math:`r_i^2 + \\tau < 0` do not exist yet.  ``±inf`` give no voids.
 
     Returns
     -------
@@ -400,11 +368,13 @@ def voids(balls, tau=0.0, *, filtration=None) -> tuple:
     >>> import numpy as np, shapelab as sl
     >>> t = np.linspace(0, 2 * np.pi, 12, endpoint=False)
     >>> ring = sl.Balls(3 * np.c_[np.cos(t), np.sin(t)], 0.9)
-    >>> sl.voids(ring)
+    >>> F = sl.alpha_filtration(ring)
+    >>> sl.voids(F)
     (Void(cells=10, lining=12, born=-0.207114, dies=8.19, volume=15.1893, tau=0),)
     """
-    balls, F = _resolve(balls, filtration, "voids")
-    tau = _tau(tau)
+    F = as_filtration(F, "voids")
+    balls = F.balls
+    tau = as_tau(tau)
     if not _full_dim(balls, F):
         return ()
     S = _topo._summary(F)
@@ -439,7 +409,8 @@ def voids(balls, tau=0.0, *, filtration=None) -> tuple:
 
 
 # ======================================================================== pockets
-def pockets(balls, tau=0.0, *, min_persistence=0.0, filtration=None) -> tuple:
+@filtration_first
+def pockets(F, tau=0.0, *, min_persistence=0.0) -> tuple:
     """Pockets by the growth model of Notes §23.1 (Figure 23.2).
 
     "If we grow the balls ... uniformly, the left pocket will produce a void in the life
@@ -451,14 +422,13 @@ def pockets(balls, tau=0.0, *, min_persistence=0.0, filtration=None) -> tuple:
 
     Parameters
     ----------
-    balls : Balls
-        May be ``None`` if ``filtration`` is given.
+    F : Filtration
+        ``alpha_filtration(balls)`` (or the :class:`~shapelab.Balls`, as for :func:`voids`).
     tau : float, default 0.0
         Growth time at which the pockets are reported (mouths and volumes refer to it).
     min_persistence : float, default 0.0
         Keep pockets with ``fills_at - closes_at >= min_persistence`` (zero-length
         classes never count).
-    filtration : Filtration, optional
 
     Returns
     -------
@@ -471,8 +441,9 @@ def pockets(balls, tau=0.0, *, min_persistence=0.0, filtration=None) -> tuple:
     part of the dent is the pocket is left open.  Here it is the part that gets sealed:
     the cells of the void at the moment it closes.  Nested pockets are all reported.
     """
-    balls, F = _resolve(balls, filtration, "pockets")
-    tau = _tau(tau)
+    F = as_filtration(F, "pockets")
+    balls = F.balls
+    tau = as_tau(tau)
     mp = as_finite_scalar(min_persistence, "min_persistence", nonnegative=True)
     if not _full_dim(balls, F):
         return ()
@@ -519,17 +490,16 @@ def pockets(balls, tau=0.0, *, min_persistence=0.0, filtration=None) -> tuple:
 
 
 # ================================================================ tunnels/grooves
-_CYCLES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+def _build_h1_cycles(F):
+    return _topo._reduce_h1(_topo._summary(F), F, compress=False)
 
 
 def _h1_with_cycles(F):
-    def build(F):
-        S = _topo._summary(F)
-        return _topo._reduce_h1(S, F, compress=False)
-    return _topo._cached(_CYCLES, F, build)
+    return derived(F, "cavities.h1_cycles", _build_h1_cycles)
 
 
-def _h1_classes(balls, F, tau, select, fname):
+def _h1_classes(F, tau, select, fname):
+    balls = F.balls
     if balls.dim != 3:
         raise ValueError(
             f"{fname}: tunnels and grooves are H1 classes of unions of balls in 3D; in 2D the H1 "
@@ -554,12 +524,21 @@ def _h1_classes(balls, F, tau, select, fname):
     return tuple(out)
 
 
-def tunnels(balls, tau=0.0, *, filtration=None) -> tuple:
+@filtration_first
+def tunnels(F, tau=0.0) -> tuple:
     """The tunnels of the union of balls grown to ``tau``, in 3D (Notes §23.1).
 
     The :math:`H_1` classes alive at ``tau`` (``birth <= tau < death``); their number is
     :math:`\\beta_1(\\tau)`.  Each has a representative cycle from the column reduction
-    of the boundary matrix (see :mod:`shapelab.topology`).
+    of the boundary matrix (see :mod:`shapelab.topology`), computed once per
+    filtration and kept on it.
+
+    Parameters
+    ----------
+    F : Filtration
+        ``alpha_filtration(balls)`` of 3D balls (or the :class:`~shapelab.Balls`, as
+        for :func:`voids`).
+    tau : float, default 0.0
 
     Returns
     -------
@@ -571,22 +550,37 @@ def tunnels(balls, tau=0.0, *, filtration=None) -> tuple:
     ValueError
         For 2D balls (there the :math:`H_1` classes are the holes: use :func:`voids`).
     """
-    balls, F = _resolve(balls, filtration, "tunnels")
-    tau = _tau(tau)
-    return _h1_classes(balls, F, tau, lambda b, d: (b <= tau) & (d > tau), "tunnels")
+    F = as_filtration(F, "tunnels")
+    tau = as_tau(tau)
+    return _h1_classes(F, tau, lambda b, d: (b <= tau) & (d > tau), "tunnels")
 
 
-def grooves(balls, tau=0.0, *, min_persistence=0.0, filtration=None) -> tuple:
+@filtration_first
+def grooves(F, tau=0.0, *, min_persistence=0.0) -> tuple:
     """Grooves at ``tau``: :math:`H_1` classes born later, ``birth > tau`` (3D).
 
     Notes §23.1: "a groove on the surface of a molecule can be transformed into a
     tunnel, and be captured by our model" -- a groove is a tunnel that is born later in
-    the growth.  ``min_persistence`` keeps those with ``death - birth >= min_persistence``.
+    the growth.
+
+    Parameters
+    ----------
+    F : Filtration
+        ``alpha_filtration(balls)`` of 3D balls (or the :class:`~shapelab.Balls`, as
+        for :func:`voids`).
+    tau : float, default 0.0
+    min_persistence : float, default 0.0
+        Keep the grooves with ``death - birth >= min_persistence``.
+
+    Returns
+    -------
+    tuple of Tunnel
+        Sorted by persistence, largest first.
     """
-    balls, F = _resolve(balls, filtration, "grooves")
-    tau = _tau(tau)
+    F = as_filtration(F, "grooves")
+    tau = as_tau(tau)
     mp = as_finite_scalar(min_persistence, "min_persistence", nonnegative=True)
-    return _h1_classes(balls, F, tau, lambda b, d: (b > tau) & (d - b >= mp), "grooves")
+    return _h1_classes(F, tau, lambda b, d: (b > tau) & (d - b >= mp), "grooves")
 
 
 # ============================================================ fractional measure
@@ -729,16 +723,16 @@ def _triple_volume(c, r):
     return total
 
 
-def _edge_lookup(F, n_balls: int):
-    def build(F):
-        e = np.asarray(F.simplices(1), dtype=np.int64)
-        key = e[:, 0] * n_balls + e[:, 1]
-        o = np.argsort(key)
-        return key[o], o
-    return _topo._cached(_EDGE_KEYS, F, build)
+def _build_edge_lookup(F):
+    e = np.asarray(F.simplices(1), dtype=np.int64)
+    key = e[:, 0] * len(F.balls) + e[:, 1]
+    o = np.argsort(key)
+    return key[o], o
 
 
-_EDGE_KEYS: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+def _edge_lookup(F):
+    """Edges of ``F`` as sorted integer keys ``i * n + j`` and the sorting permutation."""
+    return derived(F, "cavities.edge_keys", _build_edge_lookup)
 
 
 def _void_measure(F, balls, tau: float, cell_ids: np.ndarray) -> np.ndarray:
@@ -780,7 +774,7 @@ def _void_measure(F, balls, tau: float, cell_ids: np.ndarray) -> np.ndarray:
         den = la * lb * lc + (a * b).sum(-1) * lc + (a * c).sum(-1) * lb + (b * c).sum(-1) * la
         omega = 2 * np.arctan2(num, den)
         out -= omega * rr[:, j] ** 3 / 3.0
-    keys, order = _edge_lookup(F, len(balls))
+    keys, order = _edge_lookup(F)
     eval_ = np.asarray(F.values(1))
     for (p, q) in ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)):
         s, t = [i for i in range(4) if i not in (p, q)]
@@ -1073,7 +1067,7 @@ def free_measure(balls, tau, cells) -> np.ndarray:
 
     if not isinstance(balls, Balls):
         raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
-    tau = _tau(tau)
+    tau = as_tau(tau)
     d = balls.dim
     cells = np.asarray(cells)
     if cells.ndim != 2 or cells.shape[1] != d + 1 or (cells.size and cells.dtype.kind not in "iu"):
@@ -1083,7 +1077,7 @@ def free_measure(balls, tau, cells) -> np.ndarray:
     w = balls.weights + tau
     alive = np.flatnonzero(w >= 0)
     out = np.zeros(cells.shape[0])
-    if cells.shape[0] == 0:
+    if cells.shape[0] == 0 or tau == np.inf:   # at τ = inf the balls cover everything
         return out
     C = balls.centers
     tree = cKDTree(C[alive]) if alive.size else None

@@ -253,12 +253,12 @@ def fig23_1ii():
           "the dent becomes a hole: a pocket. Right: the shallow bite fills from the bottom and never "
           "closes: not a pocket.",
           source="Notes, Figure 23.2", lesson="07_pockets",
-          needs=("datasets.figure_23_2", "plot.pockets"))
+          needs=("datasets.figure_23_2", "plot.pockets", "alpha_filtration"))
 def fig23_2():
     left, right = _datasets().figure_23_2()
     fig, (a, b) = _slide(1, 2)
-    _plot().pockets(left, ax=a, title="a pocket: its mouth closes first")
-    _plot().pockets(right, ax=b, title="not a pocket: it fills without closing")
+    _plot().pockets(_sl().alpha_filtration(left), ax=a, title="a pocket: its mouth closes first")
+    _plot().pockets(_sl().alpha_filtration(right), ax=b, title="not a pocket: it fills without closing")
     return fig
 
 
@@ -305,8 +305,8 @@ def l02_growth():
     disks = _datasets().figure_23_1()
     F = _sl().alpha_filtration(disks)
     fig, (a, b) = _slide(1, 2)
-    _plot().dual_complex(disks, tau=-0.3, filtration=F, ax=a, title="τ = −0.3: one hole")
-    _plot().dual_complex(disks, tau=3.0, filtration=F, ax=b, title="τ = 3: one piece, no hole")
+    _plot().dual_complex(F, -0.3, ax=a, title="τ = −0.3: one hole")
+    _plot().dual_complex(F, 3.0, ax=b, title="τ = 3: one piece, no hole")
     return fig
 
 
@@ -319,7 +319,7 @@ def l03_alpha_complexes():
     F = _sl().alpha_filtration(disks)
     fig, axes = _slide(2, 2)
     for ax, tau in zip(axes.ravel(), (-0.5, 0.0, 0.6, 1.5)):
-        _plot().dual_complex(disks, tau, filtration=F, ax=ax, show_cells=False)
+        _plot().dual_complex(F, tau, ax=ax, show_cells=False)
     return fig
 
 
@@ -336,30 +336,30 @@ def l05_dual_complex_3d():
 @register("l06_voids_c60", "The one void of C60: the inside of the carbon cage, sealed off once the "
           "hexagons close, drawn inside the see-through balls.",
           source="Lesson 06", lesson="06_voids",
-          needs=("datasets.fullerene_c60", "plot.voids"))
+          needs=("datasets.fullerene_c60", "plot.voids", "alpha_filtration"))
 def l06_voids_c60():
     fig, ax = _slide(projection="3d")
-    _plot().voids(_datasets().fullerene_c60(), ax=ax)
+    _plot().voids(_sl().alpha_filtration(_datasets().fullerene_c60()), ax=ax)
     return fig
 
 
 @register("l07_pockets_bowl", "A pocket in 3D: a spherical shell with a round opening, its mouth "
           "(the triangles joining it to the outside) and its lining atoms.",
           source="Lesson 07", lesson="07_pockets",
-          needs=("datasets.bowl", "plot.pockets"))
+          needs=("datasets.bowl", "plot.pockets", "alpha_filtration"))
 def l07_pockets_bowl():
     fig, ax = _slide(projection="3d")
-    _plot().pockets(_datasets().bowl(), ax=ax)
+    _plot().pockets(_sl().alpha_filtration(_datasets().bowl()), ax=ax)
     return fig
 
 
 @register("l08_tunnels_nanotube", "The tunnel of an (8, 8) carbon nanotube: a representative cycle of "
           "its H₁ class around the tube.",
           source="Lesson 08", lesson="08_tunnels",
-          needs=("datasets.nanotube", "plot.tunnels"))
+          needs=("datasets.nanotube", "plot.tunnels", "alpha_filtration"))
 def l08_tunnels_nanotube():
     fig, ax = _slide(projection="3d")
-    _plot().tunnels(_datasets().nanotube(), ax=ax)
+    _plot().tunnels(_sl().alpha_filtration(_datasets().nanotube()), ax=ax)
     return fig
 
 
@@ -401,11 +401,11 @@ def l09_betti_curve():
 @register("l10_globule_pockets", "A protein-like globule: its pockets with their mouths, and its buried "
           "void, computed from first principles as CASTp-style tools report them.",
           source="Lesson 10", lesson="10_molecule_case_study",
-          needs=("datasets.globule", "plot.pockets"))
+          needs=("datasets.globule", "plot.pockets", "alpha_filtration"))
 def l10_globule_pockets():
     fig, ax = _slide(projection="3d")
     # the four pockets that persist (the others are crevices between atoms, gone at once)
-    _plot().pockets(_datasets().globule(), ax=ax, min_persistence=0.5)
+    _plot().pockets(_sl().alpha_filtration(_datasets().globule()), ax=ax, min_persistence=0.5)
     return fig
 
 

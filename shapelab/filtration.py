@@ -49,10 +49,11 @@ Where the notes are imprecise
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
+from ._validate import as_tau
 from .balls import Balls
 from .power import _triangulate_local
 
@@ -577,18 +578,6 @@ def _check_k(k, dim_max: int) -> int:
     return k
 
 
-def _check_tau(tau) -> float:
-    if isinstance(tau, (bool, np.bool_, str, bytes)):
-        raise TypeError(f"tau must be a real number, got {type(tau).__name__}")
-    try:
-        t = float(tau)
-    except (TypeError, ValueError):
-        raise TypeError(f"tau must be a real number, got {type(tau).__name__}") from None
-    if math.isnan(t):
-        raise ValueError("tau must not be NaN")
-    return t
-
-
 class _SimplicialMixin:
     """Accessors shared by :class:`Filtration` and :class:`Complex`."""
 
@@ -690,6 +679,41 @@ class Filtration(_SimplicialMixin):
     _values: tuple
     _boundary: tuple
     _counts: tuple
+    #: Results derived from the filtration (persistence pairs, merge tree, cycles,
+    #: edge lookups), by key; filled on first use by :meth:`derived`.
+    _derived: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+
+    def derived(self, key: str, build):
+        """A result derived from this filtration, built on first use and kept on it.
+
+        The filtration owns what is computed from it (Notes §23.1: one filtration,
+        many questions -- Betti numbers at every τ, persistence, voids, pockets and
+        tunnels), so the modules that answer them (:mod:`shapelab.topology`,
+        :mod:`shapelab.cavities`) store their intermediate results here instead of
+        in module-level caches: they live exactly as long as the filtration.
+
+        Parameters
+        ----------
+        key : str
+            Names the result (e.g. ``"topology.summary"``); one key, one builder.
+        build : callable
+            ``build(F)`` computes the result from this filtration.  Results must be
+            treated as read-only: every later caller gets the same object.
+
+        Returns
+        -------
+        object
+            ``build(self)``, computed once per filtration.
+
+        Notes
+        -----
+        A copy with nothing derived yet (to time a computation from scratch) is
+        ``dataclasses.replace(F)``: it shares the simplices and entry times.
+        """
+        try:
+            return self._derived[key]
+        except KeyError:
+            return self._derived.setdefault(key, build(self))
 
     def complex_at(self, tau) -> Complex:
         """The dual complex :math:`K(\\tau)`: all simplices with entry time ≤ ``tau``.
@@ -697,7 +721,7 @@ class Filtration(_SimplicialMixin):
         ``tau`` may be ``±inf``; ``complex_at(inf)`` is the whole triangulation and
         ``complex_at(0.0)`` the dual complex of the balls as given.
         """
-        t = _check_tau(tau)
+        t = as_tau(tau)
         counts = tuple(int(np.searchsorted(v, t, side="right")) for v in self._values)
         dim = max((k for k, c in enumerate(counts) if c > 0), default=-1)
         return Complex(self.balls, t, dim, self._simplices, self._values, self._boundary, counts)
@@ -722,6 +746,34 @@ class Filtration(_SimplicialMixin):
 
     def __repr__(self) -> str:
         return f"Filtration(n_balls={len(self.balls)}, dimension={self.dimension}, counts={self.counts()})"
+
+
+def as_filtration(F, who: str):
+    """The filtration a function works on: ``F`` itself, or ``alpha_filtration(F)``
+    when ``F`` is a :class:`~shapelab.Balls` (built here, once per call).
+
+    ``F`` may also be any object with the filtration's accessors and ``.balls``
+    (``dimension``, ``simplices(k)``, ``values(k)``, ``boundary(k)``).  ``who`` names
+    the calling function in the error message.
+    """
+    if isinstance(F, Balls):
+        return alpha_filtration(F)
+    missing = [a for a in ("balls", "dimension", "simplices", "values", "boundary") if not hasattr(F, a)]
+    if missing or not isinstance(F.balls, Balls):
+        what = f"it has no {missing[0]!r}" if missing else "its .balls is not a shapelab.Balls"
+        raise TypeError(
+            f"{who}: F must be a Filtration (shapelab.alpha_filtration(balls)) or a shapelab.Balls; "
+            f"{what} (got {type(F).__name__})"
+        )
+    return F
+
+
+def derived(F, key: str, build):
+    """``F.derived(key, build)`` (:meth:`Filtration.derived`): the result kept on the
+    filtration.  Any other object with the filtration's accessors (an adapter over
+    another library's complex, in the tests) keeps nothing: ``build(F)`` each time."""
+    get = getattr(F, "derived", None)
+    return get(key, build) if callable(get) else build(F)
 
 
 # ----------------------------------------------------------------------------------

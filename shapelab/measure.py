@@ -104,8 +104,9 @@ from itertools import combinations
 
 import numpy as np
 
-from ._validate import as_finite_scalar, as_positive_int
+from ._validate import as_finite_scalar, as_positive_int, as_tau, filtration_first
 from .balls import Balls
+from .filtration import _simplices_up_to, as_filtration
 
 __all__ = [
     "UnionMeasure",
@@ -625,7 +626,8 @@ def measure_from_simplices(centers, weights, simplices, *, tau: float = 0.0) -> 
     )
 
 
-def union_measure(balls: Balls, *, tau=0.0, filtration=None) -> UnionMeasure:
+@filtration_first
+def union_measure(F_or_balls, tau=0.0) -> UnionMeasure:
     """Area and perimeter (2D) or volume and surface area (3D) of a union of balls.
 
     Computed exactly with the short inclusion–exclusion formula over the dual complex
@@ -636,15 +638,15 @@ def union_measure(balls: Balls, *, tau=0.0, filtration=None) -> UnionMeasure:
 
     Parameters
     ----------
-    balls : Balls
-        The balls (disks in 2D).
+    F_or_balls : Filtration or Balls
+        The balls (disks in 2D), or their filtration ``alpha_filtration(balls)`` to
+        measure at many τ.  Given the balls, only the entry times are computed
+        (not the whole :class:`~shapelab.filtration.Filtration`), once per call.
     tau : float, optional
         Growth time (Notes §23.1): measure the union of the balls with radii
         :math:`\\sqrt{r_i^2 + \\tau}`; balls with :math:`r_i^2 + \\tau < 0` are
-        empty.  Default 0: the balls as given.
-    filtration : Filtration, optional
-        ``alpha_filtration(balls)``, if already computed (e.g. to measure at many
-        τ); otherwise it is computed here.
+        empty.  Default 0: the balls as given.  ``-inf`` gives the empty union;
+        ``inf`` is refused (every ball would be infinite).
 
     Notes
     -----
@@ -673,38 +675,33 @@ def union_measure(balls: Balls, *, tau=0.0, filtration=None) -> UnionMeasure:
     >>> round(m.area / np.pi, 12), round(m.perimeter / np.pi, 12)
     (2.0, 4.0)
     """
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
-    t = as_finite_scalar(tau, "tau")
+    t = as_tau(tau)
+    if isinstance(F_or_balls, Balls):
+        balls, F = F_or_balls, None
+    else:
+        F = as_filtration(F_or_balls, "union_measure")
+        balls = F.balls
+    if t == np.inf:
+        raise ValueError("tau must be finite for union_measure (at tau = inf the union is all of R^d)")
     n, d = len(balls), balls.dim
     if n == 0:
         z = np.zeros(0)
         z.flags.writeable = False
         return UnionMeasure(d, t, 0.0, 0.0, z, z, (0.0,) * (d + 1), (0,) * (d + 1))
-    if filtration is None:
+    # Simplices entering at or just before tau (relative to their own entry time) are
+    # left out, see TIE_TOL.
+    if F is None:
         # only K just before tau is needed: the entry times without the Filtration's
         # ordering and boundary matrices (same values, same comparison)
-        from .filtration import _simplices_up_to
-
         simplices = _simplices_up_to(balls, lambda v: _before(v, t))
-        return measure_from_simplices(balls.centers, balls.weights + t, simplices, tau=t)
     else:
-        fb = getattr(filtration, "balls", None)
-        if fb is None or not hasattr(filtration, "complex_at"):
-            raise TypeError(f"filtration must be a shapelab Filtration, got {type(filtration).__name__}")
-        if fb is not balls and not (
-            np.array_equal(fb.centers, balls.centers) and np.array_equal(fb.radii, balls.radii)
-        ):
-            raise ValueError("filtration was computed for other balls than `balls`")
-    # Simplices entering at or just before tau (relative to their own entry time) are
-    # left out, see TIE_TOL; the values are sorted, so each dimension's selection is
-    # a prefix.
-    simplices = []
-    for k in range(min(filtration.dimension, d) + 1):
-        c = int(np.count_nonzero(_before(filtration.values(k), t)))
-        if c == 0:
-            break
-        simplices.append(filtration.simplices(k)[:c])
+        # the values are sorted, so each dimension's selection is a prefix
+        simplices = []
+        for k in range(min(F.dimension, d) + 1):
+            c = int(np.count_nonzero(_before(F.values(k), t)))
+            if c == 0:
+                break
+            simplices.append(F.simplices(k)[:c])
     return measure_from_simplices(balls.centers, balls.weights + t, simplices, tau=t)
 
 
@@ -940,7 +937,7 @@ def clipped_cells(balls: Balls, *, tau=0.0, diagram=None, arc_resolution: int = 
         raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
     if balls.dim != 2:
         raise ValueError(f"clipped_cells works with disks (2D), got balls of dimension {balls.dim}")
-    t = as_finite_scalar(tau, "tau")
+    t = as_tau(tau, finite=True)
     res = as_positive_int(arc_resolution, "arc_resolution", minimum=8)
     if diagram is None:
         from .power import power_diagram
@@ -1005,7 +1002,7 @@ def sampled_nerve(balls: Balls, *, tau=0.0, spacing=0.02, margin=None, max_dim=N
     """
     if not isinstance(balls, Balls):
         raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
-    t = as_finite_scalar(tau, "tau")
+    t = as_tau(tau, finite=True)
     h = as_finite_scalar(spacing, "spacing", positive=True)
     max_dim = balls.dim if max_dim is None else as_positive_int(max_dim, "max_dim", minimum=0)
     if len(balls) == 0:
@@ -1049,7 +1046,7 @@ def raster_topology(balls: Balls, *, tau=0.0, spacing=0.02, min_hole_pixels: int
         raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
     if balls.dim != 2:
         raise ValueError(f"raster_topology works with disks (2D), got balls of dimension {balls.dim}")
-    t = as_finite_scalar(tau, "tau")
+    t = as_tau(tau, finite=True)
     h = as_finite_scalar(spacing, "spacing", positive=True)
     min_hole_pixels = as_positive_int(min_hole_pixels, "min_hole_pixels")
     if len(balls) == 0:

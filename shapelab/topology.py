@@ -38,8 +38,9 @@ Algorithms (Delfinado & Edelsbrunner's incremental method, made array-friendly):
   dropped without changing any pivot: "compression", Bauer, Kerber & Reininghaus
   2014).  Columns are Python sets, whose symmetric difference runs in C.
 
-Every result is computed once per filtration object and cached, so repeated
-``betti(tau)`` calls cost a binary search.
+Every result is computed once per filtration object and kept on it
+(:meth:`~shapelab.filtration.Filtration.derived`), so repeated ``betti(tau)`` calls
+cost a binary search.
 
 The filtration order is (value, dimension, row): within a dimension the rows of a
 :class:`~shapelab.filtration.Filtration` are already in filtration order.  Persistence
@@ -49,16 +50,14 @@ does by default.
 """
 from __future__ import annotations
 
-import weakref
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import minimum_spanning_tree
 
-import numbers
-
-from ._validate import _as_float_array
+from ._validate import _as_float_array, as_tau
+from .filtration import derived
 
 __all__ = ["betti", "betti_curve", "persistence", "euler_characteristic_curve", "is_roundoff"]
 
@@ -148,24 +147,6 @@ def _dual_edges(bnd: np.ndarray, n_facets: int):
     return u, v
 
 
-_CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
-_PAIR_CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
-
-
-def _cached(cache, F, build):
-    try:
-        hit = cache.get(F)
-    except TypeError:  # not weak-referenceable: compute every time
-        return build(F)
-    if hit is None:
-        hit = build(F)
-        try:
-            cache[F] = hit
-        except TypeError:
-            pass
-    return hit
-
-
 def _build_summary(F) -> _Summary:
     _check_filtration(F)
     ambient = _ambient_dim(F)
@@ -193,21 +174,10 @@ def _build_summary(F) -> _Summary:
 
 
 def _summary(F) -> _Summary:
-    return _cached(_CACHE, F, _build_summary)
+    return derived(F, "topology.summary", _build_summary)
 
 
 # ------------------------------------------------------------------------ Betti numbers
-def _as_tau(tau) -> float:
-    """A growth time: a real number, ±inf allowed (nothing / everything), NaN not."""
-    if isinstance(tau, (bool, np.bool_)) or not isinstance(tau, (numbers.Real, np.floating, np.integer)):
-        if not (isinstance(tau, np.ndarray) and tau.ndim == 0 and tau.dtype.kind in "iuf"):
-            raise TypeError(f"tau must be a real number, got {type(tau).__name__}")
-    t = float(tau)
-    if np.isnan(t):
-        raise ValueError("tau must not be NaN")
-    return t
-
-
 def _as_taus(taus) -> np.ndarray:
     if np.ndim(taus) == 0 and not isinstance(taus, (list, tuple)):
         raise ValueError("taus must be a 1-D array of growth times, got a scalar (use betti(F, tau))")
@@ -278,7 +248,7 @@ def betti(F, tau) -> tuple:
     >>> sl.alpha_filtration(ring).betti(0.0)
     (1, 1, 0)
     """
-    t = _as_tau(tau)
+    t = as_tau(tau)
     S = _summary(F)
     return tuple(int(x) for x in _betti_array(S, np.array([t]))[0])
 
@@ -543,4 +513,4 @@ def persistence(F) -> dict:
         same balls (up to those round-off pairs, which GUDHI reports too).  Rows are
         sorted by birth, then death; arrays are read-only.
     """
-    return dict(_cached(_PAIR_CACHE, F, _build_pairs))
+    return dict(derived(F, "topology.pairs", _build_pairs))

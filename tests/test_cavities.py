@@ -128,7 +128,7 @@ def test_number_of_voids_is_the_betti_number(d, seed):
     F = sl.alpha_filtration(balls)
     P = F.persistence()[d - 1]
     for tau in (-0.2, 0.0, 0.15, 0.4, 1.0):
-        vs = sl.voids(balls, tau, filtration=F)
+        vs = sl.voids(F, tau)
         assert len(vs) == F.betti(tau)[d - 1]
         # each void is one alive H_{d-1} pair
         got = sorted((v.born, v.dies) for v in vs)
@@ -155,7 +155,7 @@ def test_void_volume_equals_exact_power_cell_measure(d, seed):
     F = sl.alpha_filtration(balls)
     n = 0
     for tau in (0.0, 0.2):
-        for v in sl.voids(balls, tau, filtration=F)[:6]:
+        for v in sl.voids(F, tau)[:6]:
             exact = C.free_measure(balls, tau, v.cells)
             X = balls.centers[v.cells]
             cellvol = np.abs(np.linalg.det(X[:, 1:] - X[:, :1])).sum() / (2 if d == 2 else 6)
@@ -204,7 +204,7 @@ def test_ring_of_disks_hole_area_closed_form(source):
     theta = np.pi - 2 * np.pi / N
     lens = 2 * r * r * np.arccos(s / (2 * r)) - s / 2 * np.sqrt(4 * r * r - s * s)
     hole = N * R * R * np.sin(2 * np.pi / N) / 2 - N * theta * r * r / 2 + N * lens / 2
-    vs = C.voids(balls, 0.0, filtration=F)
+    vs = C.voids(F, 0.0)
     assert len(vs) == 1
     v = vs[0]
     assert v.volume == pytest.approx(hole, rel=1e-12)
@@ -216,7 +216,7 @@ def test_ring_of_disks_hole_area_closed_form(source):
     rt = np.sqrt(r * r + tau)
     lens_t = 2 * rt * rt * np.arccos(s / (2 * rt)) - s / 2 * np.sqrt(4 * rt * rt - s * s)
     hole_t = N * R * R * np.sin(2 * np.pi / N) / 2 - N * theta * rt * rt / 2 + N * lens_t / 2
-    assert C.voids(balls, tau, filtration=F)[0].volume == pytest.approx(hole_t, rel=1e-12)
+    assert C.voids(F, tau)[0].volume == pytest.approx(hole_t, rel=1e-12)
 
 
 @pytest.mark.parametrize("source", ["shapelab", "gudhi"])
@@ -224,7 +224,7 @@ def test_cage_of_balls_has_one_void_with_monte_carlo_volume(source):
     c = fibonacci_sphere(70, 3.0)  # exactly co-spherical centres: a degenerate DT
     balls = sl.Balls(c, 1.0)
     F = sl.alpha_filtration(balls) if source == "shapelab" else GudhiFiltration(c, 1.0)
-    vs = sl.voids(balls, 0.0, filtration=F)
+    vs = sl.voids(F, 0.0)
     assert len(vs) == 1
     v = vs[0]
     est, sigma = monte_carlo_free(balls, 0.0, v.cells, 200_000, seed=1)
@@ -276,8 +276,8 @@ def keyhole(n=24, R=5.0, r=1.0, gap=2):
 def test_keyhole_is_a_pocket_and_closes_when_the_mouth_disks_touch():
     balls = keyhole()
     F = sl.alpha_filtration(balls)
-    assert len(sl.voids(balls, 0.0, filtration=F)) == 0
-    ps = sl.pockets(balls, 0.0, filtration=F, min_persistence=1.0)
+    assert len(sl.voids(F, 0.0)) == 0
+    ps = sl.pockets(F, 0.0, min_persistence=1.0)
     assert len(ps) == 1
     p = ps[0]
     c = balls.centers
@@ -288,7 +288,7 @@ def test_keyhole_is_a_pocket_and_closes_when_the_mouth_disks_touch():
     assert p.mouth.shape == (1, 2) and sorted(p.mouth[0].tolist()) == [0, len(c) - 1]
     assert p.mouth_size == pytest.approx(mouth_gap)
     # it is the void it becomes
-    v = [v for v in sl.voids(balls, p.closes_at, filtration=F) if v.dies == p.fills_at]
+    v = [v for v in sl.voids(F, p.closes_at) if v.dies == p.fills_at]
     assert len(v) == 1 and np.array_equal(v[0].cell_ids, p.cell_ids)
     # volume: exact scan-line oracle, and Monte Carlo
     ref = sum(free_area_scanline(c[t], c, balls.radii) for t in p.cells)
@@ -296,7 +296,7 @@ def test_keyhole_is_a_pocket_and_closes_when_the_mouth_disks_touch():
     est, sigma = monte_carlo_free(balls, 0.0, p.cells, 200_000, seed=3)
     assert abs(p.volume - est) < 5 * sigma
     # after the mouth closes it is a void, no longer a pocket
-    assert sl.pockets(balls, p.closes_at + 0.01, filtration=F, min_persistence=1.0) == ()
+    assert sl.pockets(F, p.closes_at + 0.01, min_persistence=1.0) == ()
 
 
 def test_shallow_dent_is_not_a_pocket():
@@ -309,7 +309,7 @@ def test_shallow_dent_is_not_a_pocket():
     F = sl.alpha_filtration(balls)
     P = F.persistence()[1]
     assert not np.any(P[:, 1] - P[:, 0] > 0.5)       # no lasting hole ever
-    assert sl.pockets(balls, 0.0, filtration=F, min_persistence=0.5) == ()
+    assert sl.pockets(F, 0.0, min_persistence=0.5) == ()
     # while the keyhole (Figure 23.2, left) is one
     assert len(sl.pockets(keyhole(), 0.0, min_persistence=0.5)) == 1
 
@@ -328,16 +328,16 @@ def test_pockets_are_future_voids_open_at_tau(d, seed):
     balls = random_balls(seed, 80 if d == 2 else 60, d, rmax=0.7)
     F = sl.alpha_filtration(balls)
     tau = 0.0
-    ps = sl.pockets(balls, tau, filtration=F)
+    ps = sl.pockets(F, tau)
     assert ps, "the random input should have pockets"
     void_cells = set()
-    for v in sl.voids(balls, tau, filtration=F):
+    for v in sl.voids(F, tau):
         void_cells |= set(v.cell_ids.tolist())
     fval = F.values(d - 1)
     for p in ps:
         assert tau < p.closes_at < p.fills_at
         assert not void_cells & set(p.cell_ids.tolist())          # open at tau
-        later = {tuple(v.cell_ids): v for v in sl.voids(balls, p.closes_at, filtration=F)}
+        later = {tuple(v.cell_ids): v for v in sl.voids(F, p.closes_at)}
         v = later[tuple(p.cell_ids)]                                # closed at closes_at
         assert v.dies == p.fills_at and v.born == p.closes_at
         assert len(p.mouth_ids) >= 1
@@ -350,8 +350,8 @@ def test_pockets_are_future_voids_open_at_tau(d, seed):
     later = P[P[:, 0] > tau]
     assert len(later) >= len(ps)
     mp = np.median(pers)
-    assert all(p.persistence >= mp for p in sl.pockets(balls, tau, filtration=F, min_persistence=mp))
-    assert len(sl.pockets(balls, tau, filtration=F, min_persistence=mp)) == sum(x >= mp for x in pers)
+    assert all(p.persistence >= mp for p in sl.pockets(F, tau, min_persistence=mp))
+    assert len(sl.pockets(F, tau, min_persistence=mp)) == sum(x >= mp for x in pers)
 
 
 def test_pocket_in_a_cage_with_a_hole_3d():
@@ -360,8 +360,8 @@ def test_pocket_in_a_cage_with_a_hole_3d():
     c = c + np.random.default_rng(1).normal(scale=0.02, size=c.shape)   # not co-spherical
     balls = sl.Balls(c, 1.0)
     F = sl.alpha_filtration(balls)
-    assert len(sl.voids(balls, 0.0, filtration=F)) == 0
-    ps = sl.pockets(balls, 0.0, filtration=F, min_persistence=2.0)
+    assert len(sl.voids(F, 0.0)) == 0
+    ps = sl.pockets(F, 0.0, min_persistence=2.0)
     assert len(ps) == 1
     p = ps[0]
     assert 0.0 < p.closes_at < 4.0 and p.fills_at > 6.0
@@ -408,7 +408,7 @@ def in_boundary_span(F, tau, edge_ids):
 def test_tube_has_one_tunnel_with_a_winding_cycle():
     balls = tube()
     F = sl.alpha_filtration(balls)
-    tn = sl.tunnels(balls, 0.0, filtration=F)
+    tn = sl.tunnels(F, 0.0)
     assert len(tn) == F.betti(0.0)[1] == 1
     t = tn[0]
     assert t.birth <= 0.0 < t.death
@@ -426,13 +426,13 @@ def test_tunnels_and_grooves_match_persistence(seed):
     F = sl.alpha_filtration(balls)
     P = F.persistence()[1]
     for tau in (0.0, 0.3):
-        tn = sl.tunnels(balls, tau, filtration=F)
+        tn = sl.tunnels(F, tau)
         assert len(tn) == F.betti(tau)[1]
         assert sorted((t.birth, t.death) for t in tn) == sorted(map(tuple, P[(P[:, 0] <= tau) & (P[:, 1] > tau)]))
         for t in tn[:4]:
             assert np.all(np.bincount(t.cycle.ravel()) % 2 == 0)
             assert not in_boundary_span(F, tau, t.edge_ids)
-        gr = sl.cavities.grooves(balls, tau, filtration=F)
+        gr = sl.cavities.grooves(F, tau)
         assert len(gr) == int(np.sum(P[:, 0] > tau))
         assert all(g.birth > tau for g in gr)
 
@@ -445,7 +445,7 @@ def test_grid_with_holes_voids_equal_betti(holes):
     g = np.array([(i, j) for i in range(6) for j in range(6) if (i, j) not in holes], dtype=float)
     G = GudhiFiltration(g, 0.55)
     for tau in (0.0, 0.1, 0.3):
-        vs = C.voids(G.balls, tau, filtration=G)
+        vs = C.voids(G, tau)
         assert len(vs) == T.betti(G, tau)[1]
         for v in vs:
             assert v.volume > 0
@@ -456,9 +456,9 @@ def test_flat_inputs_have_no_voids_but_can_have_tunnels():
     t = 2 * np.pi * np.arange(12) / 12
     flat = sl.Balls(np.c_[3 * np.cos(t), 3 * np.sin(t), np.zeros(12)], 1.0)
     G = GudhiFiltration(flat.centers, flat.radii)
-    assert C.voids(flat, 0.0, filtration=G) == ()
-    assert C.pockets(flat, 0.0, filtration=G) == ()
-    tn = C.tunnels(flat, 0.0, filtration=G)
+    assert C.voids(G, 0.0) == ()
+    assert C.pockets(G, 0.0) == ()
+    tn = C.tunnels(G, 0.0)
     assert len(tn) == 1 and winding_parity(tn[0].cycle, flat.centers) == 1
     line = sl.Balls(np.c_[np.arange(5.0), np.zeros(5)], 0.3)
     assert sl.voids(line, 0.0) == () and sl.pockets(line, 0.0) == ()
@@ -512,23 +512,45 @@ def test_bad_input_errors():
         sl.pockets(None)
     with pytest.raises(ValueError, match="tau"):
         sl.voids(balls, float("nan"))
-    with pytest.raises(ValueError, match="tau"):
-        sl.voids(balls, float("inf"))
+    with pytest.raises(TypeError, match="tau"):
+        sl.voids(balls, True)
     with pytest.raises(TypeError, match="tau"):
         sl.pockets(balls, "0")
     with pytest.raises(ValueError, match="min_persistence"):
         sl.pockets(balls, 0.0, min_persistence=-1.0)
     with pytest.raises(ValueError, match="2D"):
         sl.tunnels(balls)
-    other = sl.alpha_filtration(ring(8, 3.0, 1.0))
-    with pytest.raises(ValueError, match="other balls"):
-        sl.voids(balls, 0.0, filtration=other)
     with pytest.raises(TypeError, match="Filtration"):
-        sl.voids(balls, 0.0, filtration=object())
+        sl.voids(object(), 0.0)
+
+
+def test_infinite_growth_times_are_the_ends_of_the_filtration():
+    """One τ rule (``_validate.as_tau``): ±inf are accepted everywhere τ is."""
+    F = sl.alpha_filtration(ring(8, 3.0, 1.2))
+    assert sl.voids(F, float("inf")) == sl.voids(F, -np.inf) == ()
+    assert sl.pockets(F, np.inf) == ()
+    (p,) = sl.pockets(F, -np.inf)          # before any ball exists, the hole is a dent to be
+    assert p.lining.size == 0 and p.volume > 0     # (every cell free)
+    C60 = sl.alpha_filtration(sl.datasets.fullerene_c60())
+    assert sl.tunnels(C60, np.inf) == sl.tunnels(C60, -np.inf) == ()
+    assert C.free_measure(F.balls, np.inf, F.simplices(2)).sum() == 0.0
+
+
+@pytest.mark.parametrize("fn", [sl.voids, sl.pockets, sl.tunnels, C.grooves])
+def test_the_filtration_keyword_is_gone(fn):
+    balls = sl.datasets.fullerene_c60()
+    F = sl.alpha_filtration(balls)
+    name = fn.__name__
+    with pytest.raises(TypeError, match=rf"{name}\(balls, filtration=F\) is now {name}\(F\)"):
+        fn(balls, 0.0, filtration=F)
+    # the balls are still accepted (their filtration is built once, for the call)
+    assert [repr(x) for x in fn(balls, 0.0)] == [repr(x) for x in fn(F, 0.0)]
+
+
     with pytest.raises(ValueError, match="cells"):
         C.free_measure(balls, 0.0, [[0, 1]])
     with pytest.raises(ValueError, match="cells"):
         C.free_measure(balls, 0.0, [[0, 1, 99]])
-    # a filtration alone is accepted in place of the balls
+    # the filtration or the balls
     F = sl.alpha_filtration(balls)
     assert len(sl.voids(F, 0.0)) == len(sl.voids(balls, 0.0)) == 1

@@ -347,7 +347,7 @@ def test_without_a_filtration_is_the_same_as_with_one(dim, tau):
     b = random_balls(40, 30, dim)
     b = Balls(np.vstack([b.centers, b.centers[:4]]) + 1e6, np.append(b.radii, b.radii[:4] * 0.5))
     fast = union_measure(b, tau=tau)
-    full = union_measure(b, tau=tau, filtration=alpha_filtration(b))
+    full = union_measure(alpha_filtration(b), tau=tau)
     assert fast.counts == full.counts
     assert fast.measure == pytest.approx(full.measure, rel=1e-12)
     assert fast.boundary == pytest.approx(full.boundary, rel=1e-12)
@@ -388,12 +388,12 @@ def test_tau_is_the_union_of_grown_balls(dim):
     b = random_balls(21, 20, dim)
     F = alpha_filtration(b)
     for tau in (0.3, 1.0):
-        assert union_measure(b, tau=tau, filtration=F).measure == pytest.approx(union_measure(b.grow(tau)).measure, rel=1e-11)
+        assert union_measure(F, tau=tau).measure == pytest.approx(union_measure(b.grow(tau)).measure, rel=1e-11)
     # negative tau: balls with r^2 + tau < 0 are empty
     tau = -0.2
     alive = b.weights + tau >= 0
     grown = Balls(b.centers[alive], np.sqrt(b.weights[alive] + tau))
-    assert union_measure(b, tau=tau, filtration=F).measure == pytest.approx(union_measure(grown).measure, rel=1e-11)
+    assert union_measure(F, tau=tau).measure == pytest.approx(union_measure(grown).measure, rel=1e-11)
     assert union_measure(b, tau=-10.0).measure == 0.0
 
 
@@ -403,8 +403,8 @@ def test_boundary_is_the_derivative_of_measure(dim):
     b = random_balls(31, 15, dim, 0.6, 1.2)
     F = alpha_filtration(b)
     h = 1e-5
-    num = (union_measure(b, tau=h, filtration=F).measure - union_measure(b, tau=-h, filtration=F).measure) / (2 * h)
-    m = union_measure(b, filtration=F)
+    num = (union_measure(F, tau=h).measure - union_measure(F, tau=-h).measure) / (2 * h)
+    m = union_measure(F)
     assert num == pytest.approx(np.sum(m.ball_boundary / (2 * b.radii)), rel=1e-6)
 
 
@@ -462,10 +462,16 @@ def test_bad_input():
         union_measure(b, tau=float("nan"))
     with pytest.raises(TypeError, match="tau"):
         union_measure(b, tau="1")
-    with pytest.raises(ValueError, match="other balls"):
-        union_measure(b, filtration=alpha_filtration(random_balls(2, 5, 2)))
-    with pytest.raises(TypeError, match="filtration"):
-        union_measure(b, filtration=object())
+    with pytest.raises(TypeError, match="Filtration"):
+        union_measure(object())
+    with pytest.raises(TypeError, match=r"union_measure\(balls, filtration=F\) is now union_measure\(F\)"):
+        union_measure(b, filtration=alpha_filtration(b))
+    with pytest.raises(ValueError, match="finite"):
+        union_measure(b, float("inf"))
+    empty = union_measure(alpha_filtration(b), -np.inf)
+    assert empty.measure == 0.0 and empty.boundary == 0.0
+    # the filtration or the balls, τ by position or by keyword: the same numbers
+    assert union_measure(alpha_filtration(b), 0.3).measure == union_measure(b, tau=0.3).measure
 
 
 def test_measure_from_simplices_matches_gudhi_complex():

@@ -131,10 +131,10 @@ def test_voids_and_tunnels_match_gudhi_intervals(protein_filtration):
     F = protein_filtration
     G = gudhi_diagrams(F)
     for tau in (0.0, 0.5, 1.0, 2.0):
-        V = sl.voids(F.balls, tau, filtration=F)
+        V = sl.voids(F, tau)
         alive2 = G[2][(G[2][:, 0] <= tau) & (tau < G[2][:, 1])]
         assert bottleneck(np.array([[v.born, v.dies] for v in V]).reshape(-1, 2), alive2) == 0.0
-        T = sl.tunnels(F.balls, tau, filtration=F)
+        T = sl.tunnels(F, tau)
         alive1 = G[1][(G[1][:, 0] <= tau) & (tau < G[1][:, 1])]
         assert bottleneck(np.array([[t.birth, t.death] for t in T]).reshape(-1, 2), alive1) == 0.0
         assert len(T) == F.betti(tau)[1]

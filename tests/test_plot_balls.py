@@ -70,7 +70,7 @@ def test_dual_complex_draws_K():
     b = rand(20, 2, seed=3, lo=0.6, hi=1.2)
     F = alpha_filtration(b)
     K = F.complex_at(0.0)
-    fig = render(plot.dual_complex(b, filtration=F))
+    fig = render(plot.dual_complex(F))
     ax = fig.axes[0]
     (edges,) = colls(ax, LineCollection)
     assert len(edges.get_segments()) == len(K.simplices(1))

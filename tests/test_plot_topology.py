@@ -136,8 +136,8 @@ def test_betti_curve_from_arrays_and_default_taus():
     (lambda: PT.barcode(PAIRS, min_persistence=-1), ValueError),
     (lambda: PT.betti_curve("F"), TypeError),
     (lambda: PT.betti_curve((np.arange(3), np.zeros((2, 2)))), ValueError),
-    (lambda: PT.voids(np.zeros((3, 2)), []), TypeError),
-    (lambda: PT.pockets(D.ring(5), [], tau="x"), TypeError),
+    (lambda: PT.voids(np.zeros((3, 2)), voids=[]), TypeError),
+    (lambda: PT.pockets(D.ring(5), pockets=[], tau="x"), TypeError),
 ])
 def test_bad_input(call, exc):
     with pytest.raises(exc):
@@ -185,7 +185,7 @@ def test_voids_2d_draws_cells_under_the_disks():
     b = D.ring(6, radius=2.0, disk_radius=1.2)
     cells = np.array([[0, 1, 2], [0, 2, 3], [0, 3, 5], [3, 4, 5]])
     v = FakeVoid(cells, np.arange(6), -1.0, 2.8, 0.123)
-    fig = PT.voids(b, [v], tau=0.0)
+    fig = PT.voids(b, voids=[v], tau=0.0)
     ax = fig.axes[0]
     assert len(polys(ax, COLORS["void"])) == 4
     disks = [c for c in ax.collections if isinstance(c, PatchCollection)][0]
@@ -199,7 +199,7 @@ def test_voids_2d_draws_cells_under_the_disks():
 
 def test_voids_grow_the_disks():
     b = D.ring(6, radius=2.0, disk_radius=1.0)
-    fig = PT.voids(b, [], tau=3.0)
+    fig = PT.voids(b, voids=[], tau=3.0)
     disks = [c for c in fig.axes[0].collections if isinstance(c, PatchCollection)][0]
     paths = disks.get_paths()
     assert len(paths) == 6
@@ -212,7 +212,7 @@ def test_pockets_2d_draws_mouths():
     b = D.ring(6, radius=2.0, disk_radius=1.2)
     p = FakePocket(np.array([[0, 1, 2], [0, 2, 3]]), np.array([[0, 3], [1, 2]]), np.array([0, 1, 2, 3]),
                    0.5, 2.0, 0.4)
-    fig = PT.pockets(b, [p], tau=0.0, show_voids=False)
+    fig = PT.pockets(b, pockets=[p], tau=0.0, show_voids=False)
     ax = fig.axes[0]
     assert len(polys(ax, COLORS["accent"])) == 2
     mouths = [c for c in ax.collections if isinstance(c, LineCollection)]
@@ -226,7 +226,7 @@ def test_pockets_2d_draws_mouths():
 def test_tunnels_3d_draws_the_cycle():
     b = D.ring(8, radius=3.0, disk_radius=1.0, dim=3)
     cyc = np.array([[i, (i + 1) % 8] for i in range(8)])
-    fig = PT.tunnels(b, [FakeTunnel(-0.4, 8.0, cyc)], tau=0.0)
+    fig = PT.tunnels(b, tunnels=[FakeTunnel(-0.4, 8.0, cyc)], tau=0.0)
     render(fig)
     ax = fig.axes[0]
     assert ax.name == "3d"
@@ -240,7 +240,7 @@ def test_voids_3d_draws_the_free_space_of_the_cells():
     # a fake void: one interior "cell" made of 4 atoms around the centre
     far = np.argsort(b.centers @ np.array([1.0, 0.3, 0.1]))[[0, 20, 40, 59]]
     cells = np.array([np.sort(far)])
-    fig = PT.voids(b, [FakeVoid(cells, far, -0.9, 9.1, 1.0)])
+    fig = PT.voids(b, voids=[FakeVoid(cells, far, -0.9, 9.1, 1.0)])
     render(fig)
     ax = fig.axes[0]
     cloud = [c for c in ax.collections if isinstance(c, PathCollection)][-1]
@@ -261,7 +261,7 @@ def test_plots_of_real_features():
     fig = PT.pockets(left, tau=0.0)
     assert len(polys(fig.axes[0], COLORS["accent"])) == sum(len(p.cells) for p in P)
     V = shapelab.voids(D.fullerene_c60(), 0.0)
-    assert isinstance(PT.voids(D.fullerene_c60(), V), Figure)
+    assert isinstance(PT.voids(D.fullerene_c60(), voids=V), Figure)
     assert isinstance(PT.tunnels(D.nanotube()), Figure)
 
 

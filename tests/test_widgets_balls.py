@@ -32,7 +32,7 @@ def test_constructs_a_widget_with_a_frame():
 def test_moving_the_slider_changes_the_drawn_complex():
     b = rand(seed=1)
     F = alpha_filtration(b)
-    w = alpha_explorer(b, filtration=F, tau=0.0)
+    w = alpha_explorer(F, tau=0.0)
     edges0 = len(w.view._edges.get_segments())
     frame0 = w.image.value
     w.slider.value = 1.5
@@ -138,7 +138,7 @@ def test_complex3d_explorer_reports_the_filtrations_betti_numbers():
 
     b = datasets.fullerene_c60()
     F = alpha_filtration(b)
-    w = complex3d_explorer(b, filtration=F, resolution=4)
+    w = complex3d_explorer(F, resolution=4)
     for tau in (w.slider.min, 0.0, 1.0, w.slider.max):
         w.slider.value = tau
         t = w.slider.value

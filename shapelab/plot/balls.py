@@ -26,7 +26,7 @@ from matplotlib.colors import BoundaryNorm, Normalize, to_rgba
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from .._validate import as_finite_scalar, as_positive_int
+from .._validate import as_finite_scalar, as_positive_int, as_tau, filtration_first
 from ..balls import Balls
 from ._style import COLORS, PAGE, PALETTE, new_figure, style
 
@@ -97,15 +97,10 @@ def _disk_collection(ax, centers, radii, **kw):
     return coll
 
 
-def _complex_of(balls, tau, filtration):
-    from ..filtration import alpha_filtration
+def _filtration_of(F, who):
+    from ..filtration import as_filtration
 
-    F = alpha_filtration(balls) if filtration is None else filtration
-    if F.balls is not balls and not (
-        np.array_equal(F.balls.centers, balls.centers) and np.array_equal(F.balls.radii, balls.radii)
-    ):
-        raise ValueError("filtration was computed for other balls than `balls`")
-    return F, F.complex_at(tau)
+    return as_filtration(F, who)
 
 
 def _segments(centers, edges):
@@ -136,7 +131,7 @@ def disks(balls, *, tau=0.0, ax=None, labels=False, title=None, color=None, show
     matplotlib.figure.Figure
     """
     _check_balls(balls, dim=2)
-    tau = as_finite_scalar(tau, "tau")
+    tau = as_tau(tau, finite=True)
     fig, ax = _axes(ax)
     r = _grown_radii(balls, tau)
     with style():
@@ -236,14 +231,17 @@ class DualComplexView:
     ``view_tau``: the largest τ the view should have room for.
     """
 
-    def __init__(self, balls, tau=0.0, *, ax=None, filtration=None, show_cells=True, show_disks=True,
+    @filtration_first(name="DualComplexView")
+    def __init__(self, F, tau=0.0, *, ax=None, show_cells=True, show_disks=True,
                  bbox=None, labels=False, title=None, legend=True, view_tau=None):
         from ..power import power_diagram as _pd
 
+        F = _filtration_of(F, "DualComplexView")
+        balls = F.balls
         _check_balls(balls, dim=2)
-        tau = as_finite_scalar(tau, "tau")
+        tau = as_tau(tau, finite=True)
         self.balls = balls
-        self.filtration, self.complex = _complex_of(balls, tau, filtration)
+        self.filtration, self.complex = F, F.complex_at(tau)
         self.figure, self.ax = _axes(ax)
         self._title = title
         ax = self.ax
@@ -272,7 +270,7 @@ class DualComplexView:
                     ax.annotate(str(i), c, xytext=(3, 3), textcoords="offset points", fontsize=8)
             lim_r = np.maximum(r, balls.radii)
             if view_tau is not None:  # keep room for the disks grown up to view_tau
-                lim_r = np.maximum(lim_r, _grown_radii(balls, as_finite_scalar(view_tau, "view_tau")))
+                lim_r = np.maximum(lim_r, _grown_radii(balls, as_tau(view_tau, "view_tau", finite=True)))
             _limits_2d(ax, balls.centers, lim_r, bbox=bbox)
             if legend:
                 handles = []
@@ -370,7 +368,7 @@ class DualComplexView:
 
     def update(self, tau) -> "DualComplexView":
         """Redraw at growth time ``tau``: only ``complex_at(tau)`` is computed."""
-        tau = as_finite_scalar(tau, "tau")
+        tau = as_tau(tau, finite=True)
         r = _grown_radii(self.balls, tau)
         if self._disks is not None:
             self._disks.set_widths(2 * r)
@@ -382,20 +380,20 @@ class DualComplexView:
         return self
 
 
-def dual_complex(balls, tau=0.0, *, ax=None, filtration=None, show_cells=True, show_disks=True, bbox=None,
+@filtration_first(name="plot.dual_complex")
+def dual_complex(F, tau=0.0, *, ax=None, show_cells=True, show_disks=True, bbox=None,
                  labels=False, title=None):
     """Figure 23.1 (i): disks, clipped cells :math:`B_i \\cap \\Pi(B_i)` and the dual
     complex K on top (Notes §23.1).
 
     Parameters
     ----------
-    balls : Balls
-        2D balls.
+    F : Filtration or Balls
+        ``alpha_filtration(balls)`` of 2D balls, or the balls (their filtration is
+        then built for this figure).
     tau : float
         Growth time; 0 draws the balls as given.
     ax : matplotlib Axes, optional
-    filtration : Filtration, optional
-        ``alpha_filtration(balls)`` if already computed.
     show_cells, show_disks, labels : bool
     bbox : array_like (2, 2), optional
         Box for the power cells and the view.
@@ -405,7 +403,7 @@ def dual_complex(balls, tau=0.0, *, ax=None, filtration=None, show_cells=True, s
     -------
     matplotlib.figure.Figure
     """
-    return DualComplexView(balls, tau, ax=ax, filtration=filtration, show_cells=show_cells, show_disks=show_disks,
+    return DualComplexView(F, tau, ax=ax, show_cells=show_cells, show_disks=show_disks,
                            bbox=bbox, labels=labels, title=title).figure
 
 
@@ -438,7 +436,7 @@ def filtration(F, *, tau=None, ax=None, cmap="cividis", show_disks=False, title=
     if not isinstance(F, Filtration):
         raise TypeError(f"F must be a shapelab Filtration (alpha_filtration(balls)), got {type(F).__name__}")
     _check_balls(F.balls, "F.balls", dim=2)
-    t = np.inf if tau is None else as_finite_scalar(tau, "tau")
+    t = np.inf if tau is None else as_tau(tau, finite=True)
     K = F.complex_at(t)
     c = F.balls.centers
     fig, ax = _axes(ax)
@@ -551,7 +549,7 @@ def balls3d(balls, *, tau=0.0, ax=None, resolution=10, alpha=0.35, color=None, e
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
     _check_balls(balls, dim=3)
-    tau = as_finite_scalar(tau, "tau")
+    tau = as_tau(tau, finite=True)
     resolution = as_positive_int(resolution, "resolution", minimum=3)
     alpha = as_finite_scalar(alpha, "alpha")
     fig, ax = _axes(ax, projection="3d")
@@ -599,7 +597,7 @@ def complex3d(complex_or_filtration, *, tau=None, ax=None, show_balls=False, cma
     from ..filtration import Complex, Filtration
 
     if isinstance(complex_or_filtration, Filtration):
-        t = 0.0 if tau is None else as_finite_scalar(tau, "tau")
+        t = 0.0 if tau is None else as_tau(tau, finite=True)
         K, shaded = complex_or_filtration.complex_at(t), True
     elif isinstance(complex_or_filtration, Complex):
         if tau is not None:

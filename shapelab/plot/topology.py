@@ -18,7 +18,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, Patch
 from matplotlib.ticker import MaxNLocator
 
-from .._validate import as_finite_scalar
+from .._validate import as_finite_scalar, as_tau, filtration_first
 from ._style import COLORS, PAGE, PALETTE, new_figure, style
 
 __all__ = ["persistence_diagram", "barcode", "betti_curve", "voids", "pockets", "tunnels"]
@@ -102,7 +102,11 @@ def _field(obj, *names):
 
 
 def _check_tau(tau, name="tau"):
-    return as_finite_scalar(tau, name)
+    if isinstance(tau, (list, tuple)):
+        raise TypeError(f"{name} must be a real number, got a {type(tau).__name__}; computed features are "
+                        "passed by keyword: plot.voids(F, tau, voids=V), plot.pockets(F, tau, pockets=P)")
+    # drawing needs balls of finite radius
+    return as_tau(tau, name, finite=True)
 
 
 # ------------------------------------------------------------- persistence
@@ -370,12 +374,9 @@ def _rgba(color, alpha=1.0):
     return to_rgba(color, alpha)
 
 
-def _draw_complex_2d(ax, balls, tau, filtration=None):
-    import shapelab
-
-    F = filtration if filtration is not None else shapelab.alpha_filtration(balls)
+def _draw_complex_2d(ax, F, tau):
     K = F.complex_at(tau)
-    c = balls.centers
+    c = F.balls.centers
     E = np.asarray(K.simplices(1))
     T = np.asarray(K.simplices(2))
     if len(T):
@@ -449,23 +450,25 @@ def _draw_balls_3d(ax, balls, tau, *, highlight=None, half=1.0):
                    linewidths=0.3, depthshade=True, zorder=2)
 
 
-def _features_or_compute(balls, features, tau, fn_name, filtration=None, **kw):
+def _features_or_compute(F, features, tau, fn_name, **kw):
+    """The features given, or those computed from ``F`` at ``tau`` (the filtration keeps
+    its merge tree and cycles, so this costs little once it has been asked)."""
     if features is None:
-        import shapelab
+        from .. import cavities
 
-        return list(getattr(shapelab, fn_name)(balls, tau, filtration=filtration, **kw))
+        return list(getattr(cavities, fn_name)(F, tau, **kw))
     return list(features)
 
 
-def _check_balls(balls):
-    from ..balls import Balls
+def _filtration_of(F, who):
+    from ..filtration import as_filtration
 
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+    return as_filtration(F, who)
 
 
-def voids(balls, voids=None, *, tau=0.0, ax=None, show_complex=False, elev=20, azim=35,
-          title=None, filtration=None, show_volumes=None, legend=True):
+@filtration_first(name="plot.voids")
+def voids(F, tau=0.0, *, voids=None, ax=None, show_complex=False, elev=20, azim=35,
+          title=None, show_volumes=None, legend=True):
     """Draw the voids of the union of balls grown to τ (holes in 2D, Notes §23.1).
 
     A void is a bounded component of :math:`\\mathbb{R}^d \\setminus \\bigcup B_i`; it is
@@ -475,19 +478,19 @@ def voids(balls, voids=None, *, tau=0.0, ax=None, show_complex=False, elev=20, a
 
     Parameters
     ----------
-    balls : Balls
-    voids : sequence of Void, optional
-        From :func:`shapelab.voids`; computed at ``tau`` if not given.
+    F : Filtration
+        ``alpha_filtration(balls)`` (a :class:`~shapelab.Balls` is accepted too, as
+        by :func:`shapelab.voids`); the balls drawn are ``F.balls``.
     tau : float
         Growth time at which to draw the balls (radii :math:`\\sqrt{r^2+\\tau}`).
+    voids : sequence of Void, optional
+        ``shapelab.voids(F, tau)``, if already computed; computed from ``F`` if not.
     ax : Axes, optional (a 3D Axes for 3D balls)
     show_complex : bool
         2D only: also draw the dual complex :math:`K_\\tau` (edges and triangles).
     elev, azim : float
         3D view.
     title : str, optional
-    filtration : Filtration, optional
-        ``alpha_filtration(balls)``, to avoid recomputing it.
     show_volumes : bool, optional
         Write each feature's area/volume in the legend (default: in 2D only, since
         an exact pocket volume in 3D can take seconds).
@@ -504,19 +507,20 @@ def voids(balls, voids=None, *, tau=0.0, ax=None, show_complex=False, elev=20, a
     void's cells kept where no grown ball covers them.  The cells themselves would
     draw the void of :math:`K_\\tau`, which is much larger than the void of the union.
     """
-    _check_balls(balls)
+    F = _filtration_of(F, "plot.voids")
+    balls = F.balls
     tau = _check_tau(tau)
-    V = _features_or_compute(balls, voids, tau, "voids", filtration)
+    V = _features_or_compute(F, voids, tau, "voids")
     word = "hole" if balls.dim == 2 else "void"
     title = title or f"{len(V)} {word}{'s' if len(V) != 1 else ''} at τ = {tau:g}"
-    return _draw_features(balls, tau, V, [], [], ax=ax, show_complex=show_complex, elev=elev,
-                          azim=azim, title=title, filtration=filtration,
-                          show_volumes=show_volumes, legend=legend)
+    return _draw_features(F, tau, V, [], [], ax=ax, show_complex=show_complex, elev=elev,
+                          azim=azim, title=title, show_volumes=show_volumes, legend=legend)
 
 
-def pockets(balls, pockets=None, *, tau=0.0, voids=None, show_voids=True, ax=None,
+@filtration_first(name="plot.pockets")
+def pockets(F, tau=0.0, *, pockets=None, voids=None, show_voids=True, ax=None,
             show_complex=False, min_persistence=1e-9, elev=20, azim=35, title=None,
-            filtration=None, show_volumes=None, legend=True):
+            show_volumes=None, legend=True):
     """Draw the pockets of the growth model at τ with their mouths (Notes §23.1, Fig. 23.2).
 
     A pocket is a region of the complement still connected to the outside at τ that
@@ -526,11 +530,12 @@ def pockets(balls, pockets=None, *, tau=0.0, voids=None, show_voids=True, ax=Non
 
     Parameters
     ----------
-    balls : Balls
-    pockets : sequence of Pocket, optional
-        From :func:`shapelab.pockets`; computed at ``tau`` (with ``min_persistence``)
-        if not given.
+    F : Filtration
+        ``alpha_filtration(balls)`` (or the :class:`~shapelab.Balls`), as for :func:`voids`.
     tau : float
+    pockets : sequence of Pocket, optional
+        ``shapelab.pockets(F, tau, ...)``, if already computed; computed from ``F``
+        (with ``min_persistence``) if not.
     voids : sequence of Void, optional
         Voids to draw too (computed at τ if ``show_voids`` and not given).
     show_voids : bool
@@ -539,51 +544,53 @@ def pockets(balls, pockets=None, *, tau=0.0, voids=None, show_voids=True, ax=Non
     min_persistence : float, default 1e-9
         Passed to :func:`shapelab.pockets` when computing (the default leaves out
         pockets that close and fill at the same τ up to round-off).
-    filtration : Filtration, optional
-        ``alpha_filtration(balls)``, to avoid recomputing it.
 
     Returns
     -------
     matplotlib.figure.Figure
     """
-    _check_balls(balls)
+    F = _filtration_of(F, "plot.pockets")
+    balls = F.balls
     tau = _check_tau(tau)
-    Pk = _features_or_compute(balls, pockets, tau, "pockets", filtration, min_persistence=min_persistence)
-    V = (_features_or_compute(balls, voids, tau, "voids", filtration) if show_voids else [])
+    Pk = _features_or_compute(F, pockets, tau, "pockets", min_persistence=min_persistence)
+    V = (_features_or_compute(F, voids, tau, "voids") if show_voids else [])
     word = "hole" if balls.dim == 2 else "void"
     if title is None:
         title = f"{len(Pk)} pocket{'s' if len(Pk) != 1 else ''}"
         if show_voids:
             title += f", {len(V)} {word}{'s' if len(V) != 1 else ''}"
         title += f" at τ = {tau:g}"
-    return _draw_features(balls, tau, V, Pk, [], ax=ax, show_complex=show_complex, elev=elev,
-                          azim=azim, title=title, filtration=filtration,
-                          show_volumes=show_volumes, legend=legend)
+    return _draw_features(F, tau, V, Pk, [], ax=ax, show_complex=show_complex, elev=elev,
+                          azim=azim, title=title, show_volumes=show_volumes, legend=legend)
 
 
-def tunnels(balls, tunnels=None, *, tau=0.0, ax=None, show_complex=False, elev=20, azim=35,
-            title=None, filtration=None, legend=True):
+@filtration_first(name="plot.tunnels")
+def tunnels(F, tau=0.0, *, tunnels=None, ax=None, show_complex=False, elev=20, azim=35,
+            title=None, legend=True):
     """Draw the tunnels alive at τ: a representative cycle of each H₁ class (Notes §23.1).
 
     Parameters
     ----------
-    balls : Balls
+    F : Filtration
+        ``alpha_filtration(balls)`` of 3D balls (or the :class:`~shapelab.Balls`), as
+        for :func:`voids`.
+    tau : float
     tunnels : sequence of Tunnel, optional
-        From :func:`shapelab.tunnels`; computed at ``tau`` if not given.  Each cycle is a
-        closed chain of edges between ball centres, drawn as a thick line.
-    tau, ax, show_complex, elev, azim, title, filtration, legend
+        ``shapelab.tunnels(F, tau)``, if already computed; computed from ``F`` if not.
+        Each cycle is a closed chain of edges between ball centres, drawn as a thick line.
+    ax, show_complex, elev, azim, title, legend
         As for :func:`voids`.
 
     Returns
     -------
     matplotlib.figure.Figure
     """
-    _check_balls(balls)
+    F = _filtration_of(F, "plot.tunnels")
     tau = _check_tau(tau)
-    T = _features_or_compute(balls, tunnels, tau, "tunnels", filtration)
+    T = _features_or_compute(F, tunnels, tau, "tunnels")
     title = title or f"{len(T)} tunnel{'s' if len(T) != 1 else ''} at τ = {tau:g}"
-    return _draw_features(balls, tau, [], [], T, ax=ax, show_complex=show_complex, elev=elev,
-                          azim=azim, title=title, filtration=filtration, legend=legend)
+    return _draw_features(F, tau, [], [], T, ax=ax, show_complex=show_complex, elev=elev,
+                          azim=azim, title=title, legend=legend)
 
 
 def _cycle_edges(t):
@@ -627,8 +634,8 @@ def _pocket_color(i: int) -> str:
     return _POCKET_COLORS[(i - 1) % len(_POCKET_COLORS)]
 
 
-def _draw_features(balls, tau, V, Pk, T, *, ax, show_complex, elev, azim, title, filtration=None,
-                   show_volumes=None, legend=True):
+def _draw_features(F, tau, V, Pk, T, *, ax, show_complex, elev, azim, title, show_volumes=None, legend=True):
+    balls = F.balls
     d = balls.dim
     own_figure = ax is None
     want_legend = legend
@@ -663,7 +670,7 @@ def _draw_features(balls, tau, V, Pk, T, *, ax, show_complex, elev, azim, title,
                                                                                             show_volumes)))
                 _tag(ax, balls, cells, f"P{i}")
             if show_complex:
-                _draw_complex_2d(ax, balls, tau, filtration)
+                _draw_complex_2d(ax, F, tau)
             for t in T:
                 e = _cycle_edges(t)
                 ax.add_collection(LineCollection(c[e], colors=COLORS["void"], linewidths=2.5, zorder=5))

@@ -4,7 +4,7 @@ from __future__ import annotations
 import ipywidgets as W
 import numpy as np
 
-from .._validate import as_finite_scalar, as_positive_int
+from .._validate import as_finite_scalar, as_positive_int, as_tau, filtration_first
 
 __all__ = ["alpha_explorer", "AlphaExplorer"]
 
@@ -31,7 +31,8 @@ def _default_range(F):
     return lo, hi
 
 
-def alpha_explorer(balls, *, tau=0.0, tau_range=None, steps=100, filtration=None, show_cells=True,
+@filtration_first(name="alpha_explorer")
+def alpha_explorer(F, *, tau=0.0, tau_range=None, steps=100, show_cells=True,
                    show_measure=True, bbox=None):
     """A slider in the growth time τ over the disks grown to :math:`\\sqrt{r_i^2+\\tau}`
     and their dual complex :math:`K_\\tau` (Notes §23.1, Figure 23.1).
@@ -44,8 +45,9 @@ def alpha_explorer(balls, *, tau=0.0, tau_range=None, steps=100, filtration=None
 
     Parameters
     ----------
-    balls : Balls
-        2D disks.
+    F : Filtration or Balls
+        ``alpha_filtration(balls)`` of 2D disks, or the disks (their filtration is
+        then built here, once).
     tau : float
         Initial growth time.
     tau_range : (float, float), optional
@@ -53,8 +55,6 @@ def alpha_explorer(balls, *, tau=0.0, tau_range=None, steps=100, filtration=None
         last change of topology (the largest finite death in ``F.persistence()``).
     steps : int
         Slider resolution.
-    filtration : Filtration, optional
-        ``alpha_filtration(balls)`` if already computed.
     show_cells : bool
         Draw the clipped cells :math:`B_i \\cap \\Pi(B_i)`.
     show_measure : bool
@@ -67,13 +67,16 @@ def alpha_explorer(balls, *, tau=0.0, tau_range=None, steps=100, filtration=None
     AlphaExplorer
         An ``ipywidgets.VBox``: the slider, a status line and the figure.
     """
-    from ..filtration import alpha_filtration
+    from ..filtration import as_filtration
     from ._frame import check_balls, value_range
 
+    if hasattr(F, "centers"):   # the disks: checked before their filtration is built
+        check_balls(F, dim=2, who="alpha_explorer", what="disk")
+    F = as_filtration(F, "alpha_explorer")
+    balls = F.balls
     check_balls(balls, dim=2, who="alpha_explorer", what="disk")
-    tau = as_finite_scalar(tau, "tau")
+    tau = as_tau(tau, finite=True)
     steps = as_positive_int(steps, "steps", minimum=2)
-    F = alpha_filtration(balls) if filtration is None else filtration
     lo, hi = _default_range(F) if tau_range is None else value_range(tau_range, "tau_range")
     tau = min(max(tau, lo), hi)
     return AlphaExplorer(balls, F, tau, lo, hi, (hi - lo) / steps, bool(show_cells), bool(show_measure), bbox)
@@ -98,7 +101,7 @@ class AlphaExplorer(W.VBox):
         self._balls = balls
         self._F = F
         self._show_measure = show_measure
-        self.view = DualComplexView(balls, tau, filtration=F, show_cells=show_cells, bbox=bbox, view_tau=hi,
+        self.view = DualComplexView(F, tau, show_cells=show_cells, bbox=bbox, view_tau=hi,
                                     title="The disks grown to time τ and their dual complex $K_\\tau$")
         self.slider = W.FloatSlider(value=tau, min=lo, max=hi, step=step, description="τ",
                                     continuous_update=False, readout_format=".3f",
@@ -129,14 +132,14 @@ class AlphaExplorer(W.VBox):
         if self._show_measure:
             from ..measure import union_measure
 
-            m = union_measure(self._balls, tau=t, filtration=self._F)
+            m = union_measure(self._F, t)
             parts.append(f"area {m.area:.4g}, perimeter {m.perimeter:.4g}")
         return " · ".join(parts)
 
     def update(self, tau=None):
         """Recompute at ``tau`` (default: the slider's value) and move the artists
         (the image is refreshed by the slider's callback, or by ``view.png()``)."""
-        t = float(self.slider.value) if tau is None else as_finite_scalar(tau, "tau")
+        t = float(self.slider.value) if tau is None else as_tau(tau, finite=True)
         self.view.update(t)
         self.status.value = self.status_text()
         return self
@@ -305,7 +308,8 @@ class PowerExplorer(W.VBox):
 
 
 # --------------------------------------------------------------------------- 3D
-def complex3d_explorer(balls, *, tau=0.0, tau_range=None, steps=60, azim=35.0, elev=20.0, filtration=None,
+@filtration_first(name="complex3d_explorer")
+def complex3d_explorer(F, *, tau=0.0, tau_range=None, steps=60, azim=35.0, elev=20.0,
                        show_balls=True, resolution=8):
     """The growth model in 3D: a slider in τ and one for the view angle (Notes §23.1).
 
@@ -315,8 +319,9 @@ def complex3d_explorer(balls, *, tau=0.0, tau_range=None, steps=60, azim=35.0, e
 
     Parameters
     ----------
-    balls : Balls
-        3D balls.
+    F : Filtration or Balls
+        ``alpha_filtration(balls)`` of 3D balls, or the balls (their filtration is
+        then built here, once).
     tau : float
         Initial growth time.
     tau_range : (float, float), optional
@@ -325,8 +330,6 @@ def complex3d_explorer(balls, *, tau=0.0, tau_range=None, steps=60, azim=35.0, e
         Resolution of the τ slider.
     azim, elev : float
         Initial view angles in degrees; the second slider turns the azimuth.
-    filtration : Filtration, optional
-        ``alpha_filtration(balls)`` if already computed.
     show_balls : bool
         Draw the grown balls as well as the complex.
     resolution : int
@@ -337,16 +340,19 @@ def complex3d_explorer(balls, *, tau=0.0, tau_range=None, steps=60, azim=35.0, e
     Complex3DExplorer
         An ``ipywidgets.VBox``: the sliders, a status line and the figure.
     """
-    from ..filtration import alpha_filtration
+    from ..filtration import as_filtration
     from ._frame import check_balls, value_range
 
+    if hasattr(F, "centers"):   # the balls: checked before their filtration is built
+        check_balls(F, dim=3, who="complex3d_explorer")
+    F = as_filtration(F, "complex3d_explorer")
+    balls = F.balls
     check_balls(balls, dim=3, who="complex3d_explorer")
-    tau = as_finite_scalar(tau, "tau")
+    tau = as_tau(tau, finite=True)
     azim = as_finite_scalar(azim, "azim")
     elev = as_finite_scalar(elev, "elev")
     steps = as_positive_int(steps, "steps", minimum=2)
     resolution = as_positive_int(resolution, "resolution", minimum=3)
-    F = alpha_filtration(balls) if filtration is None else filtration
     lo, hi = _default_range(F) if tau_range is None else value_range(tau_range, "tau_range")
     return Complex3DExplorer(balls, F, min(max(tau, lo), hi), lo, hi, (hi - lo) / steps, azim % 360.0, elev,
                              bool(show_balls), resolution)

@@ -6,7 +6,7 @@ import io
 import ipywidgets as W
 import numpy as np
 
-from .._validate import as_finite_scalar
+from .._validate import as_finite_scalar, as_tau, filtration_first
 
 __all__ = ["pocket_explorer", "PocketExplorer"]
 
@@ -25,7 +25,8 @@ def _default_range(balls, F):
     return lo, hi + 0.1 * (hi - lo)
 
 
-def pocket_explorer(balls, *, tau=0.0, tau_range=None, steps=100, min_persistence=1e-9,
+@filtration_first(name="pocket_explorer")
+def pocket_explorer(F, *, tau=0.0, tau_range=None, steps=100, min_persistence=1e-9,
                     show_complex=False):
     """A slider in τ over the disks grown to :math:`\\sqrt{r^2+\\tau}`, with the holes
     (voids) and the pockets with their mouths at that τ (Notes §23.1, Figure 23.2).
@@ -36,8 +37,9 @@ def pocket_explorer(balls, *, tau=0.0, tau_range=None, steps=100, min_persistenc
 
     Parameters
     ----------
-    balls : Balls
-        2D disks (3D works too but redraws slowly).
+    F : Filtration or Balls
+        ``alpha_filtration(balls)`` of 2D disks (3D works too but redraws slowly), or
+        the disks (their filtration is then built here, once).
     tau : float
         Initial growth time.
     tau_range : (float, float), optional
@@ -56,14 +58,16 @@ def pocket_explorer(balls, *, tau=0.0, tau_range=None, steps=100, min_persistenc
     PocketExplorer
         An ``ipywidgets.VBox`` holding the slider and the figure.
     """
-    import shapelab
-
+    from ..filtration import as_filtration
     from ._frame import check_balls, value_range
 
+    if hasattr(F, "centers"):   # the balls: checked before their filtration is built
+        check_balls(F, dim=None, who="pocket_explorer")
+    F = as_filtration(F, "pocket_explorer")
+    balls = F.balls
     check_balls(balls, dim=None, who="pocket_explorer")
 
-    tau = as_finite_scalar(tau, "tau")
-    F = shapelab.alpha_filtration(balls)
+    tau = as_tau(tau, finite=True)
     lo, hi = _default_range(balls, F) if tau_range is None else value_range(tau_range, "tau_range")
     if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 2:
         raise ValueError(f"steps must be an integer >= 2, got {steps!r}")
@@ -102,16 +106,14 @@ class PocketExplorer(W.VBox):
         import shapelab
 
         t = self.tau
-        return (shapelab.pockets(self._balls, t, min_persistence=self._minp, filtration=self._F),
-                shapelab.voids(self._balls, t, filtration=self._F))
+        return (shapelab.pockets(self._F, t, min_persistence=self._minp), shapelab.voids(self._F, t))
 
     def figure(self):
         """The current figure (:func:`shapelab.plot.pockets` at the slider's τ)."""
         from ..plot.topology import pockets as plot_pockets
 
         P, V = self.features()
-        return plot_pockets(self._balls, P, tau=self.tau, voids=V, show_complex=self._show_complex,
-                            filtration=self._F)
+        return plot_pockets(self._F, self.tau, pockets=P, voids=V, show_complex=self._show_complex)
 
     def _redraw(self, change=None):
         P, V = self.features()
