@@ -132,8 +132,8 @@ def ours_cavities(data):
 
     F = _built(data, "ours")
     F = _forget(F)
-    v = voids(data["balls"], 0.0, filtration=F)
-    p = pockets(data["balls"], 0.0, filtration=F)
+    v = voids(F, 0.0)
+    p = pockets(F, 0.0)
     return len(v), len(p), sum(x.volume for x in v)
 
 

@@ -38,9 +38,9 @@ def setup(seed, n=200):
     side = 30.0 * np.sqrt(n / 200.0)
     balls = Balls(rng.uniform(0, side, (n, 2)), rng.uniform(0.5, 1.5, n))
     F = alpha_filtration(balls)
-    view = DualComplexView(balls, 0.0, filtration=F, view_tau=3.0, title="α-explorer benchmark")
+    view = DualComplexView(F, 0.0, view_tau=3.0, title="α-explorer benchmark")
     view.render()  # the static background is drawn once, when the widget is built
-    explorer = alpha_explorer(balls, filtration=F)
+    explorer = alpha_explorer(F)
     taus = itertools.cycle(np.linspace(-0.5, 3.0, 15))
     return _Data(view, taus, explorer)
 
