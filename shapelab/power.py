@@ -68,7 +68,7 @@ from scipy.spatial import ConvexHull, QhullError
 from .balls import Balls
 from .certify import certify, facet_adjacency
 from .incremental import incremental_triangulation
-from .predicates import WeightedPoints
+from .predicates import WeightedPoints, det
 
 __all__ = ["regular_triangulation", "power_diagram", "PowerDiagram", "triangulation_report", "TriangulationReport"]
 
@@ -524,8 +524,40 @@ def _orthocentres(balls: Balls, tri: np.ndarray) -> np.ndarray:
     p0 = z[tri[:, 0]]
     A = z[tri[:, 1:]] - p0[:, None, :]
     b = 0.5 * (np.einsum("mjk,mjk->mj", A, A) - w[tri[:, 1:]] + w[tri[:, :1]])
-    u = np.linalg.solve(A, b[..., None])[..., 0]
+    # A sliver (a hull triangle over points collinear up to round-off, which the exact
+    # triangulation keeps) has a nearly singular A: its orthocentre is far away and is
+    # computed in rational arithmetic.  Other rows: float, with a relative
+    # condition guard of 1e-8 (error ~1e-8 of the vertex's distance at worst).
+    det = np.linalg.det(A)
+    scale = np.prod(np.linalg.norm(A, axis=2), axis=1)
+    bad = ~(np.abs(det) > 1e-8 * scale)
+    u = np.empty_like(p0)
+    good = ~bad
+    if good.any():
+        u[good] = np.linalg.solve(A[good], b[good][..., None])[..., 0]
+    for t in np.flatnonzero(bad):
+        u[t] = _orthocentre_exact(balls, tri[t]) - origin - p0[t]
     return p0 + u + origin
+
+
+def _orthocentre_exact(balls: Balls, row) -> np.ndarray:
+    """The orthocentre of one full-dimensional simplex in rationals, rounded once:
+    the solution c of :math:`2(z_j - z_0)\cdot c = |z_j|^2 - |z_0|^2 - w_j + w_0`."""
+    from fractions import Fraction
+
+    Z = [[Fraction(float(v)) for v in balls.centers[i]] for i in row]
+    W = [Fraction(float(r)) ** 2 for r in balls.radii[row]]
+    d = len(Z[0])
+    M = [[2 * (Z[j][a] - Z[0][a]) for a in range(d)] for j in range(1, d + 1)]
+    rhs = [sum(v * v for v in Z[j]) - sum(v * v for v in Z[0]) - W[j] + W[0] for j in range(1, d + 1)]
+    D = det(M)
+    if D == 0:  # pragma: no cover - a certified triangulation has no flat simplex
+        raise ValueError("a flat simplex has no orthocentre")
+    out = []
+    for a in range(d):
+        Ma = [r[:a] + [rhs[j]] + r[a + 1:] for j, r in enumerate(M)]
+        out.append(float(det(Ma) / D))
+    return np.array(out)
 
 
 def _clip_polygon(poly: list, a0: float, a1: float, c: float) -> list:

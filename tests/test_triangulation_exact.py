@@ -359,3 +359,21 @@ def test_extreme_scales_give_the_same_triangulation_without_warnings(scale):
     assert np.array_equal(regular_triangulation(b), T0)
     F0, F = alpha_filtration(Balls(c, r)), alpha_filtration(b)
     np.testing.assert_allclose(F.values(3) / scale**2, F0.values(3), rtol=1e-9)
+
+
+@pytest.mark.parametrize("name", ["grid2d", "grid2d-offset", "grid3d", "lattice2d-noise", "ring2d", "cage70"])
+def test_power_diagram_vertices_of_slivers(name):
+    """Rounded lattices have hull slivers (points collinear only up to round-off) that
+    the exact triangulation keeps; their orthocentres are far away but finite, and
+    every vertex has equal power to the balls of its simplex."""
+    from shapelab import datasets, power_diagram, power_distance
+
+    balls = FAMILIES[name]
+    pd = power_diagram(balls)
+    T = regular_triangulation(balls)
+    assert np.all(np.isfinite(pd.vertices))
+    for t, v in zip(T, pd.vertices):
+        p = power_distance(v, Balls(balls.centers[t], balls.radii[t]))
+        assert np.ptp(p) <= 1e-9 * (np.abs(p).max() + np.abs(v).max() ** 2 + 1.0)
+    left = datasets.figure_23_2()[0]
+    assert np.all(np.isfinite(power_diagram(left).vertices))
