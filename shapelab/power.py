@@ -542,7 +542,7 @@ def _orthocentres(balls: Balls, tri: np.ndarray) -> np.ndarray:
 
 def _orthocentre_exact(balls: Balls, row) -> np.ndarray:
     """The orthocentre of one full-dimensional simplex in rationals, rounded once:
-    the solution c of :math:`2(z_j - z_0)\cdot c = |z_j|^2 - |z_0|^2 - w_j + w_0`."""
+    the solution c of :math:`2(z_j - z_0)\\cdot c = |z_j|^2 - |z_0|^2 - w_j + w_0`."""
     from fractions import Fraction
 
     Z = [[Fraction(float(v)) for v in balls.centers[i]] for i in row]
