@@ -203,8 +203,9 @@ class UnionMeasure:
 
 def _dot(a, b):
     s = a[0] * b[0]
+    tmp = np.empty_like(s)
     for i in range(1, a.shape[0]):
-        s += a[i] * b[i]
+        s += np.multiply(a[i], b[i], out=tmp)
     return s
 
 
@@ -223,7 +224,12 @@ def _unit(a, fallback=None):
 
 
 def _cross(a, b):
-    return np.stack([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+    out = np.empty((3,) + np.broadcast_shapes(a.shape[1:], b.shape[1:]))
+    tmp = np.empty(out.shape[1:])
+    for i, (j, k) in enumerate(((1, 2), (2, 0), (0, 1))):
+        np.multiply(a[j], b[k], out=out[i])
+        out[i] -= np.multiply(a[k], b[j], out=tmp)
+    return out
 
 
 def _cross_norm(a, b):
@@ -587,6 +593,8 @@ def measure_from_simplices(centers, weights, simplices, *, tau: float = 0.0) -> 
     Wall = np.asarray(weights, dtype=np.float64)
     n, d = Zall.shape
     Rall = np.sqrt(np.maximum(Wall, 0.0))
+    ZT = np.ascontiguousarray(Zall.T)  # (d, n): gathers per coordinate are contiguous
+    Wpos = np.maximum(Wall, 0.0)
     ball_measure = np.zeros(n)
     ball_boundary = np.zeros(n)
     terms, counts = [], []
@@ -604,8 +612,12 @@ def measure_from_simplices(centers, weights, simplices, *, tau: float = 0.0) -> 
         for a in range(0, st.shape[1], _BLOCK):
             sb = st[:, a:a + _BLOCK]
             # relative coordinates, component-first (k+1, d, m): exact for huge offsets
-            Z = np.ascontiguousarray((Zall[sb] - Zall[sb[0]][None]).transpose(0, 2, 1))
-            P[:, a:a + _BLOCK], S[:, a:a + _BLOCK] = _pieces(Z, np.maximum(Wall[sb], 0.0), Rall[sb], d, k)
+            Z = np.empty((k + 1, d, sb.shape[1]))
+            for i in range(d):
+                z0 = ZT[i].take(sb[0])
+                for v in range(k + 1):
+                    np.subtract(ZT[i].take(sb[v]), z0, out=Z[v, i])
+            P[:, a:a + _BLOCK], S[:, a:a + _BLOCK] = _pieces(Z, Wpos[sb], Rall[sb], d, k)
         sign = -1.0 if k % 2 else 1.0
         ball_measure += sign * np.bincount(st.ravel(), weights=P.ravel(), minlength=n)
         ball_boundary += sign * np.bincount(st.ravel(), weights=S.ravel(), minlength=n)
