@@ -117,6 +117,23 @@ def _slide(nrows=1, ncols=1, **kw):
     return new_figure(nrows, ncols, size=SLIDE, **kw)
 
 
+def _legend_below(fig, axes) -> None:
+    """One legend for all the panels of ``fig``, below them: none repeated in every
+    panel, none over the data.  The entries of the panels' legends, without repeats."""
+    handles, labels = [], []
+    for ax in np.ravel(axes):
+        leg = ax.get_legend()
+        if leg is None:
+            continue
+        for h, t in zip(leg.legend_handles, leg.get_texts()):
+            if t.get_text() not in labels:
+                handles.append(h)
+                labels.append(t.get_text())
+        leg.remove()
+    if handles:
+        fig.legend(handles, labels, loc="outside lower center", ncols=min(len(labels), 4))
+
+
 def build(name: str):
     """Draw the registered figure ``name`` at the 16:9 slide size; returns the Figure.
 
@@ -259,6 +276,7 @@ def fig23_2():
     fig, (a, b) = _slide(1, 2)
     _plot().pockets(_sl().alpha_filtration(left), ax=a, title="a pocket: its mouth closes first")
     _plot().pockets(_sl().alpha_filtration(right), ax=b, title="not a pocket: it fills without closing")
+    _legend_below(fig, (a, b))
     return fig
 
 
@@ -307,6 +325,7 @@ def l02_growth():
     fig, (a, b) = _slide(1, 2)
     _plot().dual_complex(F, -0.3, ax=a, title="τ = −0.3: one hole")
     _plot().dual_complex(F, 3.0, ax=b, title="τ = 3: one piece, no hole")
+    _legend_below(fig, (a, b))
     return fig
 
 
@@ -320,6 +339,7 @@ def l03_alpha_complexes():
     fig, axes = _slide(2, 2)
     for ax, tau in zip(axes.ravel(), (-0.5, 0.0, 0.6, 1.5)):
         _plot().dual_complex(F, tau, ax=ax, show_cells=False)
+    _legend_below(fig, axes)
     return fig
 
 
@@ -494,7 +514,7 @@ def l15_optimal_rotation():
     G -= G.mean(axis=0)
     q = sl.optimal_rotation(R, G)
     fig, (a, b) = _slide(1, 2, projection="3d")
-    _plot().point_sets(R, G, pairs=True, ax=a, title="paired sets: r_j → g_j")
+    _plot().point_sets(R, G, pairs=True, ax=a, title=r"paired sets: $r_j \to g_j$")
     _plot().point_sets(q.rotate(R), G, pairs=True, labels=("q R q*", "G"), ax=b,
                        title="after the optimal rotation")
     return fig

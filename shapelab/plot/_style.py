@@ -15,7 +15,7 @@ from contextlib import contextmanager
 import matplotlib
 from matplotlib.figure import Figure
 
-__all__ = ["PALETTE", "COLORS", "SEQUENTIAL", "SLIDE", "PAGE", "RC", "new_figure", "style"]
+__all__ = ["PALETTE", "COLORS", "SEQUENTIAL", "SLIDE", "PAGE", "RC", "new_figure", "style", "thin_3d_ticks"]
 
 #: Okabe-Ito palette, in the order used for categories.
 PALETTE = (
@@ -90,4 +90,16 @@ def new_figure(nrows: int = 1, ncols: int = 1, *, size=PAGE, projection=None, **
         if projection is not None:
             kw["projection"] = projection
         axes = fig.subplots(nrows, ncols, squeeze=True, subplot_kw=kw or None)
+    if projection == "3d":
+        for ax in fig.axes:
+            thin_3d_ticks(ax)
     return fig, axes
+
+
+def thin_3d_ticks(ax, nbins: int = 4) -> None:
+    """At most ``nbins + 1`` labelled ticks per axis of a 3D axes: matplotlib's default
+    crowds a slide-size 3D plot with overlapping numbers."""
+    from matplotlib.ticker import MaxNLocator
+
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+        axis.set_major_locator(MaxNLocator(nbins=nbins))

@@ -14,9 +14,14 @@ DPI = 90
 
 
 def image(size_inches, dpi: int = DPI) -> W.Image:
-    """An empty PNG image widget sized for a figure of ``size_inches`` at ``dpi``."""
-    w, h = size_inches
-    return W.Image(format="png", layout=W.Layout(width=f"{int(w * dpi)}px", height=f"{int(h * dpi)}px"))
+    """An empty PNG image widget for a figure of ``size_inches`` at ``dpi``.
+
+    Only the width is bounded (the figure's own width in pixels, or the page's if that is
+    narrower); the height follows the frame's own aspect ratio, so a frame is never
+    squashed, whatever the page width or the figure's actual size."""
+    w, _ = size_inches
+    return W.Image(format="png", layout=W.Layout(width="100%", max_width=f"{int(round(w * dpi))}px",
+                                                 height="auto", object_fit="contain"))
 
 
 def png(fig, dpi: int = DPI) -> bytes:

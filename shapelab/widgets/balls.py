@@ -5,6 +5,8 @@ import ipywidgets as W
 import numpy as np
 
 from .._validate import as_finite_scalar, as_positive_int, as_tau, filtration_first
+from . import _frame
+from .static import StaticFallback
 
 __all__ = ["alpha_explorer", "AlphaExplorer"]
 
@@ -82,7 +84,7 @@ def alpha_explorer(F, *, tau=0.0, tau_range=None, steps=100, show_cells=True,
     return AlphaExplorer(balls, F, tau, lo, hi, (hi - lo) / steps, bool(show_cells), bool(show_measure), bbox)
 
 
-class AlphaExplorer(W.VBox):
+class AlphaExplorer(StaticFallback, W.VBox):
     """Slider + status + figure; see :func:`alpha_explorer`.
 
     Attributes
@@ -107,8 +109,7 @@ class AlphaExplorer(W.VBox):
                                     continuous_update=False, readout_format=".3f",
                                     layout=W.Layout(width="70%"))
         self.status = W.HTML()
-        width, height = self.view.figure.get_size_inches() * self.view.figure.dpi
-        self.image = W.Image(format="png", layout=W.Layout(width=f"{int(width)}px", height=f"{int(height)}px"))
+        self.image = _frame.image(self.view.figure.get_size_inches(), dpi=self.view.figure.dpi)
         super().__init__([self.slider, self.status, self.image])
         self.slider.observe(self._on_change, names="value")
         self._on_change()
@@ -209,7 +210,7 @@ def power_explorer(balls, *, index=0, radius=None, radius_range=None, steps=100,
     return PowerExplorer(balls, int(index), min(max(r0, lo), hi), lo, hi, (hi - lo) / steps, mode, bbox)
 
 
-class PowerExplorer(W.VBox):
+class PowerExplorer(StaticFallback, W.VBox):
     """Disk selector + radius slider + status + figure; see :func:`power_explorer`.
 
     Attributes
@@ -224,7 +225,6 @@ class PowerExplorer(W.VBox):
     SIZE = (7.2, 5.4)
 
     def __init__(self, balls, index, radius, lo, hi, step, mode, bbox):
-        from . import _frame
 
         self._balls = balls
         self._radii = balls.radii.copy()
@@ -295,7 +295,6 @@ class PowerExplorer(W.VBox):
         return fig
 
     def _redraw(self, change=None):
-        from . import _frame
         from ..power import power_diagram
 
         self.diagram = power_diagram(self.balls, bbox=self._bbox)
@@ -358,13 +357,12 @@ def complex3d_explorer(F, *, tau=0.0, tau_range=None, steps=60, azim=35.0, elev=
                              bool(show_balls), resolution)
 
 
-class Complex3DExplorer(W.VBox):
+class Complex3DExplorer(StaticFallback, W.VBox):
     """τ slider + azimuth slider + status + figure; see :func:`complex3d_explorer`."""
 
     SIZE = (7.0, 5.6)
 
     def __init__(self, balls, F, tau, lo, hi, step, azim, elev, show_balls, resolution):
-        from . import _frame
 
         self._balls = balls
         self._F = F
@@ -404,7 +402,6 @@ class Complex3DExplorer(W.VBox):
         return fig
 
     def _redraw(self, change=None):
-        from . import _frame
 
         self.status.value = self.status_text()
         self.image.value = _frame.png(self.figure())

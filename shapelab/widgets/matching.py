@@ -8,6 +8,8 @@ import ipywidgets as W
 import numpy as np
 
 from .._validate import as_point, as_positive_int
+from . import _frame
+from .static import StaticFallback
 
 __all__ = ["critical_points_explorer", "CriticalPointsExplorer"]
 
@@ -64,7 +66,7 @@ def critical_points_explorer(curve, *, viewpoint=None, x_range=None, y_range=Non
     return CriticalPointsExplorer(curve, S, xr, yr, steps, bool(close))
 
 
-class CriticalPointsExplorer(W.VBox):
+class CriticalPointsExplorer(StaticFallback, W.VBox):
     """Sliders + figure; see :func:`critical_points_explorer`."""
 
     def __init__(self, curve, S, xr, yr, steps, close):
@@ -78,8 +80,7 @@ class CriticalPointsExplorer(W.VBox):
         self.status = W.HTML()
         # a PNG image, not an Output widget: it renders the same in a live kernel, in
         # nbclient/nbval runs and from the stored widget state on the static site
-        self.image = W.Image(format="png", layout=W.Layout(width=f"{int(_SIZE[0] * _DPI)}px",
-                                                           height=f"{int(_SIZE[1] * _DPI)}px"))
+        self.image = _frame.image(_SIZE, dpi=_DPI)
         super().__init__([W.HBox([self.sx, self.sy]), self.status, self.image])
         self.sx.observe(self._redraw, names="value")
         self.sy.observe(self._redraw, names="value")

@@ -12,6 +12,8 @@ import ipywidgets as W
 import numpy as np
 
 from .._validate import as_points, as_positive_int
+from . import _frame
+from .static import StaticFallback
 
 __all__ = ["icp_explorer", "ICPExplorer"]
 
@@ -52,7 +54,7 @@ def icp_explorer(source, target, *, max_iter: int = 30, tol: float = 0.0, accele
     return ICPExplorer(src, tgt, result, truth, max_lines)
 
 
-class ICPExplorer(W.VBox):
+class ICPExplorer(StaticFallback, W.VBox):
     """Slider + figures; see :func:`icp_explorer`.  ``.result`` is the ICPResult."""
 
     def __init__(self, source, target, result, truth, max_lines):
@@ -63,8 +65,7 @@ class ICPExplorer(W.VBox):
         self.status = W.HTML()
         # a PNG image, not an Output widget: it renders the same in a live kernel, in
         # nbclient/nbval runs and from the stored widget state on the static site
-        self.image = W.Image(format="png", layout=W.Layout(width=f"{int(_SIZE[0] * _DPI)}px",
-                                                           height=f"{int(_SIZE[1] * _DPI)}px"))
+        self.image = _frame.image(_SIZE, dpi=_DPI)
         super().__init__([self.slider, self.status, self.image])
         self.slider.observe(self._redraw, names="value")
         self._redraw()

@@ -7,6 +7,8 @@ import ipywidgets as W
 import numpy as np
 
 from .._validate import as_finite_scalar, as_tau, filtration_first
+from . import _frame
+from .static import StaticFallback
 
 __all__ = ["pocket_explorer", "PocketExplorer"]
 
@@ -77,7 +79,7 @@ def pocket_explorer(F, *, tau=0.0, tau_range=None, steps=100, min_persistence=1e
     return PocketExplorer(balls, F, tau, lo, hi, (hi - lo) / steps, min_persistence, bool(show_complex))
 
 
-class PocketExplorer(W.VBox):
+class PocketExplorer(StaticFallback, W.VBox):
     """Slider + figure; see :func:`pocket_explorer`."""
 
     def __init__(self, balls, F, tau, lo, hi, step, min_persistence, show_complex):
@@ -91,8 +93,7 @@ class PocketExplorer(W.VBox):
         self.status = W.HTML()
         # a PNG image, not an Output widget: it renders the same in a live kernel, in
         # nbclient/nbval runs and from the stored widget state on the static site
-        self.image = W.Image(format="png", layout=W.Layout(width=f"{int(_SIZE[0] * _DPI)}px",
-                                                           height=f"{int(_SIZE[1] * _DPI)}px"))
+        self.image = _frame.image(_SIZE, dpi=_DPI)
         super().__init__([W.HBox([self.slider, self.status]), self.image])
         self.slider.observe(self._redraw, names="value")
         self._redraw()
@@ -184,13 +185,12 @@ def persistence_explorer(filtration, *, threshold=0.0, threshold_range=None, ste
     return PersistenceExplorer(P, dims, min(max(threshold, lo), hi), lo, hi, (hi - lo) / steps)
 
 
-class PersistenceExplorer(W.VBox):
+class PersistenceExplorer(StaticFallback, W.VBox):
     """Threshold slider + status + diagram and barcode; see :func:`persistence_explorer`."""
 
     SIZE = (10.0, 4.6)
 
     def __init__(self, pairs, dims, threshold, lo, hi, step):
-        from . import _frame
 
         self._P = pairs
         self._dims = dims
@@ -232,7 +232,6 @@ class PersistenceExplorer(W.VBox):
         return fig
 
     def _redraw(self, change=None):
-        from . import _frame
 
         self.status.value = self.status_text()
         self.image.value = _frame.png(self.figure())
