@@ -76,7 +76,13 @@ def main(argv=None) -> int:
     ap.add_argument("--out", type=Path, default=None, help="write executed copies here instead of in place")
     ap.add_argument("--timeout", type=int, default=120, help="per-cell timeout in seconds")
     ap.add_argument("--limit", type=float, default=60.0, help="whole-notebook budget in seconds")
+    ap.add_argument("--static-explorers", action=argparse.BooleanOptionalAction, default=None,
+                    help="precompute every explorer's frames for a page without a kernel "
+                         "(default: on with --out, i.e. for the book; off for the committed lessons)")
     args = ap.parse_args(argv)
+    static = args.out is not None if args.static_explorers is None else args.static_explorers
+    # read by shapelab.widgets.static in the kernels started below
+    os.environ["SHAPELAB_STATIC_EXPLORERS"] = "1" if static else "0"
     os.environ.setdefault("PYTHONHASHSEED", "0")
     os.environ.setdefault("PYDEVD_DISABLE_FILE_VALIDATION", "1")
     os.environ["PYTHONPATH"] = str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")

@@ -17,6 +17,7 @@ Modules, one per concept of the notes:
 ``shapelab.registration`` :func:`optimal_rotation`, :func:`register`, :func:`icp`
 ``shapelab.hausdorff``    :func:`directed_hausdorff`, :func:`hausdorff`, ...
 ``shapelab.critical``     :func:`critical_points` on curves and surfaces
+``shapelab.simplification`` :func:`simplify`: ε-simplification along a curve (ELZ 2002)
 ``shapelab.io``           :func:`read_pdb`
 ``shapelab.datasets``     generated molecules and the inputs of the figures
 ``shapelab.plot``         one function per kind of figure, a shared style
@@ -62,11 +63,13 @@ _EXPORTS = {
     "critical_points": "critical",
     "CriticalPoints": "critical",
     "read_pdb": "io",
+    "curve_persistence": "simplification",
+    "simplify": "simplification",
 }
 _SUBMODULES = {
     "balls", "power", "filtration", "topology", "cavities", "measure", "quaternion",
     "registration", "hausdorff", "critical", "io", "datasets", "plot", "widgets",
-    "check", "figures",
+    "check", "figures", "simplification",
 }
 
 __all__ = sorted(_EXPORTS) + ["__version__"]

@@ -8,7 +8,7 @@ import re
 
 import pytest
 
-from shapelab.check import quiz as Q
+from shapelab.check import quizzes as Q
 
 
 def _key(part):

@@ -31,6 +31,9 @@ _EXPORTS = {
     "rotation_matrix": "rotation",
     "optimal_rotation": "rotation",
     "centroid_alignment": "rotation",
+    # quizzes.py: the end-of-part quizzes
+    "quiz": "quizzes",
+    "show_quiz": "quizzes",
 }
 __all__ = ["CheckResult", "allclose", "run_check", "value", *sorted(_EXPORTS)]
 
