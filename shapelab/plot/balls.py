@@ -250,13 +250,16 @@ class DualComplexView:
             self._disks = None
             disk_face = "none" if show_cells else to_rgba(COLORS["ball"], 0.3)
             if show_disks:
+                # with the cells shown, the disks' outlines are thin and light: inside the union
+                # they are not boundaries, the cells' edges are (Figure 23.1 (i))
+                edge = to_rgba(COLORS["ball_edge"], 0.45) if show_cells else COLORS["ball_edge"]
                 self._disks = _disk_collection(ax, balls.centers, r, facecolors=[disk_face],
-                                               edgecolors=[COLORS["ball_edge"]], linewidths=1.0, zorder=3)
+                                               edgecolors=[edge], linewidths=0.8 if show_cells else 1.0, zorder=3)
             self._cells = None
             if show_cells and len(balls):
                 self._diagram = _pd(balls, bbox=self._cell_box(balls, bbox))
                 self._cells = PolyCollection([], facecolors=[to_rgba(COLORS["cell"], 0.25)],
-                                             edgecolors=["#A05A00"], linewidths=1.1, zorder=2)
+                                             edgecolors=["#8A4B00"], linewidths=2.0, zorder=3.5)
                 ax.add_collection(self._cells, autolim=False)
                 self._set_cells(tau)
             self._tri = PolyCollection([], facecolors=[to_rgba(COLORS["triangle"], 0.55)],
@@ -275,9 +278,10 @@ class DualComplexView:
             if legend:
                 handles = []
                 if show_disks:
-                    handles.append(Patch(facecolor=disk_face, edgecolor=COLORS["ball_edge"], label="disk $B_i$"))
+                    handles.append(Patch(facecolor=disk_face, label="disk $B_i$",
+                                         edgecolor=to_rgba(COLORS["ball_edge"], 0.45) if show_cells else COLORS["ball_edge"]))
                 if show_cells:
-                    handles.append(Patch(facecolor=to_rgba(COLORS["cell"], 0.30), edgecolor="#B07800",
+                    handles.append(Patch(facecolor=to_rgba(COLORS["cell"], 0.30), edgecolor="#8A4B00", linewidth=2.0,
                                          label="$B_i \\cap \\Pi(B_i)$"))
                 handles += [
                     Line2D([], [], color=COLORS["complex"], marker="o", ms=4, lw=1.6, label="vertex, edge of K"),
