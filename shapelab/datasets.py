@@ -620,9 +620,12 @@ def figure_23_2(*, body_radius=6.0, spacing=1.0, disk_radius=0.65):
       chamber (free radius ≈ 1.35), so as the disks grow the mouth closes at
       τ ≈ 1 − 0.65² ≈ 0.58 while the chamber is free until τ ≈ 2² − 0.65² ≈ 3.6: the
       dent becomes a hole before it fills.  It **is a pocket** of the growth model.
-    * **right** — a *shallow bite*: every point within 4.5 of (0, 9) is removed, a
-      dent 1.5 deep and about 5.3 wide.  The chord midpoint is closer to the bottom
-      than to the lips, so the dent fills from the bottom without ever closing: it
+    * **right** — a *funnel*: the same chamber, every point within 2 of (0, 2.5), but
+      its mouth as wide as the chamber and widening outwards: every point above the
+      chamber's centre with :math:`|x| < 2 + (y - 2.5)/2` is removed.  The two dents
+      have the same depth and the same chamber; only the mouth's width differs, which
+      is the notes' point.  Every cross-section of the funnel is at least as wide as the
+      chamber, so as the disks grow it fills from the bottom up and never closes: it
       **is not a pocket**.
 
     Returns
@@ -639,8 +642,10 @@ def figure_23_2(*, body_radius=6.0, spacing=1.0, disk_radius=0.65):
         _dist_segment(np.column_stack([p, np.zeros(len(p))]),
                       np.array([chamber[0], chamber[1], 0.0]),
                       np.array([0.0, R + 2 * s, 0.0])) < 0.9 * s)
-    bite = np.hypot(p[:, 0], p[:, 1] - (R + 3.0 * s)) < 4.5 * s
-    return Balls(p[~flask], r), Balls(p[~bite], r)
+    x, y = p[:, 0], p[:, 1]
+    funnel = (np.hypot(*(p - chamber).T) < 2.0 * s) | (
+        (y >= chamber[1]) & (np.abs(x) < 2.0 * s + 0.5 * (y - chamber[1])))
+    return Balls(p[~flask], r), Balls(p[~funnel], r)
 
 
 def swiss_cheese(*, spacing=1.0, disk_radius=0.65):

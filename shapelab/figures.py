@@ -266,9 +266,10 @@ def fig23_1ii():
     return fig
 
 
-@register("fig23_2", "Two dents. Left: as the disks grow, the mouth closes before the chamber fills, so "
-          "the dent becomes a hole: a pocket. Right: the shallow bite fills from the bottom and never "
-          "closes: not a pocket.",
+@register("fig23_2", "Two dents of the same depth around the same chamber, different only in the mouth. "
+          "Left: a narrow mouth closes before the chamber fills, so the dent becomes a hole: a pocket. "
+          "Right: a mouth as wide as the chamber, widening outwards: the dent fills from the bottom and "
+          "never closes: not a pocket.",
           source="Notes, Figure 23.2", lesson="07_pockets",
           needs=("datasets.figure_23_2", "plot.pockets", "alpha_filtration"))
 def fig23_2():

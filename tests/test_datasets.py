@@ -549,3 +549,15 @@ def test_alpha_filtration_on_a_shipped_structure():
     report = triangulation_report(heavy)
     assert report.method in ("qhull", "incremental")
     assert isinstance(report.reason, str)
+
+
+def test_figure_23_2_dents_differ_only_in_the_mouth():
+    """Same body, same chamber, same depth: the funnel's dent contains the flask's, and the
+    extra points it removes all lie above the chamber's centre (the mouth)."""
+    left, right = D.figure_23_2()
+    body = {tuple(p) for p in D._hex_disk(6.0, 1.0)}
+    gone_l = body - {tuple(p) for p in left.centers}
+    gone_r = body - {tuple(p) for p in right.centers}
+    assert gone_l < gone_r
+    assert min(y for _, y in gone_l) == min(y for _, y in gone_r)  # equal depth
+    assert all(y >= 2.5 for _, y in gone_r - gone_l)  # they differ in the mouth only
