@@ -39,7 +39,10 @@ def problems(nb) -> list[str]:
     return out
 
 
-def execute(path: Path, out_dir: Path | None, timeout: int, limit: float) -> float:
+LOG = ROOT / "book" / "_build" / "logs" / "kernels.log"
+
+
+def execute(path: Path, out_dir: Path | None, timeout: int, limit: float, log=None) -> float:
     nb = nbformat.read(path, as_version=4)
     env_cwd = path.parent
     client = NotebookClient(
@@ -52,7 +55,9 @@ def execute(path: Path, out_dir: Path | None, timeout: int, limit: float) -> flo
         allow_errors=True,
     )
     t0 = time.perf_counter()
-    client.execute()
+    # the kernel's own messages (e.g. jupyter_client's note that a local kernel talks over
+    # TCP without encryption) go to the log file, not between the progress lines
+    client.execute(**({"stderr": log} if log is not None else {}))
     elapsed = time.perf_counter() - t0
     found = problems(nb)
     if elapsed > limit:
@@ -92,17 +97,23 @@ def main(argv=None) -> int:
         print("no lessons found", file=sys.stderr)
         return 1
     failures, total = [], 0.0
+    LOG.parent.mkdir(parents=True, exist_ok=True)
+    log = open(LOG, "a", encoding="utf-8")
     for i, path in enumerate(paths, 1):
         print(f"[{i}/{len(paths)}] executing {path.name} ...", end="", flush=True)
+        log.write(f"--- {time.strftime('%Y-%m-%d %H:%M:%S')} {path.name}\n")
+        log.flush()
         try:
-            dt = execute(path, args.out, args.timeout, args.limit)
+            dt = execute(path, args.out, args.timeout, args.limit, log)
         except Exception as exc:  # keep going, report all at the end
             print(" FAILED")
             failures.append(str(exc))
             continue
         total += dt
         print(f" {dt:.1f} s")
-    print(f"executed {len(paths) - len(failures)}/{len(paths)} lessons in {total:.1f} s")
+    log.close()
+    print(f"executed {len(paths) - len(failures)}/{len(paths)} lessons in {total:.1f} s "
+          f"(the kernels' messages: {LOG.relative_to(ROOT)})")
     for f in failures:
         print("  " + f, file=sys.stderr)
     return 1 if failures else 0

@@ -31,6 +31,18 @@ _EXPORTS = {
     "rotation_matrix": "rotation",
     "optimal_rotation": "rotation",
     "centroid_alignment": "rotation",
+    # answers.py: value exercises whose reference stays out of the lesson
+    "connected_time": "answers",
+    "distinct_complexes": "answers",
+    "standard_error_factor": "answers",
+    "neck_closing": "answers",
+    "mouth_closing": "answers",
+    "torus_viewpoints": "answers",
+    "radical_center": "answers",
+    "void_count": "answers",
+    "ring_tunnel": "answers",
+    "curve_pairs": "answers",
+    "most_exposed_residue": "answers",
     # quizzes.py: the end-of-part quizzes
     "quiz": "quizzes",
     "show_quiz": "quizzes",

@@ -42,8 +42,12 @@ class CheckResult:
     def __bool__(self) -> bool:
         return self.passed
 
-    def _repr_pretty_(self, p, cycle):  # IPython: show only the verdict line
+    def _repr_pretty_(self, p, cycle):  # IPython, when displayed on purpose
         p.text(f"CheckResult({self.name!r}, passed={self.passed})")
+
+    def _ipython_display_(self):
+        """Nothing: the check printed its message already.  A check called as the last
+        line of a cell would otherwise show its verdict twice."""
 
 
 def allclose(atol: float = 1e-8, rtol: float = 1e-6) -> Callable[[Any, Any], bool]:

@@ -1,0 +1,217 @@
+"""Self-checks for exercises whose answer is a value computed from the lesson's data.
+
+The reference computation lives here, not in the lesson: the exercise cell shows neither
+the answer nor the code that finds it, and a wrong answer is described ("too large",
+"3 of 10 entries differ") but never given.  Each check takes the student's answer first,
+then the lesson's objects the reference needs.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ._runner import CheckResult, value
+
+__all__ = ["connected_time", "distinct_complexes", "standard_error_factor", "neck_closing", "mouth_closing",
+           "torus_viewpoints", "radical_center", "void_count", "ring_tunnel", "curve_pairs", "most_exposed_residue"]
+
+
+def connected_time(tau_connected, F, *, atol: float = 2e-3) -> CheckResult:
+    """Lesson 02: the growth time from which the union of disks is connected.
+
+    The reference is the last merge of two components: the largest finite death of
+    the persistence pairs in dimension 0 (lesson 09)."""
+    h0 = np.asarray(F.persistence()[0], dtype=float)
+    finite = h0[np.isfinite(h0[:, 1]), 1]
+    expected = float(finite.max()) if finite.size else float(F.values(0).max())
+    return value("τ at which the union becomes connected (to 0.002)", tau_connected, expected, atol=atol, rtol=0.0)
+
+
+def distinct_complexes(n_complexes, F, lo: float = 0.0, hi: float = 1.0) -> CheckResult:
+    """Lesson 03: how many distinct complexes :math:`K_\\tau` there are for τ in [lo, hi].
+
+    The complexes grow by inclusion, so distinct complexes have distinct sizes: the
+    reference counts the sizes of the complexes at every entry time in the range."""
+    values = np.unique(np.r_[lo, np.concatenate([F.values(k) for k in range(F.dimension + 1)])])
+    sizes = {len(F.complex_at(t)) for t in values[(values >= lo) & (values <= hi)]}
+    return value("number of distinct complexes", n_complexes, len(sizes))
+
+
+def standard_error_factor(shrink, balls, *, seed: int = 0) -> CheckResult:
+    """Lesson 04: by what factor Monte Carlo's standard error falls with 100 times more
+    samples (measured on ``balls`` with 10⁴ and 10⁶ samples, to 5 %)."""
+    from ..measure import monte_carlo_union_measure
+
+    ratio = monte_carlo_union_measure(balls, 10**4, seed=seed)[1] / monte_carlo_union_measure(balls, 10**6, seed=seed)[1]
+    return value("the factor per 100 times more samples", shrink, ratio, rtol=0.05)
+
+
+def neck_closing(neck_closes, F) -> CheckResult:
+    """Lesson 07: when the neck between the two chambers of ``datasets.nested_pockets``
+    closes: the second pocket's ``closes_at``."""
+    from ..cavities import pockets
+
+    found = pockets(F, min_persistence=1e-9)
+    expected = found[1].closes_at if len(found) > 1 else np.nan
+    return value("when the neck closes", neck_closes, expected)
+
+
+def _torus_kind(S, R: float, r: float) -> str | None:
+    S = np.asarray(S, dtype=float)
+    rho = float(np.hypot(S[0], S[1]))
+    if np.linalg.norm(S) > R + r + 0.6:
+        return "far outside"
+    if np.linalg.norm(S) < 0.75 * (R - r):
+        return "in the hole"
+    if np.hypot(rho - R, S[2]) < 0.5 * r:
+        return "inside the tube"
+    return None
+
+
+def torus_viewpoints(viewpoints, counts, *, n_major: int = 24, n_minor: int = 12,
+                     R: float = 1.0, r: float = 0.4) -> CheckResult:
+    """Lesson 11: three viewpoints on ``torus(24, 12)`` (far outside, in the hole,
+    inside the tube) and the student's ``(#min, #saddles, #max)`` from each.
+
+    Passes when the three viewpoints are one of each kind and every count equals the
+    library's (:func:`shapelab.critical_points`).  Nothing about the counts is printed."""
+    from ..critical import critical_points, torus
+
+    name = "critical points of the torus from three viewpoints"
+    try:
+        P = np.asarray(viewpoints, dtype=float)
+        C = np.asarray(counts, dtype=float)
+    except (TypeError, ValueError):
+        return value(name, None, np.zeros((3, 3)), quiet=False)
+    if P.shape != (3, 3) or C.shape != (3, 3) or not np.all(np.isfinite(P)):
+        return value(name, C if C.shape != (3, 3) else None, np.zeros((3, 3)))
+    kinds = [_torus_kind(S, R, r) for S in P]
+    if sorted(k or "" for k in kinds) != ["far outside", "in the hole", "inside the tube"]:
+        msg = (f"✗ {name}: the viewpoints must be one far outside (more than {R + r + 0.6:g} from the "
+               f"centre), one in the hole (within {0.75 * (R - r):g} of the centre) and one inside the "
+               f"tube (within {0.5 * r:g} of its core circle); yours are: "
+               + ", ".join(k or "none of these" for k in kinds) + ".")
+        print(msg)
+        return CheckResult(name, False, 1, msg)
+    V, F = torus(n_major, n_minor, R=R, r=r)
+    expected = []
+    for S in P:
+        cp = critical_points(V, S, faces=F)
+        expected.append([cp.n_min, cp.n_saddle, cp.n_max])
+    return value(name, C, np.array(expected, dtype=float), rtol=0.0, atol=0.0)
+
+
+def mouth_closing(student) -> CheckResult:
+    """Lesson 07: ``student(pocket, balls)`` returns the time at which the pocket's mouth
+    closes, from its mouth edges; checked against ``pocket.closes_at`` on the pockets of
+    Figure 23.2's flask and of the two-chamber flask."""
+    from ..cavities import pockets
+    from ..datasets import figure_23_2, nested_pockets
+    from ..filtration import alpha_filtration
+    from ._runner import run_check
+
+    cases = []
+    for balls in (figure_23_2()[0], nested_pockets(), figure_23_2(disk_radius=0.6)[0]):
+        for p in pockets(alpha_filtration(balls), 0.0, min_persistence=1e-9):
+            cases.append((p, balls))
+    return run_check("when a pocket's mouth closes", student, cases, lambda p, b: p.closes_at,
+                     describe=lambda case: f"a pocket with {len(case[0].mouth)} mouth edges among {len(case[1])} disks")
+
+
+def radical_center(student) -> CheckResult:
+    """Lesson 01: ``student(balls)`` returns the point with equal power distance from three
+    disks (their radical centre), checked against the vertex of their power diagram."""
+    from ..balls import Balls
+    from ..power import power_diagram
+    from ._runner import run_check
+
+    rng = np.random.default_rng(23)
+    cases = [(Balls([[0.0, 0.0], [4.0, 0.0], [0.0, 3.0]], [1.0, 1.0, 1.0]),),
+             (Balls([[0.0, 0.0], [3.0, 0.5], [1.0, 2.5]], [1.0, 1.2, 0.8]),)]
+    while len(cases) < 6:
+        b = Balls(rng.uniform(-3, 3, size=(3, 2)), rng.uniform(0.3, 1.5, size=3))
+        d = power_diagram(b)
+        area2 = np.cross(b.centers[1] - b.centers[0], b.centers[2] - b.centers[0])
+        if abs(area2) > 1.0 and len(d.vertices) == 1 and not np.any(d.hidden):
+            cases.append((b,))
+    return run_check("radical centre of three disks", student, cases, lambda b: power_diagram(b).vertices[0],
+                     describe=lambda c: f"centres {np.round(c[0].centers, 3).tolist()}, radii {np.round(c[0].radii, 3).tolist()}")
+
+
+def void_count(student) -> CheckResult:
+    """Lesson 06: ``student(F, tau)`` returns the number of voids from the Betti numbers
+    alone (:math:`\\beta_{d-1}` of :math:`K_\\tau`), checked against :func:`shapelab.voids`."""
+    from ..cavities import voids
+    from ..datasets import fullerene_c60, ring, swiss_cheese
+    from ..filtration import alpha_filtration
+    from ._runner import run_check
+
+    F60, Fch, Fring = alpha_filtration(fullerene_c60()), alpha_filtration(swiss_cheese()), alpha_filtration(ring(12))
+    cases = [(F60, 0.0), (F60, 20.0), (Fch, 0.0), (Fch, 0.45), (Fch, 5.0), (Fring, 0.0), (Fring, 8.5)]
+    names = {id(F60): "C60", id(Fch): "the 2D swiss cheese", id(Fring): "a 2D ring of 12 disks"}
+    return run_check("voids from the Betti numbers", student, cases, lambda F, t: len(voids(F, t)),
+                     compare=lambda e, r: isinstance(r, (int, np.integer)) and not isinstance(r, bool) and int(r) == e,
+                     describe=lambda c: f"{names[id(c[0])]} at τ = {c[1]:g}")
+
+
+def ring_tunnel(student) -> CheckResult:
+    """Lesson 08: ``student(n, R, r)`` returns ``(birth, death)`` of the tunnel of
+    ``datasets.ring(n, radius=R, disk_radius=r, dim=3)``, checked against the most
+    persistent pair of :math:`H_1` of its α-filtration."""
+    from ..datasets import ring
+    from ..filtration import alpha_filtration
+    from ._runner import run_check
+
+    def reference(n, R, r):
+        P = np.asarray(alpha_filtration(ring(n, radius=R, disk_radius=r, dim=3)).persistence()[1], dtype=float)
+        k = int(np.argmax(P[:, 1] - P[:, 0]))
+        return P[k]
+
+    cases = [(12, 3.0, 1.0), (8, 2.0, 0.9), (10, 4.0, 0.5), (6, 1.5, 0.2), (20, 5.0, 0.3)]
+    return run_check("birth and death of a ring's tunnel", student, cases, reference,
+                     describe=lambda c: f"n = {c[0]}, R = {c[1]}, r = {c[2]}")
+
+
+def curve_pairs(student) -> CheckResult:
+    """Lesson 09: ``student(f)`` returns the ``(birth, death)`` pairs (persistence > 0) of
+    the sublevel sets of ``f`` along a path, checked against
+    :func:`shapelab.curve_persistence` (any order of the rows)."""
+    from ..simplification import curve_persistence
+    from ._runner import run_check
+
+    def reference(f):
+        D = curve_persistence(f, closed=False).diagram()
+        D = D[D[:, 1] > D[:, 0]]
+        return D[np.lexsort((D[:, 1], D[:, 0]))]
+
+    def compare(expected, received):
+        try:
+            R = np.asarray(received, dtype=float).reshape(-1, 2)
+        except (TypeError, ValueError):
+            return False
+        R = R[np.lexsort((R[:, 1], R[:, 0]))]
+        return R.shape == expected.shape and bool(np.allclose(R, expected))
+
+    rng = np.random.default_rng(9)
+    cases = [(np.array([0.0, 3.0, 1.0, 2.0, -1.0, 4.0]),), (np.array([1.0, 2.0, 3.0]),),
+             (np.array([2.0, 0.0, 2.0, 0.0, 2.0]),)]
+    cases += [(rng.integers(-5, 6, size=n).astype(float),) for n in (8, 15, 30)]
+    cases += [(np.round(rng.normal(size=50), 3),)]
+    return run_check("persistence pairs along a path", student, cases, reference, compare=compare)
+
+
+def most_exposed_residue(answer, structure, probe: float = 1.4) -> CheckResult:
+    """Lesson 10: the residue (``"NAME NUMBER"``) with the largest solvent-accessible
+    area, the sum of its atoms' shares of the union's boundary with radii grown by ``probe``."""
+    from ..balls import Balls
+    from ..measure import union_measure
+
+    b = structure.balls
+    m = union_measure(Balls(b.centers, b.radii + probe))
+    keys = [f"{n} {k}" for n, k in zip(structure.residue_names, structure.residue_numbers)]
+    totals: dict = {}
+    for key, a in zip(keys, m.ball_boundary):
+        totals[key] = totals.get(key, 0.0) + float(a)
+    expected = max(totals, key=lambda k: (totals[k], k))
+    received = answer.strip().upper() if isinstance(answer, str) else answer
+    return value("the most exposed residue", received, expected)
