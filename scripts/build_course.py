@@ -77,9 +77,15 @@ def lessons_into_book(execute: bool, book: Path = BOOK) -> None:
         if rc:
             raise SystemExit("some lessons failed to execute; see above")
     else:
-        for nb in sorted((ROOT / "lessons").glob("[0-9][0-9]_*.ipynb")):
-            shutil.copy2(nb, out / nb.name)
-            print(f"  copied {nb.name} (committed outputs)")
+        import nbformat
+
+        for path in sorted((ROOT / "lessons").glob("[0-9][0-9]_*.ipynb")):
+            nb = nbformat.read(path, as_version=4)
+            # the site has no widget manager (book/_config.yml): the stored widget state
+            # would only weigh the page down
+            nb.metadata.pop("widgets", None)
+            nbformat.write(nb, out / path.name)
+            print(f"  copied {path.name} (committed outputs)")
 
 
 def build_gallery(out: Path = GALLERY) -> bool:
@@ -115,10 +121,19 @@ def build_book(path_output: Path | None = None, gallery: bool = True, book: Path
     if path_output is not None:
         cmd += ["--path-output", str(path_output)]
     env = dict(os.environ, PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
-    rc = subprocess.call(cmd, cwd=ROOT, env=env)
+    # Sphinx's routine output goes to a log file; the progress line says where, and how
+    # many warnings it holds
+    log = (path_output or book) / "_build" / "logs" / "book.log"
+    log.parent.mkdir(parents=True, exist_ok=True)
+    with open(log, "w", encoding="utf-8") as fh:
+        rc = subprocess.call(cmd, cwd=ROOT, env=env, stdout=fh, stderr=subprocess.STDOUT)
+    text = log.read_text(encoding="utf-8", errors="replace")
+    warnings = sum("WARNING" in line for line in text.splitlines())
     html = (path_output or book) / "_build" / "html"
     if rc or not (html / "index.html").exists():
-        raise SystemExit("the book failed to build; see above")
+        print("\n".join(text.splitlines()[-40:]), flush=True)
+        raise SystemExit(f"the book failed to build; the whole log: {log}")
+    print(f"  built {html}: {warnings} warning{'s' if warnings != 1 else ''} (log: {log})", flush=True)
     return html
 
 

@@ -9,7 +9,8 @@ CONTRIBUTING.md) and by ``make course`` (execute into the book's build tree).
 
 A lesson fails if any cell raises, writes to stderr, or the whole notebook takes
 longer than ``--limit`` seconds (default 60, the course's budget on 2 cores).
-Widget state is stored in the notebook so sliders render on the static site.
+Widget state is stored in the committed lessons; the book's copies (``--out``) carry the
+explorers' static players instead (shapelab.widgets.static) and no widget state.
 """
 from __future__ import annotations
 
@@ -45,12 +46,17 @@ LOG = ROOT / "book" / "_build" / "logs" / "kernels.log"
 def execute(path: Path, out_dir: Path | None, timeout: int, limit: float, log=None) -> float:
     nb = nbformat.read(path, as_version=4)
     env_cwd = path.parent
+    keep_widgets = os.environ.get("SHAPELAB_STATIC_EXPLORERS") != "1"
+    if not keep_widgets:
+        nb.metadata.pop("widgets", None)  # the committed lesson's state, stale and unused here
     client = NotebookClient(
         nb,
         timeout=timeout,
         kernel_name="python3",
         resources={"metadata": {"path": str(env_cwd)}},
-        store_widget_state=True,
+        # the committed lessons keep the widget state (JupyterLab, the decks); the book's
+        # copies show the explorers' static players and need none
+        store_widget_state=keep_widgets,
         record_timing=False,
         allow_errors=True,
     )
