@@ -60,6 +60,7 @@ ASSETS = {
 IGNORE = shutil.ignore_patterns("*.map", "*.md", "*.d.ts", "embed.js", "libembed-amd.js", "*.LICENSE.txt")
 
 SLIDE_TYPES = ("slide", "subslide", "fragment", "-", "skip", "notes")
+HIDE_INPUT = "deck-hide-input"  # set by prepare() on figure cells; removed by the exporter
 
 
 def is_solution(cell) -> bool:
@@ -108,10 +109,70 @@ def prepare(nb, with_solutions: bool) -> tuple[nbformat.NotebookNode, Counter]:
         t = slide_type(cell)
         if t not in SLIDE_TYPES:
             raise ValueError(f"unknown slide_type {t!r} (use one of {', '.join(SLIDE_TYPES)})")
+        if cell.cell_type == "code" and t not in ("skip", "notes") and _has_figure(cell):
+            # the audience needs the figure, not the code that drew it: the figure gets a
+            # slide of its own (a sub-slide where it was a fragment), without the code
+            cell.metadata.setdefault("tags", [])
+            if HIDE_INPUT not in cell.metadata["tags"]:
+                cell.metadata["tags"].append(HIDE_INPUT)
+            if t in ("-", "fragment"):
+                cell.metadata.setdefault("slideshow", {})["slide_type"] = "subslide"
+                t = "subslide"
+            counts["figures on their own slide"] += 1
         counts[t] += 1
         cells.append(cell)
-    nb.cells = cells
+    nb.cells = _split_long_slides(cells, counts)
     return nb, counts
+
+
+#: the height of a slide's content, in the deck's pixels (1280 x 720, title included),
+#: above which the next cell starts a continuation sub-slide
+BUDGET = 640
+
+
+def _estimated_height(cell) -> int:
+    """A rough height in pixels: wrapped lines of markdown, code and text output."""
+    def lines(text: str, width: int) -> int:
+        return sum(max(1, -(-len(line) // width)) for line in text.splitlines()) if text else 0
+
+    if cell.cell_type == "markdown":
+        head = sum(30 for line in cell.source.splitlines() if line.startswith("#"))
+        return 34 * lines(cell.source, 95) + head + 20
+    if cell.cell_type != "code":
+        return 0
+    h = 0 if HIDE_INPUT in cell.metadata.get("tags", []) else 27 * lines(cell.source, 100) + 24
+    for o in cell.get("outputs", []):
+        if o.get("output_type") == "stream":
+            h += 25 * lines("".join(o.get("text", "")), 110)
+        elif "image/png" in o.get("data", {}):
+            h += 600
+        elif "text/plain" in o.get("data", {}):
+            h += 25 * lines("".join(o["data"]["text/plain"]), 110)
+    return h
+
+
+def _split_long_slides(cells, counts):
+    """Start a continuation sub-slide before a cell that would push its slide past BUDGET."""
+    used = 0
+    for cell in cells:
+        t = slide_type(cell)
+        if t in ("skip", "notes"):
+            continue
+        h = _estimated_height(cell)
+        if t in ("slide", "subslide"):
+            used = h
+        elif used + h > BUDGET and used > 0:
+            cell.metadata.setdefault("slideshow", {})["slide_type"] = "subslide"
+            counts["continuation slides"] += 1
+            used = h
+        else:
+            used += h
+    return cells
+
+
+def _has_figure(cell) -> bool:
+    return any(o.get("output_type") in ("display_data", "execute_result") and "image/png" in o.get("data", {})
+               for o in cell.get("outputs", []))
 
 
 def exporter():
@@ -136,6 +197,9 @@ def exporter():
         jupyter_widgets_base_url=f"{VENDOR}/",
         font_awesome_url="",
     )
+    from nbconvert.preprocessors import TagRemovePreprocessor
+
+    ex.register_preprocessor(TagRemovePreprocessor(remove_input_tags={HIDE_INPUT}, enabled=True), enabled=True)
     return ex
 
 

@@ -142,8 +142,13 @@ def test_solutions_stay_out_unless_asked_for(decks, slides, tmp_path):
 def test_slide_metadata_makes_the_slides(decks, slides):
     for lesson in DECK_LESSONS:
         nb = nbformat.read(lesson, as_version=4)
-        shown = [c for c in nb.cells if "solution" not in c.metadata.get("tags", [])]
+        # the deck's own metadata: prepare() leaves solutions out, gives figures a slide of
+        # their own and continues long slides on a sub-slide, never adding horizontal slides
+        deck, _ = slides.prepare(nb, with_solutions=False)
+        shown = deck.cells
         kinds = [slides.slide_type(c) for c in shown]
+        assert kinds.count("slide") == sum(slides.slide_type(c) == "slide" for c in nb.cells
+                                           if "solution" not in c.metadata.get("tags", []))
         expected = kinds.count("slide") + (kinds[0] != "slide")
         html = (decks / f"{lesson.stem}.slides.html").read_text(encoding="utf-8")
         slides_part = html.split('<div class="slides">', 1)[1]
@@ -232,3 +237,78 @@ def test_figures_reach_the_deck_as_images(lesson):
         f"{lesson.name}: figures stored as text only (no image/png); IPython has no image formatter for a "
         f"matplotlib Figure unless the inline backend is active: {textual[:3]}"
     )
+
+
+FIT_PROBE = r"""<script>
+(function wait() {
+  if (!(window.Reveal && Reveal.isReady && Reveal.isReady()
+        && document.documentElement.getAttribute("data-shapelab-deck") === "ready")) { return setTimeout(wait, 100); }
+  setTimeout(function () {
+    var out = [], H = Reveal.getConfig().height;
+    Reveal.getSlides().forEach(function (s) {
+      var ix = Reveal.getIndices(s); Reveal.slide(ix.h, ix.v);
+      s.querySelectorAll(".fragment").forEach(function (f) { f.classList.add("visible"); });
+      var scale = Reveal.getScale(), top = s.getBoundingClientRect().top, bottom = 0;
+      Array.from(s.children).forEach(function (c) {
+        var r = c.getBoundingClientRect(); if (r.height > 0) { bottom = Math.max(bottom, r.bottom); } });
+      var imgs = Array.from(s.querySelectorAll("img")).map(function (im) {
+        return Math.round((im.getBoundingClientRect().bottom - top) / scale); });
+      out.push({slide: ix.h + "/" + ix.v, height: Math.round((bottom - top) / scale), imgs: imgs});
+    });
+    var pre = document.createElement("pre"); pre.id = "fit";
+    pre.textContent = JSON.stringify({H: H, slides: out}); document.body.appendChild(pre);
+  }, 1500);
+})();
+</script>"""
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="Chromium is not installed (CI installs it: `apt-get install chromium`)")
+def test_every_slide_fits_with_all_fragments_shown(decks, tmp_path):
+    """At 1280 x 720 with every fragment shown, no slide is taller than the slide and every
+    image is whole (headless Chromium, network off)."""
+    import json
+
+    over, cut, n_slides, n_images = [], [], 0, 0
+    for deck in sorted(decks.glob("*.slides.html")):
+        probe = deck.with_name("_fit_" + deck.name)
+        probe.write_text(deck.read_text(encoding="utf-8").replace("</body>", FIT_PROBE + "</body>"), encoding="utf-8")
+        try:
+            cmd = [
+                CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
+                "--no-first-run", "--disable-extensions", f"--user-data-dir={tmp_path / 'profile'}",
+                "--window-size=1280,720", "--proxy-server=127.0.0.1:9", "--host-resolver-rules=MAP * ~NOTFOUND",
+                "--virtual-time-budget=30000", "--dump-dom", probe.as_uri(),
+            ]
+            run = subprocess.run(cmd, capture_output=True, text=True, timeout=180)
+        finally:
+            probe.unlink()
+        m = re.search(r'<pre id="fit"[^>]*>(.*?)</pre>', run.stdout, re.S)
+        assert m, f"{deck.name}: the probe did not run"
+        res = json.loads(m.group(1).replace("&quot;", '"').replace("&amp;", "&"))
+        H = res["H"]
+        for s in res["slides"]:
+            n_slides += 1
+            n_images += len(s["imgs"])
+            if s["height"] > H:
+                over.append(f"{deck.name} #{s['slide']}: {s['height']} px")
+            cut += [f"{deck.name} #{s['slide']}: an image ends at {b} px" for b in s["imgs"] if b > H]
+    assert n_slides > 0 and n_images > 0
+    assert not over, f"{len(over)} of {n_slides} slides overflow:\n" + "\n".join(over[:20])
+    assert not cut, f"{len(cut)} of {n_images} images cut:\n" + "\n".join(cut[:20])
+
+
+def test_figures_get_their_own_slide_without_code_and_long_slides_continue(slides):
+    md = lambda text, t="-": nbformat.v4.new_markdown_cell(text, metadata={"slideshow": {"slide_type": t}})  # noqa: E731
+    fig = nbformat.v4.new_code_cell("plot()", metadata={"slideshow": {"slide_type": "fragment"}})
+    fig.outputs = [nbformat.v4.new_output("display_data", data={"image/png": "iVBORw0KGgo=", "text/plain": "<Figure>"})]
+    long = [md("# Title", "slide")] + [md("A paragraph of some length that fills a line of the slide. " * 2) for _ in range(30)]
+    nb = nbformat.v4.new_notebook(cells=[md("# One", "slide"), md("text"), fig, *long])
+    deck, counts = slides.prepare(nb, with_solutions=False)
+    f = deck.cells[2]
+    assert slides.slide_type(f) == "subslide" and slides.HIDE_INPUT in f.metadata["tags"]
+    assert counts["figures on their own slide"] == 1
+    kinds = [slides.slide_type(c) for c in deck.cells[3:]]
+    assert kinds[0] == "slide" and kinds.count("subslide") >= 2  # the long slide continues
+    assert kinds.count("slide") == 1  # no new horizontal slide
+    body, _ = slides.exporter().from_notebook_node(deck, resources={"offline": {"vendor": "vendor"}})
+    assert "plot()" not in body and "iVBORw0KGgo=" in body
