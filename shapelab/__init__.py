@@ -15,7 +15,8 @@ Modules, one per concept of the notes:
 ``shapelab.measure``      :func:`union_measure` (area/volume of a union)
 ``shapelab.quaternion``   :class:`Quaternion` (§23.2, rotations)
 ``shapelab.registration`` :func:`optimal_rotation`, :func:`register`, :func:`icp`
-``shapelab.hausdorff``    :func:`directed_hausdorff`, :func:`hausdorff`, ...
+``shapelab.distance``     :func:`hausdorff`, :func:`directed_hausdorff` (§23.2)
+``shapelab.matching``     :func:`hausdorff_under_translation`, reference points
 ``shapelab.critical``     :func:`critical_points` on curves and surfaces
 ``shapelab.simplification`` :func:`simplify`: ε-simplification along a curve (ELZ 2002)
 ``shapelab.io``           :func:`read_pdb`
@@ -56,10 +57,11 @@ _EXPORTS = {
     "RigidMotion": "registration",
     "icp": "registration",
     "ICPResult": "registration",
-    "directed_hausdorff": "hausdorff",
-    "hausdorff": "hausdorff",
-    "hausdorff_under_translation": "hausdorff",
-    "TranslationMatch": "hausdorff",
+    "directed_hausdorff": "distance",
+    "hausdorff": "distance",
+    "hausdorff_under_translation": "matching",
+    "TranslationMatch": "matching",
+    "reference_point": "matching",
     "critical_points": "critical",
     "CriticalPoints": "critical",
     "read_pdb": "io",
@@ -68,7 +70,7 @@ _EXPORTS = {
 }
 _SUBMODULES = {
     "balls", "power", "filtration", "topology", "cavities", "measure", "quaternion",
-    "registration", "hausdorff", "critical", "io", "datasets", "plot", "widgets",
+    "registration", "distance", "matching", "critical", "io", "datasets", "plot", "widgets",
     "check", "figures", "simplification",
 }
 

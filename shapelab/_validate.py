@@ -13,6 +13,7 @@ import numpy as np
 
 __all__ = [
     "as_points",
+    "as_point_pair",
     "as_point",
     "as_vector",
     "as_radii",
@@ -73,6 +74,23 @@ def as_points(x, name: str = "points", *, dim=None, min_points: int = 1) -> np.n
         raise ValueError(f"{name} must hold at least {min_points} point(s), got {arr.shape[0]}")
     _check_finite(arr, name)
     return np.ascontiguousarray(arr)
+
+
+def as_point_pair(A, B, names=("A", "B")) -> tuple[np.ndarray, np.ndarray]:
+    """Two point sets of the same dimension, as :func:`as_points` returns each.
+
+    >>> a, b = as_point_pair([[0.0, 0.0]], [[1.0, 2.0], [3.0, 4.0]])
+    >>> a.shape, b.shape
+    ((1, 2), (2, 2))
+    """
+    A = as_points(A, names[0])
+    B = as_points(B, names[1])
+    if A.shape[1] != B.shape[1]:
+        raise ValueError(
+            f"{names[0]} and {names[1]} must have the same dimension, got {names[0]} with {A.shape[1]} "
+            f"and {names[1]} with {B.shape[1]} columns"
+        )
+    return A, B
 
 
 def as_point(x, name: str = "point", *, dim=None) -> np.ndarray:

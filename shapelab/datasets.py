@@ -71,6 +71,7 @@ __all__ = [
     "StructureInfo",
     "structure",
     "structure_path",
+    "noisy_sphere",
     "GRAPHENE_LATTICE_CONSTANT",
     "CARBON_RADIUS",
 ]
@@ -874,3 +875,18 @@ def structure(name: str, **kwargs):
     options = dict(STRUCTURES[name.strip().lower()].read)
     options.update(kwargs)
     return read_pdb(path, **options)
+
+
+def noisy_sphere(n: int, *, noise: float = 0.01, center=(0.0, 0.0, 0.0), seed=0) -> np.ndarray:
+    """``n`` points of the unit sphere (uniform directions) plus isotropic Gaussian
+    noise of standard deviation ``noise``, moved to ``center``; deterministic in
+    ``seed``.  The data of the benchmarks and of lesson 12."""
+    n = as_positive_int(n, "n")
+    noise = as_finite_scalar(noise, "noise", nonnegative=True)
+    c = np.asarray(center, dtype=float)
+    if c.shape != (3,) or not np.all(np.isfinite(c)):
+        raise ValueError(f"center must be a finite 3-vector, got {center!r}")
+    rng = np.random.default_rng(seed)
+    x = rng.standard_normal((n, 3))
+    x /= np.linalg.norm(x, axis=1, keepdims=True)
+    return x + noise * rng.standard_normal((n, 3)) + c

@@ -16,18 +16,16 @@ from scipy.spatial import cKDTree
 from scipy.spatial.distance import directed_hausdorff as scipy_dh
 
 import shapelab
-from shapelab.hausdorff import (
+from shapelab.distance import (
     DirectedHausdorff,
-    TranslationMatch,
     directed_hausdorff,
     hausdorff,
     hausdorff_early_break,
     hausdorff_kdtree,
     hausdorff_pair,
-    hausdorff_under_translation,
-    reference_point,
     timings,
 )
+from shapelab.matching import TranslationMatch, hausdorff_under_translation, reference_point
 
 METHODS = ("auto", "brute", "pruned", "grid")
 
@@ -86,7 +84,7 @@ def test_directed_equals_brute_force_with_valid_witness(AB, method):
 def test_every_stage_of_the_pruned_algorithm_is_exact(AB, stage, seed):
     """Force each path of the pruned algorithm on small inputs (where ``auto``
     would use brute force), with and without a lower bound from the other side."""
-    from shapelab import hausdorff as H
+    from shapelab import distance as H
 
     A, B = AB
     src, dst = H._prepare(A, B)
@@ -103,7 +101,7 @@ def test_every_stage_of_the_pruned_algorithm_is_exact(AB, stage, seed):
 def test_coarse_to_fine_stage_is_exact_with_and_without_a_floor(AB, cells_log2):
     """Force the grid levels on small inputs (``auto`` would use brute force), with
     grids from 1 to 64 cells, and with a lower bound from the other direction."""
-    from shapelab import hausdorff as H
+    from shapelab import distance as H
 
     A, B = AB
     cells = 1 << cells_log2
@@ -125,7 +123,7 @@ def test_coarse_to_fine_stage_is_exact_with_and_without_a_floor(AB, cells_log2):
 @pytest.mark.parametrize("offset, scale", [(0.0, 1.0), (1e6, 1.0), (1e6, 1e-6), (-3e5, 1e3), (1e12, 1.0)])
 def test_grid_boxes_contain_their_points(offset, scale):
     """The cell boxes are rigorous (widened for round-off) even far from the origin."""
-    from shapelab import hausdorff as H
+    from shapelab import distance as H
 
     rng = np.random.default_rng(8)
     P = offset + scale * rng.standard_normal((5000, 3))
@@ -215,7 +213,7 @@ def test_apart_sets_are_solved_by_the_grid_levels_alone(d, shift, alone, monkeyp
     """Far apart (or touching) the coarse-to-fine stage finishes without the k-d
     tree fallback in d <= 3, and agrees with scipy to the last bit, witness
     included.  (In 4D the grid is too coarse and some level hands over.)"""
-    from shapelab import hausdorff as H
+    from shapelab import distance as H
 
     def no_fallback(*args, **kwargs):
         raise AssertionError("fell back to the pruned algorithm")
@@ -243,7 +241,7 @@ def test_apart_sets_do_not_import_scipy():
 
     code = (
         "import sys, numpy as np\n"
-        "from shapelab.hausdorff import hausdorff, noisy_sphere\n"
+        "from shapelab import hausdorff\nfrom shapelab.datasets import noisy_sphere\n"
         "A = noisy_sphere(40000, seed=1); B = noisy_sphere(40000, seed=2, center=(3.0, 0, 0))\n"
         "h = hausdorff(A, B)\n"
         "print(h, 'scipy.spatial' in sys.modules)\n"
@@ -251,15 +249,15 @@ def test_apart_sets_do_not_import_scipy():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     h, imported = out.stdout.split()
     assert imported == "False"
-    A = shapelab.hausdorff.noisy_sphere(40000, seed=1)
-    B = shapelab.hausdorff.noisy_sphere(40000, seed=2, center=(3.0, 0, 0))
+    A = shapelab.datasets.noisy_sphere(40000, seed=1)
+    B = shapelab.datasets.noisy_sphere(40000, seed=2, center=(3.0, 0, 0))
     assert float(h) == max(scipy_dh(A, B)[0], scipy_dh(B, A)[0])
 
 
 def test_overlapping_sets_fall_back_to_the_tree_with_shared_clouds(monkeypatch):
     """Overlapping at the scale of the cells, the first grid level gives up and both
     directions run the pruned algorithm on the same prepared clouds (one pair of trees)."""
-    from shapelab import hausdorff as H
+    from shapelab import distance as H
 
     calls = []
     real = H._prepare
@@ -428,3 +426,24 @@ def test_figures_draw_the_witnesses():
         pm.timings({"a": -1.0})
     with pytest.raises(ValueError, match="A must have 2"):
         pm.hausdorff(np.zeros((3, 3)), np.zeros((3, 3)))
+
+
+def test_shapelab_hausdorff_is_always_the_function():
+    """No module is named like the function: importing every submodule, in a fresh
+    process, leaves ``shapelab.hausdorff`` the function of the notes."""
+    import subprocess
+    import sys
+
+    code = (
+        "import importlib, pkgutil, shapelab\n"
+        "for m in pkgutil.walk_packages(shapelab.__path__, 'shapelab.'):\n"
+        "    if not m.name.endswith('__main__'): importlib.import_module(m.name)\n"
+        "import types\n"
+        "assert isinstance(shapelab.hausdorff, types.FunctionType), type(shapelab.hausdorff)\n"
+        "for name in shapelab.__all__:\n"
+        "    assert not isinstance(getattr(shapelab, name), types.ModuleType), name\n"
+        "print(shapelab.hausdorff([[0.0, 0.0]], [[3.0, 4.0]]))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert out.stdout.strip() == "5.0"

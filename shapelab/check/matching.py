@@ -3,7 +3,7 @@
 
 Each check runs *your* function on edge cases first (single points, identical
 sets, duplicates, one dimension, a set inside the other), then on random sets, and
-compares with the library (:mod:`shapelab.hausdorff`, :mod:`shapelab.critical`).
+compares with the library (:mod:`shapelab.distance`, :mod:`shapelab.critical`).
 """
 from __future__ import annotations
 
@@ -39,7 +39,7 @@ def directed_hausdorff(fn, *, quiet: bool = False) -> CheckResult:
     Includes a set A inside B, where h(A, B) = 0 but h(B, A) > 0: computing the
     symmetric distance (or swapping the roles) fails there.
     """
-    from ..hausdorff import directed_hausdorff as ref
+    from ..distance import directed_hausdorff as ref
 
     return run_check("directed Hausdorff distance", fn, _pair_cases(), lambda A, B: ref(A, B).distance,
                      allclose(1e-9, 1e-9), describe=_describe, quiet=quiet)
@@ -47,7 +47,7 @@ def directed_hausdorff(fn, *, quiet: bool = False) -> CheckResult:
 
 def hausdorff(fn, *, quiet: bool = False) -> CheckResult:
     """Check ``fn(A, B) -> float``, the Hausdorff distance H(A, B) of the notes (§23.2)."""
-    from ..hausdorff import hausdorff as ref
+    from ..distance import hausdorff as ref
 
     return run_check("Hausdorff distance", fn, _pair_cases(), ref, allclose(1e-9, 1e-9),
                      describe=_describe, quiet=quiet)

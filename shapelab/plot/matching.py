@@ -225,7 +225,7 @@ def hausdorff(A, B, *, ax=None, size=PAGE, labels=("A", "B"), disks: bool = True
     matplotlib.figure.Figure
     """
     from .._validate import as_points
-    from ..hausdorff import hausdorff_pair
+    from ..distance import hausdorff_pair
 
     A = as_points(A, "A", dim=2)
     B = as_points(B, "B", dim=2)
@@ -268,7 +268,7 @@ def translation(A, B, match, *, size=SLIDE, labels=("A", "B"), title: str | None
     matplotlib.figure.Figure
     """
     from .._validate import as_points
-    from ..hausdorff import TranslationMatch
+    from ..matching import TranslationMatch
 
     if not isinstance(match, TranslationMatch):
         raise TypeError(f"match must be a TranslationMatch, got {type(match).__name__}")
@@ -305,7 +305,7 @@ def timings(seconds: dict, *, ax=None, size=PAGE, title: str | None = None, log:
     ----------
     seconds : dict
         ``{label: seconds}`` (e.g. ``Timings.seconds`` from
-        :func:`shapelab.hausdorff.timings`).  The algorithms of that function keep
+        :func:`shapelab.distance.timings`).  The algorithms of that function keep
         the same colour in every chart.
     log : bool
         Logarithmic time axis (bars start at a third of the fastest time).
