@@ -27,7 +27,7 @@ Modules, one per concept of the notes:
 """
 from __future__ import annotations
 
-import importlib
+from ._toolkit.lazy import attach
 
 __version__ = "0.1.0"
 
@@ -72,16 +72,4 @@ _SUBMODULES = {
 __all__ = sorted(_EXPORTS) + ["__version__"]
 
 
-def __getattr__(name: str):
-    if name in _EXPORTS:
-        module = importlib.import_module(f"shapelab.{_EXPORTS[name]}")
-        value = getattr(module, name)
-        globals()[name] = value
-        return value
-    if name in _SUBMODULES:
-        return importlib.import_module(f"shapelab.{name}")
-    raise AttributeError(f"module 'shapelab' has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(set(globals()) | set(__all__) | _SUBMODULES)
+__getattr__, __dir__ = attach(__name__, _EXPORTS, _SUBMODULES, eager=__all__)

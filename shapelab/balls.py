@@ -21,15 +21,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import as_finite_scalar, as_point, as_points, as_radii, as_tau
+from ._toolkit.validate import readonly, as_finite_scalar, as_point, as_points, as_radii, as_tau
 
 __all__ = ["Balls", "power_distance"]
-
-
-def _readonly(a: np.ndarray) -> np.ndarray:
-    a = np.array(a, dtype=np.float64, copy=True)
-    a.flags.writeable = False
-    return a
 
 
 @dataclass(frozen=True, eq=False)
@@ -67,8 +61,8 @@ class Balls:
     def __init__(self, centers, radii=0.0):
         c = as_points(centers, "centers", dim=(2, 3), min_points=0)
         r = as_radii(radii, c.shape[0], "radii")
-        object.__setattr__(self, "centers", _readonly(c))
-        object.__setattr__(self, "radii", _readonly(r))
+        object.__setattr__(self, "centers", readonly(c))
+        object.__setattr__(self, "radii", readonly(r))
 
     # ------------------------------------------------------------------ basics
     @property

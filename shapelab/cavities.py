@@ -63,19 +63,15 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
 from . import topology as _topo
-from ._validate import as_finite_scalar, as_tau, filtration_first
+from ._toolkit.geometry import cross_rows
+from ._toolkit.unionfind import elder_merges
+from ._toolkit.validate import readonly, as_finite_scalar, as_tau, filtration_first
 from .filtration import as_filtration, derived
 
 __all__ = ["Void", "Pocket", "Tunnel", "voids", "pockets", "tunnels", "grooves", "free_measure"]
 
 
 # ============================================================================ results
-def _ro(a, dtype=np.int64):
-    a = np.array(a, dtype=dtype, copy=True)
-    a.flags.writeable = False
-    return a
-
-
 @dataclass(frozen=True, eq=False)
 class Void:
     """A bounded component of the complement of the grown union (Notes §23.1).
@@ -234,9 +230,6 @@ def _build_tree(F) -> _Tree:
     n = S.values[k].shape[0]
     N = n + 1
     u, v = S.cell_dual
-    uu, vv = u.tolist(), v.tolist()
-    parent = list(range(N))
-    oldest = list(range(N))
     node = list(range(N))
     head = list(range(N))
     tail = list(range(N))
@@ -245,19 +238,8 @@ def _build_tree(F) -> _Tree:
     kill_facet = [-1] * n
     kill_node = [-1] * n
     m_left, m_right, m_head, m_tail, m_facet = [], [], [], [], []
-    for e in S.pos_facets[::-1].tolist():
-        a = uu[e]
-        while parent[a] != a:
-            parent[a] = parent[parent[a]]
-            a = parent[a]
-        b = vv[e]
-        while parent[b] != b:
-            parent[b] = parent[parent[b]]
-            b = parent[b]
-        if a == b:
-            continue
-        if age[oldest[a]] > age[oldest[b]]:
-            a, b = b, a             # a keeps (older), b dies
+
+    def merge(e, a, b, oldest):          # a keeps (older), b dies
         young = oldest[b]
         kill_facet[young] = e
         kill_node[young] = node[b]
@@ -268,8 +250,9 @@ def _build_tree(F) -> _Tree:
         m_tail.append(tail[b])
         m_facet.append(e)
         tail[a] = tail[b]
-        parent[b] = a
         node[a] = N + len(m_left) - 1
+
+    parent, _ = elder_merges(N, u, v, S.pos_facets[::-1], age, merge)
     root = n
     while parent[root] != root:
         root = parent[root]
@@ -400,7 +383,7 @@ def voids(F, tau=0.0) -> tuple:
         root = int(cid.max())
         cv = simp[cid]
         out.append(Void(
-            cells=_ro(cv), cell_ids=_ro(cid), lining=_ro(_lining(F, cv, tau, vval)),
+            cells=readonly(cv, np.int64), cell_ids=readonly(cid, np.int64), lining=readonly(_lining(F, cv, tau, vval), np.int64),
             born=float(T.kill_value[root]), dies=float(S.values[k][root]),
             volume=float(max(csum[e] - csum[s], 0.0)), tau=tau,
         ))
@@ -482,8 +465,8 @@ def pockets(F, tau=0.0, *, min_persistence=0.0) -> tuple:
         mouth = uf[(cnt == 1) & (fval[uf] > tau)]
         cverts = simp[cid]
         out.append(Pocket(
-            cells=_ro(cverts), cell_ids=_ro(cid), mouth=_ro(fsimp[mouth].reshape(-1, k)), mouth_ids=_ro(mouth),
-            lining=_ro(_lining(F, cverts, tau, vval)), closes_at=bb, fills_at=float(cv[r]), tau=tau, balls=balls,
+            cells=readonly(cverts, np.int64), cell_ids=readonly(cid, np.int64), mouth=readonly(fsimp[mouth].reshape(-1, k), np.int64), mouth_ids=readonly(mouth, np.int64),
+            lining=readonly(_lining(F, cverts, tau, vval), np.int64), closes_at=bb, fills_at=float(cv[r]), tau=tau, balls=balls,
         ))
     out.sort(key=lambda p: (-(p.fills_at - p.closes_at), p.closes_at, int(p.cell_ids[0])))
     return tuple(out)
@@ -518,8 +501,8 @@ def _h1_classes(F, tau, select, fname):
     out = []
     for i in keep.tolist():
         ids = np.asarray(sorted(cols[int(piv_e[i])]), dtype=np.int64)
-        out.append(Tunnel(birth=float(birth[i]), death=float(death[i]), cycle=_ro(edges[ids]),
-                          edge_ids=_ro(ids), tau=tau))
+        out.append(Tunnel(birth=float(birth[i]), death=float(death[i]), cycle=readonly(edges[ids], np.int64),
+                          edge_ids=readonly(ids, np.int64), tau=tau))
     out.sort(key=lambda t: (-(t.death - t.birth), t.birth, int(t.edge_ids[-1])))
     return tuple(out)
 
@@ -924,11 +907,6 @@ def _ball_clip_measure(A, b, r, eps, keep=0):
     return float(np.sum(S * I))
 
 
-def _cross(a, b):
-    return np.stack([a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1],
-                     a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2],
-                     a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]], axis=-1)
-
 @lru_cache(maxsize=64)
 def _triples(p):
     return np.array(list(combinations(range(p), 3)), dtype=np.int64).reshape(-1, 3)
@@ -939,7 +917,7 @@ def _vertices3(A, b, eps):
     every triple of planes solved by Cramer's rule, kept if feasible."""
     idx = _triples(A.shape[0])
     na, nb, nc = A[idx[:, 0]], A[idx[:, 1]], A[idx[:, 2]]
-    bc, ca, ab = _cross(nb, nc), _cross(nc, na), _cross(na, nb)
+    bc, ca, ab = cross_rows(nb, nc), cross_rows(nc, na), cross_rows(na, nb)
     det = (na * bc).sum(1)
     ok = np.abs(det) > 1e-12
     X = (b[idx[ok, 0], None] * bc[ok] + b[idx[ok, 1], None] * ca[ok] + b[idx[ok, 2], None] * ab[ok]) / det[ok, None]
@@ -987,9 +965,9 @@ def _ball_clip_measure3(A, b, r, eps, keep=0):
     n = A2[q]
     c = ((sub.T @ V) / cnt[planes][:, None])[qi]
     ref = np.where(np.abs(n[:, :1]) < 0.6, _REF[0], _REF[1])
-    e1 = _cross(n, ref)
+    e1 = cross_rows(n, ref)
     e1 /= np.sqrt((e1 * e1).sum(1))[:, None]
-    e2 = _cross(n, e1)
+    e2 = cross_rows(n, e1)
     rel = V[vi] - c
     ang = np.arctan2((rel * e2).sum(1), (rel * e1).sum(1))
     o = np.lexsort((ang, q))
@@ -1013,7 +991,7 @@ def _ball_clip_measure3(A, b, r, eps, keep=0):
     la = (rel * u).sum(1)
     perp = rel - la[:, None] * u
     dd = np.sqrt((perp * perp).sum(1))
-    side = np.sign((_cross(ab, foot - a_) * n).sum(1))
+    side = np.sign((cross_rows(ab, foot - a_) * n).sum(1))
     I = _segment_integral(3, h, dd, la, la + L, np.full(h.shape, r))
     return float(np.sum(h / 3.0 * side * I))
 

@@ -104,7 +104,8 @@ from itertools import combinations
 
 import numpy as np
 
-from ._validate import as_finite_scalar, as_positive_int, as_tau, filtration_first
+from ._toolkit.geometry import cross, dot
+from ._toolkit.validate import as_finite_scalar, as_positive_int, as_tau, filtration_first
 from .balls import Balls
 from .filtration import _simplices_up_to, as_filtration
 
@@ -201,16 +202,8 @@ class UnionMeasure:
 # Vectors are stored component-first, shape (d, m): one row per coordinate, one
 # column per simplex, so that every operation runs on long contiguous rows.
 
-def _dot(a, b):
-    s = a[0] * b[0]
-    tmp = np.empty_like(s)
-    for i in range(1, a.shape[0]):
-        s += np.multiply(a[i], b[i], out=tmp)
-    return s
-
-
 def _norm(a):
-    return np.sqrt(_dot(a, a))
+    return np.sqrt(dot(a, a))
 
 
 def _unit(a, fallback=None):
@@ -223,25 +216,16 @@ def _unit(a, fallback=None):
     return u
 
 
-def _cross(a, b):
-    out = np.empty((3,) + np.broadcast_shapes(a.shape[1:], b.shape[1:]))
-    tmp = np.empty(out.shape[1:])
-    for i, (j, k) in enumerate(((1, 2), (2, 0), (0, 1))):
-        np.multiply(a[j], b[k], out=out[i])
-        out[i] -= np.multiply(a[k], b[j], out=tmp)
-    return out
-
-
 def _cross_norm(a, b):
     """|a x b| for 2- or 3-vectors."""
     if a.shape[0] == 2:
         return np.abs(a[0] * b[1] - a[1] * b[0])
-    return _norm(_cross(a, b))
+    return _norm(cross(a, b))
 
 
 def _angle(a, b):
     """The angle between vectors a and b in [0, pi], accurately (atan2)."""
-    return np.arctan2(_cross_norm(a, b), _dot(a, b))
+    return np.arctan2(_cross_norm(a, b), dot(a, b))
 
 
 def _tangent_angle(um, uk, p):
@@ -250,7 +234,7 @@ def _tangent_angle(um, uk, p):
     them.  The projections' cross product is parallel to p, of length
     :math:`|\\det(u_m, u_k, p)|`, and their dot product is
     :math:`u_m\\cdot u_k - (u_m\\cdot p)(u_k\\cdot p)`."""
-    return np.arctan2(np.abs(_dot(_cross(um, uk), p)), _dot(um, uk) - _dot(um, p) * _dot(uk, p))
+    return np.arctan2(np.abs(dot(cross(um, uk), p)), dot(um, uk) - dot(um, p) * dot(uk, p))
 
 
 # ============================================================ pair geometry
@@ -303,19 +287,19 @@ def _solve_ortho(E, b):
     determinant (0 for degenerate simplices, where x is set to 0)."""
     k = len(E)
     if k == 1:
-        g = _dot(E[0], E[0])
+        g = dot(E[0], E[0])
         det = g
         x = E[0] * (b[0] / np.where(g != 0, g, 1.0))
     elif k == 2:
-        g11, g12, g22 = _dot(E[0], E[0]), _dot(E[0], E[1]), _dot(E[1], E[1])
+        g11, g12, g22 = dot(E[0], E[0]), dot(E[0], E[1]), dot(E[1], E[1])
         det = g11 * g22 - g12 * g12
         s = np.where(det != 0, det, 1.0)
         l1 = (b[0] * g22 - b[1] * g12) / s
         l2 = (g11 * b[1] - g12 * b[0]) / s
         x = l1 * E[0] + l2 * E[1]
     else:
-        c23, c31, c12 = _cross(E[1], E[2]), _cross(E[2], E[0]), _cross(E[0], E[1])
-        det = _dot(E[0], c23)
+        c23, c31, c12 = cross(E[1], E[2]), cross(E[2], E[0]), cross(E[0], E[1])
+        det = dot(E[0], c23)
         s = np.where(det != 0, det, 1.0)
         x = (b[0] * c23 + b[1] * c31 + b[2] * c12) / s
     x = np.where(det != 0, x, 0.0)
@@ -329,9 +313,9 @@ def _orthocenter(Z, W, idx=None):
     idx = list(range(Z.shape[0])) if idx is None else list(idx)
     z0 = Z[idx[0]]
     E = [Z[i] - z0 for i in idx[1:]]
-    b = [0.5 * (_dot(e, e) + W[idx[0]] - W[i]) for e, i in zip(E, idx[1:])]
+    b = [0.5 * (dot(e, e) + W[idx[0]] - W[i]) for e, i in zip(E, idx[1:])]
     x, det = _solve_ortho(E, b)
-    return z0 + x, _dot(x, x) - W[idx[0]], det
+    return z0 + x, dot(x, x) - W[idx[0]], det
 
 
 def _arc_angle(center, p, q, bisector):
@@ -340,16 +324,16 @@ def _arc_angle(center, p, q, bisector):
     chord = q - p
     c = _norm(chord)
     qhat = _unit(chord)
-    n = bisector - _dot(bisector, qhat) * qhat
+    n = bisector - dot(bisector, qhat) * qhat
     n = _unit(n, fallback=_unit(bisector))
-    return 2.0 * np.arctan2(0.5 * c, _dot(0.5 * (p + q) - center, n))
+    return 2.0 * np.arctan2(0.5 * c, dot(0.5 * (p + q) - center, n))
 
 
 def _e_dir(Z, geo, a, b, c):
     """Unit vector perpendicular to z_a z_b in aff(a, b, c), pointing to z_c."""
     u = geo[a, b][0]
     w = Z[c] - Z[a]
-    return _unit(w - _dot(w, u) * u)
+    return _unit(w - dot(w, u) * u)
 
 
 # ======================================================= pieces per simplex
@@ -397,8 +381,8 @@ def _pieces_top(Z, W, R, d, geo):
         for n in range(4):
             face = [v for v in range(4) if v != n]
             yf, pf, _ = _orthocenter(Z, W, face)
-            nrm = _unit(_cross(Z[face[1]] - Z[face[0]], Z[face[2]] - Z[face[0]]))
-            side = np.sign(_dot(Z[n] - Z[face[0]], nrm))
+            nrm = _unit(cross(Z[face[1]] - Z[face[0]], Z[face[2]] - Z[face[0]]))
+            side = np.sign(dot(Z[n] - Z[face[0]], nrm))
             corner[n] = yf + (side * np.sqrt(np.maximum(-pf, 0.0))) * nrm
 
     # flat faces G and arc angles phi of the circles ∂B_a ∩ H_ab, per pair
@@ -408,12 +392,12 @@ def _pieces_top(Z, W, R, d, geo):
         others = [v for v in range(k1) if v not in (a, b)]
         if d == 2:
             (c,) = others
-            G[a, b] = np.sqrt(rho2) - _dot(y - f, _e_dir(Z, geo, a, b, c))
+            G[a, b] = np.sqrt(rho2) - dot(y - f, _e_dir(Z, geo, a, b, c))
         else:
             c, n = others
             ck, cn = corner[c], corner[n]
             ang = _arc_angle(f, ck, cn, _e_dir(Z, geo, a, b, c) + _e_dir(Z, geo, a, b, n))
-            tri = 0.5 * _norm(_cross(ck - y, cn - y))
+            tri = 0.5 * _norm(cross(ck - y, cn - y))
             G[a, b] = tri + 0.5 * rho2 * (ang - np.sin(ang))
             phi[a, b] = phi[b, a] = ang
         G[b, a] = G[a, b]
@@ -449,12 +433,12 @@ def _pieces_triangle3d(Z, W, R, geo=None):
     m = Z.shape[2]
     y, py, _ = _orthocenter(Z, W)
     h = np.sqrt(np.maximum(-py, 0.0))
-    nrm = _unit(_cross(Z[1] - Z[0], Z[2] - Z[0]))
+    nrm = _unit(cross(Z[1] - Z[0], Z[2] - Z[0]))
     G, phi = {}, {}
     for a, b in ((0, 1), (0, 2), (1, 2)):
         (c,) = [v for v in range(3) if v not in (a, b)]
         f, rho2 = geo[a, b][2], geo[a, b][3]
-        delta = _dot(y - f, _e_dir(Z, geo, a, b, c))
+        delta = dot(y - f, _e_dir(Z, geo, a, b, c))
         # the chord disk beyond a chord at signed distance delta from its centre
         # (half-chord h): area rho2 * half - delta * h, arc angle 2 * half
         half = np.arctan2(h, delta)
@@ -486,7 +470,7 @@ def _flatness(Z):
     """|det(edges)| / (longest edge)^d of top simplices."""
     k1 = Z.shape[0]
     E = [Z[i] - Z[0] for i in range(1, k1)]
-    det = np.abs(E[0][0] * E[1][1] - E[0][1] * E[1][0]) if k1 == 3 else np.abs(_dot(E[0], _cross(E[1], E[2])))
+    det = np.abs(E[0][0] * E[1][1] - E[0][1] * E[1][0]) if k1 == 3 else np.abs(dot(E[0], cross(E[1], E[2])))
     L = np.max(np.stack([_norm(Z[b] - Z[a]) for a, b in combinations(range(k1), 2)]), axis=0)
     return np.where(L > 0, det / np.where(L > 0, L, 1.0) ** (k1 - 1), 0.0)
 
@@ -728,7 +712,7 @@ def intersection_area(centers, radii) -> float:
     - c_y(\\cos\\phi_2-\\cos\\phi_1))]`.  Used by :func:`naive_union_area`; cost
     :math:`O(k^2)` for k disks.
     """
-    from ._validate import as_points, as_radii
+    from ._toolkit.validate import as_points, as_radii
 
     C = as_points(centers, "centers", dim=2)
     r = as_radii(radii, C.shape[0], "radii")

@@ -65,6 +65,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
+from ._toolkit.geometry import morton_order
+from ._toolkit.validate import as_bbox, default_bbox
 from .balls import Balls
 from .certify import certify, facet_adjacency
 from .incremental import incremental_triangulation
@@ -178,50 +180,6 @@ def _projection_axes(basis: np.ndarray, k: int) -> tuple:
 # ----------------------------------------------------------------------------------
 # Lower hull of the lifted points
 # ----------------------------------------------------------------------------------
-def _spread_bits(v: np.ndarray, k: int) -> np.ndarray:
-    """Interleave the bits of ``v`` (uint64) with ``k - 1`` zero bits (k = 2: 32 bits
-    in, k = 3: 21 bits in), by the usual magic-number shifts."""
-    v = v.astype(np.uint64)
-    if k == 2:
-        steps = [(16, 0x0000FFFF0000FFFF), (8, 0x00FF00FF00FF00FF), (4, 0x0F0F0F0F0F0F0F0F),
-                 (2, 0x3333333333333333), (1, 0x5555555555555555)]
-        v &= np.uint64(0xFFFFFFFF)
-    else:
-        steps = [(32, 0x1F00000000FFFF), (16, 0x1F0000FF0000FF), (8, 0x100F00F00F00F00F),
-                 (4, 0x10C30C30C30C30C3), (2, 0x1249249249249249)]
-        v &= np.uint64(0x1FFFFF)
-    for shift, mask in steps:
-        v = (v | (v << np.uint64(shift))) & np.uint64(mask)
-    return v
-
-
-def _morton_order(x: np.ndarray, min_n: int = 2048) -> np.ndarray:
-    """A permutation sorting the points along a Z-order (Morton) curve.
-
-    Qhull is faster when nearby points are nearby in memory (~15 % at 10^5 balls in
-    3D, ~30 % at 10^6 disks in 2D); the order does not change the result except for
-    which of several valid triangulations of degenerate input is returned.  The
-    index is packed into the low bits of the code so that one SIMD ``np.sort``
-    replaces ``argsort``.
-    """
-    n, k = x.shape
-    if n < min_n or k not in (2, 3):
-        return np.arange(n)
-    ib = int(n - 1).bit_length()
-    bits = min((63 - ib) // k, 32 if k == 2 else 21)
-    lo = x.min(axis=0)
-    ext = float(np.max(x.max(axis=0) - lo)) or 1.0
-    top = float(2**bits - 1)
-    code = np.zeros(n, dtype=np.uint64)
-    for j in range(k):
-        q = np.minimum((x[:, j] - lo[j]) * (top / ext), top).astype(np.uint64)
-        code |= _spread_bits(q, k) << np.uint64(j)
-    code <<= np.uint64(ib)
-    code |= np.arange(n, dtype=np.uint64)
-    code.sort()
-    return (code & np.uint64((1 << ib) - 1)).astype(np.int64)
-
-
 def _flat_rows(x: np.ndarray, simp: np.ndarray) -> np.ndarray:
     """Mask of top simplices whose projection has (relative) volume ~ 0."""
     k = x.shape[1]
@@ -328,7 +286,7 @@ def _lower_hull(x: np.ndarray, w: np.ndarray):
     hs = float(np.max(np.abs(h)))
     if hs > 0:
         h = h / hs
-    perm = _morton_order(x)
+    perm = morton_order(x)
     try:
         return (*_hull_once(x, h, perm), perm)
     except RuntimeError:
@@ -373,7 +331,7 @@ def _certified(balls: Balls, fr: _Frame):
         if cert.ok:
             return simp.astype(np.int32), cert.neighbors, TriangulationReport("qhull", "", dict(P.stats))
         reason = cert.reason
-    order = np.argsort(fr.x[:, 0], kind="stable") if fr.k == 1 else _morton_order(fr.x, min_n=0)
+    order = np.argsort(fr.x[:, 0], kind="stable") if fr.k == 1 else morton_order(fr.x, min_n=0)
     simp = incremental_triangulation(P, order).astype(np.int32)
     nbr, _ = facet_adjacency(simp)
     return simp, nbr, TriangulationReport("incremental", reason, dict(P.stats))
@@ -490,30 +448,6 @@ class PowerDiagram:
     unbounded: np.ndarray
 
 
-def _default_bbox(balls: Balls) -> np.ndarray:
-    lo = np.min(balls.centers - balls.radii[:, None], axis=0)
-    hi = np.max(balls.centers + balls.radii[:, None], axis=0)
-    ext = float(np.max(hi - lo))
-    pad = 0.1 * ext if ext > 0 else 1.0
-    return np.array([lo - pad, hi + pad])
-
-
-def _as_bbox(bbox, d: int) -> np.ndarray:
-    from ._validate import _as_float_array, _check_finite
-
-    b = _as_float_array(bbox, "bbox")
-    if b.shape == (2 * d,):
-        b = b.reshape(2, d) if d == 2 else np.array([b[:d], b[d:]])
-    if b.shape != (2, d):
-        raise ValueError(
-            f"bbox must have shape (2, {d}) as [lower corner, upper corner], got shape {b.shape}"
-        )
-    _check_finite(b, "bbox")
-    if np.any(b[1] <= b[0]):
-        raise ValueError(f"bbox must have lower corner < upper corner in every coordinate, got {b.tolist()}")
-    return b
-
-
 def _orthocentres(balls: Balls, tri: np.ndarray) -> np.ndarray:
     """Orthocentres of full-dimensional simplices, in input coordinates."""
     if tri.shape[0] == 0 or tri.shape[1] != balls.dim + 1:
@@ -605,7 +539,7 @@ def power_diagram(balls: Balls, *, bbox=None) -> PowerDiagram:
     _check_balls(balls)
     d = balls.dim
     n = len(balls)
-    box = _default_bbox(balls) if bbox is None else _as_bbox(bbox, d)
+    box = default_bbox(balls) if bbox is None else as_bbox(bbox, d)
     fr, tri = _triangulate(balls)
     present = np.zeros(n, dtype=bool)
     present[tri.ravel()] = True

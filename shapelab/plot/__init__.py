@@ -13,8 +13,7 @@ the rest of the library.
 """
 from __future__ import annotations
 
-import importlib
-
+from .._toolkit.lazy import attach
 from ._style import COLORS, PAGE, PALETTE, SLIDE, new_figure, style
 
 _EXPORTS = {
@@ -46,10 +45,4 @@ _EXPORTS = {
 __all__ = ["COLORS", "PALETTE", "PAGE", "SLIDE", "new_figure", "style", *sorted(_EXPORTS)]
 
 
-def __getattr__(name: str):
-    if name in _EXPORTS:
-        module = importlib.import_module(f"shapelab.plot.{_EXPORTS[name]}")
-        value = getattr(module, name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'shapelab.plot' has no attribute {name!r}")
+__getattr__, __dir__ = attach(__name__, _EXPORTS, eager=__all__)

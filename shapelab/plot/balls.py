@@ -26,7 +26,7 @@ from matplotlib.colors import BoundaryNorm, Normalize, to_rgba
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from .._validate import as_finite_scalar, as_positive_int, as_tau, filtration_first
+from .._toolkit.validate import as_finite_scalar, as_positive_int, as_tau, filtration_first
 from ..balls import Balls
 from ._style import COLORS, PAGE, PALETTE, new_figure, style
 

@@ -224,7 +224,7 @@ def hausdorff(A, B, *, ax=None, size=PAGE, labels=("A", "B"), disks: bool = True
     -------
     matplotlib.figure.Figure
     """
-    from .._validate import as_points
+    from .._toolkit.validate import as_points
     from ..hausdorff import hausdorff_pair
 
     A = as_points(A, "A", dim=2)
@@ -267,7 +267,7 @@ def translation(A, B, match, *, size=SLIDE, labels=("A", "B"), title: str | None
     -------
     matplotlib.figure.Figure
     """
-    from .._validate import as_points
+    from .._toolkit.validate import as_points
     from ..hausdorff import TranslationMatch
 
     if not isinstance(match, TranslationMatch):

@@ -18,7 +18,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, Patch
 from matplotlib.ticker import MaxNLocator
 
-from .._validate import as_finite_scalar, as_tau, filtration_first
+from .._toolkit.validate import as_finite_scalar, as_tau, filtration_first
 from ._style import COLORS, PAGE, PALETTE, new_figure, style
 
 __all__ = ["persistence_diagram", "barcode", "betti_curve", "voids", "pockets", "tunnels"]

@@ -45,7 +45,7 @@ def check_balls(balls, *, dim: int | None, who: str, minimum: int = 1, what: str
 def value_range(pair, name: str, *, nonnegative: bool = False) -> tuple[float, float]:
     """A slider's ``(low, high)`` argument, validated: finite numbers (>= 0 where asked)
     with low < high."""
-    from .._validate import as_finite_scalar
+    from .._toolkit.validate import as_finite_scalar
 
     try:
         lo, hi = (as_finite_scalar(v, name, nonnegative=nonnegative) for v in pair)

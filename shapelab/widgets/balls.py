@@ -4,7 +4,7 @@ from __future__ import annotations
 import ipywidgets as W
 import numpy as np
 
-from .._validate import as_finite_scalar, as_positive_int, as_tau, filtration_first
+from .._toolkit.validate import as_finite_scalar, as_positive_int, as_tau, filtration_first
 
 __all__ = ["alpha_explorer", "AlphaExplorer"]
 
@@ -188,7 +188,7 @@ def power_explorer(balls, *, index=0, radius=None, radius_range=None, steps=100,
         An ``ipywidgets.VBox``: the two sliders, a status line and the figure.
     """
     from ..balls import Balls
-    from ..power import _as_bbox, _default_bbox
+    from .._toolkit.validate import as_bbox, default_bbox
     from ._frame import check_balls, value_range
 
     check_balls(balls, dim=2, who="power_explorer", minimum=2, what="disk")
@@ -203,9 +203,9 @@ def power_explorer(balls, *, index=0, radius=None, radius_range=None, steps=100,
         lo, hi = value_range(radius_range, "radius_range", nonnegative=True)
     r0 = float(balls.radii[index]) if radius is None else as_finite_scalar(radius, "radius", nonnegative=True)
     if bbox is None:
-        bbox = _default_bbox(Balls(balls.centers, np.full(len(balls), max(hi, float(balls.radii.max())))))
+        bbox = default_bbox(Balls(balls.centers, np.full(len(balls), max(hi, float(balls.radii.max())))))
     else:
-        bbox = _as_bbox(bbox, 2)
+        bbox = as_bbox(bbox, 2)
     return PowerExplorer(balls, int(index), min(max(r0, lo), hi), lo, hi, (hi - lo) / steps, mode, bbox)
 
 

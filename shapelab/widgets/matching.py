@@ -7,7 +7,7 @@ import io
 import ipywidgets as W
 import numpy as np
 
-from .._validate import as_point, as_positive_int
+from .._toolkit.validate import as_point, as_positive_int
 
 __all__ = ["critical_points_explorer", "CriticalPointsExplorer"]
 

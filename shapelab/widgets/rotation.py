@@ -11,7 +11,7 @@ import io
 import ipywidgets as W
 import numpy as np
 
-from .._validate import as_points, as_positive_int
+from .._toolkit.validate import as_points, as_positive_int
 
 __all__ = ["icp_explorer", "ICPExplorer"]
 

@@ -6,7 +6,7 @@ import io
 import ipywidgets as W
 import numpy as np
 
-from .._validate import as_finite_scalar, as_tau, filtration_first
+from .._toolkit.validate import as_finite_scalar, as_tau, filtration_first
 
 __all__ = ["pocket_explorer", "PocketExplorer"]
 
