@@ -21,7 +21,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._toolkit.validate import readonly, as_finite_scalar, as_point, as_points, as_radii, as_tau
+from ._toolkit.validate import (
+    as_finite_scalar,
+    as_point,
+    as_points,
+    as_radii,
+    as_tau,
+    check_balls,
+    readonly,
+)
 
 __all__ = ["Balls", "power_distance"]
 
@@ -169,8 +177,7 @@ def power_distance(x, balls: Balls) -> np.ndarray:
     >>> power_distance([0.0, 0.0], Balls([[3, 4]], [1.0])).tolist()
     [24.0]
     """
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+    check_balls(balls)
     arr = np.asarray(x) if not isinstance(x, (str, bytes)) else x
     single = getattr(arr, "ndim", None) == 1
     if single:

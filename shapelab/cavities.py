@@ -65,7 +65,13 @@ from scipy.sparse.csgraph import connected_components
 from . import topology as _topo
 from ._toolkit.geometry import cross_rows
 from ._toolkit.unionfind import elder_merges
-from ._toolkit.validate import readonly, as_finite_scalar, as_tau, filtration_first
+from ._toolkit.validate import (
+    as_finite_scalar,
+    as_tau,
+    check_balls,
+    filtration_first,
+    readonly,
+)
 from .filtration import as_filtration, derived
 
 __all__ = ["Void", "Pocket", "Tunnel", "voids", "pockets", "tunnels", "grooves", "free_measure"]
@@ -1041,10 +1047,8 @@ def free_measure(balls, tau, cells) -> np.ndarray:
     """
     from scipy.spatial import cKDTree
 
-    from .balls import Balls
 
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+    check_balls(balls)
     tau = as_tau(tau)
     d = balls.dim
     cells = np.asarray(cells)

@@ -54,7 +54,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._toolkit.geometry import cross, dot
-from ._toolkit.validate import freeze, as_tau
+from ._toolkit.validate import as_tau, check_balls, freeze
 from .balls import Balls
 from .power import _triangulate_local
 
@@ -807,8 +807,7 @@ def alpha_filtration(balls: Balls) -> Filtration:
     (typically a few ulp) of the exact value for the float64 input, exact zeros
     are exact, and the Gabriel test is exact.
     """
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+    check_balls(balls)
     res = _entry_times(balls)
     if res is None:
         return _empty_filtration(balls)

@@ -27,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ._toolkit.validate import readonly, as_finite_scalar, as_positive_int
+from ._toolkit.validate import as_finite_scalar, as_positive_int, check_balls, readonly
 from .balls import Balls
 
 __all__ = ["VDW_RADII", "WATER_RESIDUES", "STANDARD_RESIDUES", "PDBStructure", "read_pdb",
@@ -578,8 +578,7 @@ def write_pdb(path, balls: Balls, elements, *, atom_names=None, residue_names=No
     -------
     pathlib.Path
     """
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+    check_balls(balls)
     if balls.dim != 3:
         raise ValueError(f"balls must be 3-dimensional to be written as a PDB file, got dim={balls.dim}")
     n = len(balls)

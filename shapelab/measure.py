@@ -105,7 +105,13 @@ from itertools import combinations
 import numpy as np
 
 from ._toolkit.geometry import cross, dot
-from ._toolkit.validate import as_finite_scalar, as_positive_int, as_tau, filtration_first
+from ._toolkit.validate import (
+    as_finite_scalar,
+    as_positive_int,
+    as_tau,
+    check_balls,
+    filtration_first,
+)
 from .balls import Balls
 from .filtration import _simplices_up_to, as_filtration
 
@@ -783,8 +789,7 @@ def naive_union_area(balls: Balls, *, max_balls: int = 16, max_order=None):
     n_nonzero : int
         How many terms were nonzero.
     """
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+    check_balls(balls)
     if balls.dim != 2:
         raise ValueError(f"naive_union_area works with disks (2D), got balls of dimension {balls.dim}")
     max_balls = as_positive_int(max_balls, "max_balls")
@@ -818,8 +823,7 @@ def monte_carlo_union_measure(balls: Balls, n_samples=100_000, *, seed=0, chunk:
     Samples uniformly in the bounding box; returns the estimate and its standard
     error :math:`V_{box}\\sqrt{p(1-p)/N}`.
     """
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+    check_balls(balls)
     n_samples = as_positive_int(n_samples, "n_samples")
     rng = np.random.default_rng(seed)
     lo = (balls.centers - balls.radii[:, None]).min(axis=0)
@@ -929,8 +933,7 @@ def clipped_cells(balls: Balls, *, tau=0.0, diagram=None, arc_resolution: int = 
     tuple of ndarray
         One (k_i, 2) counter-clockwise polygon per ball, (0, 2) when empty.
     """
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+    check_balls(balls)
     if balls.dim != 2:
         raise ValueError(f"clipped_cells works with disks (2D), got balls of dimension {balls.dim}")
     t = as_tau(tau, finite=True)
@@ -996,8 +999,7 @@ def sampled_nerve(balls: Balls, *, tau=0.0, spacing=0.02, margin=None, max_dim=N
     set of tuple of int
         The simplices, each a sorted tuple of ball indices.
     """
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+    check_balls(balls)
     t = as_tau(tau, finite=True)
     h = as_finite_scalar(spacing, "spacing", positive=True)
     max_dim = balls.dim if max_dim is None else as_positive_int(max_dim, "max_dim", minimum=0)
@@ -1038,8 +1040,7 @@ def raster_topology(balls: Balls, *, tau=0.0, spacing=0.02, min_hole_pixels: int
     """
     from scipy import ndimage
 
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+    check_balls(balls)
     if balls.dim != 2:
         raise ValueError(f"raster_topology works with disks (2D), got balls of dimension {balls.dim}")
     t = as_tau(tau, finite=True)

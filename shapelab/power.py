@@ -66,7 +66,7 @@ import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
 from ._toolkit.geometry import morton_order
-from ._toolkit.validate import as_bbox, default_bbox
+from ._toolkit.validate import as_bbox, check_balls, default_bbox
 from .balls import Balls
 from .certify import certify, facet_adjacency
 from .incremental import incremental_triangulation
@@ -76,12 +76,6 @@ __all__ = ["regular_triangulation", "power_diagram", "PowerDiagram", "triangulat
 
 _QHULL_OPTIONS = "Qt Qbb Q12 Q5 Q8"
 _VERTICAL_TOL = 1e-10
-
-
-def _check_balls(balls) -> Balls:
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
-    return balls
 
 
 # ----------------------------------------------------------------------------------
@@ -356,7 +350,7 @@ def triangulation_report(balls: Balls) -> TriangulationReport:
     """How the regular triangulation of ``balls`` is computed and certified
     (Notes §23.1): Qhull's answer certified exactly, or the exact incremental
     algorithm where the certificate failed; see :class:`TriangulationReport`."""
-    _check_balls(balls)
+    check_balls(balls)
     return _triangulate_local(balls, report=True)[3]
 
 
@@ -402,7 +396,7 @@ def regular_triangulation(balls: Balls) -> np.ndarray:
     >>> regular_triangulation(Balls([[0, 0], [1, 0], [1, 1], [0, 1]], 0.0)).tolist()
     [[0, 1, 2], [0, 2, 3]]
     """
-    _check_balls(balls)
+    check_balls(balls)
     return _triangulate(balls)[1]
 
 
@@ -536,7 +530,7 @@ def power_diagram(balls: Balls, *, bbox=None) -> PowerDiagram:
     these half-planes; in 3D the cell is described by its vertices (orthocentres of
     the incident tetrahedra) and ``unbounded`` flags the cells on the hull.
     """
-    _check_balls(balls)
+    check_balls(balls)
     d = balls.dim
     n = len(balls)
     box = default_bbox(balls) if bbox is None else as_bbox(bbox, d)

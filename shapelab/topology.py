@@ -56,8 +56,8 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import minimum_spanning_tree
 
-from ._toolkit.validate import as_float_array, as_tau
 from ._toolkit.unionfind import elder_merges
+from ._toolkit.validate import as_float_array, as_tau
 from .filtration import derived
 
 __all__ = ["betti", "betti_curve", "persistence", "euler_characteristic_curve", "is_roundoff"]

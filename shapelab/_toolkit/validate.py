@@ -22,6 +22,7 @@ __all__ = [
     "check_finite",
     "readonly",
     "freeze",
+    "check_balls",
     "as_bbox",
     "default_bbox",
     "as_points",
@@ -226,6 +227,19 @@ def freeze(a: np.ndarray) -> np.ndarray:
     """Make ``a`` read-only in place (no copy) and return it."""
     a.flags.writeable = False
     return a
+
+
+def check_balls(balls, name: str = "balls", *, dim: int | None = None):
+    """Return ``balls`` if it is a :class:`shapelab.Balls` (of dimension ``dim`` if
+    given), else raise a TypeError/ValueError naming ``name``.  The one ball check:
+    the centres and radii themselves were validated when the Balls was built."""
+    from ..balls import Balls
+
+    if not isinstance(balls, Balls):
+        raise TypeError(f"{name} must be a shapelab.Balls, got {type(balls).__name__}")
+    if dim is not None and balls.dim != dim:
+        raise ValueError(f"{name} must be {dim}-dimensional here, got dim={balls.dim}")
+    return balls
 
 
 def default_bbox(balls) -> np.ndarray:

@@ -26,7 +26,13 @@ from matplotlib.colors import BoundaryNorm, Normalize, to_rgba
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from .._toolkit.validate import as_finite_scalar, as_positive_int, as_tau, filtration_first
+from .._toolkit.validate import (
+    as_finite_scalar,
+    as_positive_int,
+    as_tau,
+    check_balls,
+    filtration_first,
+)
 from ..balls import Balls
 from ._style import COLORS, PAGE, PALETTE, new_figure, style
 
@@ -36,8 +42,7 @@ __all__ = ["disks", "power_diagram", "dual_complex", "filtration", "balls3d", "c
 
 # ------------------------------------------------------------------ helpers
 def _check_balls(balls, name="balls", dim=None) -> Balls:
-    if not isinstance(balls, Balls):
-        raise TypeError(f"{name} must be a shapelab.Balls, got {type(balls).__name__}")
+    check_balls(balls, name)
     if dim is not None and balls.dim != dim:
         hint = " (use balls3d/complex3d for 3D)" if dim == 2 else " (use disks/dual_complex for 2D)"
         raise ValueError(f"{name} must be {dim}D for this figure, got {balls.dim}D{hint}")

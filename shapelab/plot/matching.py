@@ -153,10 +153,10 @@ def critical_surface(vertices, faces, result, *, ax=None, size=PAGE, elev: float
     -------
     matplotlib.figure.Figure
     """
-    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
     from matplotlib import colormaps
-    from matplotlib.colors import Normalize
     from matplotlib.cm import ScalarMappable
+    from matplotlib.colors import Normalize
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
     _check_result(result, ("surface",))
     V = np.asarray(vertices, dtype=float)

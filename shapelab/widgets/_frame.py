@@ -30,10 +30,9 @@ def png(fig, dpi: int = DPI) -> bytes:
 def check_balls(balls, *, dim: int | None, who: str, minimum: int = 1, what: str = "ball"):
     """Validate an explorer's ``balls``: a shapelab.Balls, of dimension ``dim`` (any if
     None), holding at least ``minimum`` of them."""
-    from ..balls import Balls
+    from .._toolkit.validate import check_balls as check_type
 
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+    check_type(balls)
     if dim is not None and balls.dim != dim:
         raise ValueError(f"{who} draws {what}s in {dim}D: balls must be {dim}D, got {balls.dim}D")
     if len(balls) < minimum:

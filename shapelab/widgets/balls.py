@@ -4,7 +4,12 @@ from __future__ import annotations
 import ipywidgets as W
 import numpy as np
 
-from .._toolkit.validate import as_finite_scalar, as_positive_int, as_tau, filtration_first
+from .._toolkit.validate import (
+    as_finite_scalar,
+    as_positive_int,
+    as_tau,
+    filtration_first,
+)
 
 __all__ = ["alpha_explorer", "AlphaExplorer"]
 
@@ -187,8 +192,8 @@ def power_explorer(balls, *, index=0, radius=None, radius_range=None, steps=100,
     PowerExplorer
         An ``ipywidgets.VBox``: the two sliders, a status line and the figure.
     """
-    from ..balls import Balls
     from .._toolkit.validate import as_bbox, default_bbox
+    from ..balls import Balls
     from ._frame import check_balls, value_range
 
     check_balls(balls, dim=2, who="power_explorer", minimum=2, what="disk")
@@ -295,8 +300,8 @@ class PowerExplorer(W.VBox):
         return fig
 
     def _redraw(self, change=None):
-        from . import _frame
         from ..power import power_diagram
+        from . import _frame
 
         self.diagram = power_diagram(self.balls, bbox=self._bbox)
         self.status.value = self.status_text()
