@@ -12,6 +12,7 @@ Modules, one per concept of the notes:
 ``shapelab.filtration``   :func:`alpha_filtration`, :func:`dual_complex`
 ``shapelab.topology``     Betti numbers and persistence of a filtration
 ``shapelab.cavities``     :func:`voids`, :func:`pockets`, :func:`tunnels`
+``shapelab.freespace``    exact free area/volume of cells (void and pocket volumes)
 ``shapelab.measure``      :func:`union_measure` (area/volume of a union)
 ``shapelab.quaternion``   :class:`Quaternion` (§23.2, rotations)
 ``shapelab.registration`` :func:`optimal_rotation`, :func:`register`, :func:`icp`
@@ -64,7 +65,7 @@ _EXPORTS = {
     "read_pdb": "io",
 }
 _SUBMODULES = {
-    "balls", "power", "filtration", "topology", "cavities", "measure", "quaternion",
+    "balls", "power", "filtration", "topology", "cavities", "freespace", "measure", "quaternion",
     "registration", "hausdorff", "critical", "io", "datasets", "plot", "widgets",
     "check", "figures",
 }
