@@ -8,12 +8,13 @@ Modules, one per concept of the notes:
 
 ========================  =====================================================
 ``shapelab.balls``        :class:`Balls`, :func:`power_distance` (§23.1)
-``shapelab.power``        :func:`power_diagram`, :func:`regular_triangulation`
+``shapelab.power``        :func:`power_diagram`, :func:`regular_triangulation`, clipped cells
 ``shapelab.filtration``   :func:`alpha_filtration`, :func:`dual_complex`
 ``shapelab.topology``     Betti numbers and persistence of a filtration
 ``shapelab.cavities``     :func:`voids`, :func:`pockets`, :func:`tunnels`
 ``shapelab.freespace``    exact free area/volume of cells (void and pocket volumes)
 ``shapelab.measure``      :func:`union_measure` (area/volume of a union)
+``shapelab.oracles``      brute-force and sampling oracles (naive formula, Monte Carlo)
 ``shapelab.quaternion``   :class:`Quaternion` (§23.2, rotations)
 ``shapelab.registration`` :func:`optimal_rotation`, :func:`register`, :func:`icp`
 ``shapelab.hausdorff``    :func:`directed_hausdorff`, :func:`hausdorff`, ...
@@ -65,7 +66,7 @@ _EXPORTS = {
     "read_pdb": "io",
 }
 _SUBMODULES = {
-    "balls", "power", "filtration", "topology", "cavities", "freespace", "measure", "quaternion",
+    "balls", "power", "filtration", "topology", "cavities", "freespace", "measure", "oracles", "quaternion",
     "registration", "hausdorff", "critical", "io", "datasets", "plot", "widgets",
     "check", "figures",
 }

@@ -66,13 +66,16 @@ import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
 from ._toolkit.geometry import morton_order
-from ._toolkit.validate import as_bbox, check_balls, default_bbox
+from ._toolkit.validate import as_bbox, as_positive_int, as_tau, check_balls, default_bbox
 from .balls import Balls
 from .certify import certify, facet_adjacency
 from .incremental import incremental_triangulation
 from .predicates import WeightedPoints, det
 
-__all__ = ["regular_triangulation", "power_diagram", "PowerDiagram", "triangulation_report", "TriangulationReport"]
+__all__ = [
+    "regular_triangulation", "power_diagram", "PowerDiagram", "triangulation_report", "TriangulationReport",
+    "clipped_cells",
+]
 
 _QHULL_OPTIONS = "Qt Qbb Q12 Q5 Q8"
 _VERTICAL_TOL = 1e-10
@@ -594,3 +597,114 @@ def power_diagram(balls: Balls, *, bbox=None) -> PowerDiagram:
     for a in (hidden, adjacency, box, unbounded):
         a.flags.writeable = False
     return PowerDiagram(balls, hidden, vertices, tuple(cells), adjacency, box, unbounded)
+
+
+# ======================================== the cells B_i ∩ Π(B_i), for drawing
+def _clip_convex_by_disk(poly, cx, cy, r, step):
+    """Polygon approximating (convex polygon) ∩ (disk), counter-clockwise.
+
+    Edges of the polygon inside the disk are kept exactly; between the point where
+    the boundary leaves the disk and where it re-enters, the circle is followed with
+    points every ``step`` radians."""
+    import math
+
+    k = len(poly)
+    if k < 3 or r <= 0:
+        return np.zeros((0, 2))
+    r2 = r * r
+    out = []
+    leave = None  # angle where the boundary left the disk
+    first_entry = None
+
+    def arc_to(a0, a1):
+        span = (a1 - a0) % (2 * math.pi)
+        m = int(span / step)
+        for j in range(1, m + 1):
+            a = a0 + span * j / (m + 1)
+            out.append((cx + r * math.cos(a), cy + r * math.sin(a)))
+
+    for t in range(k):
+        px, py = poly[t]
+        qx, qy = poly[(t + 1) % k]
+        dx, dy = qx - px, qy - py
+        fx, fy = px - cx, py - cy
+        a = dx * dx + dy * dy
+        b = fx * dx + fy * dy
+        c = fx * fx + fy * fy - r2
+        if c <= 0:
+            out.append((px, py))
+        if a == 0:
+            continue
+        disc = b * b - a * c
+        if disc <= 0:
+            continue
+        sq = math.sqrt(disc)
+        s0, s1 = (-b - sq) / a, (-b + sq) / a
+        if 0 < s0 < 1 and c > 0:  # enters the disk on this edge
+            ang = math.atan2(fy + s0 * dy, fx + s0 * dx)
+            if leave is None:
+                first_entry = ang if first_entry is None else first_entry
+            else:
+                arc_to(leave, ang)
+                leave = None
+            out.append((px + s0 * dx, py + s0 * dy))
+        if 0 < s1 < 1 and (px + dx - cx) ** 2 + (py + dy - cy) ** 2 > r2:  # leaves the disk
+            out.append((px + s1 * dx, py + s1 * dy))
+            leave = math.atan2(fy + s1 * dy, fx + s1 * dx)
+    if leave is not None and first_entry is not None:
+        arc_to(leave, first_entry)
+    if not out:
+        # no vertex inside and no crossing: the disk is inside the polygon or misses it
+        inside = all((poly[(t + 1) % k][0] - poly[t][0]) * (cy - poly[t][1])
+                     - (poly[(t + 1) % k][1] - poly[t][1]) * (cx - poly[t][0]) >= 0 for t in range(k))
+        if not inside:
+            return np.zeros((0, 2))
+        m = max(int(2 * math.pi / step), 8)
+        ang = np.linspace(0, 2 * math.pi, m, endpoint=False)
+        return np.column_stack([cx + r * np.cos(ang), cy + r * np.sin(ang)])
+    return np.array(out)
+
+
+def clipped_cells(balls: Balls, *, tau=0.0, diagram=None, arc_resolution: int = 96):
+    """The cells :math:`B_i(\\tau) \\cap \\Pi(B_i)` of disks as polygons (Notes §23.1).
+
+    The power diagram partitions the union into these convex pieces, "the cells
+    contained in :math:`\\bigcup B_i`"; their areas are ``union_measure(...).
+    ball_measure``.  Circular arcs are sampled with ``arc_resolution`` points per full
+    turn (the polygons are inscribed, so their areas are slightly smaller).
+
+    Parameters
+    ----------
+    balls : Balls
+        2D balls.
+    tau : float
+        Growth time (the power diagram does not change with τ).
+    diagram : PowerDiagram, optional
+        ``power_diagram(balls)`` if already computed; its box must contain the disks.
+    arc_resolution : int
+
+    Returns
+    -------
+    tuple of ndarray
+        One (k_i, 2) counter-clockwise polygon per ball, (0, 2) when empty.
+    """
+    check_balls(balls)
+    if balls.dim != 2:
+        raise ValueError(f"clipped_cells works with disks (2D), got balls of dimension {balls.dim}")
+    t = as_tau(tau, finite=True)
+    res = as_positive_int(arc_resolution, "arc_resolution", minimum=8)
+    if diagram is None:
+        w = balls.weights + max(t, 0.0)
+        lo = (balls.centers - np.sqrt(w)[:, None]).min(axis=0) - 1.0 if len(balls) else np.zeros(2)
+        hi = (balls.centers + np.sqrt(w)[:, None]).max(axis=0) + 1.0 if len(balls) else np.ones(2)
+        diagram = power_diagram(balls, bbox=np.array([lo, hi]))
+    w = balls.weights + t
+    step = 2 * np.pi / res
+    out = []
+    for i, cell in enumerate(diagram.cells):
+        if w[i] <= 0 or len(cell) < 3:
+            out.append(np.zeros((0, 2)))
+            continue
+        cx, cy = balls.centers[i]
+        out.append(_clip_convex_by_disk(cell.tolist(), float(cx), float(cy), float(np.sqrt(w[i])), step))
+    return tuple(out)

@@ -271,3 +271,26 @@ def test_power_diagram_3d():
     assert set(np.flatnonzero(pd.unbounded).tolist()) >= hull
     edges = {tuple(sorted(e)) for t in T.tolist() for e in itertools.combinations(t, 2)}
     assert as_set(pd.adjacency) == edges
+
+
+# ------------------------------------------------ clipped cells B_i ∩ Π(B_i)
+@pytest.mark.parametrize("tau", [0.0, 0.7])
+def test_clipped_cells_have_the_per_ball_areas(tau):
+    """The polygons of B_i ∩ Π(B_i), built by clipping the power cells with the disks
+    (no inclusion–exclusion), have the areas of the per-ball shares."""
+    from shapelab import Balls, union_measure
+    from shapelab.power import clipped_cells
+    from tests.test_measure import _poly_area, random_balls
+
+    b = random_balls(51, 40, 2, 0.2, 1.2, box=6.0)
+    cells = clipped_cells(b, tau=tau, arc_resolution=4000)
+    m = union_measure(b, tau=tau)
+    areas = np.array([_poly_area(P) for P in cells])
+    assert np.all(areas >= 0)  # counter-clockwise
+    # inscribed polygons: error below r^2 (2π/N)^2 / 6 per full circle
+    np.testing.assert_allclose(areas, m.ball_measure, atol=4e-6)
+    hidden_inside = union_measure(Balls(np.vstack([b.centers, b.centers[:1]]), np.append(b.radii, 0.1)))
+    assert len(clipped_cells(Balls(np.vstack([b.centers, b.centers[:1]]), np.append(b.radii, 0.1)))[-1]) == 0
+    assert hidden_inside.ball_measure[-1] == 0.0
+    with pytest.raises(ValueError, match="2D"):
+        clipped_cells(random_balls(1, 4, 3))

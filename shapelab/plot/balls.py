@@ -15,7 +15,7 @@
 Every function returns a :class:`matplotlib.figure.Figure` (or draws into ``ax=``
 and returns its figure) and computes no geometry of its own: cells, complexes and
 entry times come from :mod:`shapelab.power` and :mod:`shapelab.filtration`.  The
-cells :math:`B_i \\cap \\Pi(B_i)` come from :func:`shapelab.measure.clipped_cells`.
+cells :math:`B_i \\cap \\Pi(B_i)` come from :func:`shapelab.power.clipped_cells`.
 """
 from __future__ import annotations
 
@@ -301,7 +301,7 @@ class DualComplexView:
         return np.array([balls.centers.min(axis=0) - pad, balls.centers.max(axis=0) + pad])
 
     def _set_cells(self, tau):
-        from ..measure import clipped_cells
+        from ..power import clipped_cells
 
         polys = clipped_cells(self.balls, tau=tau, diagram=self._diagram, arc_resolution=72)
         self._cells.set_verts([p for p in polys if len(p) >= 3])
