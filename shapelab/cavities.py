@@ -51,7 +51,6 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
-from . import topology as _topo
 from ._toolkit.unionfind import elder_merges
 from ._toolkit.validate import (
     as_finite_scalar,
@@ -61,6 +60,7 @@ from ._toolkit.validate import (
 )
 from .filtration import as_filtration, derived
 from .freespace import free_measure, vertex_values, void_measure
+from .topology import is_roundoff, reduce_h1, summary
 
 __all__ = ["Void", "Pocket", "Tunnel", "voids", "pockets", "tunnels", "grooves"]
 
@@ -219,7 +219,7 @@ class _Tree:
 
 
 def _build_tree(F) -> _Tree:
-    S = _topo._summary(F)
+    S = summary(F)
     k = S.k
     n = S.values[k].shape[0]
     N = n + 1
@@ -348,7 +348,7 @@ def voids(F, tau=0.0) -> tuple:
     tau = as_tau(tau)
     if not _full_dim(balls, F):
         return ()
-    S = _topo._summary(F)
+    S = summary(F)
     T = _tree(F)
     k = S.k
     n = S.values[k].shape[0]
@@ -418,7 +418,7 @@ def pockets(F, tau=0.0, *, min_persistence=0.0) -> tuple:
     mp = as_finite_scalar(min_persistence, "min_persistence", nonnegative=True)
     if not _full_dim(balls, F):
         return ()
-    S = _topo._summary(F)
+    S = summary(F)
     T = _tree(F)
     k = S.k
     n = S.values[k].shape[0]
@@ -426,7 +426,7 @@ def pockets(F, tau=0.0, *, min_persistence=0.0) -> tuple:
     cv = S.values[k]
     b = T.kill_value
     cand = np.flatnonzero((b > tau) & (cv > b) & (cv - b >= mp))
-    cand = cand[~_topo.is_roundoff(F, b[cand], cv[cand])]
+    cand = cand[~is_roundoff(F, b[cand], cv[cand])]
     if cand.size == 0:
         return ()
     lab, _ = _complement_labels(F, S, tau)
@@ -462,7 +462,7 @@ def pockets(F, tau=0.0, *, min_persistence=0.0) -> tuple:
 
 # ================================================================ tunnels/grooves
 def _build_h1_cycles(F):
-    return _topo._reduce_h1(_topo._summary(F), F, compress=False)
+    return reduce_h1(summary(F), F, compress=False)
 
 
 def _h1_with_cycles(F):
@@ -476,7 +476,7 @@ def _h1_classes(F, tau, select, fname):
             f"{fname}: tunnels and grooves are H1 classes of unions of balls in 3D; in 2D the H1 "
             "classes are holes, which voids() returns"
         )
-    S = _topo._summary(F)
+    S = summary(F)
     if S.k < 2:
         return ()
     piv_e, piv_t, cols = _h1_with_cycles(F)
@@ -484,7 +484,7 @@ def _h1_classes(F, tau, select, fname):
         return ()
     birth = S.values[1][piv_e]
     death = S.values[2][piv_t]
-    keep = np.flatnonzero(select(birth, death) & (death > birth) & ~_topo.is_roundoff(F, birth, death))
+    keep = np.flatnonzero(select(birth, death) & (death > birth) & ~is_roundoff(F, birth, death))
     edges = np.asarray(F.simplices(1), dtype=np.int64)
     out = []
     for i in keep.tolist():

@@ -482,7 +482,8 @@ def globule_structure(seed=0, *, residue_size=8, **kwargs):
     -------
     shapelab.io.PDBStructure
     """
-    from .io import PDBStructure, _readonly  # io imports balls only; no cycle
+    from ._toolkit.validate import readonly as _readonly
+    from .io import PDBStructure  # io imports balls only; no cycle
 
     size = as_positive_int(residue_size, "residue_size")
     defaults = dict(semi_axes=(13.0, 11.0, 10.0), spacing=2.1, void_radius=2.0,

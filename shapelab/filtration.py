@@ -56,7 +56,7 @@ import numpy as np
 from ._toolkit.geometry import cross, dot
 from ._toolkit.validate import as_tau, check_balls, freeze
 from .balls import Balls
-from .power import _triangulate_local
+from .power import triangulate_local
 
 __all__ = ["alpha_filtration", "dual_complex", "Filtration", "Complex"]
 
@@ -847,7 +847,7 @@ def alpha_filtration(balls: Balls) -> Filtration:
 def _entry_times(balls: Balls):
     """Steps 1-4 of :func:`alpha_filtration`: faces, boundary matrices and entry times
     per dimension, in frame-local indices and units (``None`` if there are no balls)."""
-    fr, simp, nbr = _triangulate_local(balls)
+    fr, simp, nbr = triangulate_local(balls)
     if simp.shape[0] == 0:
         return None
     dim = simp.shape[1] - 1
@@ -888,12 +888,13 @@ def _entry_times(balls: Balls):
     return fr, faces, bnd, vals, dim
 
 
-def _simplices_up_to(balls: Balls, select) -> list:
+def simplices_up_to(balls: Balls, select) -> list:
     """The simplices whose entry times ``v`` (input units) pass ``select(v)`` (a
     boolean array), per dimension (input indices, unordered), without building the
     :class:`Filtration`: what :func:`shapelab.union_measure` needs.  Same entry times
     as :func:`alpha_filtration`.  ``select`` must be monotone (if it accepts v, it
-    accepts every smaller value), so that the result is a complex."""
+    accepts every smaller value), so that the result is a complex.  Shared with
+    :mod:`shapelab.measure`; not in ``__all__``."""
     res = _entry_times(balls)
     if res is None:
         return []

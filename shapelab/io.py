@@ -80,7 +80,7 @@ _POLYMER_TWO_LETTER = {"Se", "Cl", "Br"}
 
 
 def _fill(a, n, default, dtype):
-    return readonly(np.full(n, default, dtype=dtype) if a is None else np.asarray(a, dtype=dtype), None)
+    return readonly(np.full(n, default, dtype=dtype) if a is None else np.asarray(a, dtype=dtype))
 
 
 @dataclass(frozen=True, eq=False)
@@ -188,11 +188,11 @@ class PDBStructure:
         else:
             idx = m.astype(np.int64).ravel()
         return PDBStructure(
-            balls=self.balls[idx], atom_names=readonly(self.atom_names[idx], None),
-            residue_names=readonly(self.residue_names[idx], None),
-            residue_numbers=readonly(self.residue_numbers[idx], None),
-            chains=readonly(self.chains[idx], None), elements=readonly(self.elements[idx], None),
-            hetero=readonly(self.hetero[idx], None), probe=self.probe,
+            balls=self.balls[idx], atom_names=readonly(self.atom_names[idx]),
+            residue_names=readonly(self.residue_names[idx]),
+            residue_numbers=readonly(self.residue_numbers[idx]),
+            chains=readonly(self.chains[idx]), elements=readonly(self.elements[idx]),
+            hetero=readonly(self.hetero[idx]), probe=self.probe,
             insertion_codes=self.insertion_codes[idx], altlocs=self.altlocs[idx],
             occupancies=self.occupancies[idx], b_factors=self.b_factors[idx], model=self.model)
 
@@ -518,12 +518,12 @@ def read_pdb(path, *, probe=0.0, default_radius=None, model=None, chain=None, he
     balls = Balls(np.array([c[8:11] for c in kept], dtype=np.float64), rad + probe)
     return PDBStructure(
         balls=balls,
-        atom_names=readonly(np.array(col[3], dtype=str), None),
-        residue_names=readonly(np.array(col[4], dtype=str), None),
-        residue_numbers=readonly(np.array(col[6], dtype=np.int64), None),
-        chains=readonly(np.array(col[5], dtype=str), None),
-        elements=readonly(np.array(col[13], dtype=str), None),
-        hetero=readonly(np.array(col[1], dtype=bool), None),
+        atom_names=readonly(np.array(col[3], dtype=str)),
+        residue_names=readonly(np.array(col[4], dtype=str)),
+        residue_numbers=readonly(np.array(col[6], dtype=np.int64)),
+        chains=readonly(np.array(col[5], dtype=str)),
+        elements=readonly(np.array(col[13], dtype=str)),
+        hetero=readonly(np.array(col[1], dtype=bool)),
         probe=probe,
         insertion_codes=np.array(col[7], dtype=str),
         altlocs=np.array(col[2], dtype=str),

@@ -110,7 +110,7 @@ from ._toolkit.validate import (
     filtration_first,
 )
 from .balls import Balls
-from .filtration import _simplices_up_to, as_filtration
+from .filtration import as_filtration, simplices_up_to
 
 __all__ = [
     "UnionMeasure",
@@ -686,7 +686,7 @@ def union_measure(F_or_balls, tau=0.0) -> UnionMeasure:
     if F is None:
         # only K just before tau is needed: the entry times without the Filtration's
         # ordering and boundary matrices (same values, same comparison)
-        simplices = _simplices_up_to(balls, lambda v: _before(v, t))
+        simplices = simplices_up_to(balls, lambda v: _before(v, t))
     else:
         # the values are sorted, so each dimension's selection is a prefix
         simplices = []

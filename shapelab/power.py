@@ -66,7 +66,13 @@ import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
 from ._toolkit.geometry import morton_order
-from ._toolkit.validate import as_bbox, as_positive_int, as_tau, check_balls, default_bbox
+from ._toolkit.validate import (
+    as_bbox,
+    as_positive_int,
+    as_tau,
+    check_balls,
+    default_bbox,
+)
 from .balls import Balls
 from .certify import certify, facet_adjacency
 from .incremental import incremental_triangulation
@@ -266,7 +272,7 @@ def _lower_hull(x: np.ndarray, w: np.ndarray):
     ascending in each row), or ``None`` if Qhull gives up.
 
     The answer is computed in floating point and is only a *candidate*:
-    :func:`_triangulate_local` certifies it exactly (:mod:`shapelab.certify`).  On
+    :func:`triangulate_local` certifies it exactly (:mod:`shapelab.certify`).  On
     co-spherical input (cages, grids) Qhull merges facets and ``Qt`` triangulates
     the merged ones, which can leave overlapping or flat tetrahedra; the certificate
     rejects such an answer and the exact incremental algorithm takes over.
@@ -334,9 +340,11 @@ def _certified(balls: Balls, fr: _Frame):
     return simp, nbr, TriangulationReport("incremental", reason, dict(P.stats))
 
 
-def _triangulate_local(balls: Balls, report: bool = False):
+def triangulate_local(balls: Balls, report: bool = False):
     """Frame, top simplices in frame-local indices and their neighbours (and, with
-    ``report``, the :class:`TriangulationReport`)."""
+    ``report``, the :class:`TriangulationReport`).  Shared with
+    :mod:`shapelab.filtration`, which builds the filtration in the same frame; not in
+    ``__all__``."""
     fr = _frame(balls)
     rep = TriangulationReport("trivial", "", {})
     if fr.k < 0:
@@ -354,12 +362,12 @@ def triangulation_report(balls: Balls) -> TriangulationReport:
     (Notes §23.1): Qhull's answer certified exactly, or the exact incremental
     algorithm where the certificate failed; see :class:`TriangulationReport`."""
     check_balls(balls)
-    return _triangulate_local(balls, report=True)[3]
+    return triangulate_local(balls, report=True)[3]
 
 
 def _triangulate(balls: Balls):
     """Frame and top simplices (input indices, rows ascending, lexsorted)."""
-    fr, simp, _ = _triangulate_local(balls)
+    fr, simp, _ = triangulate_local(balls)
     tri = fr.keep[simp].astype(np.int64)
     tri.sort(axis=1)
     if tri.shape[0] > 1:

@@ -174,7 +174,9 @@ def _build_summary(F) -> _Summary:
     return _Summary(ambient, k, values, neg, pos, dual)
 
 
-def _summary(F) -> _Summary:
+def summary(F) -> _Summary:
+    """Everything the topology of ``F`` needs (H0 forest, dual forest, values), computed
+    once and kept on ``F``.  Shared with :mod:`shapelab.cavities`; not in ``__all__``."""
     return derived(F, "topology.summary", _build_summary)
 
 
@@ -250,7 +252,7 @@ def betti(F, tau) -> tuple:
     (1, 1, 0)
     """
     t = as_tau(tau)
-    S = _summary(F)
+    S = summary(F)
     return tuple(int(x) for x in _betti_array(S, np.array([t]))[0])
 
 
@@ -263,7 +265,7 @@ def betti_curve(F, taus) -> np.ndarray:
     characteristic in 3D.
     """
     t = _as_taus(taus)
-    S = _summary(F)
+    S = summary(F)
     return _betti_array(S, t)
 
 
@@ -335,7 +337,7 @@ def _pairs_top(S: _Summary) -> np.ndarray:
     return P[P[:, 1] > P[:, 0]]
 
 
-def _reduce_h1(S: _Summary, F, *, compress: bool = True):
+def reduce_h1(S: _Summary, F, *, compress: bool = True):
     """Column reduction of the negative triangles of a 3-dimensional filtration.
 
     Returns ``(edge_rows, triangle_rows, columns)``: each negative triangle's pivot edge
@@ -434,12 +436,12 @@ def is_roundoff(F, births, deaths) -> np.ndarray:
     """
     b = np.asarray(births, dtype=np.float64)
     d = np.asarray(deaths, dtype=np.float64)
-    scale = np.maximum(np.maximum(np.abs(b), np.where(np.isfinite(d), np.abs(d), 0.0)), _value_scale(_summary(F)))
+    scale = np.maximum(np.maximum(np.abs(b), np.where(np.isfinite(d), np.abs(d), 0.0)), _value_scale(summary(F)))
     return (d - b) <= ROUNDOFF * scale
 
 
 def _build_pairs(F) -> dict:
-    S = _summary(F)
+    S = summary(F)
     out = {j: np.empty((0, 2)) for j in range(S.ambient + 1)}
     if S.k < 0:
         return out
@@ -447,7 +449,7 @@ def _build_pairs(F) -> dict:
     if S.k >= 2:
         out[S.k - 1] = _pairs_top(S)
     if S.k == 3:
-        e, t, _ = _reduce_h1(S, F)
+        e, t, _ = reduce_h1(S, F)
         P = np.column_stack((S.values[1][e], S.values[2][t])) if e.size else np.empty((0, 2))
         out[1] = P[P[:, 1] > P[:, 0]]
     for j in out:

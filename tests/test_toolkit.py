@@ -51,9 +51,9 @@ def test_elder_merges_matches_brute_force_components(n, edges):
 
 
 def test_readonly_and_freeze():
-    a = validate.readonly([1, 2, 3])
+    a = validate.readonly([1, 2, 3], np.float64)
     assert a.dtype == np.float64 and not a.flags.writeable
-    s = validate.readonly(np.array(["C", "N"]), None)
+    s = validate.readonly(np.array(["C", "N"]))
     assert s.dtype.kind == "U" and not s.flags.writeable
     b = np.zeros(3)
     assert validate.freeze(b) is b and not b.flags.writeable

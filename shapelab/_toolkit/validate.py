@@ -215,9 +215,10 @@ def filtration_first(fn=None, *, name: str | None = None):
     return wrapper
 
 
-def readonly(a, dtype=np.float64) -> np.ndarray:
-    """A read-only copy of ``a`` as ``dtype`` (float64 unless told; ``None`` keeps
-    the dtype), for the arrays that results hand out."""
+def readonly(a, dtype=None) -> np.ndarray:
+    """A read-only copy of ``a`` (as ``dtype`` if given, else with its own dtype), for
+    the arrays that results hand out.  Validate and convert numbers first
+    (:func:`as_points`, :func:`as_radii`, ... give float64): this only freezes."""
     a = np.array(a, dtype=dtype, copy=True)
     a.flags.writeable = False
     return a

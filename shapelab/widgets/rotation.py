@@ -85,7 +85,7 @@ class ICPExplorer(W.VBox):
 
     def figure(self):
         """The current figure: the ICP step (3D) and the convergence plot."""
-        from ..plot._style import new_figure
+        from ..plot import new_figure
         from ..plot.rotation import icp_convergence, icp_step
 
         k = self.iteration
