@@ -54,9 +54,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._toolkit.geometry import cross, dot
-from ._toolkit.validate import as_tau, check_balls, freeze
+from ._toolkit.validate import as_bbox, as_tau, check_balls, freeze
 from .balls import Balls
-from .power import triangulate_local
+from .power import clipped_cells, power_diagram, triangulate_local
 
 __all__ = ["alpha_filtration", "dual_complex", "Filtration", "Complex"]
 
@@ -699,6 +699,39 @@ class Filtration(_SimplicialMixin):
             return self._derived[key]
         except KeyError:
             return self._derived.setdefault(key, build(self))
+
+    def clipped_cells(self, tau=0.0, *, bbox=None, arc_resolution: int = 96) -> tuple:
+        """The cells :math:`B_i(\\tau) \\cap \\Pi(B_i)` of 2D balls as polygons (Notes
+        §23.1, Figure 23.1): :func:`shapelab.power.clipped_cells` with the power
+        diagram of these balls computed once per filtration and box and kept on it,
+        so that a drawing at many τ (a slider) clips the same diagram.
+
+        Parameters
+        ----------
+        tau : float
+            Growth time (finite).
+        bbox : array_like (2, 2), optional
+            The box the power cells are clipped to; it must hold the grown disks.
+            By default the disks' box at ``tau`` padded by 1 (a new diagram per τ).
+        arc_resolution : int
+            Points per full circle on the arcs.
+
+        Returns
+        -------
+        tuple of ndarray
+            One (k_i, 2) counter-clockwise polygon per ball, (0, 2) when empty.
+        """
+        balls = check_balls(self.balls, "F.balls", dim=2)
+        t = as_tau(tau, finite=True)
+        if bbox is None:
+            w = balls.weights + max(t, 0.0)
+            r = np.sqrt(w)[:, None]
+            bbox = (np.array([(balls.centers - r).min(axis=0) - 1.0, (balls.centers + r).max(axis=0) + 1.0])
+                    if len(balls) else np.array([[0.0, 0.0], [1.0, 1.0]]))
+        box = as_bbox(bbox, 2)
+        diagram = self.derived(f"power.diagram[{box.tobytes().hex()}]",
+                               lambda F: power_diagram(F.balls, bbox=box))
+        return clipped_cells(balls, tau=t, diagram=diagram, arc_resolution=arc_resolution)
 
     def complex_at(self, tau) -> Complex:
         """The dual complex :math:`K(\\tau)`: all simplices with entry time ≤ ``tau``.

@@ -27,9 +27,10 @@ import numpy as np
 
 from ._toolkit.geometry import cross_rows
 from ._toolkit.validate import as_tau, check_balls
+from .balls import power_distance
 from .filtration import derived
 
-__all__ = ["free_measure", "void_measure", "vertex_values"]
+__all__ = ["free_measure", "void_measure", "vertex_values", "free_points"]
 
 
 def vertex_values(F, n_balls: int) -> np.ndarray:
@@ -565,3 +566,35 @@ def free_measure(balls, tau, cells) -> np.ndarray:
             covered += _ball_clip_measure(A, b - A @ Z[i], float(R[i]), eps, keep=d + 1)
         out[m] = meas - covered
     return out
+
+
+def free_points(balls, tau, cells, n_points, rng) -> np.ndarray:
+    """Points of the free space inside ``cells`` (uniform in the cells, then kept where
+    no ball grown to τ covers them, by :func:`shapelab.power_distance`): a picture of a
+    void's shape for :func:`shapelab.plot.voids`, not a measurement.
+
+    Parameters
+    ----------
+    balls : Balls
+    tau : float
+    cells : int array (m, d+1)
+        Simplices as ball indices.
+    n_points : int
+        Points drawn in the cells before the covered ones are dropped.
+    rng : numpy.random.Generator
+
+    Returns
+    -------
+    ndarray (k, d)
+    """
+    X = balls.centers[cells]                         # (m, d+1, d)
+    E = X[:, 1:] - X[:, :1]
+    vol = np.abs(np.linalg.det(E))
+    if not len(cells) or vol.sum() <= 0:
+        return np.zeros((0, balls.dim))
+    k = rng.multinomial(n_points, vol / vol.sum())
+    idx = np.repeat(np.arange(len(cells)), k)
+    w = rng.dirichlet(np.ones(balls.dim + 1), size=len(idx))
+    pts = np.einsum("mk,mkd->md", w, X[idx])
+    keep = power_distance(pts, balls).min(axis=1) > tau if len(pts) else np.zeros(0, bool)
+    return pts[keep]

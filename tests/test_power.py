@@ -294,3 +294,24 @@ def test_clipped_cells_have_the_per_ball_areas(tau):
     assert hidden_inside.ball_measure[-1] == 0.0
     with pytest.raises(ValueError, match="2D"):
         clipped_cells(random_balls(1, 4, 3))
+
+
+def test_filtration_clipped_cells_reuse_one_diagram_per_box():
+    """``F.clipped_cells`` is :func:`shapelab.power.clipped_cells` on a diagram kept on
+    the filtration: the same polygons, the diagram built once per box."""
+    from shapelab import alpha_filtration, datasets
+    from shapelab.power import clipped_cells
+
+    balls = datasets.figure_23_1()
+    F = alpha_filtration(balls)
+    box = np.array([balls.centers.min(axis=0) - 10, balls.centers.max(axis=0) + 10])
+    for tau in (0.0, 0.5):
+        ours = F.clipped_cells(tau, bbox=box, arc_resolution=72)
+        ref = clipped_cells(balls, tau=tau, diagram=power_diagram(balls, bbox=box), arc_resolution=72)
+        assert len(ours) == len(ref) and all(np.array_equal(a, b) for a, b in zip(ours, ref))
+    assert sum(k.startswith("power.diagram[") for k in F._derived) == 1
+    default = F.clipped_cells(0.0)
+    ref = clipped_cells(balls, tau=0.0)
+    assert all(np.array_equal(a, b) for a, b in zip(default, ref))
+    with pytest.raises(ValueError, match="2"):
+        alpha_filtration(Balls(np.eye(3), [1.0, 1.0, 1.0])).clipped_cells(0.0)

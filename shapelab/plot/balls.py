@@ -239,8 +239,6 @@ class DualComplexView:
     @filtration_first(name="DualComplexView")
     def __init__(self, F, tau=0.0, *, ax=None, show_cells=True, show_disks=True,
                  bbox=None, labels=False, title=None, legend=True, view_tau=None):
-        from ..power import power_diagram as _pd
-
         F = _filtration_of(F, "DualComplexView")
         balls = F.balls
         _check_balls(balls, dim=2)
@@ -259,7 +257,7 @@ class DualComplexView:
                                                edgecolors=[COLORS["ball_edge"]], linewidths=1.0, zorder=3)
             self._cells = None
             if show_cells and len(balls):
-                self._diagram = _pd(balls, bbox=self._cell_box(balls, bbox))
+                self._cell_bbox = self._cell_box(balls, bbox)
                 self._cells = PolyCollection([], facecolors=[to_rgba(COLORS["cell"], 0.25)],
                                              edgecolors=["#A05A00"], linewidths=1.1, zorder=2)
                 ax.add_collection(self._cells, autolim=False)
@@ -301,9 +299,7 @@ class DualComplexView:
         return np.array([balls.centers.min(axis=0) - pad, balls.centers.max(axis=0) + pad])
 
     def _set_cells(self, tau):
-        from ..power import clipped_cells
-
-        polys = clipped_cells(self.balls, tau=tau, diagram=self._diagram, arc_resolution=72)
+        polys = self.filtration.clipped_cells(tau, bbox=self._cell_bbox, arc_resolution=72)
         self._cells.set_verts([p for p in polys if len(p) >= 3])
 
     def _set_complex(self, K):
