@@ -511,7 +511,7 @@ def test_bad_input_errors():
 
 
 def test_infinite_growth_times_are_the_ends_of_the_filtration():
-    """One τ rule (``_validate.as_tau``): ±inf are accepted everywhere τ is."""
+    """One τ rule (``_toolkit.validate.as_tau``): ±inf are accepted everywhere τ is."""
     F = sl.alpha_filtration(ring(8, 3.0, 1.2))
     assert sl.voids(F, float("inf")) == sl.voids(F, -np.inf) == ()
     assert sl.pockets(F, np.inf) == ()
