@@ -8,11 +8,13 @@ Modules, one per concept of the notes:
 
 ========================  =====================================================
 ``shapelab.balls``        :class:`Balls`, :func:`power_distance` (§23.1)
-``shapelab.power``        :func:`power_diagram`, :func:`regular_triangulation`
+``shapelab.power``        :func:`power_diagram`, :func:`regular_triangulation`, clipped cells
 ``shapelab.filtration``   :func:`alpha_filtration`, :func:`dual_complex`
 ``shapelab.topology``     Betti numbers and persistence of a filtration
 ``shapelab.cavities``     :func:`voids`, :func:`pockets`, :func:`tunnels`
+``shapelab.freespace``    exact free area/volume of cells (void and pocket volumes)
 ``shapelab.measure``      :func:`union_measure` (area/volume of a union)
+``shapelab.oracles``      brute-force and sampling oracles (naive formula, Monte Carlo)
 ``shapelab.quaternion``   :class:`Quaternion` (§23.2, rotations)
 ``shapelab.registration`` :func:`optimal_rotation`, :func:`register`, :func:`icp`
 ``shapelab.distance``     :func:`hausdorff`, :func:`directed_hausdorff` (§23.2)
@@ -29,7 +31,7 @@ Modules, one per concept of the notes:
 """
 from __future__ import annotations
 
-import importlib
+from ._toolkit.lazy import attach
 
 __version__ = "0.1.0"
 
@@ -69,7 +71,7 @@ _EXPORTS = {
     "simplify": "simplification",
 }
 _SUBMODULES = {
-    "balls", "power", "filtration", "topology", "cavities", "measure", "quaternion",
+    "balls", "power", "filtration", "topology", "cavities", "freespace", "measure", "oracles", "quaternion",
     "registration", "distance", "matching", "critical", "io", "datasets", "plot", "widgets",
     "check", "figures", "simplification",
 }
@@ -77,16 +79,4 @@ _SUBMODULES = {
 __all__ = sorted(_EXPORTS) + ["__version__"]
 
 
-def __getattr__(name: str):
-    if name in _EXPORTS:
-        module = importlib.import_module(f"shapelab.{_EXPORTS[name]}")
-        value = getattr(module, name)
-        globals()[name] = value
-        return value
-    if name in _SUBMODULES:
-        return importlib.import_module(f"shapelab.{name}")
-    raise AttributeError(f"module 'shapelab' has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(set(globals()) | set(__all__) | _SUBMODULES)
+__getattr__, __dir__ = attach(__name__, _EXPORTS, _SUBMODULES, eager=__all__)

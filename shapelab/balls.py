@@ -21,15 +21,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import as_finite_scalar, as_point, as_points, as_radii, as_tau
+from ._toolkit.validate import (
+    as_finite_scalar,
+    as_point,
+    as_points,
+    as_radii,
+    as_tau,
+    check_balls,
+    readonly,
+)
 
 __all__ = ["Balls", "power_distance"]
-
-
-def _readonly(a: np.ndarray) -> np.ndarray:
-    a = np.array(a, dtype=np.float64, copy=True)
-    a.flags.writeable = False
-    return a
 
 
 @dataclass(frozen=True, eq=False)
@@ -67,8 +69,8 @@ class Balls:
     def __init__(self, centers, radii=0.0):
         c = as_points(centers, "centers", dim=(2, 3), min_points=0)
         r = as_radii(radii, c.shape[0], "radii")
-        object.__setattr__(self, "centers", _readonly(c))
-        object.__setattr__(self, "radii", _readonly(r))
+        object.__setattr__(self, "centers", readonly(c))
+        object.__setattr__(self, "radii", readonly(r))
 
     # ------------------------------------------------------------------ basics
     @property
@@ -175,8 +177,7 @@ def power_distance(x, balls: Balls) -> np.ndarray:
     >>> power_distance([0.0, 0.0], Balls([[3, 4]], [1.0])).tolist()
     [24.0]
     """
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+    check_balls(balls)
     arr = np.asarray(x) if not isinstance(x, (str, bytes)) else x
     single = getattr(arr, "ndim", None) == 1
     if single:

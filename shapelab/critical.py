@@ -42,7 +42,7 @@ from typing import Callable
 
 import numpy as np
 
-from ._validate import as_finite_scalar, as_point, as_points, as_positive_int
+from ._toolkit.validate import as_finite_scalar, as_point, as_points, as_positive_int
 
 __all__ = [
     "CriticalPoints",
@@ -174,7 +174,7 @@ def _result(source, S, pos, val, kinds, par, idx, interior=None, mult=None, dege
 # --------------------------------------------------------------------------- #
 # Polylines                                                                    #
 # --------------------------------------------------------------------------- #
-def _closed_vertices(curve, close: bool) -> tuple[np.ndarray, np.ndarray]:
+def closed_vertices(curve, close: bool) -> tuple[np.ndarray, np.ndarray]:
     """The distinct cyclic vertices of a closed polyline, with their original indices."""
     P = as_points(curve, "curve", dim=(2, 3), min_points=2)
     if close:
@@ -198,7 +198,7 @@ def _closed_vertices(curve, close: bool) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _polyline_critical(curve, S: np.ndarray, close: bool) -> CriticalPoints:
-    V, orig = _closed_vertices(curve, close)
+    V, orig = closed_vertices(curve, close)
     if S.size != V.shape[1]:
         raise ValueError(f"viewpoint must have {V.shape[1]} coordinates like curve, got {S.size}")
     N = V.shape[0]
@@ -551,7 +551,7 @@ def distance_along(curve, viewpoint, *, n: int = 1000, close: bool = False):
         X = _evaluate(curve, t)
         return t, np.sqrt(np.sum((X - S) ** 2, axis=1))
     S = as_point(viewpoint, "viewpoint", dim=(2, 3))
-    V, _ = _closed_vertices(curve, close)
+    V, _ = closed_vertices(curve, close)
     P = np.vstack([V, V[:1]])
     L = np.sqrt(np.sum(np.diff(P, axis=0) ** 2, axis=1))
     cum = np.concatenate([[0.0], np.cumsum(L)])

@@ -49,7 +49,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ._validate import as_finite_scalar, as_positive_int
+from ._toolkit.validate import as_finite_scalar, as_positive_int
 from .balls import Balls
 
 __all__ = [
@@ -483,7 +483,8 @@ def globule_structure(seed=0, *, residue_size=8, **kwargs):
     -------
     shapelab.io.PDBStructure
     """
-    from .io import PDBStructure, _readonly  # io imports balls only; no cycle
+    from ._toolkit.validate import readonly as _readonly
+    from .io import PDBStructure  # io imports balls only; no cycle
 
     size = as_positive_int(residue_size, "residue_size")
     defaults = dict(semi_axes=(13.0, 11.0, 10.0), spacing=2.1, void_radius=2.0,

@@ -96,7 +96,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._validate import as_finite_scalar, as_point_pair, as_points, as_positive_int
+from ._toolkit.validate import as_finite_scalar, as_point_pair, as_points, as_positive_int
 
 __all__ = [
     "DirectedHausdorff",

@@ -165,7 +165,7 @@ def _settle(fig) -> None:
 def _save_style():
     import matplotlib
 
-    from .plot._style import RC
+    from .plot import RC
 
     # the course style, but the page size is the figure's size: no tight bbox, so
     # every file is exactly 16:9

@@ -53,9 +53,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._validate import as_tau
+from ._toolkit.geometry import cross, dot
+from ._toolkit.validate import as_bbox, as_tau, check_balls, freeze
 from .balls import Balls
-from .power import _triangulate_local
+from .power import clipped_cells, power_diagram, triangulate_local
 
 __all__ = ["alpha_filtration", "dual_complex", "Filtration", "Complex"]
 
@@ -163,17 +164,6 @@ def _unique_facets(simp: np.ndarray, nv: int):
 # ----------------------------------------------------------------------------------
 # Smallest orthogonal spheres
 # ----------------------------------------------------------------------------------
-def _dot(a, b):
-    out = a[0] * b[0]
-    for t in range(1, len(a)):
-        out += a[t] * b[t]
-    return out
-
-
-def _cross(a, b):
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
 def _ortho_generic(x: np.ndarray, w: np.ndarray, S: np.ndarray):
     """Orthocentre offset u (from the first vertex) and rho of simplices S by the
     minimum-norm solution of the Gram system (defined for affinely dependent
@@ -274,7 +264,7 @@ def _orthospheres(x: np.ndarray, w: np.ndarray, S: np.ndarray):
         return -w0, np.zeros((m, 1), dtype=bool), np.zeros(m, dtype=bool)
     P0 = X[:, S[:, 0]]
     vec = [X[:, S[:, i]] - P0 for i in range(1, w1)]          # each (k, m)
-    nrm2 = [_dot(v, v) for v in vec]
+    nrm2 = [dot(v, v) for v in vec]
     wv = [w[S[:, i]] for i in range(1, w1)]
     beta = [0.5 * (nrm2[i] - wv[i] + w0) for i in range(j)]   # u . a_i = beta_i
     s = sum(nrm2)                  # |A|_F^2
@@ -305,29 +295,29 @@ def _orthospheres(x: np.ndarray, w: np.ndarray, S: np.ndarray):
             N = nA / np.abs(det)       # ||A^-1||_F = ||adj A||_F / |det|, ||adj A||_F = |A|_F
         elif j == 2 and k == 3:
             a, c = vec
-            n = _cross(a, c)
-            nn = _dot(n, n)
+            n = cross(a, c)
+            nn = dot(n, n)
             ok = nn > 0
             nn = np.where(ok, nn, 1.0)
-            ad = [q / nn for q in _cross(c, n)]   # dual basis of (a, c) in their plane
-            cd = [q / nn for q in _cross(n, a)]
+            ad = [q / nn for q in cross(c, n)]   # dual basis of (a, c) in their plane
+            cd = [q / nn for q in cross(n, a)]
             u = [beta[0] * ad[t] + beta[1] * cd[t] for t in range(3)]
-            uu = _dot(u, u)
-            lam[1] = _dot(u, ad)
-            lam[2] = _dot(u, cd)
+            uu = dot(u, u)
+            lam[1] = dot(u, ad)
+            lam[2] = dot(u, cd)
             N = nA / np.sqrt(nn)       # the dual basis: |a*| = |c| / |n|, |c*| = |a| / |n|
             turn = 2.0
         elif j == 3 and k == 3:
             a, b, c = vec
-            bc, ca, ab = _cross(b, c), _cross(c, a), _cross(a, b)
-            det = _dot(a, bc)
+            bc, ca, ab = cross(b, c), cross(c, a), cross(a, b)
+            det = dot(a, bc)
             ok = det != 0
             det = np.where(ok, det, 1.0)
             u = [(beta[0] * bc[t] + beta[1] * ca[t] + beta[2] * ab[t]) / det for t in range(3)]
-            uu = _dot(u, u)
-            lam[1] = _dot(u, bc) / det
-            lam[2] = _dot(u, ca) / det
-            lam[3] = _dot(u, ab) / det
+            uu = dot(u, u)
+            lam[1] = dot(u, bc) / det
+            lam[2] = dot(u, ca) / det
+            lam[3] = dot(u, ab) / det
             # ||A^-1||_F = ||adj A||_F / |det| <= |A|_F^2 / (sqrt(3) |det|)
             N = s / (math.sqrt(3.0) * np.abs(det))
         else:  # pragma: no cover - j > k cannot happen
@@ -564,11 +554,6 @@ def _flat_rows_guard(fr, S: np.ndarray, idx: np.ndarray, rho: np.ndarray, att: n
 # ----------------------------------------------------------------------------------
 # Results
 # ----------------------------------------------------------------------------------
-def _ro(a: np.ndarray) -> np.ndarray:
-    a.flags.writeable = False
-    return a
-
-
 def _check_k(k, dim_max: int) -> int:
     if isinstance(k, (bool, np.bool_)) or not isinstance(k, (int, np.integer)):
         raise TypeError(f"k must be an integer dimension, got {type(k).__name__}")
@@ -594,14 +579,14 @@ class _SimplicialMixin:
         """
         k = _check_k(k, self.balls.dim)
         if k > self.dimension:
-            return _ro(np.zeros((0, k + 1), dtype=np.int32))
+            return freeze(np.zeros((0, k + 1), dtype=np.int32))
         return self._simplices[k][: self._counts[k]]
 
     def values(self, k: int) -> np.ndarray:
         """Entry times τ of the k-simplices, shape (n_k,), non-decreasing."""
         k = _check_k(k, self.balls.dim)
         if k > self.dimension:
-            return _ro(np.zeros(0))
+            return freeze(np.zeros(0))
         return self._values[k][: self._counts[k]]
 
     def boundary(self, k: int) -> np.ndarray:
@@ -614,7 +599,7 @@ class _SimplicialMixin:
         if k == 0:
             raise ValueError("k must be >= 1 for boundary(k): vertices have no facets")
         if k > self.dimension:
-            return _ro(np.zeros((0, k + 1), dtype=np.int32))
+            return freeze(np.zeros((0, k + 1), dtype=np.int32))
         return self._boundary[k][: self._counts[k]]
 
     def __len__(self) -> int:
@@ -715,6 +700,39 @@ class Filtration(_SimplicialMixin):
         except KeyError:
             return self._derived.setdefault(key, build(self))
 
+    def clipped_cells(self, tau=0.0, *, bbox=None, arc_resolution: int = 96) -> tuple:
+        """The cells :math:`B_i(\\tau) \\cap \\Pi(B_i)` of 2D balls as polygons (Notes
+        §23.1, Figure 23.1): :func:`shapelab.power.clipped_cells` with the power
+        diagram of these balls computed once per filtration and box and kept on it,
+        so that a drawing at many τ (a slider) clips the same diagram.
+
+        Parameters
+        ----------
+        tau : float
+            Growth time (finite).
+        bbox : array_like (2, 2), optional
+            The box the power cells are clipped to; it must hold the grown disks.
+            By default the disks' box at ``tau`` padded by 1 (a new diagram per τ).
+        arc_resolution : int
+            Points per full circle on the arcs.
+
+        Returns
+        -------
+        tuple of ndarray
+            One (k_i, 2) counter-clockwise polygon per ball, (0, 2) when empty.
+        """
+        balls = check_balls(self.balls, "F.balls", dim=2)
+        t = as_tau(tau, finite=True)
+        if bbox is None:
+            w = balls.weights + max(t, 0.0)
+            r = np.sqrt(w)[:, None]
+            bbox = (np.array([(balls.centers - r).min(axis=0) - 1.0, (balls.centers + r).max(axis=0) + 1.0])
+                    if len(balls) else np.array([[0.0, 0.0], [1.0, 1.0]]))
+        box = as_bbox(bbox, 2)
+        diagram = self.derived(f"power.diagram[{box.tobytes().hex()}]",
+                               lambda F: power_diagram(F.balls, bbox=box))
+        return clipped_cells(balls, tau=t, diagram=diagram, arc_resolution=arc_resolution)
+
     def complex_at(self, tau) -> Complex:
         """The dual complex :math:`K(\\tau)`: all simplices with entry time ≤ ``tau``.
 
@@ -781,9 +799,9 @@ def derived(F, key: str, build):
 # ----------------------------------------------------------------------------------
 def _empty_filtration(balls: Balls) -> Filtration:
     d = balls.dim
-    simp = tuple(_ro(np.zeros((0, k + 1), dtype=np.int32)) for k in range(d + 1))
-    vals = tuple(_ro(np.zeros(0)) for _ in range(d + 1))
-    bnd = (None,) + tuple(_ro(np.zeros((0, k + 1), dtype=np.int32)) for k in range(1, d + 1))
+    simp = tuple(freeze(np.zeros((0, k + 1), dtype=np.int32)) for k in range(d + 1))
+    vals = tuple(freeze(np.zeros(0)) for _ in range(d + 1))
+    bnd = (None,) + tuple(freeze(np.zeros((0, k + 1), dtype=np.int32)) for k in range(1, d + 1))
     return Filtration(balls, -1, simp, vals, bnd, tuple(0 for _ in range(d + 1)))
 
 
@@ -822,8 +840,7 @@ def alpha_filtration(balls: Balls) -> Filtration:
     (typically a few ulp) of the exact value for the float64 input, exact zeros
     are exact, and the Gabriel test is exact.
     """
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+    check_balls(balls)
     res = _entry_times(balls)
     if res is None:
         return _empty_filtration(balls)
@@ -841,21 +858,21 @@ def alpha_filtration(balls: Balls) -> Filtration:
         order = _filtration_order(v, faces[j])
         out = np.empty(faces[j].shape, dtype=np.int32)
         out[...] = faces[j][order] if identity else fr.keep[faces[j][order]]
-        simp_out.append(_ro(out))
-        vals_out.append(_ro(v[order]))
+        simp_out.append(freeze(out))
+        vals_out.append(freeze(v[order]))
         faces[j] = vals[j] = v = None  # free as we go
         if j >= 1:
             out = np.empty(bnd[j].shape, dtype=np.int32)
             out[...] = inv_prev[bnd[j][order]]
-            bnd_out.append(_ro(out))
+            bnd_out.append(freeze(out))
             bnd[j] = None
         inv_prev = np.empty(order.size, dtype=np.int32)
         inv_prev[order] = np.arange(order.size, dtype=np.int32)
         del order
     for j in range(dim + 1, balls.dim + 1):
-        simp_out.append(_ro(np.zeros((0, j + 1), dtype=np.int32)))
-        vals_out.append(_ro(np.zeros(0)))
-        bnd_out.append(_ro(np.zeros((0, j + 1), dtype=np.int32)))
+        simp_out.append(freeze(np.zeros((0, j + 1), dtype=np.int32)))
+        vals_out.append(freeze(np.zeros(0)))
+        bnd_out.append(freeze(np.zeros((0, j + 1), dtype=np.int32)))
     counts = tuple(int(a.shape[0]) for a in simp_out)
     return Filtration(balls, dim, tuple(simp_out), tuple(vals_out), tuple(bnd_out), counts)
 
@@ -863,7 +880,7 @@ def alpha_filtration(balls: Balls) -> Filtration:
 def _entry_times(balls: Balls):
     """Steps 1-4 of :func:`alpha_filtration`: faces, boundary matrices and entry times
     per dimension, in frame-local indices and units (``None`` if there are no balls)."""
-    fr, simp, nbr = _triangulate_local(balls)
+    fr, simp, nbr = triangulate_local(balls)
     if simp.shape[0] == 0:
         return None
     dim = simp.shape[1] - 1
@@ -904,12 +921,13 @@ def _entry_times(balls: Balls):
     return fr, faces, bnd, vals, dim
 
 
-def _simplices_up_to(balls: Balls, select) -> list:
+def simplices_up_to(balls: Balls, select) -> list:
     """The simplices whose entry times ``v`` (input units) pass ``select(v)`` (a
     boolean array), per dimension (input indices, unordered), without building the
     :class:`Filtration`: what :func:`shapelab.union_measure` needs.  Same entry times
     as :func:`alpha_filtration`.  ``select`` must be monotone (if it accepts v, it
-    accepts every smaller value), so that the result is a complex."""
+    accepts every smaller value), so that the result is a complex.  Shared with
+    :mod:`shapelab.measure`; not in ``__all__``."""
     res = _entry_times(balls)
     if res is None:
         return []

@@ -27,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ._validate import as_finite_scalar, as_positive_int
+from ._toolkit.validate import as_finite_scalar, as_positive_int, check_balls, readonly
 from .balls import Balls
 
 __all__ = ["VDW_RADII", "WATER_RESIDUES", "STANDARD_RESIDUES", "PDBStructure", "read_pdb",
@@ -63,12 +63,6 @@ def vdw_radius(element: str) -> float:
     return VDW_RADII[key]
 
 
-def _readonly(a: np.ndarray) -> np.ndarray:
-    a = np.array(a, copy=True)
-    a.flags.writeable = False
-    return a
-
-
 #: Residue names (columns 18–21) that are water in PDB, AMBER, CHARMM and GROMACS files.
 WATER_RESIDUES = frozenset({
     "HOH", "WAT", "H2O", "DOD", "D2O", "TIP", "TIP3", "TIP4", "TIP5", "T3P", "T4P", "T5P",
@@ -86,7 +80,7 @@ _POLYMER_TWO_LETTER = {"Se", "Cl", "Br"}
 
 
 def _fill(a, n, default, dtype):
-    return _readonly(np.full(n, default, dtype=dtype) if a is None else np.asarray(a, dtype=dtype))
+    return readonly(np.full(n, default, dtype=dtype) if a is None else np.asarray(a, dtype=dtype))
 
 
 @dataclass(frozen=True, eq=False)
@@ -194,11 +188,11 @@ class PDBStructure:
         else:
             idx = m.astype(np.int64).ravel()
         return PDBStructure(
-            balls=self.balls[idx], atom_names=_readonly(self.atom_names[idx]),
-            residue_names=_readonly(self.residue_names[idx]),
-            residue_numbers=_readonly(self.residue_numbers[idx]),
-            chains=_readonly(self.chains[idx]), elements=_readonly(self.elements[idx]),
-            hetero=_readonly(self.hetero[idx]), probe=self.probe,
+            balls=self.balls[idx], atom_names=readonly(self.atom_names[idx]),
+            residue_names=readonly(self.residue_names[idx]),
+            residue_numbers=readonly(self.residue_numbers[idx]),
+            chains=readonly(self.chains[idx]), elements=readonly(self.elements[idx]),
+            hetero=readonly(self.hetero[idx]), probe=self.probe,
             insertion_codes=self.insertion_codes[idx], altlocs=self.altlocs[idx],
             occupancies=self.occupancies[idx], b_factors=self.b_factors[idx], model=self.model)
 
@@ -524,12 +518,12 @@ def read_pdb(path, *, probe=0.0, default_radius=None, model=None, chain=None, he
     balls = Balls(np.array([c[8:11] for c in kept], dtype=np.float64), rad + probe)
     return PDBStructure(
         balls=balls,
-        atom_names=_readonly(np.array(col[3], dtype=str)),
-        residue_names=_readonly(np.array(col[4], dtype=str)),
-        residue_numbers=_readonly(np.array(col[6], dtype=np.int64)),
-        chains=_readonly(np.array(col[5], dtype=str)),
-        elements=_readonly(np.array(col[13], dtype=str)),
-        hetero=_readonly(np.array(col[1], dtype=bool)),
+        atom_names=readonly(np.array(col[3], dtype=str)),
+        residue_names=readonly(np.array(col[4], dtype=str)),
+        residue_numbers=readonly(np.array(col[6], dtype=np.int64)),
+        chains=readonly(np.array(col[5], dtype=str)),
+        elements=readonly(np.array(col[13], dtype=str)),
+        hetero=readonly(np.array(col[1], dtype=bool)),
         probe=probe,
         insertion_codes=np.array(col[7], dtype=str),
         altlocs=np.array(col[2], dtype=str),
@@ -584,8 +578,7 @@ def write_pdb(path, balls: Balls, elements, *, atom_names=None, residue_names=No
     -------
     pathlib.Path
     """
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+    check_balls(balls)
     if balls.dim != 3:
         raise ValueError(f"balls must be 3-dimensional to be written as a PDB file, got dim={balls.dim}")
     n = len(balls)

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import as_finite_scalar, as_point_pair, as_points, as_positive_int
+from ._toolkit.validate import as_finite_scalar, as_point_pair, as_points, as_positive_int
 from .distance import directed_hausdorff, hausdorff
 
 __all__ = ["reference_point", "TranslationMatch", "hausdorff_under_translation"]

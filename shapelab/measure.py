@@ -104,20 +104,18 @@ from itertools import combinations
 
 import numpy as np
 
-from ._validate import as_finite_scalar, as_positive_int, as_tau, filtration_first
+from ._toolkit.geometry import cross, dot
+from ._toolkit.validate import (
+    as_tau,
+    filtration_first,
+)
 from .balls import Balls
-from .filtration import _simplices_up_to, as_filtration
+from .filtration import as_filtration, simplices_up_to
 
 __all__ = [
     "UnionMeasure",
     "union_measure",
     "measure_from_simplices",
-    "intersection_area",
-    "naive_union_area",
-    "monte_carlo_union_measure",
-    "clipped_cells",
-    "sampled_nerve",
-    "raster_topology",
 ]
 
 _TWO_PI = 2.0 * np.pi
@@ -201,16 +199,8 @@ class UnionMeasure:
 # Vectors are stored component-first, shape (d, m): one row per coordinate, one
 # column per simplex, so that every operation runs on long contiguous rows.
 
-def _dot(a, b):
-    s = a[0] * b[0]
-    tmp = np.empty_like(s)
-    for i in range(1, a.shape[0]):
-        s += np.multiply(a[i], b[i], out=tmp)
-    return s
-
-
 def _norm(a):
-    return np.sqrt(_dot(a, a))
+    return np.sqrt(dot(a, a))
 
 
 def _unit(a, fallback=None):
@@ -223,25 +213,16 @@ def _unit(a, fallback=None):
     return u
 
 
-def _cross(a, b):
-    out = np.empty((3,) + np.broadcast_shapes(a.shape[1:], b.shape[1:]))
-    tmp = np.empty(out.shape[1:])
-    for i, (j, k) in enumerate(((1, 2), (2, 0), (0, 1))):
-        np.multiply(a[j], b[k], out=out[i])
-        out[i] -= np.multiply(a[k], b[j], out=tmp)
-    return out
-
-
 def _cross_norm(a, b):
     """|a x b| for 2- or 3-vectors."""
     if a.shape[0] == 2:
         return np.abs(a[0] * b[1] - a[1] * b[0])
-    return _norm(_cross(a, b))
+    return _norm(cross(a, b))
 
 
 def _angle(a, b):
     """The angle between vectors a and b in [0, pi], accurately (atan2)."""
-    return np.arctan2(_cross_norm(a, b), _dot(a, b))
+    return np.arctan2(_cross_norm(a, b), dot(a, b))
 
 
 def _tangent_angle(um, uk, p):
@@ -250,7 +231,7 @@ def _tangent_angle(um, uk, p):
     them.  The projections' cross product is parallel to p, of length
     :math:`|\\det(u_m, u_k, p)|`, and their dot product is
     :math:`u_m\\cdot u_k - (u_m\\cdot p)(u_k\\cdot p)`."""
-    return np.arctan2(np.abs(_dot(_cross(um, uk), p)), _dot(um, uk) - _dot(um, p) * _dot(uk, p))
+    return np.arctan2(np.abs(dot(cross(um, uk), p)), dot(um, uk) - dot(um, p) * dot(uk, p))
 
 
 # ============================================================ pair geometry
@@ -303,19 +284,19 @@ def _solve_ortho(E, b):
     determinant (0 for degenerate simplices, where x is set to 0)."""
     k = len(E)
     if k == 1:
-        g = _dot(E[0], E[0])
+        g = dot(E[0], E[0])
         det = g
         x = E[0] * (b[0] / np.where(g != 0, g, 1.0))
     elif k == 2:
-        g11, g12, g22 = _dot(E[0], E[0]), _dot(E[0], E[1]), _dot(E[1], E[1])
+        g11, g12, g22 = dot(E[0], E[0]), dot(E[0], E[1]), dot(E[1], E[1])
         det = g11 * g22 - g12 * g12
         s = np.where(det != 0, det, 1.0)
         l1 = (b[0] * g22 - b[1] * g12) / s
         l2 = (g11 * b[1] - g12 * b[0]) / s
         x = l1 * E[0] + l2 * E[1]
     else:
-        c23, c31, c12 = _cross(E[1], E[2]), _cross(E[2], E[0]), _cross(E[0], E[1])
-        det = _dot(E[0], c23)
+        c23, c31, c12 = cross(E[1], E[2]), cross(E[2], E[0]), cross(E[0], E[1])
+        det = dot(E[0], c23)
         s = np.where(det != 0, det, 1.0)
         x = (b[0] * c23 + b[1] * c31 + b[2] * c12) / s
     x = np.where(det != 0, x, 0.0)
@@ -329,9 +310,9 @@ def _orthocenter(Z, W, idx=None):
     idx = list(range(Z.shape[0])) if idx is None else list(idx)
     z0 = Z[idx[0]]
     E = [Z[i] - z0 for i in idx[1:]]
-    b = [0.5 * (_dot(e, e) + W[idx[0]] - W[i]) for e, i in zip(E, idx[1:])]
+    b = [0.5 * (dot(e, e) + W[idx[0]] - W[i]) for e, i in zip(E, idx[1:])]
     x, det = _solve_ortho(E, b)
-    return z0 + x, _dot(x, x) - W[idx[0]], det
+    return z0 + x, dot(x, x) - W[idx[0]], det
 
 
 def _arc_angle(center, p, q, bisector):
@@ -340,16 +321,16 @@ def _arc_angle(center, p, q, bisector):
     chord = q - p
     c = _norm(chord)
     qhat = _unit(chord)
-    n = bisector - _dot(bisector, qhat) * qhat
+    n = bisector - dot(bisector, qhat) * qhat
     n = _unit(n, fallback=_unit(bisector))
-    return 2.0 * np.arctan2(0.5 * c, _dot(0.5 * (p + q) - center, n))
+    return 2.0 * np.arctan2(0.5 * c, dot(0.5 * (p + q) - center, n))
 
 
 def _e_dir(Z, geo, a, b, c):
     """Unit vector perpendicular to z_a z_b in aff(a, b, c), pointing to z_c."""
     u = geo[a, b][0]
     w = Z[c] - Z[a]
-    return _unit(w - _dot(w, u) * u)
+    return _unit(w - dot(w, u) * u)
 
 
 # ======================================================= pieces per simplex
@@ -397,8 +378,8 @@ def _pieces_top(Z, W, R, d, geo):
         for n in range(4):
             face = [v for v in range(4) if v != n]
             yf, pf, _ = _orthocenter(Z, W, face)
-            nrm = _unit(_cross(Z[face[1]] - Z[face[0]], Z[face[2]] - Z[face[0]]))
-            side = np.sign(_dot(Z[n] - Z[face[0]], nrm))
+            nrm = _unit(cross(Z[face[1]] - Z[face[0]], Z[face[2]] - Z[face[0]]))
+            side = np.sign(dot(Z[n] - Z[face[0]], nrm))
             corner[n] = yf + (side * np.sqrt(np.maximum(-pf, 0.0))) * nrm
 
     # flat faces G and arc angles phi of the circles ∂B_a ∩ H_ab, per pair
@@ -408,12 +389,12 @@ def _pieces_top(Z, W, R, d, geo):
         others = [v for v in range(k1) if v not in (a, b)]
         if d == 2:
             (c,) = others
-            G[a, b] = np.sqrt(rho2) - _dot(y - f, _e_dir(Z, geo, a, b, c))
+            G[a, b] = np.sqrt(rho2) - dot(y - f, _e_dir(Z, geo, a, b, c))
         else:
             c, n = others
             ck, cn = corner[c], corner[n]
             ang = _arc_angle(f, ck, cn, _e_dir(Z, geo, a, b, c) + _e_dir(Z, geo, a, b, n))
-            tri = 0.5 * _norm(_cross(ck - y, cn - y))
+            tri = 0.5 * _norm(cross(ck - y, cn - y))
             G[a, b] = tri + 0.5 * rho2 * (ang - np.sin(ang))
             phi[a, b] = phi[b, a] = ang
         G[b, a] = G[a, b]
@@ -449,12 +430,12 @@ def _pieces_triangle3d(Z, W, R, geo=None):
     m = Z.shape[2]
     y, py, _ = _orthocenter(Z, W)
     h = np.sqrt(np.maximum(-py, 0.0))
-    nrm = _unit(_cross(Z[1] - Z[0], Z[2] - Z[0]))
+    nrm = _unit(cross(Z[1] - Z[0], Z[2] - Z[0]))
     G, phi = {}, {}
     for a, b in ((0, 1), (0, 2), (1, 2)):
         (c,) = [v for v in range(3) if v not in (a, b)]
         f, rho2 = geo[a, b][2], geo[a, b][3]
-        delta = _dot(y - f, _e_dir(Z, geo, a, b, c))
+        delta = dot(y - f, _e_dir(Z, geo, a, b, c))
         # the chord disk beyond a chord at signed distance delta from its centre
         # (half-chord h): area rho2 * half - delta * h, arc angle 2 * half
         half = np.arctan2(h, delta)
@@ -486,7 +467,7 @@ def _flatness(Z):
     """|det(edges)| / (longest edge)^d of top simplices."""
     k1 = Z.shape[0]
     E = [Z[i] - Z[0] for i in range(1, k1)]
-    det = np.abs(E[0][0] * E[1][1] - E[0][1] * E[1][0]) if k1 == 3 else np.abs(_dot(E[0], _cross(E[1], E[2])))
+    det = np.abs(E[0][0] * E[1][1] - E[0][1] * E[1][0]) if k1 == 3 else np.abs(dot(E[0], cross(E[1], E[2])))
     L = np.max(np.stack([_norm(Z[b] - Z[a]) for a, b in combinations(range(k1), 2)]), axis=0)
     return np.where(L > 0, det / np.where(L > 0, L, 1.0) ** (k1 - 1), 0.0)
 
@@ -705,7 +686,7 @@ def union_measure(F_or_balls, tau=0.0) -> UnionMeasure:
     if F is None:
         # only K just before tau is needed: the entry times without the Filtration's
         # ordering and boundary matrices (same values, same comparison)
-        simplices = _simplices_up_to(balls, lambda v: _before(v, t))
+        simplices = simplices_up_to(balls, lambda v: _before(v, t))
     else:
         # the values are sorted, so each dimension's selection is a prefix
         simplices = []
@@ -715,364 +696,3 @@ def union_measure(F_or_balls, tau=0.0) -> UnionMeasure:
                 break
             simplices.append(F.simplices(k)[:c])
     return measure_from_simplices(balls.centers, balls.weights + t, simplices, tau=t)
-
-
-# ================================================== naive formula and sampling
-def intersection_area(centers, radii) -> float:
-    """Exact area of the intersection of any number of disks (2D).
-
-    Green's theorem over the boundary arcs: the boundary of a convex intersection of
-    disks is made of arcs of their circles; each arc of circle (c, r) from angle
-    :math:`\\phi_1` to :math:`\\phi_2` contributes
-    :math:`\\tfrac12[r^2 (\\phi_2-\\phi_1) + r\\,(c_x(\\sin\\phi_2-\\sin\\phi_1)
-    - c_y(\\cos\\phi_2-\\cos\\phi_1))]`.  Used by :func:`naive_union_area`; cost
-    :math:`O(k^2)` for k disks.
-    """
-    from ._validate import as_points, as_radii
-
-    C = as_points(centers, "centers", dim=2)
-    r = as_radii(radii, C.shape[0], "radii")
-    # exact duplicates contribute one boundary
-    _, keep = np.unique(np.column_stack([C, r]), axis=0, return_index=True)
-    keep = np.sort(keep)
-    C, r = C[keep] - C[keep[0]], r[keep]
-    k = C.shape[0]
-    if k == 1:
-        return float(np.pi * r[0] ** 2)
-    area = 0.0
-    for l in range(k):
-        intervals = [(0.0, _TWO_PI)]
-        for j in range(k):
-            if j == l:
-                continue
-            dv = C[j] - C[l]
-            dist = float(np.hypot(*dv))
-            if dist >= r[l] + r[j]:
-                return 0.0  # two disjoint (or tangent) disks: empty intersection
-            if dist + r[l] <= r[j]:
-                continue  # circle l inside disk j: no constraint
-            if dist + r[j] <= r[l]:
-                intervals = []  # disk j strictly inside disk l: circle l is outside j
-                break
-            t = (dist * dist + r[l] ** 2 - r[j] ** 2) / (2 * dist)
-            half = float(np.arccos(np.clip(t / r[l], -1.0, 1.0)))
-            mid = float(np.arctan2(dv[1], dv[0]))
-            lo = (mid - half) % _TWO_PI
-            arc = [(lo, lo + 2 * half)] if lo + 2 * half <= _TWO_PI else [(lo, _TWO_PI), (0.0, lo + 2 * half - _TWO_PI)]
-            intervals = [
-                (max(a0, b0), min(a1, b1)) for a0, a1 in intervals for b0, b1 in arc if min(a1, b1) > max(a0, b0)
-            ]
-            if not intervals:
-                break
-        cx, cy = C[l]
-        for p1, p2 in intervals:
-            area += 0.5 * (
-                r[l] ** 2 * (p2 - p1)
-                + r[l] * (cx * (np.sin(p2) - np.sin(p1)) - cy * (np.cos(p2) - np.cos(p1)))
-            )
-    return float(max(area, 0.0))
-
-
-def naive_union_area(balls: Balls, *, max_balls: int = 16, max_order=None):
-    """Area of a union of disks by the *ordinary* inclusion–exclusion formula.
-
-    :math:`\\operatorname{area} \\bigcup B_i = \\sum_{\\emptyset \\ne S \\subseteq
-    \\{1..n\\}} (-1)^{|S|+1} \\operatorname{area} \\bigcap_{i \\in S} B_i`, over all
-    :math:`2^n - 1` subsets (a subset whose intersection is empty makes all its
-    supersets empty, which is used to skip them).  For teaching: exponential in n.
-
-    Parameters
-    ----------
-    balls : Balls
-        2D balls.
-    max_balls : int
-        Refuse more disks than this (the cost is exponential).
-    max_order : int, optional
-        Keep only the subsets of at most this many disks (a *truncated* formula,
-        which is not the area in general; for teaching).
-
-    Returns
-    -------
-    area : float
-    n_subsets : int
-        :math:`2^n - 1`, the number of terms of the formula.
-    n_nonzero : int
-        How many terms were nonzero.
-    """
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
-    if balls.dim != 2:
-        raise ValueError(f"naive_union_area works with disks (2D), got balls of dimension {balls.dim}")
-    max_balls = as_positive_int(max_balls, "max_balls")
-    max_order = None if max_order is None else as_positive_int(max_order, "max_order")
-    n = len(balls)
-    if n > max_balls:
-        raise ValueError(f"balls has {n} disks; the naive formula has 2**n - 1 terms, allowed up to max_balls={max_balls}")
-    C, r = balls.centers, balls.radii
-    total, nonzero = 0.0, 0
-    level = [((i,), float(np.pi * r[i] ** 2)) for i in range(n)]
-    size = 1
-    while level and (max_order is None or size <= max_order):
-        sign = 1.0 if size % 2 else -1.0
-        nxt = []
-        for subset, a in level:
-            if a <= 0.0:
-                continue
-            total += sign * a
-            nonzero += 1
-            for j in range(subset[-1] + 1, n):
-                s2 = subset + (j,)
-                nxt.append((s2, intersection_area(C[list(s2)], r[list(s2)])))
-        level = nxt
-        size += 1
-    return total, 2**n - 1, nonzero
-
-
-def monte_carlo_union_measure(balls: Balls, n_samples=100_000, *, seed=0, chunk: int = 20_000):
-    """Monte Carlo estimate of the area/volume of a union of balls.
-
-    Samples uniformly in the bounding box; returns the estimate and its standard
-    error :math:`V_{box}\\sqrt{p(1-p)/N}`.
-    """
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
-    n_samples = as_positive_int(n_samples, "n_samples")
-    rng = np.random.default_rng(seed)
-    lo = (balls.centers - balls.radii[:, None]).min(axis=0)
-    hi = (balls.centers + balls.radii[:, None]).max(axis=0)
-    box = float(np.prod(hi - lo))
-    hits, done = 0, 0
-    while done < n_samples:
-        m = min(chunk, n_samples - done)
-        x = rng.uniform(lo, hi, size=(m, balls.dim))
-        inside = np.zeros(m, dtype=bool)
-        for i0 in range(0, len(balls), 256):
-            c = balls.centers[i0 : i0 + 256]
-            d2 = ((x[:, None, :] - c[None]) ** 2).sum(-1)
-            inside |= (d2 <= balls.weights[i0 : i0 + 256][None]).any(axis=1)
-        hits += int(inside.sum())
-        done += m
-    p = hits / n_samples
-    return box * p, box * np.sqrt(p * (1 - p) / n_samples)
-
-
-# ======================================== the cells B_i ∩ Π(B_i), for drawing
-def _clip_convex_by_disk(poly, cx, cy, r, step):
-    """Polygon approximating (convex polygon) ∩ (disk), counter-clockwise.
-
-    Edges of the polygon inside the disk are kept exactly; between the point where
-    the boundary leaves the disk and where it re-enters, the circle is followed with
-    points every ``step`` radians."""
-    import math
-
-    k = len(poly)
-    if k < 3 or r <= 0:
-        return np.zeros((0, 2))
-    r2 = r * r
-    out = []
-    leave = None  # angle where the boundary left the disk
-    first_entry = None
-
-    def arc_to(a0, a1):
-        span = (a1 - a0) % (2 * math.pi)
-        m = int(span / step)
-        for j in range(1, m + 1):
-            a = a0 + span * j / (m + 1)
-            out.append((cx + r * math.cos(a), cy + r * math.sin(a)))
-
-    for t in range(k):
-        px, py = poly[t]
-        qx, qy = poly[(t + 1) % k]
-        dx, dy = qx - px, qy - py
-        fx, fy = px - cx, py - cy
-        a = dx * dx + dy * dy
-        b = fx * dx + fy * dy
-        c = fx * fx + fy * fy - r2
-        if c <= 0:
-            out.append((px, py))
-        if a == 0:
-            continue
-        disc = b * b - a * c
-        if disc <= 0:
-            continue
-        sq = math.sqrt(disc)
-        s0, s1 = (-b - sq) / a, (-b + sq) / a
-        if 0 < s0 < 1 and c > 0:  # enters the disk on this edge
-            ang = math.atan2(fy + s0 * dy, fx + s0 * dx)
-            if leave is None:
-                first_entry = ang if first_entry is None else first_entry
-            else:
-                arc_to(leave, ang)
-                leave = None
-            out.append((px + s0 * dx, py + s0 * dy))
-        if 0 < s1 < 1 and (px + dx - cx) ** 2 + (py + dy - cy) ** 2 > r2:  # leaves the disk
-            out.append((px + s1 * dx, py + s1 * dy))
-            leave = math.atan2(fy + s1 * dy, fx + s1 * dx)
-    if leave is not None and first_entry is not None:
-        arc_to(leave, first_entry)
-    if not out:
-        # no vertex inside and no crossing: the disk is inside the polygon or misses it
-        inside = all((poly[(t + 1) % k][0] - poly[t][0]) * (cy - poly[t][1])
-                     - (poly[(t + 1) % k][1] - poly[t][1]) * (cx - poly[t][0]) >= 0 for t in range(k))
-        if not inside:
-            return np.zeros((0, 2))
-        m = max(int(2 * math.pi / step), 8)
-        ang = np.linspace(0, 2 * math.pi, m, endpoint=False)
-        return np.column_stack([cx + r * np.cos(ang), cy + r * np.sin(ang)])
-    return np.array(out)
-
-
-def clipped_cells(balls: Balls, *, tau=0.0, diagram=None, arc_resolution: int = 96):
-    """The cells :math:`B_i(\\tau) \\cap \\Pi(B_i)` of disks as polygons (Notes §23.1).
-
-    The power diagram partitions the union into these convex pieces, "the cells
-    contained in :math:`\\bigcup B_i`"; their areas are ``union_measure(...).
-    ball_measure``.  Circular arcs are sampled with ``arc_resolution`` points per full
-    turn (the polygons are inscribed, so their areas are slightly smaller).
-
-    Parameters
-    ----------
-    balls : Balls
-        2D balls.
-    tau : float
-        Growth time (the power diagram does not change with τ).
-    diagram : PowerDiagram, optional
-        ``power_diagram(balls)`` if already computed; its box must contain the disks.
-    arc_resolution : int
-
-    Returns
-    -------
-    tuple of ndarray
-        One (k_i, 2) counter-clockwise polygon per ball, (0, 2) when empty.
-    """
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
-    if balls.dim != 2:
-        raise ValueError(f"clipped_cells works with disks (2D), got balls of dimension {balls.dim}")
-    t = as_tau(tau, finite=True)
-    res = as_positive_int(arc_resolution, "arc_resolution", minimum=8)
-    if diagram is None:
-        from .power import power_diagram
-
-        w = balls.weights + max(t, 0.0)
-        lo = (balls.centers - np.sqrt(w)[:, None]).min(axis=0) - 1.0 if len(balls) else np.zeros(2)
-        hi = (balls.centers + np.sqrt(w)[:, None]).max(axis=0) + 1.0 if len(balls) else np.ones(2)
-        diagram = power_diagram(balls, bbox=np.array([lo, hi]))
-    w = balls.weights + t
-    step = 2 * np.pi / res
-    out = []
-    for i, cell in enumerate(diagram.cells):
-        if w[i] <= 0 or len(cell) < 3:
-            out.append(np.zeros((0, 2)))
-            continue
-        cx, cy = balls.centers[i]
-        out.append(_clip_convex_by_disk(cell.tolist(), float(cx), float(cy), float(np.sqrt(w[i])), step))
-    return tuple(out)
-
-
-# ============================================ sampling oracles for the lessons
-def _grid(balls: Balls, tau: float, spacing: float):
-    w = np.maximum(balls.weights + tau, 0.0)
-    r = np.sqrt(w)
-    lo = (balls.centers - r[:, None]).min(axis=0) - 2 * spacing
-    hi = (balls.centers + r[:, None]).max(axis=0) + 2 * spacing
-    axes = [np.arange(a, b + spacing, spacing) for a, b in zip(lo, hi)]
-    if np.prod([len(a) for a in axes]) > 5e6:
-        raise ValueError(f"spacing={spacing!r} gives more than 5 million grid points; use a coarser spacing")
-    mesh = np.meshgrid(*axes, indexing="ij")
-    return np.stack([m.ravel() for m in mesh], axis=1), [len(a) for a in axes]
-
-
-def sampled_nerve(balls: Balls, *, tau=0.0, spacing=0.02, margin=None, max_dim=None) -> set:
-    """The nerve of the sets :math:`B_i(\\tau) \\cap \\Pi(B_i)` found by dense sampling
-    (Notes §23.1, the definition of the dual complex K).
-
-    A grid point x *witnesses* the set of balls whose power distance at x is within
-    ``margin`` of the smallest and at most ``margin`` above τ; every subset of a
-    witnessed set is a simplex of the sampled nerve.  With a fine grid and a small
-    margin this is the definition of K read literally, independent of any
-    triangulation; simplices whose witnesses are thinner than the grid (tangent
-    balls, entry times within about ``margin`` of τ) can be missed or added.
-
-    Parameters
-    ----------
-    balls : Balls
-    tau : float
-    spacing : float
-        Grid step.
-    margin : float, optional
-        Tolerance on power distances; default ``3 * spacing * (largest radius at τ)``,
-        about the change of a power distance across one grid cell near the spheres.
-        Simplices entering within about ``margin`` of τ may be reported or missed.
-    max_dim : int, optional
-        Largest simplex dimension reported (default d).
-
-    Returns
-    -------
-    set of tuple of int
-        The simplices, each a sorted tuple of ball indices.
-    """
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
-    t = as_tau(tau, finite=True)
-    h = as_finite_scalar(spacing, "spacing", positive=True)
-    max_dim = balls.dim if max_dim is None else as_positive_int(max_dim, "max_dim", minimum=0)
-    if len(balls) == 0:
-        return set()
-    X, _ = _grid(balls, t, h)
-    rmax = float(np.sqrt(np.maximum(balls.weights + t, 0.0)).max())
-    eps = 3.0 * h * max(rmax, h) if margin is None else as_finite_scalar(margin, "margin", nonnegative=True)
-    out = set()
-    for i0 in range(0, len(X), 20_000):
-        x = X[i0 : i0 + 20_000]
-        d = x[:, None, :] - balls.centers[None]
-        P = np.einsum("mnd,mnd->mn", d, d) - balls.weights[None]
-        low = P.min(axis=1, keepdims=True)
-        wit = (P <= low + eps) & (P <= t + eps)
-        for row in np.unique(wit[wit.any(axis=1)], axis=0):
-            S = tuple(int(i) for i in np.flatnonzero(row))
-            for k in range(1, min(len(S), max_dim + 1) + 1):
-                out.update(combinations(S, k))
-    return out
-
-
-def raster_topology(balls: Balls, *, tau=0.0, spacing=0.02, min_hole_pixels: int = 6):
-    """Components and holes of a union of disks, counted on a raster image.
-
-    The union of the disks grown to τ is rasterised on a grid; its connected pieces
-    (8-connectivity) are the components, and the bounded pieces of the complement
-    (4-connectivity, the dual choice) are the holes: :math:`(\\beta_0, \\beta_1)` of
-    the union, to compare with the Betti numbers of the dual complex (Notes §23.1:
-    "the topology of K(P) is the same as that of P").  Pieces of the complement
-    smaller than ``min_hole_pixels`` pixels are not counted: a raster traps single
-    pixels in the cusps where two circles cross.
-
-    Returns
-    -------
-    tuple of int
-        ``(components, holes)``.
-    """
-    from scipy import ndimage
-
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
-    if balls.dim != 2:
-        raise ValueError(f"raster_topology works with disks (2D), got balls of dimension {balls.dim}")
-    t = as_tau(tau, finite=True)
-    h = as_finite_scalar(spacing, "spacing", positive=True)
-    min_hole_pixels = as_positive_int(min_hole_pixels, "min_hole_pixels")
-    if len(balls) == 0:
-        return 0, 0
-    X, shape = _grid(balls, t, h)
-    inside = np.zeros(len(X), dtype=bool)
-    w = balls.weights + t
-    for i0 in range(0, len(balls), 64):
-        d = X[:, None, :] - balls.centers[None, i0 : i0 + 64]
-        inside |= (np.einsum("mnd,mnd->mn", d, d) <= w[None, i0 : i0 + 64]).any(axis=1)
-    img = inside.reshape(shape)
-    _, n_comp = ndimage.label(img, structure=np.ones((3, 3), dtype=int))
-    lab, n_out = ndimage.label(~img)  # the grid has a margin: exactly one unbounded piece
-    sizes = np.bincount(lab.ravel())[1:]
-    # pixels trapped in the cusps where two circles cross are not holes
-    holes = int(np.sum(sizes >= min_hole_pixels)) - 1
-    return int(n_comp), max(holes, 0)

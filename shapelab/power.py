@@ -65,21 +65,26 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
+from ._toolkit.geometry import morton_order
+from ._toolkit.validate import (
+    as_bbox,
+    as_positive_int,
+    as_tau,
+    check_balls,
+    default_bbox,
+)
 from .balls import Balls
 from .certify import certify, facet_adjacency
 from .incremental import incremental_triangulation
 from .predicates import WeightedPoints, det
 
-__all__ = ["regular_triangulation", "power_diagram", "PowerDiagram", "triangulation_report", "TriangulationReport"]
+__all__ = [
+    "regular_triangulation", "power_diagram", "PowerDiagram", "triangulation_report", "TriangulationReport",
+    "clipped_cells",
+]
 
 _QHULL_OPTIONS = "Qt Qbb Q12 Q5 Q8"
 _VERTICAL_TOL = 1e-10
-
-
-def _check_balls(balls) -> Balls:
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
-    return balls
 
 
 # ----------------------------------------------------------------------------------
@@ -178,50 +183,6 @@ def _projection_axes(basis: np.ndarray, k: int) -> tuple:
 # ----------------------------------------------------------------------------------
 # Lower hull of the lifted points
 # ----------------------------------------------------------------------------------
-def _spread_bits(v: np.ndarray, k: int) -> np.ndarray:
-    """Interleave the bits of ``v`` (uint64) with ``k - 1`` zero bits (k = 2: 32 bits
-    in, k = 3: 21 bits in), by the usual magic-number shifts."""
-    v = v.astype(np.uint64)
-    if k == 2:
-        steps = [(16, 0x0000FFFF0000FFFF), (8, 0x00FF00FF00FF00FF), (4, 0x0F0F0F0F0F0F0F0F),
-                 (2, 0x3333333333333333), (1, 0x5555555555555555)]
-        v &= np.uint64(0xFFFFFFFF)
-    else:
-        steps = [(32, 0x1F00000000FFFF), (16, 0x1F0000FF0000FF), (8, 0x100F00F00F00F00F),
-                 (4, 0x10C30C30C30C30C3), (2, 0x1249249249249249)]
-        v &= np.uint64(0x1FFFFF)
-    for shift, mask in steps:
-        v = (v | (v << np.uint64(shift))) & np.uint64(mask)
-    return v
-
-
-def _morton_order(x: np.ndarray, min_n: int = 2048) -> np.ndarray:
-    """A permutation sorting the points along a Z-order (Morton) curve.
-
-    Qhull is faster when nearby points are nearby in memory (~15 % at 10^5 balls in
-    3D, ~30 % at 10^6 disks in 2D); the order does not change the result except for
-    which of several valid triangulations of degenerate input is returned.  The
-    index is packed into the low bits of the code so that one SIMD ``np.sort``
-    replaces ``argsort``.
-    """
-    n, k = x.shape
-    if n < min_n or k not in (2, 3):
-        return np.arange(n)
-    ib = int(n - 1).bit_length()
-    bits = min((63 - ib) // k, 32 if k == 2 else 21)
-    lo = x.min(axis=0)
-    ext = float(np.max(x.max(axis=0) - lo)) or 1.0
-    top = float(2**bits - 1)
-    code = np.zeros(n, dtype=np.uint64)
-    for j in range(k):
-        q = np.minimum((x[:, j] - lo[j]) * (top / ext), top).astype(np.uint64)
-        code |= _spread_bits(q, k) << np.uint64(j)
-    code <<= np.uint64(ib)
-    code |= np.arange(n, dtype=np.uint64)
-    code.sort()
-    return (code & np.uint64((1 << ib) - 1)).astype(np.int64)
-
-
 def _flat_rows(x: np.ndarray, simp: np.ndarray) -> np.ndarray:
     """Mask of top simplices whose projection has (relative) volume ~ 0."""
     k = x.shape[1]
@@ -311,7 +272,7 @@ def _lower_hull(x: np.ndarray, w: np.ndarray):
     ascending in each row), or ``None`` if Qhull gives up.
 
     The answer is computed in floating point and is only a *candidate*:
-    :func:`_triangulate_local` certifies it exactly (:mod:`shapelab.certify`).  On
+    :func:`triangulate_local` certifies it exactly (:mod:`shapelab.certify`).  On
     co-spherical input (cages, grids) Qhull merges facets and ``Qt`` triangulates
     the merged ones, which can leave overlapping or flat tetrahedra; the certificate
     rejects such an answer and the exact incremental algorithm takes over.
@@ -328,7 +289,7 @@ def _lower_hull(x: np.ndarray, w: np.ndarray):
     hs = float(np.max(np.abs(h)))
     if hs > 0:
         h = h / hs
-    perm = _morton_order(x)
+    perm = morton_order(x)
     try:
         return (*_hull_once(x, h, perm), perm)
     except RuntimeError:
@@ -373,15 +334,17 @@ def _certified(balls: Balls, fr: _Frame):
         if cert.ok:
             return simp.astype(np.int32), cert.neighbors, TriangulationReport("qhull", "", dict(P.stats))
         reason = cert.reason
-    order = np.argsort(fr.x[:, 0], kind="stable") if fr.k == 1 else _morton_order(fr.x, min_n=0)
+    order = np.argsort(fr.x[:, 0], kind="stable") if fr.k == 1 else morton_order(fr.x, min_n=0)
     simp = incremental_triangulation(P, order).astype(np.int32)
     nbr, _ = facet_adjacency(simp)
     return simp, nbr, TriangulationReport("incremental", reason, dict(P.stats))
 
 
-def _triangulate_local(balls: Balls, report: bool = False):
+def triangulate_local(balls: Balls, report: bool = False):
     """Frame, top simplices in frame-local indices and their neighbours (and, with
-    ``report``, the :class:`TriangulationReport`)."""
+    ``report``, the :class:`TriangulationReport`).  Shared with
+    :mod:`shapelab.filtration`, which builds the filtration in the same frame; not in
+    ``__all__``."""
     fr = _frame(balls)
     rep = TriangulationReport("trivial", "", {})
     if fr.k < 0:
@@ -398,13 +361,13 @@ def triangulation_report(balls: Balls) -> TriangulationReport:
     """How the regular triangulation of ``balls`` is computed and certified
     (Notes §23.1): Qhull's answer certified exactly, or the exact incremental
     algorithm where the certificate failed; see :class:`TriangulationReport`."""
-    _check_balls(balls)
-    return _triangulate_local(balls, report=True)[3]
+    check_balls(balls)
+    return triangulate_local(balls, report=True)[3]
 
 
 def _triangulate(balls: Balls):
     """Frame and top simplices (input indices, rows ascending, lexsorted)."""
-    fr, simp, _ = _triangulate_local(balls)
+    fr, simp, _ = triangulate_local(balls)
     tri = fr.keep[simp].astype(np.int64)
     tri.sort(axis=1)
     if tri.shape[0] > 1:
@@ -444,7 +407,7 @@ def regular_triangulation(balls: Balls) -> np.ndarray:
     >>> regular_triangulation(Balls([[0, 0], [1, 0], [1, 1], [0, 1]], 0.0)).tolist()
     [[0, 1, 2], [0, 2, 3]]
     """
-    _check_balls(balls)
+    check_balls(balls)
     return _triangulate(balls)[1]
 
 
@@ -488,30 +451,6 @@ class PowerDiagram:
     adjacency: np.ndarray
     bbox: np.ndarray
     unbounded: np.ndarray
-
-
-def _default_bbox(balls: Balls) -> np.ndarray:
-    lo = np.min(balls.centers - balls.radii[:, None], axis=0)
-    hi = np.max(balls.centers + balls.radii[:, None], axis=0)
-    ext = float(np.max(hi - lo))
-    pad = 0.1 * ext if ext > 0 else 1.0
-    return np.array([lo - pad, hi + pad])
-
-
-def _as_bbox(bbox, d: int) -> np.ndarray:
-    from ._validate import _as_float_array, _check_finite
-
-    b = _as_float_array(bbox, "bbox")
-    if b.shape == (2 * d,):
-        b = b.reshape(2, d) if d == 2 else np.array([b[:d], b[d:]])
-    if b.shape != (2, d):
-        raise ValueError(
-            f"bbox must have shape (2, {d}) as [lower corner, upper corner], got shape {b.shape}"
-        )
-    _check_finite(b, "bbox")
-    if np.any(b[1] <= b[0]):
-        raise ValueError(f"bbox must have lower corner < upper corner in every coordinate, got {b.tolist()}")
-    return b
 
 
 def _orthocentres(balls: Balls, tri: np.ndarray) -> np.ndarray:
@@ -602,10 +541,10 @@ def power_diagram(balls: Balls, *, bbox=None) -> PowerDiagram:
     these half-planes; in 3D the cell is described by its vertices (orthocentres of
     the incident tetrahedra) and ``unbounded`` flags the cells on the hull.
     """
-    _check_balls(balls)
+    check_balls(balls)
     d = balls.dim
     n = len(balls)
-    box = _default_bbox(balls) if bbox is None else _as_bbox(bbox, d)
+    box = default_bbox(balls) if bbox is None else as_bbox(bbox, d)
     fr, tri = _triangulate(balls)
     present = np.zeros(n, dtype=bool)
     present[tri.ravel()] = True
@@ -666,3 +605,114 @@ def power_diagram(balls: Balls, *, bbox=None) -> PowerDiagram:
     for a in (hidden, adjacency, box, unbounded):
         a.flags.writeable = False
     return PowerDiagram(balls, hidden, vertices, tuple(cells), adjacency, box, unbounded)
+
+
+# ======================================== the cells B_i ∩ Π(B_i), for drawing
+def _clip_convex_by_disk(poly, cx, cy, r, step):
+    """Polygon approximating (convex polygon) ∩ (disk), counter-clockwise.
+
+    Edges of the polygon inside the disk are kept exactly; between the point where
+    the boundary leaves the disk and where it re-enters, the circle is followed with
+    points every ``step`` radians."""
+    import math
+
+    k = len(poly)
+    if k < 3 or r <= 0:
+        return np.zeros((0, 2))
+    r2 = r * r
+    out = []
+    leave = None  # angle where the boundary left the disk
+    first_entry = None
+
+    def arc_to(a0, a1):
+        span = (a1 - a0) % (2 * math.pi)
+        m = int(span / step)
+        for j in range(1, m + 1):
+            a = a0 + span * j / (m + 1)
+            out.append((cx + r * math.cos(a), cy + r * math.sin(a)))
+
+    for t in range(k):
+        px, py = poly[t]
+        qx, qy = poly[(t + 1) % k]
+        dx, dy = qx - px, qy - py
+        fx, fy = px - cx, py - cy
+        a = dx * dx + dy * dy
+        b = fx * dx + fy * dy
+        c = fx * fx + fy * fy - r2
+        if c <= 0:
+            out.append((px, py))
+        if a == 0:
+            continue
+        disc = b * b - a * c
+        if disc <= 0:
+            continue
+        sq = math.sqrt(disc)
+        s0, s1 = (-b - sq) / a, (-b + sq) / a
+        if 0 < s0 < 1 and c > 0:  # enters the disk on this edge
+            ang = math.atan2(fy + s0 * dy, fx + s0 * dx)
+            if leave is None:
+                first_entry = ang if first_entry is None else first_entry
+            else:
+                arc_to(leave, ang)
+                leave = None
+            out.append((px + s0 * dx, py + s0 * dy))
+        if 0 < s1 < 1 and (px + dx - cx) ** 2 + (py + dy - cy) ** 2 > r2:  # leaves the disk
+            out.append((px + s1 * dx, py + s1 * dy))
+            leave = math.atan2(fy + s1 * dy, fx + s1 * dx)
+    if leave is not None and first_entry is not None:
+        arc_to(leave, first_entry)
+    if not out:
+        # no vertex inside and no crossing: the disk is inside the polygon or misses it
+        inside = all((poly[(t + 1) % k][0] - poly[t][0]) * (cy - poly[t][1])
+                     - (poly[(t + 1) % k][1] - poly[t][1]) * (cx - poly[t][0]) >= 0 for t in range(k))
+        if not inside:
+            return np.zeros((0, 2))
+        m = max(int(2 * math.pi / step), 8)
+        ang = np.linspace(0, 2 * math.pi, m, endpoint=False)
+        return np.column_stack([cx + r * np.cos(ang), cy + r * np.sin(ang)])
+    return np.array(out)
+
+
+def clipped_cells(balls: Balls, *, tau=0.0, diagram=None, arc_resolution: int = 96):
+    """The cells :math:`B_i(\\tau) \\cap \\Pi(B_i)` of disks as polygons (Notes §23.1).
+
+    The power diagram partitions the union into these convex pieces, "the cells
+    contained in :math:`\\bigcup B_i`"; their areas are ``union_measure(...).
+    ball_measure``.  Circular arcs are sampled with ``arc_resolution`` points per full
+    turn (the polygons are inscribed, so their areas are slightly smaller).
+
+    Parameters
+    ----------
+    balls : Balls
+        2D balls.
+    tau : float
+        Growth time (the power diagram does not change with τ).
+    diagram : PowerDiagram, optional
+        ``power_diagram(balls)`` if already computed; its box must contain the disks.
+    arc_resolution : int
+
+    Returns
+    -------
+    tuple of ndarray
+        One (k_i, 2) counter-clockwise polygon per ball, (0, 2) when empty.
+    """
+    check_balls(balls)
+    if balls.dim != 2:
+        raise ValueError(f"clipped_cells works with disks (2D), got balls of dimension {balls.dim}")
+    t = as_tau(tau, finite=True)
+    res = as_positive_int(arc_resolution, "arc_resolution", minimum=8)
+    if diagram is None:
+        w = balls.weights + max(t, 0.0)
+        lo = (balls.centers - np.sqrt(w)[:, None]).min(axis=0) - 1.0 if len(balls) else np.zeros(2)
+        hi = (balls.centers + np.sqrt(w)[:, None]).max(axis=0) + 1.0 if len(balls) else np.ones(2)
+        diagram = power_diagram(balls, bbox=np.array([lo, hi]))
+    w = balls.weights + t
+    step = 2 * np.pi / res
+    out = []
+    for i, cell in enumerate(diagram.cells):
+        if w[i] <= 0 or len(cell) < 3:
+            out.append(np.zeros((0, 2)))
+            continue
+        cx, cy = balls.centers[i]
+        out.append(_clip_convex_by_disk(cell.tolist(), float(cx), float(cy), float(np.sqrt(w[i])), step))
+    return tuple(out)

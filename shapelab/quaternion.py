@@ -61,7 +61,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import _as_float_array, _check_finite, as_finite_scalar, as_point, as_vector
+from ._toolkit.validate import as_finite_scalar, as_point, as_vector
+from ._toolkit.validate import as_float_array as _as_float_array
+from ._toolkit.validate import check_finite as _check_finite
 
 __all__ = [
     "Quaternion",
@@ -134,8 +136,11 @@ def qnorm(q) -> np.ndarray:
     return np.linalg.norm(q, axis=-1)
 
 
-def _unit(q: np.ndarray, name: str) -> np.ndarray:
-    """q / |q| without overflow or underflow; the zero quaternion raises ValueError."""
+def unit_quaternions(q: np.ndarray, name: str) -> np.ndarray:
+    """q / |q| without overflow or underflow; the zero quaternion raises ValueError.
+
+    Shared with :mod:`shapelab.registration` (trusted arrays, validated by the caller);
+    not part of the public API."""
     big = np.abs(q).max(axis=-1, keepdims=True)
     if np.any(big == 0):
         bad = np.argwhere(big[..., 0] == 0)
@@ -147,7 +152,7 @@ def _unit(q: np.ndarray, name: str) -> np.ndarray:
 
 def qnormalize(q) -> np.ndarray:
     """Unit quaternions :math:`q/\\lVert q\\rVert`; the zero quaternion raises ValueError."""
-    return _unit(_as_quats(q, "q"), "q")
+    return unit_quaternions(_as_quats(q, "q"), "q")
 
 
 def qmatrix(q) -> np.ndarray:
@@ -156,7 +161,7 @@ def qmatrix(q) -> np.ndarray:
     The matrix :math:`M` with :math:`M r = q r q^*` for a unit :math:`q`, i.e. the
     lower-right 3×3 block of :math:`\\bar Q^T Q` (Notes §23.2, :math:`I_q`).
     """
-    w, x, y, z = np.moveaxis(_unit(_as_quats(q, "q"), "q"), -1, 0)
+    w, x, y, z = np.moveaxis(unit_quaternions(_as_quats(q, "q"), "q"), -1, 0)
     xx, yy, zz = x * x, y * y, z * z
     xy, xz, yz = x * y, x * z, y * z
     wx, wy, wz = w * x, w * y, w * z
@@ -185,14 +190,16 @@ def qrotate(q, points) -> np.ndarray:
     ndarray, shape like ``points`` (or (n, 3) when ``q`` has n rows)
     """
     q = _as_quats(q, "q")
-    p = np.asarray(_check_points3(points, "points"))
+    p = np.asarray(as_points3(points, "points"))
     m = qmatrix(q)
     if q.ndim == 1:
         return p @ m.T
     return np.einsum("...ij,...j->...i", m, p)
 
 
-def _check_points3(points, name: str) -> np.ndarray:
+def as_points3(points, name: str) -> np.ndarray:
+    """``points`` as a float array of shape (3,) or (n, 3), finite (shared with
+    :mod:`shapelab.registration`; not part of the public API)."""
     arr = _as_float_array(points, name)
     if arr.ndim not in (1, 2) or arr.shape[-1] != 3:
         raise ValueError(f"{name} must have shape (3,) or (n, 3), got shape {arr.shape}")
@@ -336,8 +343,8 @@ def rotation_angle(a, b) -> np.ndarray:
     :math:`2\\operatorname{atan2}(\\lVert\\vec c\\rVert, |c_0|)` with :math:`c = a^* b`
     (normalised), which stays accurate for tiny angles, unlike :math:`2\\arccos`.
     """
-    a = _unit(_as_quats(a, "a"), "a")
-    b = _unit(_as_quats(b, "b"), "b")
+    a = unit_quaternions(_as_quats(a, "a"), "a")
+    b = unit_quaternions(_as_quats(b, "b"), "b")
     c = qmul(qconj(a), b)
     return 2.0 * np.arctan2(np.linalg.norm(c[..., 1:], axis=-1), np.abs(c[..., 0]))
 
@@ -509,7 +516,7 @@ class Quaternion:
 
     def normalized(self) -> "Quaternion":
         """:math:`q/\\lVert q\\rVert`; the zero quaternion raises ValueError."""
-        return Quaternion(*_unit(self.as_array(), "quaternion"))
+        return Quaternion(*unit_quaternions(self.as_array(), "quaternion"))
 
     def isclose(self, other: "Quaternion", atol: float = 1e-12) -> bool:
         """Componentwise equality within ``atol`` (so :math:`q` and :math:`-q` differ)."""
@@ -555,7 +562,7 @@ class Quaternion:
         Equal to the lower-right block of :math:`\\bar Q^T Q` for a unit :math:`q`
         (Notes §23.2, :math:`I_q(r) = \\bar Q^T Q r`).
         """
-        return qmatrix(_unit(self.as_array(), "quaternion"))
+        return qmatrix(unit_quaternions(self.as_array(), "quaternion"))
 
     def to_axis_angle(self) -> tuple[np.ndarray, float]:
         """Unit axis and angle :math:`\\theta \\in [0, \\pi]` of the rotation.
@@ -564,7 +571,7 @@ class Quaternion:
         π.  For the identity (angle 0) the axis is undetermined and ``(1, 0, 0)`` is
         returned.  The zero quaternion raises ValueError.
         """
-        q = _unit(self.as_array(), "quaternion")
+        q = unit_quaternions(self.as_array(), "quaternion")
         if q[0] < 0:
             q = -q
         s = float(np.linalg.norm(q[1:]))
@@ -584,7 +591,7 @@ class Quaternion:
 
     def to_rotation_vector(self) -> np.ndarray:
         """The rotation vector :math:`\\theta u` with :math:`\\theta \\in [0, \\pi]` (normalises first)."""
-        return _qlog(_unit(self.as_array(), "quaternion"))
+        return _qlog(unit_quaternions(self.as_array(), "quaternion"))
 
     def rotate(self, points) -> np.ndarray:
         """Rotate one point (3,) or many (n, 3): :math:`I_q(r) = q r q^*` (Notes §23.2).
@@ -592,7 +599,7 @@ class Quaternion:
         The quaternion is normalised first (see the module docstring), so this is
         always a proper rotation; the zero quaternion raises ValueError.
         """
-        p = _check_points3(points, "points")
+        p = as_points3(points, "points")
         return p @ self.to_matrix().T
 
     def __repr__(self) -> str:

@@ -55,9 +55,9 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.spatial import cKDTree
 
-from ._validate import (
-    _as_float_array,
-    _check_finite,
+from ._toolkit.validate import as_float_array as _as_float_array
+from ._toolkit.validate import check_finite as _check_finite
+from ._toolkit.validate import (
     as_finite_scalar,
     as_point,
     as_points,
@@ -65,7 +65,7 @@ from ._validate import (
     as_vector,
     check_same_shape,
 )
-from .quaternion import Quaternion, _check_points3, _unit, qmul
+from .quaternion import Quaternion, as_points3, qmul, unit_quaternions
 
 __all__ = [
     "DegenerateRotationWarning",
@@ -332,7 +332,7 @@ class RigidMotion:
             q = rotation
         else:
             q = Quaternion(*as_vector(rotation, "rotation", length=4))
-        q = Quaternion(*_unit(q.as_array(), "rotation"))
+        q = Quaternion(*unit_quaternions(q.as_array(), "rotation"))
         t = np.zeros(3) if translation is None else as_point(translation, "translation", dim=3)
         object.__setattr__(self, "rotation", q)
         object.__setattr__(self, "translation", _readonly(t))
@@ -365,7 +365,7 @@ class RigidMotion:
 
     def apply(self, points) -> np.ndarray:
         """Move one point (3,) or many (n, 3): :math:`R(q)\\,x + t`."""
-        p = _check_points3(points, "points")
+        p = as_points3(points, "points")
         return p @ self.rotation_matrix.T + self.translation
 
     def inverse(self) -> "RigidMotion":

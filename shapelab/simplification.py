@@ -31,7 +31,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import _as_float_array, as_finite_scalar
+from ._toolkit.validate import as_finite_scalar
+from ._toolkit.validate import as_float_array as _as_float_array
 
 __all__ = ["CurvePersistence", "Simplification", "curve_persistence", "simplify"]
 

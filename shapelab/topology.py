@@ -56,7 +56,8 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import minimum_spanning_tree
 
-from ._validate import _as_float_array, as_tau
+from ._toolkit.unionfind import elder_merges
+from ._toolkit.validate import as_float_array, as_tau
 from .filtration import derived
 
 __all__ = ["betti", "betti_curve", "persistence", "euler_characteristic_curve", "is_roundoff"]
@@ -173,7 +174,9 @@ def _build_summary(F) -> _Summary:
     return _Summary(ambient, k, values, neg, pos, dual)
 
 
-def _summary(F) -> _Summary:
+def summary(F) -> _Summary:
+    """Everything the topology of ``F`` needs (H0 forest, dual forest, values), computed
+    once and kept on ``F``.  Shared with :mod:`shapelab.cavities`; not in ``__all__``."""
     return derived(F, "topology.summary", _build_summary)
 
 
@@ -181,7 +184,7 @@ def _summary(F) -> _Summary:
 def _as_taus(taus) -> np.ndarray:
     if np.ndim(taus) == 0 and not isinstance(taus, (list, tuple)):
         raise ValueError("taus must be a 1-D array of growth times, got a scalar (use betti(F, tau))")
-    t = _as_float_array(taus, "taus")
+    t = as_float_array(taus, "taus")
     if t.ndim != 1:
         raise ValueError(f"taus must be a 1-D array, got shape {t.shape}")
     if np.any(np.isnan(t)):
@@ -249,7 +252,7 @@ def betti(F, tau) -> tuple:
     (1, 1, 0)
     """
     t = as_tau(tau)
-    S = _summary(F)
+    S = summary(F)
     return tuple(int(x) for x in _betti_array(S, np.array([t]))[0])
 
 
@@ -262,7 +265,7 @@ def betti_curve(F, taus) -> np.ndarray:
     characteristic in 3D.
     """
     t = _as_taus(taus)
-    S = _summary(F)
+    S = summary(F)
     return _betti_array(S, t)
 
 
@@ -278,39 +281,6 @@ def euler_characteristic_curve(F, taus) -> np.ndarray:
 
 
 # -------------------------------------------------------------------------- persistence
-def _elder_pairs(n_nodes, u, v, edge_ids, node_age, on_merge):
-    """Union–find over the forest edges ``edge_ids`` (already in processing order).
-
-    ``node_age`` is a list: smaller = older.  For every edge, ``on_merge(edge, young_root_oldest)``
-    is called with the oldest node of the younger component.  Returns the oldest node of
-    each final component (as a dict root -> oldest).
-    """
-    parent = list(range(n_nodes))
-    oldest = list(range(n_nodes))
-    uu = u.tolist()
-    vv = v.tolist()
-    age = node_age
-    for e in edge_ids.tolist():
-        a = uu[e]
-        while parent[a] != a:
-            parent[a] = parent[parent[a]]
-            a = parent[a]
-        b = vv[e]
-        while parent[b] != b:
-            parent[b] = parent[parent[b]]
-            b = parent[b]
-        if a == b:  # cannot happen for forest edges
-            continue
-        oa, ob = oldest[a], oldest[b]
-        if age[oa] < age[ob]:
-            on_merge(e, ob)
-            parent[b] = a
-        else:
-            on_merge(e, oa)
-            parent[a] = b
-    return parent, oldest
-
-
 def _pairs_h0(S: _Summary, F) -> np.ndarray:
     v0 = S.values[0]
     n0 = v0.shape[0]
@@ -324,11 +294,11 @@ def _pairs_h0(S: _Summary, F) -> np.ndarray:
         dies = []
         young = []
 
-        def rec(e, node):
+        def rec(e, elder, younger, oldest):
             dies.append(e)
-            young.append(node)
+            young.append(oldest[younger])
 
-        parent, oldest = _elder_pairs(n0, b1[:, 0], b1[:, 1], S.neg_edges, ages, rec)
+        parent, oldest = elder_merges(n0, b1[:, 0], b1[:, 1], S.neg_edges, ages, rec)
         births.append(v0[np.asarray(young, dtype=np.int64)])
         deaths.append(v1[np.asarray(dies, dtype=np.int64)])
         roots = [i for i in range(n0) if parent[i] == i]
@@ -353,11 +323,11 @@ def _dual_merges(S: _Summary):
     facets = S.pos_facets[::-1]
     dead_facet, dead_root = [], []
 
-    def rec(e, node):
+    def rec(e, elder, younger, oldest):
         dead_facet.append(e)
-        dead_root.append(node)
+        dead_root.append(oldest[younger])
 
-    _elder_pairs(n_cells + 1, u, v, facets, ages, rec)
+    elder_merges(n_cells + 1, u, v, facets, ages, rec)
     return np.asarray(dead_facet, dtype=np.int64), np.asarray(dead_root, dtype=np.int64)
 
 
@@ -367,7 +337,7 @@ def _pairs_top(S: _Summary) -> np.ndarray:
     return P[P[:, 1] > P[:, 0]]
 
 
-def _reduce_h1(S: _Summary, F, *, compress: bool = True):
+def reduce_h1(S: _Summary, F, *, compress: bool = True):
     """Column reduction of the negative triangles of a 3-dimensional filtration.
 
     Returns ``(edge_rows, triangle_rows, columns)``: each negative triangle's pivot edge
@@ -466,12 +436,12 @@ def is_roundoff(F, births, deaths) -> np.ndarray:
     """
     b = np.asarray(births, dtype=np.float64)
     d = np.asarray(deaths, dtype=np.float64)
-    scale = np.maximum(np.maximum(np.abs(b), np.where(np.isfinite(d), np.abs(d), 0.0)), _value_scale(_summary(F)))
+    scale = np.maximum(np.maximum(np.abs(b), np.where(np.isfinite(d), np.abs(d), 0.0)), _value_scale(summary(F)))
     return (d - b) <= ROUNDOFF * scale
 
 
 def _build_pairs(F) -> dict:
-    S = _summary(F)
+    S = summary(F)
     out = {j: np.empty((0, 2)) for j in range(S.ambient + 1)}
     if S.k < 0:
         return out
@@ -479,7 +449,7 @@ def _build_pairs(F) -> dict:
     if S.k >= 2:
         out[S.k - 1] = _pairs_top(S)
     if S.k == 3:
-        e, t, _ = _reduce_h1(S, F)
+        e, t, _ = reduce_h1(S, F)
         P = np.column_stack((S.values[1][e], S.values[2][t])) if e.size else np.empty((0, 2))
         out[1] = P[P[:, 1] > P[:, 0]]
     for j in out:

@@ -21,6 +21,7 @@ from scipy.integrate import quad
 
 import shapelab as sl
 from shapelab import cavities as C
+from shapelab import freespace as FS
 from shapelab import topology as T
 
 gudhi = pytest.importorskip("gudhi")
@@ -156,27 +157,12 @@ def test_void_volume_equals_exact_power_cell_measure(d, seed):
     n = 0
     for tau in (0.0, 0.2):
         for v in sl.voids(F, tau)[:6]:
-            exact = C.free_measure(balls, tau, v.cells)
+            exact = FS.free_measure(balls, tau, v.cells)
             X = balls.centers[v.cells]
             cellvol = np.abs(np.linalg.det(X[:, 1:] - X[:, :1])).sum() / (2 if d == 2 else 6)
             assert abs(v.volume - exact.sum()) <= 1e-9 * cellvol + 1e-7 * exact.sum()
             n += 1
     assert n >= 2
-
-
-def test_free_measure_matches_scanline_oracle_2d():
-    balls = random_balls(9, 30, 2, spread=4.0, rmax=1.0)
-    F = sl.alpha_filtration(balls)
-    rng = np.random.default_rng(0)
-    cells = F.simplices(2)[F.values(2) > 0.0]
-    cells = cells[rng.choice(len(cells), size=min(6, len(cells)), replace=False)]
-    # plus two arbitrary (non-Delaunay) triangles
-    cells = np.vstack([cells, [[0, 5, 9], [3, 17, 22]]])
-    for tau in (0.3,):
-        got = C.free_measure(balls, tau, cells)
-        ref = [free_area_scanline(balls.centers[c], balls.centers, np.sqrt(balls.weights + tau)) for c in cells]
-        assert np.allclose(got, ref, rtol=1e-9, atol=1e-11)
-        assert np.any(np.asarray(ref) > 1e-3)
 
 
 def ring(n, R, r, phase=0.0):
@@ -449,7 +435,7 @@ def test_grid_with_holes_voids_equal_betti(holes):
         assert len(vs) == T.betti(G, tau)[1]
         for v in vs:
             assert v.volume > 0
-            assert v.volume == pytest.approx(C.free_measure(G.balls, tau, v.cells).sum(), rel=1e-9, abs=1e-12)
+            assert v.volume == pytest.approx(FS.free_measure(G.balls, tau, v.cells).sum(), rel=1e-9, abs=1e-12)
 
 
 def test_flat_inputs_have_no_voids_but_can_have_tunnels():
@@ -525,7 +511,7 @@ def test_bad_input_errors():
 
 
 def test_infinite_growth_times_are_the_ends_of_the_filtration():
-    """One τ rule (``_validate.as_tau``): ±inf are accepted everywhere τ is."""
+    """One τ rule (``_toolkit.validate.as_tau``): ±inf are accepted everywhere τ is."""
     F = sl.alpha_filtration(ring(8, 3.0, 1.2))
     assert sl.voids(F, float("inf")) == sl.voids(F, -np.inf) == ()
     assert sl.pockets(F, np.inf) == ()
@@ -533,7 +519,7 @@ def test_infinite_growth_times_are_the_ends_of_the_filtration():
     assert p.lining.size == 0 and p.volume > 0     # (every cell free)
     C60 = sl.alpha_filtration(sl.datasets.fullerene_c60())
     assert sl.tunnels(C60, np.inf) == sl.tunnels(C60, -np.inf) == ()
-    assert C.free_measure(F.balls, np.inf, F.simplices(2)).sum() == 0.0
+    assert FS.free_measure(F.balls, np.inf, F.simplices(2)).sum() == 0.0
 
 
 @pytest.mark.parametrize("fn", [sl.voids, sl.pockets, sl.tunnels, C.grooves])
@@ -548,9 +534,9 @@ def test_the_filtration_keyword_is_gone(fn):
 
 
     with pytest.raises(ValueError, match="cells"):
-        C.free_measure(balls, 0.0, [[0, 1]])
+        FS.free_measure(balls, 0.0, [[0, 1]])
     with pytest.raises(ValueError, match="cells"):
-        C.free_measure(balls, 0.0, [[0, 1, 99]])
+        FS.free_measure(balls, 0.0, [[0, 1, 99]])
     # the filtration or the balls
     F = sl.alpha_filtration(balls)
     assert len(sl.voids(F, 0.0)) == len(sl.voids(balls, 0.0)) == 1

@@ -48,9 +48,9 @@ def test_derived_results_are_computed_once():
 
     a = F.derived("test.thing", build)
     assert F.derived("test.thing", build) is a and calls == [F]
-    S = topology._summary(F)
+    S = topology.summary(F)
     F.betti(0.5), F.betti_curve([0.0, 1.0]), F.persistence(), sl.voids(F, 0.0)
-    assert topology._summary(F) is S
+    assert topology.summary(F) is S
     T = cavities._tree(F)
     sl.pockets(F, 0.0)
     assert cavities._tree(F) is T
@@ -62,7 +62,7 @@ def test_a_copy_derives_afresh_and_equals():
     G = dataclasses.replace(F)
     assert G._derived == {} and G.balls is F.balls
     Q = G.persistence()
-    assert topology._summary(G) is not topology._summary(F)
+    assert topology.summary(G) is not topology.summary(F)
     assert all(np.array_equal(P[k], Q[k]) for k in P)
     assert "_derived" not in repr(F)
 
@@ -84,4 +84,4 @@ def test_duck_typed_filtrations_keep_nothing():
     F = sl.alpha_filtration(_ring())
     G = Plain(F)
     assert topology.betti(G, 0.0) == F.betti(0.0)
-    assert topology._summary(G) is not topology._summary(G)
+    assert topology.summary(G) is not topology.summary(G)

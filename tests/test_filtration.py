@@ -614,9 +614,9 @@ def test_nearly_flat_tetrahedron_has_its_own_orthosphere(h, radii):
     assert ours[(0, 1, 2, 3)] == pytest.approx(float(rho), rel=1e-15, abs=0)
     # the Gabriel test of its facets (the sign of each barycentric coordinate) is exact
     from shapelab.filtration import _orthospheres_certified
-    from shapelab.power import _triangulate_local
+    from shapelab.power import triangulate_local
 
-    fr, simp, _ = _triangulate_local(balls)
+    fr, simp, _ = triangulate_local(balls)
     row = simp[np.sort(fr.keep[simp], axis=1).tolist().index([0, 1, 2, 3])]
     rho_f, att = _orthospheres_certified(balls, fr, row[None, :])
     assert att[0].tolist() == [lam[list(fr.keep[row]).index(v)] < 0 for v in fr.keep[row]]

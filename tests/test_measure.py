@@ -20,13 +20,7 @@ from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
 from shapelab import Balls, alpha_filtration, union_measure
-from shapelab.measure import (
-    UnionMeasure,
-    intersection_area,
-    measure_from_simplices,
-    monte_carlo_union_measure,
-    naive_union_area,
-)
+from shapelab.measure import UnionMeasure, measure_from_simplices
 
 PI = np.pi
 
@@ -408,34 +402,6 @@ def test_boundary_is_the_derivative_of_measure(dim):
     assert num == pytest.approx(np.sum(m.ball_boundary / (2 * b.radii)), rel=1e-6)
 
 
-# ----------------------------------------------------- teaching helpers
-def test_naive_formula_agrees_and_counts_terms():
-    b = random_balls(5, 9, 2, 0.5, 1.3, box=3.0)
-    area, n_sub, n_nonzero = naive_union_area(b)
-    assert n_sub == 2**9 - 1 and 0 < n_nonzero <= n_sub
-    assert area == pytest.approx(union_measure(b).area, rel=1e-10)
-    with pytest.raises(ValueError, match="max_balls"):
-        naive_union_area(random_balls(5, 20, 2))
-    with pytest.raises(ValueError, match="2D"):
-        naive_union_area(random_balls(5, 3, 3))
-
-
-def test_intersection_area_closed_forms():
-    assert intersection_area([[0, 0], [1.5, 0]], [1.0, 0.7]) == pytest.approx(lens_area(1.5, 1.0, 0.7), rel=1e-12)
-    assert intersection_area([[0, 0], [0.1, 0]], [1.0, 0.5]) == pytest.approx(PI * 0.25, rel=1e-12)
-    assert intersection_area([[0, 0], [3, 0]], [1.0, 1.0]) == 0.0
-    s = 1.0
-    c = s * np.array([[0, 0], [1, 0], [0.5, np.sqrt(3) / 2]])
-    assert intersection_area(c, [s, s, s]) == pytest.approx((PI - np.sqrt(3)) * s**2 / 2, rel=1e-12)
-    assert intersection_area([[0, 0], [0, 0]], [1.0, 1.0]) == pytest.approx(PI, rel=1e-14)
-
-
-def test_monte_carlo_helper_within_bound():
-    b = random_balls(8, 10, 2)
-    est, se = monte_carlo_union_measure(b, 50_000, seed=1)
-    assert abs(est - union_measure(b).area) < 4 * se
-
-
 # ------------------------------------------------------- API and validation
 def test_result_type_and_words():
     m2 = union_measure(random_balls(1, 5, 2))
@@ -497,56 +463,6 @@ def _poly_area(P):
     return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
 
 
-@pytest.mark.parametrize("tau", [0.0, 0.7])
-def test_clipped_cells_have_the_per_ball_areas(tau):
-    """The polygons of B_i ∩ Π(B_i), built by clipping the power cells with the disks
-    (no inclusion–exclusion), have the areas of the per-ball shares."""
-    from shapelab.measure import clipped_cells
-
-    b = random_balls(51, 40, 2, 0.2, 1.2, box=6.0)
-    cells = clipped_cells(b, tau=tau, arc_resolution=4000)
-    m = union_measure(b, tau=tau)
-    areas = np.array([_poly_area(P) for P in cells])
-    assert np.all(areas >= 0)  # counter-clockwise
-    # inscribed polygons: error below r^2 (2π/N)^2 / 6 per full circle
-    np.testing.assert_allclose(areas, m.ball_measure, atol=4e-6)
-    hidden_inside = union_measure(Balls(np.vstack([b.centers, b.centers[:1]]), np.append(b.radii, 0.1)))
-    assert len(clipped_cells(Balls(np.vstack([b.centers, b.centers[:1]]), np.append(b.radii, 0.1)))[-1]) == 0
-    assert hidden_inside.ball_measure[-1] == 0.0
-    with pytest.raises(ValueError, match="2D"):
-        clipped_cells(random_balls(1, 4, 3))
-
-
-# ------------------------------------------------------- sampling oracles
-def test_sampled_nerve_and_raster_topology_on_figure_23_1():
-    from shapelab import datasets
-    from shapelab.measure import raster_topology, sampled_nerve
-
-    b = datasets.figure_23_1()
-    F = alpha_filtration(b)
-    for tau in (-0.3, 0.0, 3.0):  # no simplex enters within the sampling margin of these
-        K = F.complex_at(tau)
-        ours = {tuple(int(v) for v in s) for k in range(3) for s in K.simplices(k)}
-        assert sampled_nerve(b, tau=tau, spacing=0.03) == ours
-        assert raster_topology(b, tau=tau, spacing=0.03) == F.betti(tau)[:2]
-    with pytest.raises(ValueError, match="2D"):
-        raster_topology(random_balls(0, 3, 3))
-    with pytest.raises(ValueError, match="spacing"):
-        sampled_nerve(b, spacing=1e-5)
-
-
-def test_truncated_naive_formula():
-    b = random_balls(5, 6, 2, 0.8, 1.3, box=2.0)
-    full, _, _ = naive_union_area(b)
-    one, _, _ = naive_union_area(b, max_order=1)
-    two, _, _ = naive_union_area(b, max_order=2)
-    assert one == pytest.approx(np.sum(PI * b.radii**2), rel=1e-14)
-    pairs = sum(lens_area(np.linalg.norm(b.centers[i] - b.centers[j]), b.radii[i], b.radii[j])
-                for i in range(6) for j in range(i + 1, 6))
-    assert two == pytest.approx(one - pairs, rel=1e-12)
-    assert naive_union_area(b, max_order=6)[0] == pytest.approx(full, rel=1e-14)
-
-
 @pytest.mark.parametrize("centers, radii", [
     ([[0, 0], [1, 0], [2, 0]], 0.6),                    # collinear: K has no triangle
     ([[0, 0], [1, 1]], 0.8),                            # n <= d
@@ -573,7 +489,8 @@ def test_low_dimensional_balls(centers):
 
 
 def test_tangent_angle_is_the_angle_of_the_projections():
-    from shapelab.measure import _angle, _dot, _tangent_angle
+    from shapelab._toolkit.geometry import dot as _dot
+    from shapelab.measure import _angle, _tangent_angle
 
     rng = np.random.default_rng(3)
     um, uk, p = (rng.normal(size=(3, 500)) for _ in range(3))

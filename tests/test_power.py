@@ -271,3 +271,47 @@ def test_power_diagram_3d():
     assert set(np.flatnonzero(pd.unbounded).tolist()) >= hull
     edges = {tuple(sorted(e)) for t in T.tolist() for e in itertools.combinations(t, 2)}
     assert as_set(pd.adjacency) == edges
+
+
+# ------------------------------------------------ clipped cells B_i ∩ Π(B_i)
+@pytest.mark.parametrize("tau", [0.0, 0.7])
+def test_clipped_cells_have_the_per_ball_areas(tau):
+    """The polygons of B_i ∩ Π(B_i), built by clipping the power cells with the disks
+    (no inclusion–exclusion), have the areas of the per-ball shares."""
+    from shapelab import Balls, union_measure
+    from shapelab.power import clipped_cells
+    from tests.test_measure import _poly_area, random_balls
+
+    b = random_balls(51, 40, 2, 0.2, 1.2, box=6.0)
+    cells = clipped_cells(b, tau=tau, arc_resolution=4000)
+    m = union_measure(b, tau=tau)
+    areas = np.array([_poly_area(P) for P in cells])
+    assert np.all(areas >= 0)  # counter-clockwise
+    # inscribed polygons: error below r^2 (2π/N)^2 / 6 per full circle
+    np.testing.assert_allclose(areas, m.ball_measure, atol=4e-6)
+    hidden_inside = union_measure(Balls(np.vstack([b.centers, b.centers[:1]]), np.append(b.radii, 0.1)))
+    assert len(clipped_cells(Balls(np.vstack([b.centers, b.centers[:1]]), np.append(b.radii, 0.1)))[-1]) == 0
+    assert hidden_inside.ball_measure[-1] == 0.0
+    with pytest.raises(ValueError, match="2D"):
+        clipped_cells(random_balls(1, 4, 3))
+
+
+def test_filtration_clipped_cells_reuse_one_diagram_per_box():
+    """``F.clipped_cells`` is :func:`shapelab.power.clipped_cells` on a diagram kept on
+    the filtration: the same polygons, the diagram built once per box."""
+    from shapelab import alpha_filtration, datasets
+    from shapelab.power import clipped_cells
+
+    balls = datasets.figure_23_1()
+    F = alpha_filtration(balls)
+    box = np.array([balls.centers.min(axis=0) - 10, balls.centers.max(axis=0) + 10])
+    for tau in (0.0, 0.5):
+        ours = F.clipped_cells(tau, bbox=box, arc_resolution=72)
+        ref = clipped_cells(balls, tau=tau, diagram=power_diagram(balls, bbox=box), arc_resolution=72)
+        assert len(ours) == len(ref) and all(np.array_equal(a, b) for a, b in zip(ours, ref))
+    assert sum(k.startswith("power.diagram[") for k in F._derived) == 1
+    default = F.clipped_cells(0.0)
+    ref = clipped_cells(balls, tau=0.0)
+    assert all(np.array_equal(a, b) for a, b in zip(default, ref))
+    with pytest.raises(ValueError, match="2"):
+        alpha_filtration(Balls(np.eye(3), [1.0, 1.0, 1.0])).clipped_cells(0.0)

@@ -5,7 +5,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
 
-from shapelab import _validate as v
+from shapelab._toolkit import validate as v
 
 
 def test_points_accepts_lists_and_returns_float64():

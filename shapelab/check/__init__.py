@@ -10,8 +10,7 @@ One module per topic holds the checks; all are re-exported here.
 """
 from __future__ import annotations
 
-import importlib
-
+from .._toolkit.lazy import attach
 from ._runner import CheckResult, allclose, run_check, value
 
 _EXPORTS = {
@@ -50,10 +49,4 @@ _EXPORTS = {
 __all__ = ["CheckResult", "allclose", "run_check", "value", *sorted(_EXPORTS)]
 
 
-def __getattr__(name: str):
-    if name in _EXPORTS:
-        module = importlib.import_module(f"shapelab.check.{_EXPORTS[name]}")
-        value = getattr(module, name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'shapelab.check' has no attribute {name!r}")
+__getattr__, __dir__ = attach(__name__, _EXPORTS, eager=__all__)

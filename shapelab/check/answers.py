@@ -40,7 +40,7 @@ def distinct_complexes(n_complexes, F, lo: float = 0.0, hi: float = 1.0) -> Chec
 def standard_error_factor(shrink, balls, *, seed: int = 0) -> CheckResult:
     """Lesson 04: by what factor Monte Carlo's standard error falls with 100 times more
     samples (measured on ``balls`` with 10⁴ and 10⁶ samples, to 5 %)."""
-    from ..measure import monte_carlo_union_measure
+    from ..oracles import monte_carlo_union_measure
 
     ratio = monte_carlo_union_measure(balls, 10**4, seed=seed)[1] / monte_carlo_union_measure(balls, 10**6, seed=seed)[1]
     return value("the factor per 100 times more samples", shrink, ratio, rtol=0.05)

@@ -13,9 +13,8 @@ the rest of the library.
 """
 from __future__ import annotations
 
-import importlib
-
-from ._style import COLORS, PAGE, PALETTE, SLIDE, new_figure, style
+from .._toolkit.lazy import attach
+from ._style import COLORS, PAGE, PALETTE, RC, SLIDE, new_figure, style, thin_3d_ticks
 
 _EXPORTS = {
     # balls.py
@@ -43,13 +42,7 @@ _EXPORTS = {
     "point_sets": "rotation",
 }
 
-__all__ = ["COLORS", "PALETTE", "PAGE", "SLIDE", "new_figure", "style", *sorted(_EXPORTS)]
+__all__ = ["COLORS", "PALETTE", "PAGE", "RC", "SLIDE", "new_figure", "style", "thin_3d_ticks", *sorted(_EXPORTS)]
 
 
-def __getattr__(name: str):
-    if name in _EXPORTS:
-        module = importlib.import_module(f"shapelab.plot.{_EXPORTS[name]}")
-        value = getattr(module, name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'shapelab.plot' has no attribute {name!r}")
+__getattr__, __dir__ = attach(__name__, _EXPORTS, eager=__all__)

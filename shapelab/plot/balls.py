@@ -15,7 +15,7 @@
 Every function returns a :class:`matplotlib.figure.Figure` (or draws into ``ax=``
 and returns its figure) and computes no geometry of its own: cells, complexes and
 entry times come from :mod:`shapelab.power` and :mod:`shapelab.filtration`.  The
-cells :math:`B_i \\cap \\Pi(B_i)` come from :func:`shapelab.measure.clipped_cells`.
+cells :math:`B_i \\cap \\Pi(B_i)` come from :func:`shapelab.power.clipped_cells`.
 """
 from __future__ import annotations
 
@@ -26,7 +26,13 @@ from matplotlib.colors import BoundaryNorm, Normalize, to_rgba
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from .._validate import as_finite_scalar, as_positive_int, as_tau, filtration_first
+from .._toolkit.validate import (
+    as_finite_scalar,
+    as_positive_int,
+    as_tau,
+    check_balls,
+    filtration_first,
+)
 from ..balls import Balls
 from ._style import COLORS, PAGE, PALETTE, new_figure, style
 
@@ -36,8 +42,7 @@ __all__ = ["disks", "power_diagram", "dual_complex", "filtration", "balls3d", "c
 
 # ------------------------------------------------------------------ helpers
 def _check_balls(balls, name="balls", dim=None) -> Balls:
-    if not isinstance(balls, Balls):
-        raise TypeError(f"{name} must be a shapelab.Balls, got {type(balls).__name__}")
+    check_balls(balls, name)
     if dim is not None and balls.dim != dim:
         hint = " (use balls3d/complex3d for 3D)" if dim == 2 else " (use disks/dual_complex for 2D)"
         raise ValueError(f"{name} must be {dim}D for this figure, got {balls.dim}D{hint}")
@@ -234,8 +239,6 @@ class DualComplexView:
     @filtration_first(name="DualComplexView")
     def __init__(self, F, tau=0.0, *, ax=None, show_cells=True, show_disks=True,
                  bbox=None, labels=False, title=None, legend=True, view_tau=None):
-        from ..power import power_diagram as _pd
-
         F = _filtration_of(F, "DualComplexView")
         balls = F.balls
         _check_balls(balls, dim=2)
@@ -257,7 +260,7 @@ class DualComplexView:
                                                edgecolors=[edge], linewidths=0.8 if show_cells else 1.0, zorder=3)
             self._cells = None
             if show_cells and len(balls):
-                self._diagram = _pd(balls, bbox=self._cell_box(balls, bbox))
+                self._cell_bbox = self._cell_box(balls, bbox)
                 self._cells = PolyCollection([], facecolors=[to_rgba(COLORS["cell"], 0.25)],
                                              edgecolors=["#8A4B00"], linewidths=2.0, zorder=3.5)
                 ax.add_collection(self._cells, autolim=False)
@@ -300,9 +303,7 @@ class DualComplexView:
         return np.array([balls.centers.min(axis=0) - pad, balls.centers.max(axis=0) + pad])
 
     def _set_cells(self, tau):
-        from ..measure import clipped_cells
-
-        polys = clipped_cells(self.balls, tau=tau, diagram=self._diagram, arc_resolution=72)
+        polys = self.filtration.clipped_cells(tau, bbox=self._cell_bbox, arc_resolution=72)
         self._cells.set_verts([p for p in polys if len(p) >= 3])
 
     def _set_complex(self, K):

@@ -153,10 +153,10 @@ def critical_surface(vertices, faces, result, *, ax=None, size=PAGE, elev: float
     -------
     matplotlib.figure.Figure
     """
-    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
     from matplotlib import colormaps
-    from matplotlib.colors import Normalize
     from matplotlib.cm import ScalarMappable
+    from matplotlib.colors import Normalize
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
     _check_result(result, ("surface",))
     V = np.asarray(vertices, dtype=float)
@@ -224,7 +224,7 @@ def hausdorff(A, B, *, ax=None, size=PAGE, labels=("A", "B"), disks: bool = True
     -------
     matplotlib.figure.Figure
     """
-    from .._validate import as_points
+    from .._toolkit.validate import as_points
     from ..distance import hausdorff_pair
 
     A = as_points(A, "A", dim=2)
@@ -267,7 +267,7 @@ def translation(A, B, match, *, size=SLIDE, labels=("A", "B"), title: str | None
     -------
     matplotlib.figure.Figure
     """
-    from .._validate import as_points
+    from .._toolkit.validate import as_points
     from ..matching import TranslationMatch
 
     if not isinstance(match, TranslationMatch):

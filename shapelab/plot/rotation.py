@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import as_finite_scalar, as_point, as_points, as_positive_int
+from .._toolkit.validate import as_finite_scalar, as_point, as_points, as_positive_int
 from ..quaternion import Quaternion, qfrom_axis_angle, qrotate
 from ..registration import ICPResult, RigidMotion
 from ._style import COLORS, PAGE, new_figure, style

@@ -18,7 +18,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, Patch
 from matplotlib.ticker import MaxNLocator
 
-from .._validate import as_finite_scalar, as_tau, filtration_first
+from .._toolkit.validate import as_finite_scalar, as_tau, filtration_first
 from ._style import COLORS, PAGE, PALETTE, new_figure, style
 
 __all__ = ["persistence_diagram", "barcode", "betti_curve", "voids", "pockets", "tunnels"]
@@ -598,25 +598,6 @@ def _cycle_edges(t):
     return e.reshape(-1, 2)
 
 
-def _free_points(balls, tau, cells, n_points, rng):
-    """Points of the free space inside ``cells`` (uniform in the cells, then kept where
-    no ball grown to τ covers them, by :func:`shapelab.power_distance`): a picture of a
-    void's shape, not a measurement."""
-    from ..balls import power_distance
-
-    X = balls.centers[cells]                         # (m, d+1, d)
-    E = X[:, 1:] - X[:, :1]
-    vol = np.abs(np.linalg.det(E))
-    if not len(cells) or vol.sum() <= 0:
-        return np.zeros((0, balls.dim))
-    k = rng.multinomial(n_points, vol / vol.sum())
-    idx = np.repeat(np.arange(len(cells)), k)
-    w = rng.dirichlet(np.ones(balls.dim + 1), size=len(idx))
-    pts = np.einsum("mk,mkd->md", w, X[idx])
-    keep = power_distance(pts, balls).min(axis=1) > tau if len(pts) else np.zeros(0, bool)
-    return pts[keep]
-
-
 def _feature_label(kind, i, f, d, show_volumes):
     if not show_volumes:
         return f"{kind}{i}"
@@ -635,6 +616,8 @@ def _pocket_color(i: int) -> str:
 
 
 def _draw_features(F, tau, V, Pk, T, *, ax, show_complex, elev, azim, title, show_volumes=None, legend=True):
+    from ..freespace import free_points
+
     balls = F.balls
     d = balls.dim
     own_figure = ax is None
@@ -685,12 +668,12 @@ def _draw_features(F, tau, V, Pk, T, *, ax, show_complex, elev, azim, title, sho
             half = _setup_3d(ax, balls, elev, azim)
             _draw_balls_3d(ax, balls, tau, highlight=hl, half=half)
             for i, v in enumerate(V, 1):
-                pts = _free_points(balls, tau, _cells_of(v), 3000, rng)
+                pts = free_points(balls, tau, _cells_of(v), 3000, rng)
                 ax.scatter(*pts.T, s=3, color=COLORS["void"], alpha=0.9, depthshade=False, zorder=3)
                 legend.append(Patch(color=COLORS["void"],
                                     label=f"{void_word} " + _feature_label("V", i, v, d, show_volumes)))
             for i, p in enumerate(Pk, 1):
-                pts = _free_points(balls, tau, _cells_of(p), 3000, rng)
+                pts = free_points(balls, tau, _cells_of(p), 3000, rng)
                 ax.scatter(*pts.T, s=3, color=_pocket_color(i), alpha=0.9, depthshade=False, zorder=3)
                 mouth = np.asarray(_field(p, "mouth"), dtype=np.int64).reshape(-1, 3)
                 if len(mouth):

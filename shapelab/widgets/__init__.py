@@ -16,7 +16,7 @@ still show and move.
 """
 from __future__ import annotations
 
-import importlib
+from .._toolkit.lazy import attach
 
 _EXPORTS = {
     "alpha_explorer": "balls",
@@ -30,10 +30,4 @@ _EXPORTS = {
 __all__ = sorted(_EXPORTS)
 
 
-def __getattr__(name: str):
-    if name in _EXPORTS:
-        module = importlib.import_module(f"shapelab.widgets.{_EXPORTS[name]}")
-        value = getattr(module, name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'shapelab.widgets' has no attribute {name!r}")
+__getattr__, __dir__ = attach(__name__, _EXPORTS, eager=__all__)

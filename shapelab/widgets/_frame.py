@@ -35,10 +35,9 @@ def png(fig, dpi: int = DPI) -> bytes:
 def check_balls(balls, *, dim: int | None, who: str, minimum: int = 1, what: str = "ball"):
     """Validate an explorer's ``balls``: a shapelab.Balls, of dimension ``dim`` (any if
     None), holding at least ``minimum`` of them."""
-    from ..balls import Balls
+    from .._toolkit.validate import check_balls as check_type
 
-    if not isinstance(balls, Balls):
-        raise TypeError(f"balls must be a shapelab.Balls, got {type(balls).__name__}")
+    check_type(balls)
     if dim is not None and balls.dim != dim:
         raise ValueError(f"{who} draws {what}s in {dim}D: balls must be {dim}D, got {balls.dim}D")
     if len(balls) < minimum:
@@ -50,7 +49,7 @@ def check_balls(balls, *, dim: int | None, who: str, minimum: int = 1, what: str
 def value_range(pair, name: str, *, nonnegative: bool = False) -> tuple[float, float]:
     """A slider's ``(low, high)`` argument, validated: finite numbers (>= 0 where asked)
     with low < high."""
-    from .._validate import as_finite_scalar
+    from .._toolkit.validate import as_finite_scalar
 
     try:
         lo, hi = (as_finite_scalar(v, name, nonnegative=nonnegative) for v in pair)

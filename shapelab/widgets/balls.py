@@ -4,7 +4,12 @@ from __future__ import annotations
 import ipywidgets as W
 import numpy as np
 
-from .._validate import as_finite_scalar, as_positive_int, as_tau, filtration_first
+from .._toolkit.validate import (
+    as_finite_scalar,
+    as_positive_int,
+    as_tau,
+    filtration_first,
+)
 from . import _frame
 from .static import StaticFallback
 
@@ -188,8 +193,8 @@ def power_explorer(balls, *, index=0, radius=None, radius_range=None, steps=100,
     PowerExplorer
         An ``ipywidgets.VBox``: the two sliders, a status line and the figure.
     """
+    from .._toolkit.validate import as_bbox, default_bbox
     from ..balls import Balls
-    from ..power import _as_bbox, _default_bbox
     from ._frame import check_balls, value_range
 
     check_balls(balls, dim=2, who="power_explorer", minimum=2, what="disk")
@@ -204,9 +209,9 @@ def power_explorer(balls, *, index=0, radius=None, radius_range=None, steps=100,
         lo, hi = value_range(radius_range, "radius_range", nonnegative=True)
     r0 = float(balls.radii[index]) if radius is None else as_finite_scalar(radius, "radius", nonnegative=True)
     if bbox is None:
-        bbox = _default_bbox(Balls(balls.centers, np.full(len(balls), max(hi, float(balls.radii.max())))))
+        bbox = default_bbox(Balls(balls.centers, np.full(len(balls), max(hi, float(balls.radii.max())))))
     else:
-        bbox = _as_bbox(bbox, 2)
+        bbox = as_bbox(bbox, 2)
     return PowerExplorer(balls, int(index), min(max(r0, lo), hi), lo, hi, (hi - lo) / steps, mode, bbox)
 
 
@@ -296,6 +301,7 @@ class PowerExplorer(StaticFallback, W.VBox):
 
     def _redraw(self, change=None):
         from ..power import power_diagram
+        from . import _frame
 
         self.diagram = power_diagram(self.balls, bbox=self._bbox)
         self.status.value = self.status_text()

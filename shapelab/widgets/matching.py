@@ -7,7 +7,7 @@ import io
 import ipywidgets as W
 import numpy as np
 
-from .._validate import as_point, as_positive_int
+from .._toolkit.validate import as_point, as_positive_int
 from . import _frame
 from .static import StaticFallback
 
@@ -41,12 +41,12 @@ def critical_points_explorer(curve, *, viewpoint=None, x_range=None, y_range=Non
         An ``ipywidgets.VBox``: the two sliders, a status line with the counts and
         the figure.
     """
-    from ..critical import _closed_vertices, polyline
+    from ..critical import closed_vertices, polyline
 
     if callable(curve):
         P = polyline(curve, 400)
     else:
-        P, _ = _closed_vertices(curve, close)
+        P, _ = closed_vertices(curve, close)
     if P.shape[1] != 2:
         raise ValueError(f"curve must be planar (2 coordinates), got {P.shape[1]}")
     steps = as_positive_int(steps, "steps", minimum=2)

@@ -11,7 +11,7 @@ import io
 import ipywidgets as W
 import numpy as np
 
-from .._validate import as_points, as_positive_int
+from .._toolkit.validate import as_points, as_positive_int
 from . import _frame
 from .static import StaticFallback
 
@@ -86,7 +86,7 @@ class ICPExplorer(StaticFallback, W.VBox):
 
     def figure(self):
         """The current figure: the ICP step (3D) and the convergence plot."""
-        from ..plot._style import new_figure
+        from ..plot import new_figure
         from ..plot.rotation import icp_convergence, icp_step
 
         k = self.iteration

@@ -6,7 +6,7 @@ import io
 import ipywidgets as W
 import numpy as np
 
-from .._validate import as_finite_scalar, as_tau, filtration_first
+from .._toolkit.validate import as_finite_scalar, as_tau, filtration_first
 from . import _frame
 from .static import StaticFallback
 

@@ -1,0 +1,277 @@
+"""Independent oracles for the union of balls and its dual complex (Notes §23.1).
+
+Brute force and sampling, deliberately *not* built on the dual complex, so that the
+tests and the lessons can check the library's exact answers against them:
+
+* :func:`intersection_area` and :func:`naive_union_area`: the ordinary
+  inclusion–exclusion formula over all :math:`2^n - 1` subsets of disks (the formula
+  the dual complex shortens, :mod:`shapelab.measure`);
+* :func:`monte_carlo_union_measure`: area or volume of the union by uniform sampling,
+  with its standard error;
+* :func:`sampled_nerve`: the dual complex from its definition (the nerve of the
+  clipped cells :math:`B_i \\cap \\Pi(B_i)`) by dense sampling;
+* :func:`raster_topology`: Betti numbers of the union of disks from a raster image.
+
+They are slow (exponential, or sampling) and meant for small inputs.
+"""
+from __future__ import annotations
+
+from itertools import combinations
+
+import numpy as np
+
+from ._toolkit.validate import as_finite_scalar, as_positive_int, as_tau, check_balls
+from .balls import Balls
+
+__all__ = [
+    "intersection_area",
+    "naive_union_area",
+    "monte_carlo_union_measure",
+    "sampled_nerve",
+    "raster_topology",
+]
+
+_TWO_PI = 2.0 * np.pi
+
+
+# ================================================== naive formula and sampling
+def intersection_area(centers, radii) -> float:
+    """Exact area of the intersection of any number of disks (2D).
+
+    Green's theorem over the boundary arcs: the boundary of a convex intersection of
+    disks is made of arcs of their circles; each arc of circle (c, r) from angle
+    :math:`\\phi_1` to :math:`\\phi_2` contributes
+    :math:`\\tfrac12[r^2 (\\phi_2-\\phi_1) + r\\,(c_x(\\sin\\phi_2-\\sin\\phi_1)
+    - c_y(\\cos\\phi_2-\\cos\\phi_1))]`.  Used by :func:`naive_union_area`; cost
+    :math:`O(k^2)` for k disks.
+    """
+    from ._toolkit.validate import as_points, as_radii
+
+    C = as_points(centers, "centers", dim=2)
+    r = as_radii(radii, C.shape[0], "radii")
+    # exact duplicates contribute one boundary
+    _, keep = np.unique(np.column_stack([C, r]), axis=0, return_index=True)
+    keep = np.sort(keep)
+    C, r = C[keep] - C[keep[0]], r[keep]
+    k = C.shape[0]
+    if k == 1:
+        return float(np.pi * r[0] ** 2)
+    area = 0.0
+    for l in range(k):
+        intervals = [(0.0, _TWO_PI)]
+        for j in range(k):
+            if j == l:
+                continue
+            dv = C[j] - C[l]
+            dist = float(np.hypot(*dv))
+            if dist >= r[l] + r[j]:
+                return 0.0  # two disjoint (or tangent) disks: empty intersection
+            if dist + r[l] <= r[j]:
+                continue  # circle l inside disk j: no constraint
+            if dist + r[j] <= r[l]:
+                intervals = []  # disk j strictly inside disk l: circle l is outside j
+                break
+            t = (dist * dist + r[l] ** 2 - r[j] ** 2) / (2 * dist)
+            half = float(np.arccos(np.clip(t / r[l], -1.0, 1.0)))
+            mid = float(np.arctan2(dv[1], dv[0]))
+            lo = (mid - half) % _TWO_PI
+            arc = [(lo, lo + 2 * half)] if lo + 2 * half <= _TWO_PI else [(lo, _TWO_PI), (0.0, lo + 2 * half - _TWO_PI)]
+            intervals = [
+                (max(a0, b0), min(a1, b1)) for a0, a1 in intervals for b0, b1 in arc if min(a1, b1) > max(a0, b0)
+            ]
+            if not intervals:
+                break
+        cx, cy = C[l]
+        for p1, p2 in intervals:
+            area += 0.5 * (
+                r[l] ** 2 * (p2 - p1)
+                + r[l] * (cx * (np.sin(p2) - np.sin(p1)) - cy * (np.cos(p2) - np.cos(p1)))
+            )
+    return float(max(area, 0.0))
+
+
+def naive_union_area(balls: Balls, *, max_balls: int = 16, max_order=None):
+    """Area of a union of disks by the *ordinary* inclusion–exclusion formula.
+
+    :math:`\\operatorname{area} \\bigcup B_i = \\sum_{\\emptyset \\ne S \\subseteq
+    \\{1..n\\}} (-1)^{|S|+1} \\operatorname{area} \\bigcap_{i \\in S} B_i`, over all
+    :math:`2^n - 1` subsets (a subset whose intersection is empty makes all its
+    supersets empty, which is used to skip them).  For teaching: exponential in n.
+
+    Parameters
+    ----------
+    balls : Balls
+        2D balls.
+    max_balls : int
+        Refuse more disks than this (the cost is exponential).
+    max_order : int, optional
+        Keep only the subsets of at most this many disks (a *truncated* formula,
+        which is not the area in general; for teaching).
+
+    Returns
+    -------
+    area : float
+    n_subsets : int
+        :math:`2^n - 1`, the number of terms of the formula.
+    n_nonzero : int
+        How many terms were nonzero.
+    """
+    check_balls(balls)
+    if balls.dim != 2:
+        raise ValueError(f"naive_union_area works with disks (2D), got balls of dimension {balls.dim}")
+    max_balls = as_positive_int(max_balls, "max_balls")
+    max_order = None if max_order is None else as_positive_int(max_order, "max_order")
+    n = len(balls)
+    if n > max_balls:
+        raise ValueError(f"balls has {n} disks; the naive formula has 2**n - 1 terms, allowed up to max_balls={max_balls}")
+    C, r = balls.centers, balls.radii
+    total, nonzero = 0.0, 0
+    level = [((i,), float(np.pi * r[i] ** 2)) for i in range(n)]
+    size = 1
+    while level and (max_order is None or size <= max_order):
+        sign = 1.0 if size % 2 else -1.0
+        nxt = []
+        for subset, a in level:
+            if a <= 0.0:
+                continue
+            total += sign * a
+            nonzero += 1
+            for j in range(subset[-1] + 1, n):
+                s2 = subset + (j,)
+                nxt.append((s2, intersection_area(C[list(s2)], r[list(s2)])))
+        level = nxt
+        size += 1
+    return total, 2**n - 1, nonzero
+
+
+def monte_carlo_union_measure(balls: Balls, n_samples=100_000, *, seed=0, chunk: int = 20_000):
+    """Monte Carlo estimate of the area/volume of a union of balls.
+
+    Samples uniformly in the bounding box; returns the estimate and its standard
+    error :math:`V_{box}\\sqrt{p(1-p)/N}`.
+    """
+    check_balls(balls)
+    n_samples = as_positive_int(n_samples, "n_samples")
+    rng = np.random.default_rng(seed)
+    lo = (balls.centers - balls.radii[:, None]).min(axis=0)
+    hi = (balls.centers + balls.radii[:, None]).max(axis=0)
+    box = float(np.prod(hi - lo))
+    hits, done = 0, 0
+    while done < n_samples:
+        m = min(chunk, n_samples - done)
+        x = rng.uniform(lo, hi, size=(m, balls.dim))
+        inside = np.zeros(m, dtype=bool)
+        for i0 in range(0, len(balls), 256):
+            c = balls.centers[i0 : i0 + 256]
+            d2 = ((x[:, None, :] - c[None]) ** 2).sum(-1)
+            inside |= (d2 <= balls.weights[i0 : i0 + 256][None]).any(axis=1)
+        hits += int(inside.sum())
+        done += m
+    p = hits / n_samples
+    return box * p, box * np.sqrt(p * (1 - p) / n_samples)
+
+
+# ============================================ sampling oracles for the lessons
+def _grid(balls: Balls, tau: float, spacing: float):
+    w = np.maximum(balls.weights + tau, 0.0)
+    r = np.sqrt(w)
+    lo = (balls.centers - r[:, None]).min(axis=0) - 2 * spacing
+    hi = (balls.centers + r[:, None]).max(axis=0) + 2 * spacing
+    axes = [np.arange(a, b + spacing, spacing) for a, b in zip(lo, hi)]
+    if np.prod([len(a) for a in axes]) > 5e6:
+        raise ValueError(f"spacing={spacing!r} gives more than 5 million grid points; use a coarser spacing")
+    mesh = np.meshgrid(*axes, indexing="ij")
+    return np.stack([m.ravel() for m in mesh], axis=1), [len(a) for a in axes]
+
+
+def sampled_nerve(balls: Balls, *, tau=0.0, spacing=0.02, margin=None, max_dim=None) -> set:
+    """The nerve of the sets :math:`B_i(\\tau) \\cap \\Pi(B_i)` found by dense sampling
+    (Notes §23.1, the definition of the dual complex K).
+
+    A grid point x *witnesses* the set of balls whose power distance at x is within
+    ``margin`` of the smallest and at most ``margin`` above τ; every subset of a
+    witnessed set is a simplex of the sampled nerve.  With a fine grid and a small
+    margin this is the definition of K read literally, independent of any
+    triangulation; simplices whose witnesses are thinner than the grid (tangent
+    balls, entry times within about ``margin`` of τ) can be missed or added.
+
+    Parameters
+    ----------
+    balls : Balls
+    tau : float
+    spacing : float
+        Grid step.
+    margin : float, optional
+        Tolerance on power distances; default ``3 * spacing * (largest radius at τ)``,
+        about the change of a power distance across one grid cell near the spheres.
+        Simplices entering within about ``margin`` of τ may be reported or missed.
+    max_dim : int, optional
+        Largest simplex dimension reported (default d).
+
+    Returns
+    -------
+    set of tuple of int
+        The simplices, each a sorted tuple of ball indices.
+    """
+    check_balls(balls)
+    t = as_tau(tau, finite=True)
+    h = as_finite_scalar(spacing, "spacing", positive=True)
+    max_dim = balls.dim if max_dim is None else as_positive_int(max_dim, "max_dim", minimum=0)
+    if len(balls) == 0:
+        return set()
+    X, _ = _grid(balls, t, h)
+    rmax = float(np.sqrt(np.maximum(balls.weights + t, 0.0)).max())
+    eps = 3.0 * h * max(rmax, h) if margin is None else as_finite_scalar(margin, "margin", nonnegative=True)
+    out = set()
+    for i0 in range(0, len(X), 20_000):
+        x = X[i0 : i0 + 20_000]
+        d = x[:, None, :] - balls.centers[None]
+        P = np.einsum("mnd,mnd->mn", d, d) - balls.weights[None]
+        low = P.min(axis=1, keepdims=True)
+        wit = (P <= low + eps) & (P <= t + eps)
+        for row in np.unique(wit[wit.any(axis=1)], axis=0):
+            S = tuple(int(i) for i in np.flatnonzero(row))
+            for k in range(1, min(len(S), max_dim + 1) + 1):
+                out.update(combinations(S, k))
+    return out
+
+
+def raster_topology(balls: Balls, *, tau=0.0, spacing=0.02, min_hole_pixels: int = 6):
+    """Components and holes of a union of disks, counted on a raster image.
+
+    The union of the disks grown to τ is rasterised on a grid; its connected pieces
+    (8-connectivity) are the components, and the bounded pieces of the complement
+    (4-connectivity, the dual choice) are the holes: :math:`(\\beta_0, \\beta_1)` of
+    the union, to compare with the Betti numbers of the dual complex (Notes §23.1:
+    "the topology of K(P) is the same as that of P").  Pieces of the complement
+    smaller than ``min_hole_pixels`` pixels are not counted: a raster traps single
+    pixels in the cusps where two circles cross.
+
+    Returns
+    -------
+    tuple of int
+        ``(components, holes)``.
+    """
+    from scipy import ndimage
+
+    check_balls(balls)
+    if balls.dim != 2:
+        raise ValueError(f"raster_topology works with disks (2D), got balls of dimension {balls.dim}")
+    t = as_tau(tau, finite=True)
+    h = as_finite_scalar(spacing, "spacing", positive=True)
+    min_hole_pixels = as_positive_int(min_hole_pixels, "min_hole_pixels")
+    if len(balls) == 0:
+        return 0, 0
+    X, shape = _grid(balls, t, h)
+    inside = np.zeros(len(X), dtype=bool)
+    w = balls.weights + t
+    for i0 in range(0, len(balls), 64):
+        d = X[:, None, :] - balls.centers[None, i0 : i0 + 64]
+        inside |= (np.einsum("mnd,mnd->mn", d, d) <= w[None, i0 : i0 + 64]).any(axis=1)
+    img = inside.reshape(shape)
+    _, n_comp = ndimage.label(img, structure=np.ones((3, 3), dtype=int))
+    lab, n_out = ndimage.label(~img)  # the grid has a margin: exactly one unbounded piece
+    sizes = np.bincount(lab.ravel())[1:]
+    # pixels trapped in the cusps where two circles cross are not holes
+    holes = int(np.sum(sizes >= min_hole_pixels)) - 1
+    return int(n_comp), max(holes, 0)
