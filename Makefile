@@ -68,6 +68,7 @@ lab: $(VENV)/.installed-lab
 
 bench: $(VENV)/.installed-bench
 	$(PY) -m benchmarks $(CASE)
+	@if [ -z "$(CASE)" ]; then $(PY) -m benchmarks.lessons; fi
 
 clean:
 	rm -rf book/_build book/lessons book/_extra book/_gallery dist .pytest_cache
