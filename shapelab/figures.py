@@ -285,9 +285,9 @@ def fig23_2():
           "F(x) = |x − S| along C (left), with F itself along the curve (right): minima and maxima "
           "alternate.",
           source="Notes, Figure 23.3", lesson="11_critical_points",
-          needs=("critical.blob_curve", "critical_points", "plot.critical_points"))
+          needs=("datasets.blob_curve", "critical_points", "plot.critical_points"))
 def fig23_3():
-    blob = _sl().critical.blob_curve
+    blob = _datasets().blob_curve
     S = np.array([0.1, 0.05])
     return _plot().critical_points(blob, _sl().critical_points(blob, S))
 
@@ -433,9 +433,9 @@ def l10_globule_pockets():
 @register("l11_critical_surface", "Critical points on a closed surface seen from its centre: minima, "
           "saddles and maxima of F = |x − S|, with #min − #saddles + #max = χ = 2.",
           source="Lesson 11", lesson="11_critical_points",
-          needs=("critical.bumpy_sphere", "critical_points", "plot.critical_surface"))
+          needs=("datasets.bumpy_sphere", "critical_points", "plot.critical_surface"))
 def l11_critical_surface():
-    V, F = _sl().critical.bumpy_sphere(3)
+    V, F = _datasets().bumpy_sphere(3)
     S = np.zeros(3)
     fig, ax = _slide(projection="3d")
     _plot().critical_surface(V, F, _sl().critical_points(V, S, faces=F), ax=ax)
@@ -469,7 +469,7 @@ def l12_translation():
 def _icp_example(n=250):
     """Lesson 13's setting: a lumpy shape and an independent sampling of it, moved."""
     sl = _sl()
-    sample = sl.registration.sample_shape
+    sample = sl.datasets.sample_shape
     truth = sl.RigidMotion(sl.Quaternion.from_axis_angle([1.0, 2.0, 3.0], np.radians(30.0)), [0.3, -0.1, 0.2])
     return sample("lumpy", n, seed=1), truth.apply(sample("lumpy", n, seed=2)), truth
 
@@ -477,7 +477,7 @@ def _icp_example(n=250):
 @register("l13_icp_step", "One ICP iteration: step 1 pairs every source point (red) with its closest "
           "target point (green); steps 2–3 move the source by the best rigid motion for those pairs.",
           source="Lesson 13", lesson="13_icp",
-          needs=("registration.sample_shape", "icp", "RigidMotion", "plot.icp_step"))
+          needs=("datasets.sample_shape", "icp", "RigidMotion", "plot.icp_step"))
 def l13_icp_step():
     source, target, _ = _icp_example()
     result = _sl().icp(source, target, max_iter=40, tol=1e-12, accelerate=False, keep_history=True)
@@ -489,7 +489,7 @@ def l13_icp_step():
 @register("l13_icp_convergence", "ICP's mean squared error falls at every iteration (step 4), and the "
           "rotation error with it; the accelerated variant needs fewer iterations.",
           source="Lesson 13", lesson="13_icp",
-          needs=("registration.sample_shape", "icp", "RigidMotion", "plot.icp_convergence"))
+          needs=("datasets.sample_shape", "icp", "RigidMotion", "plot.icp_convergence"))
 def l13_icp_convergence():
     source, target, truth = _icp_example(400)
     runs = {

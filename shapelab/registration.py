@@ -78,7 +78,6 @@ __all__ = [
     "ICPResult",
     "icp",
     "closest_points",
-    "sample_shape",
 ]
 
 
@@ -661,6 +660,7 @@ def icp(
 
     Examples
     --------
+    >>> from shapelab.datasets import sample_shape
     >>> src = sample_shape("lumpy", 400, seed=1)
     >>> true = RigidMotion(Quaternion.from_axis_angle([1, 2, 3], np.radians(10)), [0.1, 0, 0])
     >>> res = icp(src, true.apply(src))
@@ -742,57 +742,3 @@ def icp(
         motions=tuple(motions),
         correspondences=None if history is None else np.stack(history),
     )
-
-
-# --------------------------------------------------------------------------- shapes
-
-
-def sample_shape(kind: str, n: int, *, seed: int = 0) -> np.ndarray:
-    """Random points on a closed test surface, for ICP demos, tests and benchmarks.
-
-    Parameters
-    ----------
-    kind : {"lumpy", "ellipsoid", "sphere", "cube"}
-        ``"lumpy"``: an ellipsoid with semi-axes (1, 0.75, 0.55) carrying five bumps
-        of different sizes in asymmetric directions — no symmetry at all, so ICP has
-        a unique answer.  ``"ellipsoid"``: the same ellipsoid without bumps (three
-        mirror planes, 4 rotational symmetries).  ``"sphere"``: the unit sphere (every
-        rotation is a symmetry).  ``"cube"``: the surface of the cube [-1, 1]³
-        (24 rotational symmetries), uniformly.
-    n : int
-        Number of points.
-    seed : int
-        Seed of :func:`numpy.random.default_rng`; two different seeds give two
-        independent samplings of the same surface.
-
-    Returns
-    -------
-    ndarray, shape (n, 3)
-        For the smooth shapes the direction from the origin is uniform on the sphere
-        (not uniform in area); the cube is uniform in area.
-    """
-    if not isinstance(kind, str):
-        raise TypeError(f"kind must be a string, got {type(kind).__name__}")
-    n = as_positive_int(n, "n")
-    rng = np.random.default_rng(seed)
-    if kind == "cube":
-        face = rng.integers(0, 6, n)
-        p = rng.uniform(-1.0, 1.0, (n, 3))
-        axis = face % 3
-        p[np.arange(n), axis] = np.where(face < 3, 1.0, -1.0)
-        return p
-    u = rng.normal(size=(n, 3))
-    u /= np.linalg.norm(u, axis=1, keepdims=True)
-    if kind == "sphere":
-        return u
-    semi = np.array([1.0, 0.75, 0.55])
-    if kind == "ellipsoid":
-        return u * semi
-    if kind == "lumpy":
-        centres = np.array([[1, 0.3, 0.2], [-0.4, 1, 0.5], [0.2, -0.6, 1], [-1, -0.5, -0.3], [0.5, 0.4, -1]], float)
-        centres /= np.linalg.norm(centres, axis=1, keepdims=True)
-        height = np.array([0.35, 0.25, 0.3, 0.15, 0.2])
-        width = np.array([0.15, 0.25, 0.1, 0.3, 0.2])
-        rho = 1.0 + (height * np.exp((u @ centres.T - 1.0) / width)).sum(axis=1)
-        return u * rho[:, None] * semi
-    raise ValueError(f"kind must be one of 'lumpy', 'ellipsoid', 'sphere', 'cube'; got {kind!r}")

@@ -14,18 +14,14 @@ from hypothesis import strategies as st
 import shapelab
 from shapelab.critical import (
     CriticalPoints,
-    blob_curve,
-    bumpy_sphere,
     compare,
     critical_points,
     distance_along,
-    ellipse_curve,
     euler_characteristic,
-    icosphere,
     polyline,
     signature,
-    torus,
 )
+from shapelab.datasets import blob_curve, bumpy_sphere, ellipse_curve, icosphere, torus
 
 finite = dict(allow_nan=False, allow_infinity=False)
 

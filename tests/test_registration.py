@@ -17,6 +17,7 @@ from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
 from shapelab import ICPResult, Quaternion, RigidMotion, icp, optimal_rotation, register
+from shapelab.datasets import sample_shape
 from shapelab.quaternion import left_matrices, qmul, right_matrices
 from shapelab.registration import (
     DegenerateRotationWarning,
@@ -24,7 +25,6 @@ from shapelab.registration import (
     cross_covariance,
     horn_matrix,
     kabsch,
-    sample_shape,
 )
 
 SET = settings(max_examples=30, deadline=None)

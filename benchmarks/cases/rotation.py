@@ -9,7 +9,7 @@ and ICP against Open3D.
 ``icp_1e5``
     Wall time to bring a rotation error below 0.05°, ``shapelab.icp`` against
     Open3D's ``registration_icp`` (point-to-point).  Data: the non-symmetric
-    "lumpy" closed surface of :func:`shapelab.registration.sample_shape`, sampled
+    "lumpy" closed surface of :func:`shapelab.datasets.sample_shape`, sampled
     twice independently with 10⁵ points each; the target is rotated 20° about
     (1, 2, 3)/√14 and shifted by (0.1, −0.05, 0.2).  Both sides use the same
     maximum correspondence distance (1.0, generous: the shape is ~2 units long and
@@ -139,7 +139,7 @@ def _calibrate(src, tgt, max_distance, truth) -> dict:
 def setup_icp(seed: int = 0, n: int = 100_000, max_distance: float = 1.0):
     import open3d as o3d
 
-    from shapelab.registration import sample_shape
+    from shapelab.datasets import sample_shape
 
     truth = _truth()
     src = sample_shape("lumpy", n, seed=2 * seed + 1)

@@ -75,7 +75,8 @@ def torus_viewpoints(viewpoints, counts, *, n_major: int = 24, n_minor: int = 12
 
     Passes when the three viewpoints are one of each kind and every count equals the
     library's (:func:`shapelab.critical_points`).  Nothing about the counts is printed."""
-    from ..critical import critical_points, torus
+    from ..critical import critical_points
+    from ..datasets import torus
 
     name = "critical points of the torus from three viewpoints"
     try:
