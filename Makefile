@@ -46,25 +46,25 @@ test-lib: $(VENV)/.installed-test
 	    -p no:nbval
 
 lessons: $(VENV)/.installed-book
-	$(PY) scripts/execute_lessons.py
+	$(PY) -m course.execute
 
 course: $(VENV)/.installed-book book/node_modules/.installed
-	$(PY) scripts/build_course.py
+	$(PY) -m course.build
 
 book: $(VENV)/.installed-book book/node_modules/.installed
-	$(PY) scripts/build_course.py --only book
+	$(PY) -m course.build --only book
 
 slides: $(VENV)/.installed-book book/node_modules/.installed
-	$(PY) scripts/build_course.py --only slides
+	$(PY) -m course.build --only slides
 
 figures: $(VENV)/.installed-book
-	$(PY) -m shapelab.figures --out book/_build/figures --format svg
+	$(PY) -m course.figures --out book/_build/figures --format svg
 
 student: $(VENV)/.installed-book
-	$(PY) scripts/build_course.py --only student
+	$(PY) -m course.build --only student
 
 lab: $(VENV)/.installed-lab
-	@$(PY) scripts/lab.py
+	@$(PY) -m course.lab
 
 bench: $(VENV)/.installed-bench
 	$(PY) -m benchmarks $(CASE)

@@ -27,10 +27,9 @@ BUDGET_S = 60.0
 
 
 def _execute_lessons():
-    spec = importlib.util.spec_from_file_location("execute_lessons", ROOT / "scripts" / "execute_lessons.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    import course.execute
+
+    return course.execute
 
 
 def main(argv=None) -> int:

@@ -26,7 +26,6 @@ Modules, one per concept of the notes:
 ``shapelab.plot``         one function per kind of figure, a shared style
 ``shapelab.widgets``      ipywidgets explorers built on :mod:`shapelab.plot`
 ``shapelab.check``        self-checks for exercises
-``shapelab.figures``      ``python -m shapelab.figures``: figure export
 ========================  =====================================================
 """
 from __future__ import annotations
@@ -73,7 +72,7 @@ _EXPORTS = {
 _SUBMODULES = {
     "balls", "power", "filtration", "topology", "cavities", "freespace", "measure", "oracles", "quaternion",
     "registration", "distance", "matching", "critical", "io", "datasets", "plot", "widgets",
-    "check", "figures", "simplification",
+    "check", "simplification",
 }
 
 __all__ = sorted(_EXPORTS) + ["__version__"]

@@ -23,7 +23,7 @@ in arbitrary units for the 2D figure inputs.
 Real structures
 ---------------
 Eight PDB files are shipped in ``shapelab/data/`` (gzip-compressed), copied once from
-PyPI packages by ``scripts/fetch_structures.py``; :data:`STRUCTURES` records each one's
+PyPI packages by ``course/fetch_structures.py``; :data:`STRUCTURES` records each one's
 PDB id, title, what it teaches and its provenance, and :func:`structure` reads it:
 
 ===================  ======================================================
@@ -539,23 +539,12 @@ def globule_structure(seed=0, *, residue_size=8, **kwargs):
 def example_pdb() -> Path:
     """Path of ``shapelab/data/globule.pdb``, the shipped example molecule.
 
-    It was written by ``shapelab.datasets._write_example_pdb()``, i.e. by
+    It was written by ``python -m course.example_pdb``, i.e. by
     :func:`shapelab.io.write_pdb` from ``globule_structure(seed=0)`` (coordinates
     rounded to 0.001 Å, the PDB's precision).  Read it with
     ``shapelab.read_pdb(example_pdb())``.
     """
     return Path(str(resources.files("shapelab").joinpath("data", "globule.pdb")))
-
-
-def _write_example_pdb(path=None) -> Path:
-    """Regenerate the shipped example file (run once by the maintainers)."""
-    from .io import write_pdb
-
-    s = globule_structure(seed=0)
-    path = example_pdb() if path is None else Path(path)
-    return write_pdb(path, s.balls, s.elements, atom_names=s.atom_names,
-                     residue_names=s.residue_names, residue_numbers=s.residue_numbers,
-                     chains=s.chains, title="shapelab globule, datasets.globule_structure(seed=0)")
 
 
 # ----------------------------------------------------------------- 2D figures

@@ -33,10 +33,9 @@ CSS_URL = re.compile(r"(?:url\(\s*[\"']?|@import\s+[\"'])([^\"')\s]+)", re.I)
 
 
 def _build_course():
-    spec = importlib.util.spec_from_file_location("build_course", ROOT / "scripts" / "build_course.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    import course.build
+
+    return course.build
 
 
 @pytest.fixture(scope="module")
@@ -48,7 +47,7 @@ def site(tmp_path_factory):
     # may be building at the same time) is left alone
     src = bc.book_copy(tmp_path_factory.mktemp("book-src"))
     bc.lessons_into_book(execute=False, book=src)
-    rc = subprocess.call([sys.executable, str(ROOT / "scripts" / "execute_lessons.py"), "--out", str(src / "lessons"),
+    rc = subprocess.call([sys.executable, "-m", "course.execute", "--out", str(src / "lessons"),
                           str(ROOT / "lessons" / f"{EXPLORER_LESSON}.ipynb")], cwd=ROOT)
     assert rc == 0, f"{EXPLORER_LESSON} failed to execute for the book"
     return bc.build_book(path_output=tmp_path_factory.mktemp("book"), book=src)

@@ -28,7 +28,7 @@ from matplotlib.collections import PatchCollection, PathCollection  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Circle, Polygon  # noqa: E402
 
-figures = pytest.importorskip("shapelab.figures")
+figures = pytest.importorskip("course.figures")
 
 NAMES = [name for name, spec in figures.FIGURES.items() if not figures.missing(spec)]
 MAX_3D_TICKS = 6

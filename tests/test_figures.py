@@ -1,4 +1,4 @@
-"""Figures for slides (shapelab/figures.py, ``python -m shapelab.figures``).
+"""Figures for slides (course/figures.py, ``python -m course.figures``).
 
 Every registered figure renders at 16:9, PDF and SVG are byte-identical from one run
 to the next (in this process and in a fresh one with another hash seed), the command
@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-import shapelab.figures as figures
+import course.figures as figures
 from shapelab.plot import SLIDE
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -74,7 +74,7 @@ import sys
 from pathlib import Path
 import matplotlib
 matplotlib.use("Agg")
-import shapelab.figures as f
+import course.figures as f
 out = Path(sys.argv[1])
 for name in sys.argv[2:]:
     if f.missing(f.FIGURES[name]):
@@ -246,12 +246,12 @@ def test_registering_a_name_twice_is_refused(registry):
 def test_gallery_page_lists_every_figure():
     page = (ROOT / "book" / "gallery.md").read_text(encoding="utf-8")
     assert page == figures.gallery_markdown(), (
-        "book/gallery.md is out of date: python -m shapelab.figures --write-gallery book/gallery.md"
+        "book/gallery.md is out of date: python -m course.figures --write-gallery book/gallery.md"
     )
     shown = re.findall(r"^:::\{figure\} _gallery/(\w+)\.svg$", page, re.M)
     assert shown == NAMES
     for name in NAMES:
-        assert f"python -m shapelab.figures --only {name} " in page
+        assert f"python -m course.figures --only {name} " in page
 
 
 def test_gallery_links_point_at_lessons():

@@ -11,10 +11,9 @@ ROOT = Path(__file__).resolve().parent.parent
 
 
 def _lab():
-    spec = importlib.util.spec_from_file_location("lab", ROOT / "scripts" / "lab.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    import course.lab
+
+    return course.lab
 
 
 def test_lab_binds_loopback_with_a_token():
@@ -64,7 +63,7 @@ def test_readme_gives_the_two_commands():
 
 @pytest.mark.parametrize(
     "path",
-    sorted(p.relative_to(ROOT).as_posix() for d in ("shapelab", "scripts", "benchmarks") for p in (ROOT / d).rglob("*.py")),
+    sorted(p.relative_to(ROOT).as_posix() for d in ("shapelab", "course", "benchmarks") for p in (ROOT / d).rglob("*.py")),
 )
 def test_source_compiles_without_warnings(path):
     """An invalid escape such as ``\\m`` in a docstring is a warning today (it reached CI's
@@ -114,10 +113,9 @@ def test_sanitize_keeps_the_numbers_a_lesson_teaches(a, b):
 
 
 def _pin_versions():
-    spec = importlib.util.spec_from_file_location("pin_versions", ROOT / "scripts" / "pin_versions.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    import course.pins
+
+    return course.pins
 
 
 def test_pin_versions_marks_only_what_differs(tmp_path):

@@ -1,4 +1,4 @@
-"""scripts/check_portable.py: its comparison of lesson outputs, on tiny notebooks.
+"""course/portable.py: its comparison of lesson outputs, on tiny notebooks.
 
 Only the diff logic and the variants' environments are tested here, cheaply and
 deterministically; running lessons under other BLAS kernels is a local diagnostic,
@@ -16,10 +16,9 @@ ROOT = Path(__file__).resolve().parent.parent
 
 @pytest.fixture(scope="module")
 def cp():
-    spec = importlib.util.spec_from_file_location("check_portable", ROOT / "scripts" / "check_portable.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    import course.portable
+
+    return course.portable
 
 
 @pytest.fixture(scope="module")

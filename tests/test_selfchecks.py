@@ -36,10 +36,9 @@ jupyter_client = pytest.importorskip("jupyter_client")
 
 
 def _student_edition():
-    spec = importlib.util.spec_from_file_location("student_edition", ROOT / "scripts" / "student_edition.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    import course.student
+
+    return course.student
 
 
 def _blocks(lines):

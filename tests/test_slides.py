@@ -1,4 +1,4 @@
-"""The lecture decks (scripts/slides.py) are reveal.js slide shows that work offline.
+"""The lecture decks (course/slides.py) are reveal.js slide shows that work offline.
 
 Every lesson is rendered into a temporary folder (about 6 s), then: no deck
 references an http(s) asset, every local asset exists, the
@@ -38,10 +38,9 @@ CHROMIUM = next((shutil.which(n) for n in ("chromium", "chromium-browser", "goog
 
 
 def _slides():
-    spec = importlib.util.spec_from_file_location("slides", ROOT / "scripts" / "slides.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    import course.slides
+
+    return course.slides
 
 
 @pytest.fixture(scope="module")

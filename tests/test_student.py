@@ -1,4 +1,4 @@
-"""The student edition (scripts/student_edition.py) and the instructor's solutions.
+"""The student edition (course/student.py) and the instructor's solutions.
 
 * The student edition of every lesson contains no solution text, no output, no
   execution count and no widget state; every code cell still parses.
@@ -30,10 +30,9 @@ SIGNATURE = re.compile(r"^(async\s+)?(def|class)\s+\w+")
 
 
 def _student_module():
-    spec = importlib.util.spec_from_file_location("student_edition", ROOT / "scripts" / "student_edition.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    import course.student
+
+    return course.student
 
 
 se = _student_module()

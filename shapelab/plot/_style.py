@@ -3,7 +3,7 @@
 Figures are built on :class:`matplotlib.figure.Figure` directly, never through
 ``pyplot``'s global state, so a plotting function returns its figure without also
 drawing it a second time in a notebook, and the same call serves the lessons, the
-book, the slides and ``python -m shapelab.figures``.
+book, the slides and ``python -m course.figures``.
 
 The palette is Okabe & Ito's colour-blind-safe set (Okabe, M. and Ito, K., *Color
 Universal Design*, 2008); sequential data uses ``viridis``/``cividis``.

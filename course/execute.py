@@ -3,9 +3,9 @@
 Used by ``make lessons`` (refresh the committed outputs in place, see
 CONTRIBUTING.md) and by ``make course`` (execute into the book's build tree).
 
-    python scripts/execute_lessons.py                      # all lessons, in place
-    python scripts/execute_lessons.py lessons/03_*.ipynb   # some, in place
-    python scripts/execute_lessons.py --out book/lessons   # copies, for the book
+    python -m course.execute                      # all lessons, in place
+    python -m course.execute lessons/03_*.ipynb   # some, in place
+    python -m course.execute --out book/lessons   # copies, for the book
 
 A lesson fails if any cell raises, writes to stderr, or the whole notebook takes
 longer than ``--limit`` seconds (default 60, the course's budget on 2 cores).

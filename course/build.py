@@ -1,8 +1,8 @@
 """Build the course: execute the lessons, then the book, slides, figures and student edition.
 
-    python scripts/build_course.py                 # everything (make course)
-    python scripts/build_course.py --only book     # one artefact: book | slides | figures | student
-    python scripts/build_course.py --no-execute    # render the committed outputs as they are
+    python -m course.build                 # everything (make course)
+    python -m course.build --only book     # one artefact: book | slides | figures | student
+    python -m course.build --no-execute    # render the committed outputs as they are
 
 Progress is printed as it goes, and a summary at the end says what was built,
 how long it took, how large it is and where it went.
@@ -25,7 +25,7 @@ GALLERY = BOOK / "_gallery"  # the gallery page's figures (book/gallery.md), mad
 NODE = BOOK / "node_modules"
 
 # what the offline site needs from the npm packages, and where it goes under the site's
-# root (the slides copy their own set, scripts/slides.py)
+# root (the slides copy their own set, course/slides.py)
 ASSETS = {
     "requirejs/require.js": "require.min.js",
     "@jupyter-widgets/html-manager/dist": "html-manager",
@@ -73,7 +73,7 @@ def lessons_into_book(execute: bool, book: Path = BOOK) -> None:
     for old in out.glob("*.ipynb"):
         old.unlink()
     if execute:
-        rc = subprocess.call([sys.executable, str(ROOT / "scripts" / "execute_lessons.py"), "--out", str(out)])
+        rc = subprocess.call([sys.executable, "-m", "course.execute", "--out", str(out)], cwd=ROOT)
         if rc:
             raise SystemExit("some lessons failed to execute; see above")
     else:
@@ -89,13 +89,13 @@ def lessons_into_book(execute: bool, book: Path = BOOK) -> None:
 
 
 def build_gallery(out: Path = GALLERY) -> bool:
-    """Draw the figures that book/gallery.md shows, as SVG (python -m shapelab.figures).
+    """Draw the figures that book/gallery.md shows, as SVG (python -m course.figures).
 
     A figure that fails gets a labelled placeholder so that the site still builds;
     the failure is printed, and ``make figures`` / the figures step fail on it.
     """
     env = dict(os.environ, PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
-    cmd = [sys.executable, "-m", "shapelab.figures", "--out", str(out), "--format", "svg", "--gallery"]
+    cmd = [sys.executable, "-m", "course.figures", "--out", str(out), "--format", "svg", "--gallery"]
     rc = subprocess.call(cmd, cwd=ROOT, env=env)
     if rc:
         print("  warning: some gallery figures failed (placeholders shown); see above", flush=True)
@@ -160,9 +160,9 @@ def main(argv=None) -> int:
         lessons_into_book(execute=not args.no_execute)
         summary.append(("executed lessons", BOOK / "lessons", time.perf_counter() - t))
     if "figures" in want:
-        t = step("figures for slides (python -m shapelab.figures)")
+        t = step("figures for slides (python -m course.figures)")
         out = BUILD / "figures"
-        run_optional("figure export", ["-m", "shapelab.figures", "--out", str(out), "--format", "svg"])
+        run_optional("figure export", ["-m", "course.figures", "--out", str(out), "--format", "svg"])
         summary.append(("figures", out, time.perf_counter() - t))
     if "book" in want:
         t = step("figure gallery for the book (book/gallery.md)")
@@ -181,12 +181,12 @@ def main(argv=None) -> int:
         t = step("slides (reveal.js, offline)")
         out = BUILD / "slides"
         # the lessons just executed (or copied) into book/lessons
-        run_optional("slides", [str(ROOT / "scripts" / "slides.py"), "--out", str(out), "--src", str(BOOK / "lessons")])
+        run_optional("slides", ["-m", "course.slides", "--out", str(out), "--src", str(BOOK / "lessons")])
         summary.append(("slides", out, time.perf_counter() - t))
     if "student" in want:
         t = step("student edition (solutions removed, outputs cleared)")
         out = ROOT / "dist" / "student"
-        run_optional("student edition", [str(ROOT / "scripts" / "student_edition.py"), "--out", str(out)])
+        run_optional("student edition", ["-m", "course.student", "--out", str(out)])
         summary.append(("student edition", out, time.perf_counter() - t))
 
     print("\n== summary")

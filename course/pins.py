@@ -1,6 +1,6 @@
 """Write requirements/constraints.txt from the package versions of two tested environments.
 
-    python scripts/pin_versions.py FREEZE_311 FREEZE_310
+    python -m course.pins FREEZE_311 FREEZE_310
 
 Each FREEZE file is ``pip freeze --exclude-editable`` of a ``.venv`` with every extra
 installed (``pip install -e ".[test,book,lab,bench]"``) whose ``make test`` passed: the
@@ -18,7 +18,7 @@ ROOT = Path(__file__).resolve().parent.parent
 HEADER = """\
 # Tested versions of every package shapelab's extras install, 2026-11.
 # Unmarked and `>= "3.11"` lines: Python 3.11 (also tested on 3.12); `< "3.11"` lines: Python 3.10.
-# Regenerate with scripts/pin_versions.py (see CONTRIBUTING.md, "Pinned versions").
+# Regenerate with course/pins.py (see CONTRIBUTING.md, "Pinned versions").
 """
 
 

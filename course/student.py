@@ -1,8 +1,8 @@
 #!/usr/bin/env python
 """Write the student edition of the lessons: no solutions, no outputs.
 
-    python scripts/student_edition.py                    # every lesson -> dist/student/
-    python scripts/student_edition.py --out DIR lessons/12_hausdorff.ipynb
+    python -m course.student                    # every lesson -> dist/student/
+    python -m course.student --out DIR lessons/12_hausdorff.ipynb
 
 For every lesson:
 
@@ -38,13 +38,13 @@ from pathlib import Path
 
 import nbformat
 
+from course.notebooks import BEGIN, END, SOLUTION_TAG, is_solution
+
 ROOT = Path(__file__).resolve().parent.parent
 DEFAULT_OUT = ROOT / "dist" / "student"
 
-BEGIN = re.compile(r"^\s*#+\s*BEGIN SOLUTION\s*$")
-END = re.compile(r"^\s*#+\s*END SOLUTION\s*$")
 PLACEHOLDER = 'raise NotImplementedError("your code here")'
-TAG = "solution"
+TAG = SOLUTION_TAG
 STUDENT_TAG = "exercise"
 
 README = """# shapelab: student edition
@@ -65,10 +65,6 @@ or the course's JupyterHub / Binder image, see `binder/`).
 
 class MarkerError(ValueError):
     """Unbalanced or missing solution markers."""
-
-
-def is_solution(cell) -> bool:
-    return TAG in cell.get("metadata", {}).get("tags", [])
 
 
 def solution_blocks(lines: list[str]) -> list[tuple[int, int]]:

@@ -1,6 +1,6 @@
 """Figures for slides: every figure of the notes and the key figures of each lesson.
 
-    python -m shapelab.figures --out DIR --format pdf|svg|png [--only NAME ...] [--list]
+    python -m course.figures --out DIR --format pdf|svg|png [--only NAME ...] [--list]
 
 Each figure is a small function registered here under a name (``fig23_1i``,
 ``l09_barcode``, ...).  It calls a :mod:`shapelab.plot` function on inputs from
@@ -112,7 +112,7 @@ def missing(spec: FigureSpec) -> list[str]:
 
 
 def _slide(nrows=1, ncols=1, **kw):
-    from .plot import SLIDE, new_figure
+    from shapelab.plot import SLIDE, new_figure
 
     return new_figure(nrows, ncols, size=SLIDE, **kw)
 
@@ -143,7 +143,7 @@ def build(name: str):
     """
     from matplotlib.figure import Figure
 
-    from .plot import SLIDE
+    from shapelab.plot import SLIDE
 
     spec = FIGURES[name]
     fig = spec.draw()
@@ -165,7 +165,7 @@ def _settle(fig) -> None:
 def _save_style():
     import matplotlib
 
-    from .plot import RC
+    from shapelab.plot import RC
 
     # the course style, but the page size is the figure's size: no tight bbox, so
     # every file is exactly 16:9
@@ -522,13 +522,13 @@ def l15_optimal_rotation():
 
 
 # ============================================================== the gallery page
-GALLERY_DIR = "_gallery"  # relative to book/, written by scripts/build_course.py
+GALLERY_DIR = "_gallery"  # relative to book/, written by course/build.py
 
 
 def gallery_markdown() -> str:
     """The text of ``book/gallery.md``: one MyST figure per registered figure.
 
-    ``python -m shapelab.figures --write-gallery book/gallery.md`` rewrites it, and a
+    ``python -m course.figures --write-gallery book/gallery.md`` rewrites it, and a
     test keeps the committed page equal to this text.
     """
     parts = [
@@ -539,8 +539,8 @@ def gallery_markdown() -> str:
         "course's colour-blind-safe style, at the 16:9 size of a slide. For your own slides:",
         "",
         "```bash",
-        "python -m shapelab.figures --out figures --format pdf   # all (or svg, png)",
-        "python -m shapelab.figures --list                       # their names",
+        "python -m course.figures --out figures --format pdf   # all (or svg, png)",
+        "python -m course.figures --list                       # their names",
         "make figures                                            # SVG, book/_build/figures",
         "```",
         "",
@@ -562,7 +562,7 @@ def gallery_markdown() -> str:
             f"**{spec.source}.** {spec.caption}{link}",
             ":::",
             "",
-            f"`python -m shapelab.figures --only {spec.name} --format pdf --out figures`",
+            f"`python -m course.figures --only {spec.name} --format pdf --out figures`",
             "",
         ]
     return "\n".join(parts).rstrip() + "\n"
@@ -575,7 +575,7 @@ def _format_size(n: int) -> str:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(
-        prog="python -m shapelab.figures",
+        prog="python -m course.figures",
         description="Export the notes' figures and each lesson's key figures for 16:9 slides.",
     )
     ap.add_argument("--out", type=Path, default=Path("figures"), help="output folder (default ./figures)")

@@ -1,18 +1,18 @@
 """Check that lesson outputs survive a change of floating-point environment.
 
 A local diagnostic, never run in CI (see CONTRIBUTING.md, *Portable outputs*).
-It re-executes lessons with ``scripts/execute_lessons.py`` under a named
+It re-executes lessons with ``course/execute.py`` under a named
 variant of the environment (another OpenBLAS kernel, NumPy's SIMD dispatch
 switched off, ...) into a temporary directory, never into ``lessons/``, and
 prints, cell by cell, how the text outputs differ from the committed ones after
 the sanitizing regexes of ``tests/nbval_sanitize.cfg``, as strict nbval would
 see them.
 
-    python scripts/check_portable.py --list                         # the variants
-    python scripts/check_portable.py --variant blas-sandybridge     # all lessons
-    python scripts/check_portable.py --variant npy-simd lessons/13_icp.ipynb
-    python scripts/check_portable.py --variant current --keep /tmp/base   # this machine, as is
-    python scripts/check_portable.py --variant blas-prescott --against /tmp/base
+    python -m course.portable --list                         # the variants
+    python -m course.portable --variant blas-sandybridge     # all lessons
+    python -m course.portable --variant npy-simd lessons/13_icp.ipynb
+    python -m course.portable --variant current --keep /tmp/base   # this machine, as is
+    python -m course.portable --variant blas-prescott --against /tmp/base
 
 Cells are numbered as nbval numbers them (``Cell N`` counts code cells only).
 Exit status: 0 if no cell differs, 1 if some cell differs or a lesson failed.
@@ -33,8 +33,7 @@ from pathlib import Path
 import nbformat
 from nbval.plugin import coalesce_streams, get_sanitize_patterns
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import execute_lessons  # noqa: E402  (the same execution as `make lessons`)
+from course import execute as execute_lessons  # the same execution as `make lessons`
 
 ROOT = execute_lessons.ROOT
 SANITIZE = ROOT / "tests" / "nbval_sanitize.cfg"

@@ -1,13 +1,13 @@
 #!/usr/bin/env python
 """Render the lessons as offline reveal.js decks.
 
-    python scripts/slides.py                         # every lesson -> book/_build/slides/
-    python scripts/slides.py --out DIR lessons/03_alpha_filtration.ipynb
-    python scripts/slides.py --with-solutions        # instructor decks, solutions included
-    python scripts/slides.py --src book/lessons      # render freshly executed copies
+    python -m course.slides                         # every lesson -> book/_build/slides/
+    python -m course.slides --out DIR lessons/03_alpha_filtration.ipynb
+    python -m course.slides --with-solutions        # instructor decks, solutions included
+    python -m course.slides --src book/lessons      # render freshly executed copies
 
 Each deck is ``DIR/<lesson>.slides.html``, made by nbconvert's SlidesExporter with a
-small template of ours (``scripts/templates/reveal_offline``) that loads everything
+small template of ours (``course/templates/reveal_offline``) that loads everything
 from ``DIR/vendor/``: reveal.js 4, require.js, MathJax 3 and the ipywidgets HTML
 manager, copied from ``book/node_modules`` (installed from the npm registry by
 ``npm ci``).  Nothing is fetched from a CDN, so a deck opened from the disk, offline,
@@ -29,6 +29,8 @@ from collections import Counter
 from pathlib import Path
 
 import nbformat
+
+from course.notebooks import is_solution, slide_type
 
 ROOT = Path(__file__).resolve().parent.parent
 NODE = ROOT / "book" / "node_modules"
@@ -61,14 +63,6 @@ IGNORE = shutil.ignore_patterns("*.map", "*.md", "*.d.ts", "embed.js", "libembed
 
 SLIDE_TYPES = ("slide", "subslide", "fragment", "-", "skip", "notes")
 HIDE_INPUT = "deck-hide-input"  # set by prepare() on figure cells; removed by the exporter
-
-
-def is_solution(cell) -> bool:
-    return "solution" in cell.get("metadata", {}).get("tags", [])
-
-
-def slide_type(cell) -> str:
-    return cell.get("metadata", {}).get("slideshow", {}).get("slide_type", "-") or "-"
 
 
 def vendor(out: Path) -> Path:
