@@ -1,6 +1,7 @@
 # shapelab: the course's commands.  Everything runs inside .venv, made on first use.
 #   make test     library tests + strict nbval on every lesson (what CI runs)
 #   make test-lib the library's tests and doctests only (no Node, no book)
+#   make lint     ruff: lint and format check (part of make test)
 #   make course   execute every lesson, build the book, slides, figures, student edition
 #   make lab      JupyterLab on 127.0.0.1 with a printed token
 #   make bench    benchmarks against the peer libraries (CASE=name for one)
@@ -13,10 +14,10 @@ CONSTRAINTS := requirements/constraints.txt
 JOBS   ?= 2
 CASE   ?=
 
-.PHONY: test test-lib course lab bench lessons book slides figures student env clean help
+.PHONY: test test-lib lint course lab bench lessons book slides figures student env clean help
 
 help:
-	@sed -n '2,7p' Makefile | sed 's/^# //'
+	@sed -n '2,8p' Makefile | sed 's/^# //'
 
 $(PY):
 	$(PYTHON) -m venv $(VENV)
@@ -35,10 +36,15 @@ book/node_modules/.installed: book/package.json book/package-lock.json
 
 env: $(VENV)/.installed-test
 
-test: $(VENV)/.installed-test $(VENV)/.installed-book book/node_modules/.installed
+test: $(VENV)/.installed-test $(VENV)/.installed-book book/node_modules/.installed lint
 	$(PY) -m pytest -n $(JOBS) --dist loadscope \
 	    --nbval --nbval-current-env --nbval-sanitize-with tests/nbval_sanitize.cfg \
 	    --nbval-cell-timeout 120 --doctest-modules tests lessons shapelab
+
+# ruff: lint and format (pyproject.toml [tool.ruff]); `ruff format .` fixes the format
+lint: $(VENV)/.installed-test
+	$(PY) -m ruff check .
+	$(PY) -m ruff format --check .
 
 test-lib: $(VENV)/.installed-test
 	$(PY) -m pytest -n $(JOBS) --dist loadscope --doctest-modules tests shapelab \

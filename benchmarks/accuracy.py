@@ -11,6 +11,7 @@ against ``precision="exact"``.  Relative error is |v - exact| / |exact|; near-ze
 values are where floating point loses it (the power of an orthosphere is a difference
 of nearly equal numbers).
 """
+
 from __future__ import annotations
 
 import argparse
@@ -45,15 +46,25 @@ def compare(n: int, dim: int, seed: int = 0) -> list[dict]:
         den = np.maximum(np.abs(ex), np.finfo(float).tiny)
         ours_rel = np.abs(F.values(k) - ex) / den
         safe_rel = np.abs(sf - ex) / den
-        rows.append({"dim": k, "n": len(keys), "ours_max": float(ours_rel.max()),
-                     "ours_over": int((ours_rel > 1e-9).sum()), "safe_max": float(safe_rel.max()),
-                     "safe_over": int((safe_rel > 1e-9).sum()), "seconds": t_ours})
+        rows.append(
+            {
+                "dim": k,
+                "n": len(keys),
+                "ours_max": float(ours_rel.max()),
+                "ours_over": int((ours_rel > 1e-9).sum()),
+                "safe_max": float(safe_rel.max()),
+                "safe_over": int((safe_rel > 1e-9).sum()),
+                "seconds": t_ours,
+            }
+        )
     return rows
 
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--n", type=int, nargs="*", default=None, help="numbers of balls (default 30000 in 2D, 10000 in 3D)")
+    ap.add_argument(
+        "--n", type=int, nargs="*", default=None, help="numbers of balls (default 30000 in 2D, 10000 in 3D)"
+    )
     ap.add_argument("--dim", type=int, choices=(2, 3), default=None)
     ap.add_argument("--seed", type=int, default=0)
     args = ap.parse_args(argv)
@@ -62,8 +73,11 @@ def main(argv=None) -> int:
     print("|---:|---:|---:|---:|---:|---:|---:|---:|")
     for n, dim in runs:
         for r in compare(n, dim, args.seed):
-            print(f"| {n} | {dim} | {r['dim']} | {r['n']} | {r['ours_max']:.1e} | {r['ours_over']} | "
-                  f"{r['safe_max']:.1e} | {r['safe_over']} |", flush=True)
+            print(
+                f"| {n} | {dim} | {r['dim']} | {r['n']} | {r['ours_max']:.1e} | {r['ours_over']} | "
+                f"{r['safe_max']:.1e} | {r['safe_over']} |",
+                flush=True,
+            )
     return 0
 
 

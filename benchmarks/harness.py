@@ -32,6 +32,7 @@ exponent of each (``benchmarks/results/<case>_scaling.png``).
 ours/peer (warm and cold), headed by the machine (CPU model and flags, BLAS kernel),
 and writes JSON to ``benchmarks/results/``.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -48,7 +49,7 @@ import statistics
 import subprocess
 import sys
 import time
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 from pathlib import Path
 
 __all__ = ["Case", "all_cases", "main"]
@@ -235,8 +236,10 @@ def run_case(case: Case, repeats: int | None = None) -> dict:
     mem_ratio = mem["ours"] / mem["peer"] if mem["peer"] > 0 else None
     notes = sorted({r["note"] for r in runs["ours"] if r.get("note")})
     agree = not any(note.startswith(MISMATCH) for note in notes)
-    ok = agree and (case.target is None or max(ratio, cold_ratio) <= case.target) and (
-        case.memory_target is None or (mem_ratio is not None and mem_ratio <= case.memory_target)
+    ok = (
+        agree
+        and (case.target is None or max(ratio, cold_ratio) <= case.target)
+        and (case.memory_target is None or (mem_ratio is not None and mem_ratio <= case.memory_target))
     )
     return {
         "case": case.name,
@@ -261,8 +264,10 @@ def run_case(case: Case, repeats: int | None = None) -> dict:
 
 
 def _table(rows: list[dict]) -> str:
-    head = ("| case | peer | warm ours (s) | warm peer (s) | warm ours/peer | cold ours (s) | cold peer (s) "
-            "| cold ours/peer | target | peak MiB ours/peer | met | note |\n")
+    head = (
+        "| case | peer | warm ours (s) | warm peer (s) | warm ours/peer | cold ours (s) | cold peer (s) "
+        "| cold ours/peer | target | peak MiB ours/peer | met | note |\n"
+    )
     head += "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|:-:|---|\n"
     for r in rows:
         tgt = "—" if r["target"] is None else f"≤ {r['target']:g}"
@@ -288,8 +293,19 @@ def machine() -> dict:
                 info["cpu"] = line.split(":", 1)[1].strip()
             if line.startswith("flags"):
                 flags = set(line.split(":", 1)[1].split())
-                simd = ["sse4_2", "avx", "avx2", "fma", "avx512f", "avx512dq", "avx512bw", "avx512vl",
-                        "avx512_vnni", "avx512_bf16", "amx_tile"]
+                simd = [
+                    "sse4_2",
+                    "avx",
+                    "avx2",
+                    "fma",
+                    "avx512f",
+                    "avx512dq",
+                    "avx512bw",
+                    "avx512vl",
+                    "avx512_vnni",
+                    "avx512_bf16",
+                    "amx_tile",
+                ]
                 info["cpu_flags"] = " ".join(f for f in simd if f in flags) or "none of AVX/AVX-512"
                 info["avx512"] = "avx512f" in flags
                 break
@@ -310,25 +326,30 @@ def machine() -> dict:
     except Exception:  # pragma: no cover - older NumPy
         pass
     try:
-        from threadpoolctl import threadpool_info
-
         import numpy as np
+        from threadpoolctl import threadpool_info
 
         np.ones((2, 2)) @ np.ones((2, 2))  # load the BLAS
         blas = [p for p in threadpool_info() if p.get("user_api") == "blas"]
-        info["blas"] = "; ".join(
-            f"{p.get('internal_api')} {p.get('version')} ({p.get('architecture')} kernel, {p.get('num_threads')} threads)"
-            for p in blas) or "none found"
+        info["blas"] = (
+            "; ".join(
+                f"{p.get('internal_api')} {p.get('version')} ({p.get('architecture')} kernel, {p.get('num_threads')} threads)"
+                for p in blas
+            )
+            or "none found"
+        )
     except ImportError:
         info["blas"] = "unknown (install threadpoolctl: pip install -e '.[bench]')"
     return info
 
 
 def machine_line(info: dict) -> str:
-    return (f"Machine: {info.get('cpu', '?')}, {info.get('cpus')} logical CPUs, {info.get('memory_gib', '?')} GiB; "
-            f"CPU flags: {info.get('cpu_flags', '?')}; BLAS: {info.get('blas', '?')}; "
-            f"NumPy {info.get('numpy', '?')} dispatches {info.get('numpy_simd', '?')}; "
-            f"Python {info['python']} on {info['platform']}.")
+    return (
+        f"Machine: {info.get('cpu', '?')}, {info.get('cpus')} logical CPUs, {info.get('memory_gib', '?')} GiB; "
+        f"CPU flags: {info.get('cpu_flags', '?')}; BLAS: {info.get('blas', '?')}; "
+        f"NumPy {info.get('numpy', '?')} dispatches {info.get('numpy_simd', '?')}; "
+        f"Python {info['python']} on {info['platform']}."
+    )
 
 
 def run_ladder(case: Case) -> list[dict]:
@@ -391,10 +412,14 @@ def main(argv=None) -> int:
             def fmt(x):
                 return "—" if x is None else f"{x:.2f}"
 
-            table += (f"| {r['case']} | {ladder[0]:g}–{ladder[-1]:g} | {fmt(e['ours_time'])} | {fmt(e['peer_time'])} "
-                      f"| {fmt(e['ours_memory'])} | {fmt(e['peer_memory'])} | [{r['figure']}]({r['figure']}) |\n")
-    header = (f"{machine_line(info)}\nMedians of fresh processes, ours and the peer interleaved "
-              f"(other work on the machine hits both alike).\n\n")
+            table += (
+                f"| {r['case']} | {ladder[0]:g}–{ladder[-1]:g} | {fmt(e['ours_time'])} | {fmt(e['peer_time'])} "
+                f"| {fmt(e['ours_memory'])} | {fmt(e['peer_memory'])} | [{r['figure']}]({r['figure']}) |\n"
+            )
+    header = (
+        f"{machine_line(info)}\nMedians of fresh processes, ours and the peer interleaved "
+        f"(other work on the machine hits both alike).\n\n"
+    )
     print(header + table)
     stamp = time.strftime("%Y%m%d-%H%M%S")
     payload = {"machine": info, "results": rows}

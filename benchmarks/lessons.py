@@ -13,7 +13,6 @@ frames) in a temporary copy; the median of ``--repeats`` runs is reported.
 from __future__ import annotations
 
 import argparse
-import importlib.util
 import statistics
 import sys
 import tempfile
@@ -53,9 +52,15 @@ def main(argv=None) -> int:
             print(f" {t:.1f} s")
     info = machine()
     over = [name for name, t in rows if t > BUDGET_S]
-    lines = [f"Lessons executed {time.strftime('%Y-%m-%d %H:%M')} (median of {max(1, args.repeats)} run(s) each, "
-             f"fresh kernel, committed outputs replaced)", "", machine_line(info), "",
-             f"| lesson | seconds | within the {BUDGET_S:.0f} s budget |", "|---|---:|---|"]
+    lines = [
+        f"Lessons executed {time.strftime('%Y-%m-%d %H:%M')} (median of {max(1, args.repeats)} run(s) each, "
+        f"fresh kernel, committed outputs replaced)",
+        "",
+        machine_line(info),
+        "",
+        f"| lesson | seconds | within the {BUDGET_S:.0f} s budget |",
+        "|---|---:|---|",
+    ]
     lines += [f"| {name} | {t:.1f} | {'yes' if t <= BUDGET_S else '**no**'} |" for name, t in rows]
     lines += ["", f"total {sum(t for _, t in rows):.1f} s; over budget: {', '.join(over) or 'none'}"]
     RESULTS.mkdir(parents=True, exist_ok=True)

@@ -7,6 +7,7 @@ writes a two-panel log-log figure, ``<case>_scaling.png``, beside the results
 table.  Rungs whose value is below the clock's or the allocator's resolution
 (< 1 ms, < 1 MiB) are drawn but left out of the fit.
 """
+
 from __future__ import annotations
 
 from pathlib import Path

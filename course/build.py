@@ -7,6 +7,7 @@
 Progress is printed as it goes, and a summary at the end says what was built,
 how long it took, how large it is and where it went.
 """
+
 from __future__ import annotations
 
 import argparse

@@ -20,9 +20,16 @@ from shapelab.io import write_pdb
 def write(path=None) -> Path:
     s = globule_structure(seed=0)
     path = example_pdb() if path is None else Path(path)
-    return write_pdb(path, s.balls, s.elements, atom_names=s.atom_names,
-                     residue_names=s.residue_names, residue_numbers=s.residue_numbers,
-                     chains=s.chains, title="shapelab globule, datasets.globule_structure(seed=0)")
+    return write_pdb(
+        path,
+        s.balls,
+        s.elements,
+        atom_names=s.atom_names,
+        residue_names=s.residue_names,
+        residue_numbers=s.residue_numbers,
+        chains=s.chains,
+        title="shapelab globule, datasets.globule_structure(seed=0)",
+    )
 
 
 if __name__ == "__main__":

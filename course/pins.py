@@ -9,6 +9,7 @@ where some of the newest releases (NumPy 2.3+, SciPy 1.16+, IPython 9) no longer
 A version both share is pinned once; the others get an environment marker.  See
 CONTRIBUTING.md, "Pinned versions".
 """
+
 from __future__ import annotations
 
 import sys

@@ -17,6 +17,7 @@ see them.
 Cells are numbered as nbval numbers them (``Cell N`` counts code cells only).
 Exit status: 0 if no cell differs, 1 if some cell differs or a lesson failed.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -39,8 +40,17 @@ ROOT = execute_lessons.ROOT
 SANITIZE = ROOT / "tests" / "nbval_sanitize.cfg"
 
 # What strict nbval leaves out of the comparison (nbval.plugin.IPyNbFile.skip_compare).
-SKIP = {"metadata", "traceback", "prompt_number", "output_type", "name", "execution_count",
-        "application/vnd.jupyter.widget-view+json", "image/png", "image/jpeg"}
+SKIP = {
+    "metadata",
+    "traceback",
+    "prompt_number",
+    "output_type",
+    "name",
+    "execution_count",
+    "application/vnd.jupyter.widget-view+json",
+    "image/png",
+    "image/jpeg",
+}
 
 _BLAS = ("OPENBLAS_CORETYPE", "OPENBLAS_L2_SIZE")
 
@@ -55,15 +65,17 @@ def _simd_features() -> str:
 # name -> (description, variables to set, variables to remove)
 VARIANTS = {
     "current": ("this machine's environment unchanged (is the lesson deterministic here?)", {}, ()),
-    "blas-unset": ("OPENBLAS_CORETYPE and OPENBLAS_L2_SIZE removed: OpenBLAS picks its kernel itself",
-                   {}, _BLAS),
+    "blas-unset": ("OPENBLAS_CORETYPE and OPENBLAS_L2_SIZE removed: OpenBLAS picks its kernel itself", {}, _BLAS),
     "blas-haswell": ("OpenBLAS Haswell kernels (AVX2/FMA)", {"OPENBLAS_CORETYPE": "Haswell"}, _BLAS[1:]),
-    "blas-sandybridge": ("OpenBLAS Sandybridge kernels (AVX, no FMA)",
-                         {"OPENBLAS_CORETYPE": "Sandybridge"}, _BLAS[1:]),
+    "blas-sandybridge": ("OpenBLAS Sandybridge kernels (AVX, no FMA)", {"OPENBLAS_CORETYPE": "Sandybridge"}, _BLAS[1:]),
     "blas-prescott": ("OpenBLAS Prescott kernels (SSE3 only)", {"OPENBLAS_CORETYPE": "Prescott"}, _BLAS[1:]),
     "blas-1thread": ("OpenBLAS on one thread", {"OPENBLAS_NUM_THREADS": "1"}, ()),
-    "npy-simd": ("NumPy's dispatched SIMD paths off (NPY_DISABLE_CPU_FEATURES = those this CPU has, "
-                 "AVX-512 or AVX2/FMA3): the baseline loops run instead", {"NPY_DISABLE_CPU_FEATURES": None}, ()),
+    "npy-simd": (
+        "NumPy's dispatched SIMD paths off (NPY_DISABLE_CPU_FEATURES = those this CPU has, "
+        "AVX-512 or AVX2/FMA3): the baseline loops run instead",
+        {"NPY_DISABLE_CPU_FEATURES": None},
+        (),
+    ),
 }
 
 
@@ -140,8 +152,11 @@ def compare(ref, new, patterns) -> list[tuple[int, int, str]]:
         for key in sorted(set(ta) | set(tb)):
             va, vb = "\n".join(ta.get(key, [])), "\n".join(tb.get(key, []))
             if va != vb:
-                lines.extend(difflib.unified_diff(va.splitlines(), vb.splitlines(), f"committed {key}",
-                                                  f"fresh {key}", n=0, lineterm=""))
+                lines.extend(
+                    difflib.unified_diff(
+                        va.splitlines(), vb.splitlines(), f"committed {key}", f"fresh {key}", n=0, lineterm=""
+                    )
+                )
         found.append((n, index[n], "\n".join(lines)))
     return found
 
@@ -151,12 +166,19 @@ def main(argv=None) -> int:
     ap.add_argument("notebooks", nargs="*", type=Path, help="default: lessons/*.ipynb")
     ap.add_argument("--variant", default="blas-unset", choices=sorted(VARIANTS))
     ap.add_argument("--list", action="store_true", help="list the variants and exit")
-    ap.add_argument("--against", type=Path, default=None,
-                    help="compare with the notebooks of this directory (e.g. an earlier --keep), "
-                         "not with the committed lessons")
+    ap.add_argument(
+        "--against",
+        type=Path,
+        default=None,
+        help="compare with the notebooks of this directory (e.g. an earlier --keep), not with the committed lessons",
+    )
     ap.add_argument("--keep", type=Path, default=None, help="write the executed copies here (kept)")
-    ap.add_argument("--limit", type=float, default=600.0,
-                    help="whole-notebook budget in seconds (generous: slow kernels are not the point)")
+    ap.add_argument(
+        "--limit",
+        type=float,
+        default=600.0,
+        help="whole-notebook budget in seconds (generous: slow kernels are not the point)",
+    )
     args = ap.parse_args(argv)
     if args.list:
         for name, (what, *_) in VARIANTS.items():
@@ -194,10 +216,11 @@ def main(argv=None) -> int:
                 print(f"{path.name}: identical")
             for n, i, diff in cells:
                 differ += 1
-                print(f"{path.name}: Cell {n} (cell index {i}) differs\n" + "\n".join(
-                    "    " + line for line in diff.splitlines()))
-    print(f"variant {args.variant}: {differ} cell(s) differ, {failed} lesson(s) failed, "
-          f"{len(paths)} lesson(s) checked")
+                print(
+                    f"{path.name}: Cell {n} (cell index {i}) differs\n"
+                    + "\n".join("    " + line for line in diff.splitlines())
+                )
+    print(f"variant {args.variant}: {differ} cell(s) differ, {failed} lesson(s) failed, {len(paths)} lesson(s) checked")
     return 1 if differ or failed else 0
 
 

@@ -17,6 +17,7 @@ The lessons' cell metadata ``slideshow.slide_type`` (slide / subslide / fragment
 skip / notes) makes the deck.  Cells tagged ``solution`` are left out unless
 ``--with-solutions`` is given; then each solution is a sub-slide under its exercise.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -70,8 +71,7 @@ def vendor(out: Path) -> Path:
     missing = [src for src in ASSETS if not (NODE / src).exists()]
     if missing:
         raise SystemExit(
-            "book/node_modules lacks " + ", ".join(missing)
-            + ": run `cd book && npm ci` (make does this for you)"
+            "book/node_modules lacks " + ", ".join(missing) + ": run `cd book && npm ci` (make does this for you)"
         )
     dest = out / VENDOR
     if dest.exists():
@@ -126,6 +126,7 @@ BUDGET = 640
 
 def _estimated_height(cell) -> int:
     """A rough height in pixels: wrapped lines of markdown, code and text output."""
+
     def lines(text: str, width: int) -> int:
         return sum(max(1, -(-len(line) // width)) for line in text.splitlines()) if text else 0
 
@@ -165,8 +166,10 @@ def _split_long_slides(cells, counts):
 
 
 def _has_figure(cell) -> bool:
-    return any(o.get("output_type") in ("display_data", "execute_result") and "image/png" in o.get("data", {})
-               for o in cell.get("outputs", []))
+    return any(
+        o.get("output_type") in ("display_data", "execute_result") and "image/png" in o.get("data", {})
+        for o in cell.get("outputs", [])
+    )
 
 
 def exporter():
@@ -211,9 +214,7 @@ def render(path: Path, out: Path, ex, with_solutions: bool) -> tuple[Path, Count
 
 
 def write_index(out: Path, decks: list[tuple[Path, str]]) -> Path:
-    rows = "\n".join(
-        f'  <li><a href="{html.escape(p.name)}">{html.escape(title)}</a></li>' for p, title in decks
-    )
+    rows = "\n".join(f'  <li><a href="{html.escape(p.name)}">{html.escape(title)}</a></li>' for p, title in decks)
     page = f"""<!DOCTYPE html>
 <html lang="en">
 <head><meta charset="utf-8"><title>shapelab: lecture decks</title>
@@ -250,7 +251,9 @@ def _size(path: Path) -> int:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("lessons", nargs="*", type=Path, help="notebooks (default: every lesson in --src)")
-    ap.add_argument("--out", type=Path, default=DEFAULT_OUT, help=f"output folder (default {DEFAULT_OUT.relative_to(ROOT)})")
+    ap.add_argument(
+        "--out", type=Path, default=DEFAULT_OUT, help=f"output folder (default {DEFAULT_OUT.relative_to(ROOT)})"
+    )
     ap.add_argument("--src", type=Path, default=ROOT / "lessons", help="folder of lessons (default lessons/)")
     ap.add_argument("--with-solutions", action="store_true", help="keep cells tagged 'solution'")
     args = ap.parse_args(argv)

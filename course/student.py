@@ -25,6 +25,7 @@ A lesson with unbalanced markers (an END without a BEGIN, a BEGIN without an END
 nested BEGINs) or a code cell tagged ``solution`` without markers is refused: nothing
 is written for it and the command exits non-zero, so a solution never leaks.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -38,7 +39,7 @@ from pathlib import Path
 
 import nbformat
 
-from course.notebooks import BEGIN, END, SOLUTION_TAG, is_solution
+from course.notebooks import BEGIN, END, SOLUTION_TAG
 
 ROOT = Path(__file__).resolve().parent.parent
 DEFAULT_OUT = ROOT / "dist" / "student"

@@ -28,6 +28,7 @@ Modules, one per concept of the notes:
 ``shapelab.check``        self-checks for exercises
 ========================  =====================================================
 """
+
 from __future__ import annotations
 
 from ._toolkit.lazy import attach
@@ -70,9 +71,25 @@ _EXPORTS = {
     "simplify": "simplification",
 }
 _SUBMODULES = {
-    "balls", "power", "filtration", "topology", "cavities", "freespace", "measure", "oracles", "quaternion",
-    "registration", "distance", "matching", "critical", "io", "datasets", "plot", "widgets",
-    "check", "simplification",
+    "balls",
+    "power",
+    "filtration",
+    "topology",
+    "cavities",
+    "freespace",
+    "measure",
+    "oracles",
+    "quaternion",
+    "registration",
+    "distance",
+    "matching",
+    "critical",
+    "io",
+    "datasets",
+    "plot",
+    "widgets",
+    "check",
+    "simplification",
 }
 
 __all__ = sorted(_EXPORTS) + ["__version__"]

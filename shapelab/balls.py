@@ -14,6 +14,7 @@ The growth model of §23.1 grows every radius to :math:`\\sqrt{r_i^2 + \\tau}`; 
 :meth:`Balls.grow`.  In power-distance terms a point :math:`x` lies in the grown ball
 :math:`B_i(\\tau)` iff :math:`\\pi_i(x) \\le \\tau`.
 """
+
 from __future__ import annotations
 
 import numbers
@@ -100,9 +101,7 @@ class Balls:
             idx = np.asarray(index)
             if idx.dtype == bool:
                 if idx.shape != (len(self),):
-                    raise IndexError(
-                        f"boolean index must have shape ({len(self)},), got {idx.shape}"
-                    )
+                    raise IndexError(f"boolean index must have shape ({len(self)},), got {idx.shape}")
             elif idx.dtype.kind in "iu" or idx.size == 0:
                 idx = idx.astype(np.intp).ravel()
             else:

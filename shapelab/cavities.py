@@ -42,6 +42,7 @@ Volumes
 :mod:`shapelab.freespace`: fractional inclusion–exclusion over the void's cells, and
 the exact power-cell decomposition for pockets.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -105,8 +106,10 @@ class Void:
         return self.dies - self.born
 
     def __repr__(self) -> str:
-        return (f"Void(cells={len(self.cells)}, lining={len(self.lining)}, born={self.born:.6g}, "
-                f"dies={self.dies:.6g}, volume={self.volume:.6g}, tau={self.tau:.6g})")
+        return (
+            f"Void(cells={len(self.cells)}, lining={len(self.lining)}, born={self.born:.6g}, "
+            f"dies={self.dies:.6g}, volume={self.volume:.6g}, tau={self.tau:.6g})"
+        )
 
 
 @dataclass(frozen=True, eq=False)
@@ -166,8 +169,10 @@ class Pocket:
         return float(0.5 * np.linalg.norm(np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0]), axis=1).sum())
 
     def __repr__(self) -> str:
-        return (f"Pocket(cells={len(self.cells)}, mouth={len(self.mouth)}, lining={len(self.lining)}, "
-                f"closes_at={self.closes_at:.6g}, fills_at={self.fills_at:.6g}, tau={self.tau:.6g})")
+        return (
+            f"Pocket(cells={len(self.cells)}, mouth={len(self.mouth)}, lining={len(self.lining)}, "
+            f"closes_at={self.closes_at:.6g}, fills_at={self.fills_at:.6g}, tau={self.tau:.6g})"
+        )
 
 
 @dataclass(frozen=True, eq=False)
@@ -199,22 +204,23 @@ class Tunnel:
         return self.death - self.birth
 
     def __repr__(self) -> str:
-        return (f"Tunnel(birth={self.birth:.6g}, death={self.death:.6g}, cycle={len(self.cycle)} edges, "
-                f"tau={self.tau:.6g})")
+        return (
+            f"Tunnel(birth={self.birth:.6g}, death={self.death:.6g}, cycle={len(self.cycle)} edges, tau={self.tau:.6g})"
+        )
 
 
 # ===================================================================== merge tree
 @dataclass(frozen=True)
 class _Tree:
     n_cells: int
-    kill_value: np.ndarray     # (n_cells,) value of the facet that seals the void rooted at the cell
-    pos: np.ndarray            # (n_cells + 1,) position of every leaf in the final leaf order
-    order: np.ndarray          # leaf order: every subtree is a contiguous run
-    kill_node: np.ndarray      # (n_cells,) tree node of the component the cell roots when it dies
-    left: np.ndarray           # per merge: child node ids, ...
+    kill_value: np.ndarray  # (n_cells,) value of the facet that seals the void rooted at the cell
+    pos: np.ndarray  # (n_cells + 1,) position of every leaf in the final leaf order
+    order: np.ndarray  # leaf order: every subtree is a contiguous run
+    kill_node: np.ndarray  # (n_cells,) tree node of the component the cell roots when it dies
+    left: np.ndarray  # per merge: child node ids, ...
     right: np.ndarray
-    value: np.ndarray          # ... the merge value,
-    lo: np.ndarray             # ... and its leaf run [lo, hi)
+    value: np.ndarray  # ... the merge value,
+    lo: np.ndarray  # ... and its leaf run [lo, hi)
     hi: np.ndarray
 
 
@@ -228,12 +234,12 @@ def _build_tree(F) -> _Tree:
     head = list(range(N))
     tail = list(range(N))
     nxt = [-1] * N
-    age = list(range(n, 0, -1)) + [0]    # reverse time: outside oldest, then last cells
+    age = list(range(n, 0, -1)) + [0]  # reverse time: outside oldest, then last cells
     kill_facet = [-1] * n
     kill_node = [-1] * n
     m_left, m_right, m_head, m_tail, m_facet = [], [], [], [], []
 
-    def merge(e, a, b, oldest):          # a keeps (older), b dies
+    def merge(e, a, b, oldest):  # a keeps (older), b dies
         young = oldest[b]
         kill_facet[young] = e
         kill_node[young] = node[b]
@@ -263,11 +269,16 @@ def _build_tree(F) -> _Tree:
     mh = np.asarray(m_head, dtype=np.int64)
     mt = np.asarray(m_tail, dtype=np.int64)
     return _Tree(
-        n_cells=n, kill_value=kill_value, pos=pos, order=order,
+        n_cells=n,
+        kill_value=kill_value,
+        pos=pos,
+        order=order,
         kill_node=np.asarray(kill_node, dtype=np.int64),
-        left=np.asarray(m_left, dtype=np.int64), right=np.asarray(m_right, dtype=np.int64),
+        left=np.asarray(m_left, dtype=np.int64),
+        right=np.asarray(m_right, dtype=np.int64),
         value=S.values[k - 1][np.asarray(m_facet, dtype=np.int64)] if m_facet else np.empty(0),
-        lo=pos[mh] if mh.size else mh, hi=pos[mt] + 1 if mt.size else mt,
+        lo=pos[mh] if mh.size else mh,
+        hi=pos[mt] + 1 if mt.size else mt,
     )
 
 
@@ -370,11 +381,17 @@ def voids(F, tau=0.0) -> tuple:
         cid = cells[s:e]
         root = int(cid.max())
         cv = simp[cid]
-        out.append(Void(
-            cells=readonly(cv, np.int64), cell_ids=readonly(cid, np.int64), lining=readonly(_lining(F, cv, tau, vval), np.int64),
-            born=float(T.kill_value[root]), dies=float(S.values[k][root]),
-            volume=float(max(csum[e] - csum[s], 0.0)), tau=tau,
-        ))
+        out.append(
+            Void(
+                cells=readonly(cv, np.int64),
+                cell_ids=readonly(cid, np.int64),
+                lining=readonly(_lining(F, cv, tau, vval), np.int64),
+                born=float(T.kill_value[root]),
+                dies=float(S.values[k][root]),
+                volume=float(max(csum[e] - csum[s], 0.0)),
+                tau=tau,
+            )
+        )
     out.sort(key=lambda x: (-(x.dies - x.born), x.born, int(x.cell_ids[0])))
     return tuple(out)
 
@@ -452,10 +469,19 @@ def pockets(F, tau=0.0, *, min_persistence=0.0) -> tuple:
         uf, cnt = np.unique(facets, return_counts=True)
         mouth = uf[(cnt == 1) & (fval[uf] > tau)]
         cverts = simp[cid]
-        out.append(Pocket(
-            cells=readonly(cverts, np.int64), cell_ids=readonly(cid, np.int64), mouth=readonly(fsimp[mouth].reshape(-1, k), np.int64), mouth_ids=readonly(mouth, np.int64),
-            lining=readonly(_lining(F, cverts, tau, vval), np.int64), closes_at=bb, fills_at=float(cv[r]), tau=tau, balls=balls,
-        ))
+        out.append(
+            Pocket(
+                cells=readonly(cverts, np.int64),
+                cell_ids=readonly(cid, np.int64),
+                mouth=readonly(fsimp[mouth].reshape(-1, k), np.int64),
+                mouth_ids=readonly(mouth, np.int64),
+                lining=readonly(_lining(F, cverts, tau, vval), np.int64),
+                closes_at=bb,
+                fills_at=float(cv[r]),
+                tau=tau,
+                balls=balls,
+            )
+        )
     out.sort(key=lambda p: (-(p.fills_at - p.closes_at), p.closes_at, int(p.cell_ids[0])))
     return tuple(out)
 
@@ -489,8 +515,15 @@ def _h1_classes(F, tau, select, fname):
     out = []
     for i in keep.tolist():
         ids = np.asarray(sorted(cols[int(piv_e[i])]), dtype=np.int64)
-        out.append(Tunnel(birth=float(birth[i]), death=float(death[i]), cycle=readonly(edges[ids], np.int64),
-                          edge_ids=readonly(ids, np.int64), tau=tau))
+        out.append(
+            Tunnel(
+                birth=float(birth[i]),
+                death=float(death[i]),
+                cycle=readonly(edges[ids], np.int64),
+                edge_ids=readonly(ids, np.int64),
+                tau=tau,
+            )
+        )
     out.sort(key=lambda t: (-(t.death - t.birth), t.birth, int(t.edge_ids[-1])))
     return tuple(out)
 

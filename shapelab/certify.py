@@ -27,6 +27,7 @@ of the convex hull whose facets are all locally regular is the regular
 triangulation, and 6 shows its vertex set is right.  Each condition is decided
 exactly, so the certificate is a function of the input alone.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -172,7 +173,7 @@ def _verified_neighbors(simp: np.ndarray, hint: np.ndarray):
     if w > 1 and not np.all(simp[:, 1:] > simp[:, :-1]):
         return None
     nbr = hint.astype(np.int32, copy=False)
-    t, i = np.nonzero(nbr > np.arange(m, dtype=np.int32)[:, None])   # each pair once
+    t, i = np.nonzero(nbr > np.arange(m, dtype=np.int32)[:, None])  # each pair once
     nb = nbr[t, i]
     back = nbr[nb] == t[:, None].astype(np.int32)
     if not np.all(back.sum(axis=1) == 1):
@@ -281,8 +282,9 @@ def certify(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None) -> 
         from scipy.sparse.csgraph import connected_components
 
         nb_ = F.shape[0]
-        ncomp = connected_components(coo_matrix((np.ones(a.size), (own[a], own[b])), shape=(nb_, nb_)),
-                                     directed=False)[0]
+        ncomp = connected_components(coo_matrix((np.ones(a.size), (own[a], own[b])), shape=(nb_, nb_)), directed=False)[
+            0
+        ]
         if ncomp != 1:
             return _fail("the boundary is not connected", nbr, P)
         ridge = R[a]

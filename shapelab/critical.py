@@ -35,10 +35,11 @@ Where the notes are imprecise
   ``#min - #saddles + #max = χ`` to hold, and saddles can be *monkey saddles*
   that count with multiplicity k - 1 (k arcs in the lower link).
 """
+
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 
@@ -145,8 +146,10 @@ class CriticalPoints:
     def __repr__(self) -> str:
         extra = f", {self.n_saddle} saddle(s)" if self.source == "surface" else ""
         deg = ", degenerate (F constant)" if self.degenerate else ""
-        return (f"CriticalPoints({self.source}: {self.n_min} min, {self.n_max} max{extra}, "
-                f"χ = {self.euler_characteristic}{deg})")
+        return (
+            f"CriticalPoints({self.source}: {self.n_min} min, {self.n_max} max{extra}, "
+            f"χ = {self.euler_characteristic}{deg})"
+        )
 
 
 def _result(source, S, pos, val, kinds, par, idx, interior=None, mult=None, degenerate=False):
@@ -196,13 +199,12 @@ def _polyline_critical(curve, S: np.ndarray, close: bool) -> CriticalPoints:
     V, orig = closed_vertices(curve, close)
     if S.size != V.shape[1]:
         raise ValueError(f"viewpoint must have {V.shape[1]} coordinates like curve, got {S.size}")
-    N = V.shape[0]
-    E = np.roll(V, -1, axis=0) - V              # segment i: V[i] -> V[i+1]
-    R = V - S                                     # from S to each vertex
+    E = np.roll(V, -1, axis=0) - V  # segment i: V[i] -> V[i+1]
+    R = V - S  # from S to each vertex
     L = np.sqrt(np.einsum("ij,ij->i", E, E))
     cum = np.concatenate([[0.0], np.cumsum(L)])
     total = cum[-1]
-    fwd = np.einsum("ij,ij->i", R, E)            # dF²/ds along segment i at its start
+    fwd = np.einsum("ij,ij->i", R, E)  # dF²/ds along segment i at its start
     bwd = np.einsum("ij,ij->i", R, np.roll(E, 1, axis=0))  # along segment i-1 at its end
     at_s = ~np.any(R != 0, axis=1)
     # F² is a strictly convex quadratic on each segment, so a zero one-sided
@@ -231,8 +233,16 @@ def _polyline_critical(curve, S: np.ndarray, close: bool) -> CriticalPoints:
     par.append((cum[i] + tau[i] * L[i]) / total)
     idx.append(orig[i])
     interior.append(np.ones(i.size, dtype=bool))
-    return _result("polyline", S, np.concatenate(pos), np.concatenate(val), kinds,
-                   np.concatenate(par), np.concatenate(idx), np.concatenate(interior))
+    return _result(
+        "polyline",
+        S,
+        np.concatenate(pos),
+        np.concatenate(val),
+        kinds,
+        np.concatenate(par),
+        np.concatenate(idx),
+        np.concatenate(interior),
+    )
 
 
 # --------------------------------------------------------------------------- #
@@ -308,8 +318,12 @@ def _parametric_critical(fn: Callable, S: np.ndarray, n_samples: int) -> Critica
             if sign * ga < 0 < sign * gb:
                 s = brentq(g, a, b, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
             else:
-                res = minimize_scalar(lambda x: sign * F(x), bounds=(a, b), method="bounded",
-                                      options={"xatol": 1e-12})
+                res = minimize_scalar(
+                    lambda x, sign=sign: sign * F(x),
+                    bounds=(a, b),
+                    method="bounded",
+                    options={"xatol": 1e-12},
+                )
                 s = float(res.x)
             if sign * F(s) > sign * Fk[k]:  # never worse than the sample
                 s = float(t[k])
@@ -463,8 +477,7 @@ def _surface_critical(vertices, faces, S: np.ndarray) -> CriticalPoints:
 # --------------------------------------------------------------------------- #
 # Public entry point                                                           #
 # --------------------------------------------------------------------------- #
-def critical_points(curve, viewpoint, *, faces=None, close: bool = False,
-                    n_samples: int = 4096) -> CriticalPoints:
+def critical_points(curve, viewpoint, *, faces=None, close: bool = False, n_samples: int = 4096) -> CriticalPoints:
     """Minima and maxima (and saddles) of F(x) = |x - S| (notes §23.2, Figure 23.3).
 
     Parameters

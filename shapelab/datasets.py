@@ -39,12 +39,13 @@ PDB id, title, what it teaches and its provenance, and :func:`structure` reads i
 The carbon radius used throughout is Bondi's van der Waals radius of carbon, 1.70 Å
 (A. Bondi, *J. Phys. Chem.* **68**, 441 (1964)); see :data:`shapelab.io.VDW_RADII`.
 """
+
 from __future__ import annotations
 
 import json
 import types
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 from importlib import resources
 from pathlib import Path
 
@@ -206,8 +207,9 @@ def nanotube_radius(n, m, *, a=GRAPHENE_LATTICE_CONSTANT) -> float:
     return a * np.sqrt(n * n + n * m + m * m) / (2 * np.pi)
 
 
-def nanotube(n=8, m=8, *, length=12.0, atom_radius=CARBON_RADIUS,
-             a=GRAPHENE_LATTICE_CONSTANT, slit=0.0, jitter=0.0, seed=0) -> Balls:
+def nanotube(
+    n=8, m=8, *, length=12.0, atom_radius=CARBON_RADIUS, a=GRAPHENE_LATTICE_CONSTANT, slit=0.0, jitter=0.0, seed=0
+) -> Balls:
     """A single-walled (n, m) carbon nanotube: a graphene sheet rolled up.
 
     Geometry: graphene has lattice vectors :math:`a_1 = a(1, 0)`,
@@ -300,8 +302,7 @@ def _fibonacci_sphere(N: int) -> np.ndarray:
     return np.column_stack([s * cos_p, s * sin_p, z])
 
 
-def bowl(*, radius=6.0, opening=50.0, spacing=2.0, atom_radius=CARBON_RADIUS,
-         jitter=0.0, seed=0) -> Balls:
+def bowl(*, radius=6.0, opening=50.0, spacing=2.0, atom_radius=CARBON_RADIUS, jitter=0.0, seed=0) -> Balls:
     """A deep bowl: a spherical shell of atoms with a round opening, one pocket.
 
     Geometry: about :math:`N = 4\\pi R^2 / (\\tfrac{\\sqrt3}{2} s^2)` points of a
@@ -355,8 +356,28 @@ def _ball_jitter(rng: np.random.Generator, n: int, amount: float, dim: int = 3) 
 
 
 # -------------------------------------------------------------------- globule
-_AMINO = ("ALA", "ARG", "ASN", "ASP", "CYS", "GLN", "GLU", "GLY", "HIS", "ILE",
-          "LEU", "LYS", "MET", "PHE", "PRO", "SER", "THR", "TRP", "TYR", "VAL")
+_AMINO = (
+    "ALA",
+    "ARG",
+    "ASN",
+    "ASP",
+    "CYS",
+    "GLN",
+    "GLU",
+    "GLY",
+    "HIS",
+    "ILE",
+    "LEU",
+    "LYS",
+    "MET",
+    "PHE",
+    "PRO",
+    "SER",
+    "THR",
+    "TRP",
+    "TYR",
+    "VAL",
+)
 #: Protein-like heavy-atom composition (fractions), Bondi radii in Å.
 _COMPOSITION = (("C", 0.62, 1.70), ("N", 0.17, 1.55), ("O", 0.19, 1.52), ("S", 0.02, 1.80))
 
@@ -368,12 +389,18 @@ def _dist_segment(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 # feature positions as fractions of the semi-axes; mouth and slit are directions
-_LAYOUT = {"void": (-0.35, 0.0, 0.35), "pocket": (0.5, 0.0, 0.35), "mouth": (0.0, 0.0, 1.0),
-           "groove": (0.0, -0.6), "slit": (0.0, -1.0)}
+_LAYOUT = {
+    "void": (-0.35, 0.0, 0.35),
+    "pocket": (0.5, 0.0, 0.35),
+    "mouth": (0.0, 0.0, 1.0),
+    "groove": (0.0, -0.6),
+    "slit": (0.0, -1.0),
+}
 
 
-def _globule_geometry(seed, semi_axes, spacing, void_radius, pocket_radius, mouth_radius,
-                      groove_radius, slit_halfwidth, jitter):
+def _globule_geometry(
+    seed, semi_axes, spacing, void_radius, pocket_radius, mouth_radius, groove_radius, slit_halfwidth, jitter
+):
     """Centres, element symbols and the feature geometry of :func:`globule`."""
     rng = _rng(seed)
     ax = np.asarray(semi_axes, dtype=np.float64)
@@ -422,14 +449,28 @@ def _globule_geometry(seed, semi_axes, spacing, void_radius, pocket_radius, mout
     slit = np.where(along >= 0.0, normal, np.linalg.norm(q, axis=1))
     remove |= slit < fs + r
     keep = ~remove
-    features = {"void_center": void_c, "pocket_center": pocket_c,
-                "mouth_axis": (pocket_c, mouth_end), "groove_point": g0, "slit_direction": sd}
+    features = {
+        "void_center": void_c,
+        "pocket_center": pocket_c,
+        "mouth_axis": (pocket_c, mouth_end),
+        "groove_point": g0,
+        "slit_direction": sd,
+    }
     return pos[keep], sym[kind[keep]], r[keep], features
 
 
-def globule(seed=0, *, semi_axes=(13.0, 11.0, 10.0), spacing=2.1, void_radius=2.0,
-            pocket_radius=2.2, mouth_radius=0.6, groove_radius=1.5, slit_halfwidth=0.6,
-            jitter=0.08) -> Balls:
+def globule(
+    seed=0,
+    *,
+    semi_axes=(13.0, 11.0, 10.0),
+    spacing=2.1,
+    void_radius=2.0,
+    pocket_radius=2.2,
+    mouth_radius=0.6,
+    groove_radius=1.5,
+    slit_halfwidth=0.6,
+    jitter=0.08,
+) -> Balls:
     """A protein-like globule with a buried void, a pocket and a groove (3D, Å).
 
     Geometry (all carved deliberately, then documented here):
@@ -472,8 +513,9 @@ def globule(seed=0, *, semi_axes=(13.0, 11.0, 10.0), spacing=2.1, void_radius=2.
         About 650 balls for the defaults.  :func:`globule_structure` gives the same
         atoms with elements and pseudo-residues.
     """
-    pos, _, r, _ = _globule_geometry(seed, semi_axes, spacing, void_radius, pocket_radius,
-                                     mouth_radius, groove_radius, slit_halfwidth, jitter)
+    pos, _, r, _ = _globule_geometry(
+        seed, semi_axes, spacing, void_radius, pocket_radius, mouth_radius, groove_radius, slit_halfwidth, jitter
+    )
     return Balls(pos, r)
 
 
@@ -494,9 +536,16 @@ def globule_structure(seed=0, *, residue_size=8, **kwargs):
     from .io import PDBStructure  # io imports balls only; no cycle
 
     size = as_positive_int(residue_size, "residue_size")
-    defaults = dict(semi_axes=(13.0, 11.0, 10.0), spacing=2.1, void_radius=2.0,
-                    pocket_radius=2.2, mouth_radius=0.6, groove_radius=1.5,
-                    slit_halfwidth=0.6, jitter=0.08)
+    defaults = dict(
+        semi_axes=(13.0, 11.0, 10.0),
+        spacing=2.1,
+        void_radius=2.0,
+        pocket_radius=2.2,
+        mouth_radius=0.6,
+        groove_radius=1.5,
+        slit_halfwidth=0.6,
+        jitter=0.08,
+    )
     unknown = set(kwargs) - set(defaults)
     if unknown:
         raise TypeError(f"unexpected keyword argument(s) {sorted(unknown)}")
@@ -579,15 +628,23 @@ def figure_23_1() -> Balls:
     triangles of K at τ = 0), and a few isolated or just-touching disks so that the
     filtration shows vertices, edges and triangles entering at different times.
     """
-    c = np.array([
-        [0.0, 0.0], [1.6, 0.3], [0.8, 1.3],          # triangle 1
-        [2.4, 1.6],                                  # with 1, 2: triangle 2
-        [3.9, 1.2], [5.1, 0.4], [6.5, 0.9],          # a chain of edges
-        [4.5, 3.0], [5.8, 2.9],                      # a pair
-        [-1.7, 1.9], [-1.0, 3.2],                    # an edge, late triangle with 2
-        [2.0, 4.0],                                  # alone at tau = 0
-        [7.9, 2.4],                                  # alone at tau = 0
-    ])
+    c = np.array(
+        [
+            [0.0, 0.0],
+            [1.6, 0.3],
+            [0.8, 1.3],  # triangle 1
+            [2.4, 1.6],  # with 1, 2: triangle 2
+            [3.9, 1.2],
+            [5.1, 0.4],
+            [6.5, 0.9],  # a chain of edges
+            [4.5, 3.0],
+            [5.8, 2.9],  # a pair
+            [-1.7, 1.9],
+            [-1.0, 3.2],  # an edge, late triangle with 2
+            [2.0, 4.0],  # alone at tau = 0
+            [7.9, 2.4],  # alone at tau = 0
+        ]
+    )
     r = np.array([1.0, 1.0, 0.9, 0.95, 0.8, 0.75, 0.8, 0.7, 0.8, 0.7, 0.8, 0.6, 0.6])
     return Balls(c, r)
 
@@ -637,12 +694,17 @@ def figure_23_2(*, body_radius=6.0, spacing=1.0, disk_radius=0.65):
     p = _hex_disk(R, s)
     chamber = np.array([0.0, 2.5 * s])
     flask = (np.hypot(*(p - chamber).T) < 2.0 * s) | (
-        _dist_segment(np.column_stack([p, np.zeros(len(p))]),
-                      np.array([chamber[0], chamber[1], 0.0]),
-                      np.array([0.0, R + 2 * s, 0.0])) < 0.9 * s)
+        _dist_segment(
+            np.column_stack([p, np.zeros(len(p))]),
+            np.array([chamber[0], chamber[1], 0.0]),
+            np.array([0.0, R + 2 * s, 0.0]),
+        )
+        < 0.9 * s
+    )
     x, y = p[:, 0], p[:, 1]
     funnel = (np.hypot(*(p - chamber).T) < 2.0 * s) | (
-        (y >= chamber[1]) & (np.abs(x) < 2.0 * s + 0.5 * (y - chamber[1])))
+        (y >= chamber[1]) & (np.abs(x) < 2.0 * s + 0.5 * (y - chamber[1]))
+    )
     return Balls(p[~flask], r), Balls(p[~funnel], r)
 
 
@@ -925,14 +987,51 @@ def icosphere(subdivisions: int = 2, radius: float = 1.0) -> tuple[np.ndarray, n
     """
     subdivisions = as_positive_int(subdivisions, "subdivisions", minimum=0)
     if subdivisions > 7:
-        raise ValueError(f"subdivisions must be at most 7 (>{10 * 4 ** 7} vertices), got {subdivisions}")
+        raise ValueError(f"subdivisions must be at most 7 (>{10 * 4**7} vertices), got {subdivisions}")
     radius = as_finite_scalar(radius, "radius", positive=True)
     p = (1.0 + np.sqrt(5.0)) / 2.0
-    V = np.array([[-1, p, 0], [1, p, 0], [-1, -p, 0], [1, -p, 0], [0, -1, p], [0, 1, p],
-                  [0, -1, -p], [0, 1, -p], [p, 0, -1], [p, 0, 1], [-p, 0, -1], [-p, 0, 1]], dtype=float)
-    F = np.array([[0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11], [1, 5, 9], [5, 11, 4],
-                  [11, 10, 2], [10, 7, 6], [7, 1, 8], [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8],
-                  [3, 8, 9], [4, 9, 5], [2, 4, 11], [6, 2, 10], [8, 6, 7], [9, 8, 1]], dtype=np.intp)
+    V = np.array(
+        [
+            [-1, p, 0],
+            [1, p, 0],
+            [-1, -p, 0],
+            [1, -p, 0],
+            [0, -1, p],
+            [0, 1, p],
+            [0, -1, -p],
+            [0, 1, -p],
+            [p, 0, -1],
+            [p, 0, 1],
+            [-p, 0, -1],
+            [-p, 0, 1],
+        ],
+        dtype=float,
+    )
+    F = np.array(
+        [
+            [0, 11, 5],
+            [0, 5, 1],
+            [0, 1, 7],
+            [0, 7, 10],
+            [0, 10, 11],
+            [1, 5, 9],
+            [5, 11, 4],
+            [11, 10, 2],
+            [10, 7, 6],
+            [7, 1, 8],
+            [3, 9, 4],
+            [3, 4, 2],
+            [3, 2, 6],
+            [3, 6, 8],
+            [3, 8, 9],
+            [4, 9, 5],
+            [2, 4, 11],
+            [6, 2, 10],
+            [8, 6, 7],
+            [9, 8, 1],
+        ],
+        dtype=np.intp,
+    )
     V /= np.linalg.norm(V, axis=1, keepdims=True)
     for _ in range(subdivisions):
         e = np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]])
@@ -943,14 +1042,21 @@ def icosphere(subdivisions: int = 2, radius: float = 1.0) -> tuple[np.ndarray, n
         mid /= np.linalg.norm(mid, axis=1, keepdims=True)
         m = V.shape[0] + inv.reshape(3, -1)  # midpoints of edges 01, 12, 20 of each face
         a, b, c = F[:, 0], F[:, 1], F[:, 2]
-        F = np.concatenate([np.stack([a, m[0], m[2]], 1), np.stack([b, m[1], m[0]], 1),
-                            np.stack([c, m[2], m[1]], 1), np.stack([m[0], m[1], m[2]], 1)])
+        F = np.concatenate(
+            [
+                np.stack([a, m[0], m[2]], 1),
+                np.stack([b, m[1], m[0]], 1),
+                np.stack([c, m[2], m[1]], 1),
+                np.stack([m[0], m[1], m[2]], 1),
+            ]
+        )
         V = np.vstack([V, mid])
     return radius * V, F
 
 
-def bumpy_sphere(subdivisions: int = 3, *, bumps: int = 6, amplitude: float = 0.3,
-                 seed=0) -> tuple[np.ndarray, np.ndarray]:
+def bumpy_sphere(
+    subdivisions: int = 3, *, bumps: int = 6, amplitude: float = 0.3, seed=0
+) -> tuple[np.ndarray, np.ndarray]:
     """An icosphere pushed radially by ``bumps`` random Gaussian bumps and dents:
     a closed star-shaped surface with several minima, maxima and saddles.
 

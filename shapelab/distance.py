@@ -89,6 +89,7 @@ every reported distance is recomputed by the direct formula
 ``sqrt(sum((a - b)**2))``, so the result equals brute force to the last bit
 and the witness pair is valid.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -96,7 +97,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._toolkit.validate import as_finite_scalar, as_point_pair, as_points, as_positive_int
+from ._toolkit.validate import as_point_pair, as_positive_int
 
 __all__ = [
     "DirectedHausdorff",
@@ -252,7 +253,7 @@ def _block_min(src: _Cloud, rows: np.ndarray, dst: _Cloud, cols: np.ndarray) -> 
     out = np.empty(rows.size)
     step = max(256, _BLOCK // max(1, cols.size))
     for s in range(0, rows.size, step):
-        np.min(R @ L[:, s:s + step], axis=0, out=out[s:s + step])
+        np.min(R @ L[:, s : s + step], axis=0, out=out[s : s + step])
     return out
 
 
@@ -273,7 +274,7 @@ def _exact_rows(src: _Cloud, rows: np.ndarray, dst: _Cloud) -> tuple[np.ndarray,
     R = dst.rightT
     step = max(1, _BLOCK // m)
     for s in range(0, rows.size, step):
-        r = rows[s:s + step]
+        r = rows[s : s + step]
         D = src.leftT[:, r].T @ R
         mn = D.min(axis=1)
         ri, cj = np.nonzero(D <= (mn + margin)[:, None])
@@ -283,8 +284,8 @@ def _exact_rows(src: _Cloud, rows: np.ndarray, dst: _Cloud) -> tuple[np.ndarray,
         first = np.ones(order.size, dtype=bool)
         first[1:] = ri[order[1:]] != ri[order[:-1]]
         pick = order[first]
-        d2[s:s + step] = exact[pick]
-        nn[s:s + step] = cj[pick]
+        d2[s : s + step] = exact[pick]
+        nn[s : s + step] = cj[pick]
     return d2, nn
 
 
@@ -300,8 +301,15 @@ def _workers(n_queries: int) -> int:
     return -1 if n_queries >= 8192 else 1
 
 
-def _refine_tree(src: _Cloud, rows: np.ndarray, d2: np.ndarray, nn: np.ndarray,
-                 points: np.ndarray, tree: cKDTree, index: np.ndarray | None = None):
+def _refine_tree(
+    src: _Cloud,
+    rows: np.ndarray,
+    d2: np.ndarray,
+    nn: np.ndarray,
+    points: np.ndarray,
+    tree: cKDTree,
+    index: np.ndarray | None = None,
+):
     """Make k-d tree answers bit-exact.
 
     The tree's own distances may differ from the direct formula in the last bit,
@@ -321,8 +329,15 @@ def _refine_tree(src: _Cloud, rows: np.ndarray, d2: np.ndarray, nn: np.ndarray,
     return out_d2, out_nn
 
 
-def _query_exact(src: _Cloud, rows: np.ndarray, ub: np.ndarray, points: np.ndarray,
-                 tree: cKDTree, index: np.ndarray | None, best: _Best) -> None:
+def _query_exact(
+    src: _Cloud,
+    rows: np.ndarray,
+    ub: np.ndarray,
+    points: np.ndarray,
+    tree: cKDTree,
+    index: np.ndarray | None,
+    best: _Best,
+) -> None:
     """Exact nearest neighbours of ``src[rows]`` (each within ``sqrt(ub)``) in a
     tree over ``points``; offer the results to ``best``."""
     bound = float(np.sqrt(ub.max())) * (1.0 + 1e-9) + 1e-300
@@ -340,8 +355,7 @@ def _query_exact(src: _Cloud, rows: np.ndarray, ub: np.ndarray, points: np.ndarr
         best.offer(d2h, rows[hi], jh)
 
 
-def _subset_stage(src: _Cloud, alive: np.ndarray, u: np.ndarray, dst: _Cloud, best: _Best,
-                  force: bool = False) -> bool:
+def _subset_stage(src: _Cloud, alive: np.ndarray, u: np.ndarray, dst: _Cloud, best: _Best, force: bool = False) -> bool:
     """Finish a *clustered* set of survivors with a small tree.
 
     Every survivor ``a`` has its nearest neighbour within ``sqrt(u(a))``, so only
@@ -372,7 +386,7 @@ def _subset_stage(src: _Cloud, alive: np.ndarray, u: np.ndarray, dst: _Cloud, be
     rows, ub = alive[order], u[alive][order]
     pos, batch = 0, 64
     while pos < rows.size:
-        r, b = rows[pos:pos + batch], ub[pos:pos + batch]
+        r, b = rows[pos : pos + batch], ub[pos : pos + batch]
         sel = b > best.d2
         if sel.any():
             _query_exact(src, r[sel], b[sel], pts, tree, inside, best)
@@ -400,8 +414,8 @@ def _tree_stage(src: _Cloud, alive: np.ndarray, u: np.ndarray, dst: _Cloud, best
     # A representative's value is exact (up to ties): a valid lower bound of h.
     top = int(np.argmax(dr2))
     if dr2[top] > best.d2:
-        e2, ej = _refine_tree(src, reps[top:top + 1], dr2[top:top + 1], jr[top:top + 1], dst.points, tree)
-        best.offer(e2, reps[top:top + 1], ej)
+        e2, ej = _refine_tree(src, reps[top : top + 1], dr2[top : top + 1], jr[top : top + 1], dst.points, tree)
+        best.offer(e2, reps[top : top + 1], ej)
     # Each point tries the neighbours of the representatives of its own group and
     # of the two adjacent groups (second-order tight for smooth sets).  Groups are
     # consecutive, so the candidates are three shifted copies of ``repeat(jr)``.
@@ -410,7 +424,7 @@ def _tree_stage(src: _Cloud, alive: np.ndarray, u: np.ndarray, dst: _Cloud, best
     ng = reps.size
     for off in (0, -1, 1):
         sel = np.clip(np.arange(ng) + off, 0, ng - 1)
-        C = np.repeat(QT[:, sel], _GROUP, axis=1)[:, :S.size]
+        C = np.repeat(QT[:, sel], _GROUP, axis=1)[:, : S.size]
         diff = PT[0] - C[0]
         cand = diff * diff
         for k in range(1, PT.shape[0]):
@@ -426,7 +440,7 @@ def _tree_stage(src: _Cloud, alive: np.ndarray, u: np.ndarray, dst: _Cloud, best
     S, uS = S[order], uS[order]
     pos, batch = 0, 256
     while pos < S.size:
-        rows, ub = S[pos:pos + batch], uS[pos:pos + batch]
+        rows, ub = S[pos : pos + batch], uS[pos : pos + batch]
         sel = ub > best.d2
         if sel.any():
             _query_exact(src, rows[sel], ub[sel], dst.points, tree, None, best)
@@ -458,7 +472,7 @@ def _directed_pruned(src: _Cloud, dst: _Cloud, best: _Best, seed: int = 0, stage
             d2, nn = _exact_rows(src, rest, dst)
             best.offer(d2, rest, nn)
             break
-        probes = perm[used:used + k]
+        probes = perm[used : used + k]
         used += probes.size
         raw = _block_min(src, alive, dst, probes)
         full = alive.size == n  # alive is sorted and unique: all rows, skip the gathers
@@ -495,8 +509,12 @@ def _directed_pruned(src: _Cloud, dst: _Cloud, best: _Best, seed: int = 0, stage
                 _subset_stage(src, alive, u, dst, best, force=True)
             break
         slow = alive.size > 0.5 * before
-        if stage is None and 0 < alive.size <= min(65536, n // 4 + 4096) and (slow or alive.size <= 4096) \
-                and _subset_stage(src, alive, u, dst, best):
+        if (
+            stage is None
+            and 0 < alive.size <= min(65536, n // 4 + 4096)
+            and (slow or alive.size <= 4096)
+            and _subset_stage(src, alive, u, dst, best)
+        ):
             break
         if stage is None and slow and alive.size > 64:
             return _tree_stage(src, alive, u, dst, best)
@@ -561,12 +579,12 @@ class _Grid:
         step = 1 << 15
         buf = np.empty((min(step, n), d))
         for s in range(0, n, step):
-            b = buf[:min(step, n - s)]
-            np.subtract(points[s:s + step], lo, out=b)  # >= 0: lo is the minimum
+            b = buf[: min(step, n - s)]
+            np.subtract(points[s : s + step], lo, out=b)  # >= 0: lo is the minimum
             np.multiply(b, inv, out=b)
             np.floor(b, out=b)
             np.minimum(b, top, out=b)
-            key[s:s + step] = b @ strides  # integers below 2**53: exact
+            key[s : s + step] = b @ strides  # integers below 2**53: exact
         total = int(np.prod(g))
         occ_mask = np.zeros(total, dtype=bool)
         occ_mask[key] = True
@@ -618,9 +636,9 @@ def _cell_pairs(gS: _Grid, gD: _Grid, rows: np.ndarray | None = None, probes: in
     step = max(1, (1 << 16) // nY)
     t = np.empty((min(step, nX), nY))
     for s in range(0, nX, step):
-        cx, hx = cX[s:s + step], hX[s:s + step]
-        tt = t[:cx.shape[0]]
-        M = np.zeros((cx.shape[0], nY)) if probes else out[s:s + step]
+        cx, hx = cX[s : s + step], hX[s : s + step]
+        tt = t[: cx.shape[0]]
+        M = np.zeros((cx.shape[0], nY)) if probes else out[s : s + step]
         if not probes:
             M[...] = 0.0
         for k in range(cX.shape[1]):
@@ -628,16 +646,16 @@ def _cell_pairs(gS: _Grid, gD: _Grid, rows: np.ndarray | None = None, probes: in
             np.abs(tt, out=tt)
             if probes:  # farthest corner of the box from the point
                 tt += hx[:, None, k]
-            else:       # gap between the boxes
+            else:  # gap between the boxes
                 tt -= hx[:, None, k]
                 tt -= hY[None, :, k]
                 np.maximum(tt, 0.0, out=tt)
             tt *= tt
             M += tt
         if probes:
-            M.min(axis=1, out=ub2[s:s + step])
+            M.min(axis=1, out=ub2[s : s + step])
             q = near.shape[1]
-            near[s:s + step] = np.argpartition(M, q - 1, axis=1)[:, :q] if q < nY else np.arange(nY)
+            near[s : s + step] = np.argpartition(M, q - 1, axis=1)[:, :q] if q < nY else np.arange(nY)
     if probes:
         return ub2 * (1.0 + _REL) + 1e-300, near
     out *= 1.0 - _REL
@@ -660,8 +678,7 @@ def _offer_mapped(best: _Best, sub: _Best, si: np.ndarray | None, di: np.ndarray
         best.j = int(sub.j if di is None else di[sub.j])
 
 
-def _grid_level(S: np.ndarray, gS: _Grid, D: np.ndarray, gD: _Grid, best: _Best, si, di,
-                force: bool = False):
+def _grid_level(S: np.ndarray, gS: _Grid, D: np.ndarray, gD: _Grid, best: _Best, si, di, force: bool = False):
     """One level of :func:`_directed_grid`: returns the points of S that may still
     beat ``best`` and the points of D that may be their nearest neighbours (index
     arrays), or None, None when nothing is left, or ``(rows, None)`` when the
@@ -708,8 +725,15 @@ def _grid_level(S: np.ndarray, gS: _Grid, D: np.ndarray, gD: _Grid, best: _Best,
     return rows, np.flatnonzero(reach[gD.cell])
 
 
-def _directed_grid(A: np.ndarray, B: np.ndarray, best: _Best, gA: _Grid | None = None,
-                   gB: _Grid | None = None, clouds=None, force: bool = False) -> _Best:
+def _directed_grid(
+    A: np.ndarray,
+    B: np.ndarray,
+    best: _Best,
+    gA: _Grid | None = None,
+    gB: _Grid | None = None,
+    clouds=None,
+    force: bool = False,
+) -> _Best:
     """h(A, B) coarse to fine, in the spirit of a dual-tree branch and bound.
 
     Each level bins both sets into about ``_GRID_CELLS`` cells.  A cell of A whose
@@ -917,8 +941,7 @@ def hausdorff_pair(A, B, *, method: str = "auto") -> tuple[DirectedHausdorff, Di
     prob = _Problem(A, B, method)
     ab = prob.directed(False, _Best())
     ba = prob.directed(True, _Best())
-    return (DirectedHausdorff(float(np.sqrt(ab.d2)), ab.i, ab.j),
-            DirectedHausdorff(float(np.sqrt(ba.d2)), ba.i, ba.j))
+    return (DirectedHausdorff(float(np.sqrt(ab.d2)), ab.i, ab.j), DirectedHausdorff(float(np.sqrt(ba.d2)), ba.i, ba.j))
 
 
 # --------------------------------------------------------------------------- #

@@ -46,6 +46,7 @@ Where the notes are imprecise
   :math:`K` and the union have the same *homotopy type* (nerve theorem), they are
   not homeomorphic (a triangle of :math:`K` can stand for a region of any shape).
 """
+
 from __future__ import annotations
 
 import math
@@ -129,7 +130,7 @@ def _unique_facets(simp: np.ndarray, nv: int):
         faces, inv = np.unique(allf, axis=0, return_inverse=True)
         return faces.astype(np.int32), inv.reshape(w, m).T.astype(np.int32)
     base = np.int64(nv)
-    packed = np.empty((m, w), dtype=np.int64)   # row-major: position t * w + i
+    packed = np.empty((m, w), dtype=np.int64)  # row-major: position t * w + i
     for i, c in enumerate(_drop_cols(w)):
         col = packed[:, i]
         col[...] = simp[:, c[0]]
@@ -263,14 +264,14 @@ def _orthospheres(x: np.ndarray, w: np.ndarray, S: np.ndarray):
     if j == 0:
         return -w0, np.zeros((m, 1), dtype=bool), np.zeros(m, dtype=bool)
     P0 = X[:, S[:, 0]]
-    vec = [X[:, S[:, i]] - P0 for i in range(1, w1)]          # each (k, m)
+    vec = [X[:, S[:, i]] - P0 for i in range(1, w1)]  # each (k, m)
     nrm2 = [dot(v, v) for v in vec]
     wv = [w[S[:, i]] for i in range(1, w1)]
-    beta = [0.5 * (nrm2[i] - wv[i] + w0) for i in range(j)]   # u . a_i = beta_i
-    s = sum(nrm2)                  # |A|_F^2
+    beta = [0.5 * (nrm2[i] - wv[i] + w0) for i in range(j)]  # u . a_i = beta_i
+    s = sum(nrm2)  # |A|_F^2
     nA = np.sqrt(s)
     lam = np.empty((w1, m), dtype=x.dtype)
-    turn = 1.0   # c in the bound: 2 when the row space of A can turn (j < k)
+    turn = 1.0  # c in the bound: 2 when the row space of A can turn (j < k)
     # N: a bound on ||A^+||_F (the condition number is N |A|)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         if j == 1:
@@ -292,20 +293,20 @@ def _orthospheres(x: np.ndarray, w: np.ndarray, S: np.ndarray):
             uu = ux * ux + uy * uy
             lam[1] = (ux * c[1] - uy * c[0]) / det
             lam[2] = (a[0] * uy - a[1] * ux) / det
-            N = nA / np.abs(det)       # ||A^-1||_F = ||adj A||_F / |det|, ||adj A||_F = |A|_F
+            N = nA / np.abs(det)  # ||A^-1||_F = ||adj A||_F / |det|, ||adj A||_F = |A|_F
         elif j == 2 and k == 3:
             a, c = vec
             n = cross(a, c)
             nn = dot(n, n)
             ok = nn > 0
             nn = np.where(ok, nn, 1.0)
-            ad = [q / nn for q in cross(c, n)]   # dual basis of (a, c) in their plane
+            ad = [q / nn for q in cross(c, n)]  # dual basis of (a, c) in their plane
             cd = [q / nn for q in cross(n, a)]
             u = [beta[0] * ad[t] + beta[1] * cd[t] for t in range(3)]
             uu = dot(u, u)
             lam[1] = dot(u, ad)
             lam[2] = dot(u, cd)
-            N = nA / np.sqrt(nn)       # the dual basis: |a*| = |c| / |n|, |c*| = |a| / |n|
+            N = nA / np.sqrt(nn)  # the dual basis: |a*| = |c| / |n|, |c*| = |a| / |n|
             turn = 2.0
         elif j == 3 and k == 3:
             a, b, c = vec
@@ -333,7 +334,7 @@ def _orthospheres(x: np.ndarray, w: np.ndarray, S: np.ndarray):
         ws = sum(wv) + j * w0
         EA = ((math.sqrt(j) + 4.0) * eps) * nA
         EB = (5.0 * eps) * s + (4.0 * eps) * ws
-        g = (turn * N) * EA            # < 1/2: the perturbed system stays regular
+        g = (turn * N) * EA  # < 1/2: the perturbed system stays regular
         amp = N / (1.0 - g)
         un = np.sqrt(uu)
         du = amp * (EB + turn * EA * un)
@@ -379,9 +380,9 @@ def _local_rows(balls: Balls, fr, S: np.ndarray, dtype):
     row."""
     m, w1 = S.shape
     idx = fr.keep[S]
-    c = balls.centers[idx].astype(dtype)             # (m, w1, d)
+    c = balls.centers[idx].astype(dtype)  # (m, w1, d)
     c -= c[:, :1, :].copy()
-    w = balls.weights[idx].astype(dtype)             # the float64 r^2, exactly
+    w = balls.weights[idx].astype(dtype)  # the float64 r^2, exactly
     return c.reshape(m * w1, -1), w.ravel(), np.arange(m * w1).reshape(m, w1)
 
 
@@ -421,11 +422,11 @@ def _exact_rows(C: np.ndarray, W: np.ndarray, rows: np.ndarray, scale: float):
     """
     m, w1 = rows.shape
     j = w1 - 1
-    c = C[rows]                                   # (m, w1, d)
-    wt = W[rows]                                  # (m, w1)
+    c = C[rows]  # (m, w1, d)
+    wt = W[rows]  # (m, w1)
     mc, ec = np.frexp(c)
     mw, ew = np.frexp(wt)
-    Mc = (mc * 2.0**53).astype(np.int64)          # c = Mc * 2**(ec - 53), exactly
+    Mc = (mc * 2.0**53).astype(np.int64)  # c = Mc * 2**(ec - 53), exactly
     Mw = (mw * 2.0**53).astype(np.int64)
     ec = np.where(Mc == 0, np.iinfo(np.int32).max, ec.astype(np.int64) - 53)
     ew = np.where(Mw == 0, np.iinfo(np.int32).max, ew.astype(np.int64) - 53)
@@ -441,7 +442,7 @@ def _exact_rows(C: np.ndarray, W: np.ndarray, rows: np.ndarray, scale: float):
     for s_ in range(j):
         for t_ in range(s_, j):
             G[s_][t_] = G[t_][s_] = (A[s_] * A[t_]).sum(axis=1)
-    b2 = [G[i][i] - Wi[:, i + 1] + Wi[:, 0] for i in range(j)]   # 2 beta, scaled
+    b2 = [G[i][i] - Wi[:, i + 1] + Wi[:, 0] for i in range(j)]  # 2 beta, scaled
     if j == 1:
         det = G[0][0]
         adj = [[1]]
@@ -454,10 +455,12 @@ def _exact_rows(C: np.ndarray, W: np.ndarray, rows: np.ndarray, scale: float):
         c01 = g12 * g20 - g10 * g22
         c02 = g10 * g21 - g11 * g20
         det = g00 * c00 + g01 * c01 + g02 * c02
-        adj = [[c00, g02 * g21 - g01 * g22, g01 * g12 - g02 * g11],
-               [c01, g00 * g22 - g02 * g20, g02 * g10 - g00 * g12],
-               [c02, g01 * g20 - g00 * g21, g00 * g11 - g01 * g10]]
-    Nl = [sum(adj[s_][t_] * b2[t_] for t_ in range(j)) for s_ in range(j)]   # lam = N / (2 det)
+        adj = [
+            [c00, g02 * g21 - g01 * g22, g01 * g12 - g02 * g11],
+            [c01, g00 * g22 - g02 * g20, g02 * g10 - g00 * g12],
+            [c02, g01 * g20 - g00 * g21, g00 * g11 - g01 * g10],
+        ]
+    Nl = [sum(adj[s_][t_] * b2[t_] for t_ in range(j)) for s_ in range(j)]  # lam = N / (2 det)
     den = 2 * det
     # rho * 2**-2E = lam . b2 / 2 - W0 = (N . b2 - 2 den W0) / (2 den)
     num = sum(p * q for p, q in zip(Nl, b2)) - 2 * den * Wi[:, 0]
@@ -468,7 +471,7 @@ def _exact_rows(C: np.ndarray, W: np.ndarray, rows: np.ndarray, scale: float):
         if de != 0:
             nu, de = nu * sq * sq, 2 * de * sp * sp
             rho[t_] = (nu << 2 * e) / de if e >= 0 else nu / (de << -2 * e)
-    lam_num = [den - sum(Nl)] + Nl                # signs of lam_0..lam_j (den >= 0)
+    lam_num = [den - sum(Nl)] + Nl  # signs of lam_0..lam_j (den >= 0)
     att = np.stack([np.array([v < 0 for v in q.tolist()], dtype=bool) for q in lam_num], axis=1)
     return rho, att, flat
 
@@ -515,7 +518,7 @@ def _orthospheres_certified(balls: Balls, fr, S: np.ndarray):
     ld = np.longdouble
     if np.finfo(ld).eps < np.finfo(np.float64).eps:
         for a in range(0, idx.size, _CHUNK):
-            sub = idx[a:a + _CHUNK]
+            sub = idx[a : a + _CHUNK]
             xl, wl, Sl = _local_rows(balls, fr, S[sub], ld)
             r, at, bd = _orthospheres(xl, wl, Sl)
             rho[sub] = (r / (ld(fr.scale) * ld(fr.scale))).astype(np.float64)
@@ -526,7 +529,7 @@ def _orthospheres_certified(balls: Balls, fr, S: np.ndarray):
             return rho, att
     # 3. exact
     for a in range(0, idx.size, _CHUNK):
-        sub = idx[a:a + _CHUNK]
+        sub = idx[a : a + _CHUNK]
         r, at, fl = _exact_rows(balls.centers, balls.weights, fr.keep[S[sub]], fr.scale)
         rho[sub] = r
         att[sub] = at
@@ -726,11 +729,13 @@ class Filtration(_SimplicialMixin):
         if bbox is None:
             w = balls.weights + max(t, 0.0)
             r = np.sqrt(w)[:, None]
-            bbox = (np.array([(balls.centers - r).min(axis=0) - 1.0, (balls.centers + r).max(axis=0) + 1.0])
-                    if len(balls) else np.array([[0.0, 0.0], [1.0, 1.0]]))
+            bbox = (
+                np.array([(balls.centers - r).min(axis=0) - 1.0, (balls.centers + r).max(axis=0) + 1.0])
+                if len(balls)
+                else np.array([[0.0, 0.0], [1.0, 1.0]])
+            )
         box = as_bbox(bbox, 2)
-        diagram = self.derived(f"power.diagram[{box.tobytes().hex()}]",
-                               lambda F: power_diagram(F.balls, bbox=box))
+        diagram = self.derived(f"power.diagram[{box.tobytes().hex()}]", lambda F: power_diagram(F.balls, bbox=box))
         return clipped_cells(balls, tau=t, diagram=diagram, arc_resolution=arc_resolution)
 
     def complex_at(self, tau) -> Complex:
@@ -885,7 +890,7 @@ def _entry_times(balls: Balls):
         return None
     dim = simp.shape[1] - 1
     nv = fr.keep.size
-    x, w = fr.x, fr.w
+    w = fr.w
 
     # 1. all faces, top-down, with boundary matrices (local vertex indices)
     faces = [None] * (dim + 1)

@@ -18,6 +18,7 @@ power-cell decomposition :math:`U \\cap t = \\bigsqcup_i B_i \\cap \\Pi_i \\cap 
 piece a ball clipped by a convex polytope, integrated in closed form (lens, cap and
 triple-ball volumes).
 """
+
 from __future__ import annotations
 
 from functools import lru_cache
@@ -91,11 +92,13 @@ def _cap_segment(d, l0, l1, q0, q1, r):
         a2 = np.maximum(rr * rr - dd * dd, 0.0)
 
         def J(lv, qv):
-            return rr ** 3 * np.arctan2(rr * lv, dd * qv) - dd * (rr * rr + a2 / 2) * np.arctan2(lv, qv) - 0.5 * dd * lv * qv
+            return (
+                rr**3 * np.arctan2(rr * lv, dd * qv) - dd * (rr * rr + a2 / 2) * np.arctan2(lv, qv) - 0.5 * dd * lv * qv
+            )
 
         la, lb = l0[m], l1[m]
         phi = np.arctan2(lb, dd) - np.arctan2(la, dd)
-        out[m] = (2.0 / 3.0) * (rr ** 3 * phi - (J(lb, q1[m]) - J(la, q0[m])))
+        out[m] = (2.0 / 3.0) * (rr**3 * phi - (J(lb, q1[m]) - J(la, q0[m])))
     return out
 
 
@@ -130,8 +133,8 @@ def _triple_volume(c, r):
         j, k = (i + 1) % 3, (i + 2) % 3
         pi, pj, pk = p[:, i], p[:, j], p[:, k]
         ri = r[:, i]
-        wi = w - pi                                    # w relative to centre i
-        h2 = np.maximum(r2[:, i] - (wi ** 2).sum(-1), 0.0)
+        wi = w - pi  # w relative to centre i
+        h2 = np.maximum(r2[:, i] - (wi**2).sum(-1), 0.0)
 
         def perp_toward(a, b):
             # unit vector perpendicular to a, with positive component along b
@@ -144,7 +147,7 @@ def _triple_volume(c, r):
         uu = perp_toward(pj - pi, pk - pi)
         vv = perp_toward(pk - pi, pj - pi)
 
-        def exit_pt(dirn):
+        def exit_pt(dirn, wi=wi, h2=h2):
             bdot = (wi * dirn).sum(-1)
             s = -bdot + np.sqrt(bdot * bdot + h2)
             return wi + s[:, None] * dirn
@@ -159,14 +162,14 @@ def _triple_volume(c, r):
         ccw = np.mod(tm - tu, two) <= np.mod(tv - tu, two)
         dth = np.where(ccw, np.mod(tv - tu, two), -np.mod(tu - tv, two))
 
-        def seg(a, b, qa, qb):
+        def seg(a, b, qa, qb, ri=ri):
             # signed ∫ F dθ along the straight segment a -> b (centre at origin)
             ab = b - a
             L = np.linalg.norm(ab, axis=1)
             ok = L > 1e-300
             uhat = ab / np.where(ok, L, 1.0)[:, None]
             la = (a * uhat).sum(-1)
-            q = a - la[:, None] * uhat                # foot of the centre on the line
+            q = a - la[:, None] * uhat  # foot of the centre on the line
             d = np.linalg.norm(q, axis=1)
             lb = (b * uhat).sum(-1)
             side = np.sign(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0])
@@ -175,7 +178,7 @@ def _triple_volume(c, r):
 
         qw = np.sqrt(h2)
         zero = np.zeros_like(qw)
-        part = seg(wi, eu, qw, zero) + (2.0 / 3.0) * ri ** 3 * dth + seg(ev, wi, zero, qw)
+        part = seg(wi, eu, qw, zero) + (2.0 / 3.0) * ri**3 * dth + seg(ev, wi, zero, qw)
         total += np.sign(dth) * part
     return total
 
@@ -206,7 +209,7 @@ def void_measure(F, balls, tau: float, cell_ids: np.ndarray) -> np.ndarray:
     r2 = np.where(vin, np.maximum(r2, 0.0), 0.0)
     rr = np.sqrt(r2)
     fval = np.asarray(F.values(k - 1))
-    fin = fval[np.asarray(F.boundary(k), dtype=np.int64)[cell_ids]] <= tau     # facet j opposite vertex j
+    fin = fval[np.asarray(F.boundary(k), dtype=np.int64)[cell_ids]] <= tau  # facet j opposite vertex j
     if k == 2:
         area = 0.5 * np.abs(_cross2(X[:, 1] - X[:, 0], X[:, 2] - X[:, 0]))
         out = area.copy()
@@ -233,7 +236,7 @@ def void_measure(F, balls, tau: float, cell_ids: np.ndarray) -> np.ndarray:
         out -= omega * rr[:, j] ** 3 / 3.0
     keys, order = _edge_lookup(F)
     eval_ = np.asarray(F.values(1))
-    for (p, q) in ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)):
+    for p, q in ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)):
         s, t = [i for i in range(4) if i not in (p, q)]
         key = simp[:, p] * len(balls) + simp[:, q]
         idx = order[np.searchsorted(keys, key)]
@@ -290,6 +293,7 @@ def _combos(d):
     @lru_cache(maxsize=64)
     def f(p):
         return np.array(list(combinations(range(p), d)), dtype=np.int64).reshape(-1, d)
+
     return f
 
 
@@ -326,11 +330,12 @@ def _segment_integral(kind, h, d, la, lb, r):
         if kind == 2:
             return 0.5 * r * r * (np.arctan2(b, d) - np.arctan2(a, d))
         ah = np.abs(h)
-        C0 = np.where(rho2 > 0, 0.5 * rho2 + r * r, r ** 3 / np.maximum(ah, 1e-300))
+        C0 = np.where(rho2 > 0, 0.5 * rho2 + r * r, r**3 / np.maximum(ah, 1e-300))
         k = np.sqrt(h * h + d * d)
         sa, sb = a / np.hypot(a, d), b / np.hypot(b, d)
-        return C0 * (np.arctan2(b, d) - np.arctan2(a, d)) - (r ** 3 / np.maximum(ah, 1e-300)) * (
-            np.arcsin(np.clip(ah * sb / k, -1, 1)) - np.arcsin(np.clip(ah * sa / k, -1, 1)))
+        return C0 * (np.arctan2(b, d) - np.arctan2(a, d)) - (r**3 / np.maximum(ah, 1e-300)) * (
+            np.arcsin(np.clip(ah * sb / k, -1, 1)) - np.arcsin(np.clip(ah * sa / k, -1, 1))
+        )
 
     # outer pieces: without an inner disk, the whole [la, lb]; else the parts beyond ±ls
     a1, b1 = la, np.where(has_in, np.minimum(lb, -ls), lb)
@@ -347,9 +352,9 @@ def _ball_clip_measure(A, b, r, eps, keep=0):
     if A.shape[1] == 3:
         return _ball_clip_measure3(A, b, r, eps, keep)
     nA = np.linalg.norm(A, axis=1)
-    dist = b / nA                                   # signed distance of the centre to each line
+    dist = b / nA  # signed distance of the centre to each line
     if np.any(dist <= -r):
-        return 0.0                                  # the disk misses a halfplane
+        return 0.0  # the disk misses a halfplane
     if np.all(dist >= r):
         return np.pi * r * r
     V = _poly_vertices(A, b, eps)
@@ -402,8 +407,10 @@ def _vertices3(A, b, eps):
     _, first = np.unique(key, axis=0, return_index=True)
     return X[np.sort(first)]
 
+
 _BOX = np.vstack([np.eye(3), -np.eye(3)])
 _REF = (np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]))
+
 
 def _ball_clip_measure3(A, b, r, eps, keep=0):
     """Volume of the ball of radius r at the origin ∩ the bounded polytope {x : A x <= b}.
@@ -420,7 +427,7 @@ def _ball_clip_measure3(A, b, r, eps, keep=0):
         return 0.0
     cut = dist < r
     if not np.any(cut):
-        return 4.0 / 3.0 * np.pi * r ** 3
+        return 4.0 / 3.0 * np.pi * r**3
     if keep:
         cut[:keep] = True
         A2, b2 = A[cut] / nA[cut, None], dist[cut]
@@ -515,7 +522,6 @@ def free_measure(balls, tau, cells) -> np.ndarray:
     """
     from scipy.spatial import cKDTree
 
-
     check_balls(balls)
     tau = as_tau(tau)
     d = balls.dim
@@ -527,7 +533,7 @@ def free_measure(balls, tau, cells) -> np.ndarray:
     w = balls.weights + tau
     alive = np.flatnonzero(w >= 0)
     out = np.zeros(cells.shape[0])
-    if cells.shape[0] == 0 or tau == np.inf:   # at τ = inf the balls cover everything
+    if cells.shape[0] == 0 or tau == np.inf:  # at τ = inf the balls cover everything
         return out
     C = balls.centers
     tree = cKDTree(C[alive]) if alive.size else None
@@ -587,7 +593,7 @@ def free_points(balls, tau, cells, n_points, rng) -> np.ndarray:
     -------
     ndarray (k, d)
     """
-    X = balls.centers[cells]                         # (m, d+1, d)
+    X = balls.centers[cells]  # (m, d+1, d)
     E = X[:, 1:] - X[:, :1]
     vol = np.abs(np.linalg.det(E))
     if not len(cells) or vol.sum() <= 0:

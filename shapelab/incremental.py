@@ -29,6 +29,7 @@ in the orthocircle of ``f``).
 Pure Python over Python lists: about ``10^4`` balls a second in 3D.  It runs only
 where the certificate of Qhull's answer fails.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -44,8 +45,8 @@ class _Triangulation:
     def __init__(self, P: WeightedPoints):
         self.P = P
         self.k = P.k
-        self.V: list = []      # vertex lists, _INF for the vertex at infinity
-        self.N: list = []      # neighbour lists (opposite each vertex)
+        self.V: list = []  # vertex lists, _INF for the vertex at infinity
+        self.N: list = []  # neighbour lists (opposite each vertex)
         self.alive: list = []
         self.last = 0
 
@@ -124,7 +125,7 @@ class _Triangulation:
         newc = None
         for c, i, nb in boundary:
             verts = list(self.V[c])
-            facet = verts[:i] + verts[i + 1:]
+            facet = verts[:i] + verts[i + 1 :]
             verts[i] = p
             nc = self.new_cell(verts)
             newc = nc
@@ -138,7 +139,7 @@ class _Triangulation:
             for j in range(self.k + 1):
                 if j == i:
                     continue
-                key = frozenset(verts[:j] + verts[j + 1:])
+                key = frozenset(verts[:j] + verts[j + 1 :])
                 other = ridges.pop(key, None)
                 if other is None:
                     ridges[key] = (nc, j)
@@ -220,7 +221,7 @@ def incremental_triangulation(P: WeightedPoints, order=None):
         for j in range(k + 1):
             if V[j] == _INF:
                 continue
-            key = frozenset(V[:j] + V[j + 1:])
+            key = frozenset(V[:j] + V[j + 1 :])
             if key in ridges:
                 oc, oj = ridges.pop(key)
                 T.N[ci][j] = oc

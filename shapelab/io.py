@@ -16,6 +16,7 @@ Radii
 *J. Phys. Chem.* **68**, 441–451 (1964), Table I (values in Å).  Elements Bondi does
 not list (e.g. Ca, Fe, Mn, Co) raise unless a ``default_radius`` is given.
 """
+
 from __future__ import annotations
 
 import gzip
@@ -30,27 +31,60 @@ import numpy as np
 from ._toolkit.validate import as_finite_scalar, as_positive_int, check_balls, readonly
 from .balls import Balls
 
-__all__ = ["VDW_RADII", "WATER_RESIDUES", "STANDARD_RESIDUES", "PDBStructure", "read_pdb",
-           "write_pdb", "vdw_radius"]
+__all__ = ["VDW_RADII", "WATER_RESIDUES", "STANDARD_RESIDUES", "PDBStructure", "read_pdb", "write_pdb", "vdw_radius"]
 
 #: van der Waals radii in Å, Bondi (1964), J. Phys. Chem. 68:441, Table I.
 VDW_RADII: dict[str, float] = {
-    "H": 1.20, "He": 1.40,
-    "Li": 1.82, "C": 1.70, "N": 1.55, "O": 1.52, "F": 1.47, "Ne": 1.54,
-    "Na": 2.27, "Mg": 1.73, "Si": 2.10, "P": 1.80, "S": 1.80, "Cl": 1.75, "Ar": 1.88,
-    "K": 2.75, "Ni": 1.63, "Cu": 1.40, "Zn": 1.39, "Ga": 1.87, "As": 1.85, "Se": 1.90,
-    "Br": 1.85, "Kr": 2.02,
-    "Pd": 1.63, "Ag": 1.72, "Cd": 1.58, "In": 1.93, "Sn": 2.17, "Te": 2.06, "I": 1.98,
+    "H": 1.20,
+    "He": 1.40,
+    "Li": 1.82,
+    "C": 1.70,
+    "N": 1.55,
+    "O": 1.52,
+    "F": 1.47,
+    "Ne": 1.54,
+    "Na": 2.27,
+    "Mg": 1.73,
+    "Si": 2.10,
+    "P": 1.80,
+    "S": 1.80,
+    "Cl": 1.75,
+    "Ar": 1.88,
+    "K": 2.75,
+    "Ni": 1.63,
+    "Cu": 1.40,
+    "Zn": 1.39,
+    "Ga": 1.87,
+    "As": 1.85,
+    "Se": 1.90,
+    "Br": 1.85,
+    "Kr": 2.02,
+    "Pd": 1.63,
+    "Ag": 1.72,
+    "Cd": 1.58,
+    "In": 1.93,
+    "Sn": 2.17,
+    "Te": 2.06,
+    "I": 1.98,
     "Xe": 2.16,
-    "Pt": 1.72, "Au": 1.66, "Hg": 1.55, "Tl": 1.96, "Pb": 2.02, "U": 1.86,
+    "Pt": 1.72,
+    "Au": 1.66,
+    "Hg": 1.55,
+    "Tl": 1.96,
+    "Pb": 2.02,
+    "U": 1.86,
 }
 _UPPER = {k.upper(): k for k in VDW_RADII}
 #: Every element symbol (to read atom names; radii exist only for those in VDW_RADII).
-_SYMBOLS = {e.upper(): e for e in (
-    "H He Li Be B C N O F Ne Na Mg Al Si P S Cl Ar K Ca Sc Ti V Cr Mn Fe Co Ni Cu Zn Ga Ge "
-    "As Se Br Kr Rb Sr Y Zr Nb Mo Tc Ru Rh Pd Ag Cd In Sn Sb Te I Xe Cs Ba La Ce Pr Nd Pm Sm "
-    "Eu Gd Tb Dy Ho Er Tm Yb Lu Hf Ta W Re Os Ir Pt Au Hg Tl Pb Bi Po At Rn Fr Ra Ac Th Pa U "
-    "Np Pu Am Cm Bk Cf Es Fm Md No Lr").split()}
+_SYMBOLS = {
+    e.upper(): e
+    for e in (
+        "H He Li Be B C N O F Ne Na Mg Al Si P S Cl Ar K Ca Sc Ti V Cr Mn Fe Co Ni Cu Zn Ga Ge "
+        "As Se Br Kr Rb Sr Y Zr Nb Mo Tc Ru Rh Pd Ag Cd In Sn Sb Te I Xe Cs Ba La Ce Pr Nd Pm Sm "
+        "Eu Gd Tb Dy Ho Er Tm Yb Lu Hf Ta W Re Os Ir Pt Au Hg Tl Pb Bi Po At Rn Fr Ra Ac Th Pa U "
+        "Np Pu Am Cm Bk Cf Es Fm Md No Lr"
+    ).split()
+}
 
 
 def vdw_radius(element: str) -> float:
@@ -64,17 +98,38 @@ def vdw_radius(element: str) -> float:
 
 
 #: Residue names (columns 18–21) that are water in PDB, AMBER, CHARMM and GROMACS files.
-WATER_RESIDUES = frozenset({
-    "HOH", "WAT", "H2O", "DOD", "D2O", "TIP", "TIP3", "TIP4", "TIP5", "T3P", "T4P", "T5P",
-    "SOL", "SPC", "SPCE",
-})
+WATER_RESIDUES = frozenset(
+    {
+        "HOH",
+        "WAT",
+        "H2O",
+        "DOD",
+        "D2O",
+        "TIP",
+        "TIP3",
+        "TIP4",
+        "TIP5",
+        "T3P",
+        "T4P",
+        "T5P",
+        "SOL",
+        "SPC",
+        "SPCE",
+    }
+)
 #: Polymer residue names (amino acids with the protonation variants of AMBER and CHARMM,
 #: caps, nucleotides): their atoms are only H, C, N, O, S, P or Se, which decides the
 #: element of a left-justified atom name such as CHARMM's ``"CA  "`` (carbon, not calcium).
-STANDARD_RESIDUES = frozenset((
-    "ALA ARG ASN ASP CYS GLN GLU GLY HIS ILE LEU LYS MET PHE PRO SER THR TRP TYR VAL "
-    "HSD HSE HSP HID HIE HIP HSC CYX CYM ASH GLH LYN ARN MSE SEC PYL ACE NME NH2 NMA "
-    "DA DC DG DT DU DI A C G U I RA RC RG RU").split()) | WATER_RESIDUES
+STANDARD_RESIDUES = (
+    frozenset(
+        (
+            "ALA ARG ASN ASP CYS GLN GLU GLY HIS ILE LEU LYS MET PHE PRO SER THR TRP TYR VAL "
+            "HSD HSE HSP HID HIE HIP HSC CYX CYM ASH GLH LYN ARN MSE SEC PYL ACE NME NH2 NMA "
+            "DA DC DG DT DU DI A C G U I RA RC RG RU"
+        ).split()
+    )
+    | WATER_RESIDUES
+)
 # two-letter guesses kept even in a polymer residue (a halogen or Se is a real atom there)
 _POLYMER_TWO_LETTER = {"Se", "Cl", "Br"}
 
@@ -127,9 +182,12 @@ class PDBStructure:
 
     def __post_init__(self):
         n = len(self.balls)
-        for name, default, dtype in (("insertion_codes", "", str), ("altlocs", "", str),
-                                     ("occupancies", np.nan, np.float64),
-                                     ("b_factors", np.nan, np.float64)):
+        for name, default, dtype in (
+            ("insertion_codes", "", str),
+            ("altlocs", "", str),
+            ("occupancies", np.nan, np.float64),
+            ("b_factors", np.nan, np.float64),
+        ):
             a = _fill(getattr(self, name), n, default, dtype)
             if a.shape != (n,):
                 raise ValueError(f"{name} must have shape ({n},), got {a.shape}")
@@ -139,8 +197,7 @@ class PDBStructure:
         return len(self.balls)
 
     def __repr__(self) -> str:
-        n_res = len(set(zip(self.chains.tolist(), self.residue_numbers.tolist(),
-                            self.insertion_codes.tolist())))
+        n_res = len(set(zip(self.chains.tolist(), self.residue_numbers.tolist(), self.insertion_codes.tolist())))
         return f"PDBStructure(n_atoms={len(self)}, n_residues={n_res}, probe={self.probe})"
 
     def label(self, i: int) -> str:
@@ -151,8 +208,7 @@ class PDBStructure:
     def residue_label(self, i: int) -> str:
         """The residue of atom ``i``, e.g. ``'A:LEU99'`` or ``'B:GLY52A'`` (insertion code)."""
         i = int(i)
-        return (f"{self.chains[i]}:{self.residue_names[i]}{self.residue_numbers[i]}"
-                f"{self.insertion_codes[i]}")
+        return f"{self.chains[i]}:{self.residue_names[i]}{self.residue_numbers[i]}{self.insertion_codes[i]}"
 
     def residues(self, indices=None) -> list[str]:
         """Distinct residue labels of the atoms ``indices`` (all atoms by default), in
@@ -188,13 +244,20 @@ class PDBStructure:
         else:
             idx = m.astype(np.int64).ravel()
         return PDBStructure(
-            balls=self.balls[idx], atom_names=readonly(self.atom_names[idx]),
+            balls=self.balls[idx],
+            atom_names=readonly(self.atom_names[idx]),
             residue_names=readonly(self.residue_names[idx]),
             residue_numbers=readonly(self.residue_numbers[idx]),
-            chains=readonly(self.chains[idx]), elements=readonly(self.elements[idx]),
-            hetero=readonly(self.hetero[idx]), probe=self.probe,
-            insertion_codes=self.insertion_codes[idx], altlocs=self.altlocs[idx],
-            occupancies=self.occupancies[idx], b_factors=self.b_factors[idx], model=self.model)
+            chains=readonly(self.chains[idx]),
+            elements=readonly(self.elements[idx]),
+            hetero=readonly(self.hetero[idx]),
+            probe=self.probe,
+            insertion_codes=self.insertion_codes[idx],
+            altlocs=self.altlocs[idx],
+            occupancies=self.occupancies[idx],
+            b_factors=self.b_factors[idx],
+            model=self.model,
+        )
 
 
 def _element_from_name(name: str, residue: str | None = None) -> str:
@@ -226,9 +289,7 @@ def _field_float(line: str, a: int, b: int, what: str, lineno: int) -> float:
     try:
         v = float(text)
     except ValueError:
-        raise ValueError(
-            f"line {lineno}: could not read {what} from columns {a + 1}-{b}: {text.strip()!r}"
-        ) from None
+        raise ValueError(f"line {lineno}: could not read {what} from columns {a + 1}-{b}: {text.strip()!r}") from None
     if not math.isfinite(v):
         raise ValueError(f"line {lineno}: {what} must be finite, got {text.strip()!r}")
     return v
@@ -246,19 +307,18 @@ def _radius_table(radii):
     if radii is None:
         return {}, {}
     if not hasattr(radii, "items"):
-        raise TypeError(f"radii must be a mapping (element or (residue, atom) -> Å), "
-                        f"got {type(radii).__name__}")
+        raise TypeError(f"radii must be a mapping (element or (residue, atom) -> Å), got {type(radii).__name__}")
     by_element, by_atom = {}, {}
     for key, value in radii.items():
         r = as_finite_scalar(value, f"radii[{key!r}]", positive=True)
         if isinstance(key, str) and key.strip():
             by_element[key.strip().upper()] = r
-        elif (isinstance(key, tuple) and len(key) == 2
-              and all(isinstance(k, str) and k.strip() for k in key)):
+        elif isinstance(key, tuple) and len(key) == 2 and all(isinstance(k, str) and k.strip() for k in key):
             by_atom[(key[0].strip().upper(), key[1].strip().upper())] = r
         else:
-            raise TypeError(f"radii keys must be element symbols or (residue name, atom name) "
-                            f"pairs of str, got {key!r}")
+            raise TypeError(
+                f"radii keys must be element symbols or (residue name, atom name) pairs of str, got {key!r}"
+            )
     return by_element, by_atom
 
 
@@ -270,8 +330,7 @@ def _names_arg(value, name: str, width: int):
     try:
         items = list(items)
     except TypeError:
-        raise TypeError(f"{name} must be a str or a collection of str, "
-                        f"got {type(value).__name__}") from None
+        raise TypeError(f"{name} must be a str or a collection of str, got {type(value).__name__}") from None
     out = set()
     for v in items:
         if not isinstance(v, str) or len(v.strip()) > width:
@@ -292,8 +351,18 @@ def _read_text(path) -> str:
     return raw.decode("latin-1")  # never fails; non-ASCII bytes then fail as bad fields
 
 
-def read_pdb(path, *, probe=0.0, default_radius=None, model=None, chain=None, hetatm=True,
-             water=False, hydrogens=False, radii=None) -> PDBStructure:
+def read_pdb(
+    path,
+    *,
+    probe=0.0,
+    default_radius=None,
+    model=None,
+    chain=None,
+    hetatm=True,
+    water=False,
+    hydrogens=False,
+    radii=None,
+) -> PDBStructure:
     """Read the atoms of a PDB file as balls (Notes §23.1: a molecule is a union of balls).
 
     Parameters
@@ -390,8 +459,8 @@ def read_pdb(path, *, probe=0.0, default_radius=None, model=None, chain=None, he
     text = _read_text(path)
 
     recs = []  # one tuple per ATOM/HETATM record of the model read
-    target = model          # the MODEL serial wanted (None: the first one met)
-    current = None          # serial of the open MODEL block (None: outside any)
+    target = model  # the MODEL serial wanted (None: the first one met)
+    current = None  # serial of the open MODEL block (None: outside any)
     models_seen = []
     for lineno, line in enumerate(text.splitlines(), start=1):
         rec = line[:6].rstrip()
@@ -399,15 +468,15 @@ def read_pdb(path, *, probe=0.0, default_radius=None, model=None, chain=None, he
             break
         if rec == "MODEL":
             if current is not None:
-                raise ValueError(f"line {lineno}: MODEL record inside MODEL {current} "
-                                 f"(missing ENDMDL)")
+                raise ValueError(f"line {lineno}: MODEL record inside MODEL {current} (missing ENDMDL)")
             field = line[6:].strip()
             if field:
                 try:
                     current = int(field.split()[0])
                 except ValueError:
-                    raise ValueError(f"line {lineno}: could not read the model serial "
-                                     f"from the MODEL record: {field!r}") from None
+                    raise ValueError(
+                        f"line {lineno}: could not read the model serial from the MODEL record: {field!r}"
+                    ) from None
             else:
                 current = len(models_seen) + 1
             models_seen.append(current)
@@ -439,8 +508,7 @@ def read_pdb(path, *, probe=0.0, default_radius=None, model=None, chain=None, he
             num = int(num_text)
         except ValueError:
             raise ValueError(
-                f"line {lineno}: could not read the residue number from columns 23-26: "
-                f"{num_text.strip()!r}"
+                f"line {lineno}: could not read the residue number from columns 23-26: {num_text.strip()!r}"
             ) from None
         name = line[12:16]
         resname = line[17:21].strip()
@@ -453,16 +521,30 @@ def read_pdb(path, *, probe=0.0, default_radius=None, model=None, chain=None, he
             e = _element_from_name(name, resname.upper())
             if not e:
                 raise ValueError(
-                    f"line {lineno}: no element in columns 77-78 and none can be read "
-                    f"from the atom name {name!r}"
+                    f"line {lineno}: no element in columns 77-78 and none can be read from the atom name {name!r}"
                 )
         icode = line[26].strip() if len(line) > 26 else ""
-        recs.append((lineno, rec == "HETATM", line[16].strip(), name.strip(), resname,
-                     line[21].strip(), num, icode, x, y, z, occ, bfac, e))
+        recs.append(
+            (
+                lineno,
+                rec == "HETATM",
+                line[16].strip(),
+                name.strip(),
+                resname,
+                line[21].strip(),
+                num,
+                icode,
+                x,
+                y,
+                z,
+                occ,
+                bfac,
+                e,
+            )
+        )
 
     if model is not None and model not in models_seen and not (model == 1 and recs):
-        raise ValueError(f"{os.fspath(path)!r} has no MODEL {model} "
-                         f"(models read before END: {models_seen or 'none'})")
+        raise ValueError(f"{os.fspath(path)!r} has no MODEL {model} (models read before END: {models_seen or 'none'})")
     if not recs:
         raise ValueError(f"{os.fspath(path)!r} holds no ATOM or HETATM records (before END/ENDMDL)")
 
@@ -495,7 +577,8 @@ def read_pdb(path, *, probe=0.0, default_radius=None, model=None, chain=None, he
         raise ValueError(
             f"{os.fspath(path)!r}: none of its {len(recs)} atoms is left by the selection "
             f"(chain={chain!r}, hetatm={hetatm!r}, water={water}, hydrogens={hydrogens}; "
-            f"chains present: {sorted({r[5] for r in recs})})")
+            f"chains present: {sorted({r[5] for r in recs})})"
+        )
 
     rad = np.empty(len(kept))
     for i, r in enumerate(kept):
@@ -550,8 +633,18 @@ def _str_column(values, n: int, name: str, width: int, default):
     return out
 
 
-def write_pdb(path, balls: Balls, elements, *, atom_names=None, residue_names=None,
-              residue_numbers=None, chains=None, hetero=None, title=None) -> Path:
+def write_pdb(
+    path,
+    balls: Balls,
+    elements,
+    *,
+    atom_names=None,
+    residue_names=None,
+    residue_numbers=None,
+    chains=None,
+    hetero=None,
+    title=None,
+) -> Path:
     """Write 3D balls as ATOM/HETATM records of a PDB file.
 
     The PDB format stores no radii: :func:`read_pdb` recovers them from the elements,

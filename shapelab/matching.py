@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._toolkit.validate import as_finite_scalar, as_point_pair, as_points, as_positive_int
-from .distance import directed_hausdorff, hausdorff
+from .distance import hausdorff
 
 __all__ = ["reference_point", "TranslationMatch", "hausdorff_under_translation"]
 
@@ -142,19 +142,20 @@ def _translated_values(A: np.ndarray, B: np.ndarray, T: np.ndarray) -> np.ndarra
         return out
     step = max(1, (1 << 21) // (n * m))
     for s in range(0, T.shape[0], step):
-        Tc = T[s:s + step]
+        Tc = T[s : s + step]
         D = np.zeros((Tc.shape[0], n, m))
         for k in range(d):
             diff = A[None, :, None, k] - (B[None, None, :, k] + Tc[:, None, None, k])
             D += diff * diff
         hab = D.min(axis=2).max(axis=1)
         hba = D.min(axis=1).max(axis=1)
-        out[s:s + step] = np.sqrt(np.maximum(hab, hba))
+        out[s : s + step] = np.sqrt(np.maximum(hab, hba))
     return out
 
 
-def hausdorff_under_translation(A, B, *, tol: float = 1e-3, max_evaluations: int = 20000,
-                                polish: bool = True) -> TranslationMatch:
+def hausdorff_under_translation(
+    A, B, *, tol: float = 1e-3, max_evaluations: int = 20000, polish: bool = True
+) -> TranslationMatch:
     """Match B to A by a translation: reference points against the optimum (§23.2).
 
     The notes propose aligning centroids ("reference points") as a quick match
@@ -246,8 +247,12 @@ def hausdorff_under_translation(A, B, *, tol: float = 1e-3, max_evaluations: int
 
         step = max(w, 1e-9 * (1.0 + float(np.abs(best_t).max())))
         simplex = np.vstack([best_t, best_t + step * np.eye(d)])
-        res = minimize(fun, best_t, method="Nelder-Mead",
-                       options={"initial_simplex": simplex, "xatol": 1e-12, "fatol": 1e-14, "maxfev": 400 * d})
+        res = minimize(
+            fun,
+            best_t,
+            method="Nelder-Mead",
+            options={"initial_simplex": simplex, "xatol": 1e-12, "fatol": 1e-14, "maxfev": 400 * d},
+        )
         n_eval += int(res.nfev)
         if res.fun < best_f:
             best_t = np.asarray(res.x, dtype=float)
@@ -261,11 +266,18 @@ def hausdorff_under_translation(A, B, *, tol: float = 1e-3, max_evaluations: int
         return 1.0 if x == 0 else float("inf")
 
     return TranslationMatch(
-        centroid_translation=t_c, centroid_distance=float(f_c),
-        bbox_translation=t_b, bbox_distance=float(f_b),
-        optimal_translation=np.asarray(best_t, dtype=float), optimal_distance=best_f,
-        lower_bound=float(lower), ratio=_ratio(f_c), bbox_ratio=_ratio(f_b),
-        bound=1.0 + sqrt_d, n_evaluations=n_eval, converged=converged,
+        centroid_translation=t_c,
+        centroid_distance=float(f_c),
+        bbox_translation=t_b,
+        bbox_distance=float(f_b),
+        optimal_translation=np.asarray(best_t, dtype=float),
+        optimal_distance=best_f,
+        lower_bound=float(lower),
+        ratio=_ratio(f_c),
+        bbox_ratio=_ratio(f_b),
+        bound=1.0 + sqrt_d,
+        n_evaluations=n_eval,
+        converged=converged,
     )
 
 

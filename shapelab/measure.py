@@ -97,6 +97,7 @@ limits are taken continuously), and simplices entering at the same time cancel.
 Where the regular triangulation is not unique (cocircular centres) any of the
 triangulations gives the same measure.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -198,6 +199,7 @@ class UnionMeasure:
 # ====================================================== small vector helpers
 # Vectors are stored component-first, shape (d, m): one row per coordinate, one
 # column per simplex, so that every operation runs on long contiguous rows.
+
 
 def _norm(a):
     return np.sqrt(dot(a, a))
@@ -336,6 +338,7 @@ def _e_dir(Z, geo, a, b, c):
 # ======================================================= pieces per simplex
 # Each returns (P, S): arrays (k+1, m) with the volume of B_l ∩ W_l^σ and the
 # boundary measure of ∂B_l ∩ W_l^σ, for local vertex l of each simplex.
+
 
 def _pieces_vertex(W, R, d):
     if d == 2:
@@ -580,7 +583,11 @@ def measure_from_simplices(centers, weights, simplices, *, tau: float = 0.0) -> 
     ball_boundary = np.zeros(n)
     terms, counts = [], []
     for k in range(d + 1):
-        simp = np.asarray(simplices[k], dtype=np.int64).reshape(-1, k + 1) if k < len(simplices) else np.zeros((0, k + 1), np.int64)
+        simp = (
+            np.asarray(simplices[k], dtype=np.int64).reshape(-1, k + 1)
+            if k < len(simplices)
+            else np.zeros((0, k + 1), np.int64)
+        )
         counts.append(int(simp.shape[0]))
         if simp.shape[0] == 0:
             terms.append(0.0)
@@ -591,14 +598,14 @@ def measure_from_simplices(centers, weights, simplices, *, tau: float = 0.0) -> 
         # in blocks: the ~100 temporaries of a block stay in cache and are reused
         # from the heap instead of being mapped (and page-faulted) afresh
         for a in range(0, st.shape[1], _BLOCK):
-            sb = st[:, a:a + _BLOCK]
+            sb = st[:, a : a + _BLOCK]
             # relative coordinates, component-first (k+1, d, m): exact for huge offsets
             Z = np.empty((k + 1, d, sb.shape[1]))
             for i in range(d):
                 z0 = ZT[i].take(sb[0])
                 for v in range(k + 1):
                     np.subtract(ZT[i].take(sb[v]), z0, out=Z[v, i])
-            P[:, a:a + _BLOCK], S[:, a:a + _BLOCK] = _pieces(Z, Wpos[sb], Rall[sb], d, k)
+            P[:, a : a + _BLOCK], S[:, a : a + _BLOCK] = _pieces(Z, Wpos[sb], Rall[sb], d, k)
         sign = -1.0 if k % 2 else 1.0
         ball_measure += sign * np.bincount(st.ravel(), weights=P.ravel(), minlength=n)
         ball_boundary += sign * np.bincount(st.ravel(), weights=S.ravel(), minlength=n)

@@ -14,6 +14,7 @@ tests and the lessons can check the library's exact answers against them:
 
 They are slow (exponential, or sampling) and meant for small inputs.
 """
+
 from __future__ import annotations
 
 from itertools import combinations
@@ -84,8 +85,7 @@ def intersection_area(centers, radii) -> float:
         cx, cy = C[l]
         for p1, p2 in intervals:
             area += 0.5 * (
-                r[l] ** 2 * (p2 - p1)
-                + r[l] * (cx * (np.sin(p2) - np.sin(p1)) - cy * (np.cos(p2) - np.cos(p1)))
+                r[l] ** 2 * (p2 - p1) + r[l] * (cx * (np.sin(p2) - np.sin(p1)) - cy * (np.cos(p2) - np.cos(p1)))
             )
     return float(max(area, 0.0))
 
@@ -123,7 +123,9 @@ def naive_union_area(balls: Balls, *, max_balls: int = 16, max_order=None):
     max_order = None if max_order is None else as_positive_int(max_order, "max_order")
     n = len(balls)
     if n > max_balls:
-        raise ValueError(f"balls has {n} disks; the naive formula has 2**n - 1 terms, allowed up to max_balls={max_balls}")
+        raise ValueError(
+            f"balls has {n} disks; the naive formula has 2**n - 1 terms, allowed up to max_balls={max_balls}"
+        )
     C, r = balls.centers, balls.radii
     total, nonzero = 0.0, 0
     level = [((i,), float(np.pi * r[i] ** 2)) for i in range(n)]

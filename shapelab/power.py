@@ -58,6 +58,7 @@ Implementation notes
   kept (this is also what GUDHI does, and what Simulation of Simplicity decides).
   The others are reported as hidden.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -79,7 +80,11 @@ from .incremental import incremental_triangulation
 from .predicates import WeightedPoints, det
 
 __all__ = [
-    "regular_triangulation", "power_diagram", "PowerDiagram", "triangulation_report", "TriangulationReport",
+    "regular_triangulation",
+    "power_diagram",
+    "PowerDiagram",
+    "triangulation_report",
+    "TriangulationReport",
     "clipped_cells",
 ]
 
@@ -100,12 +105,12 @@ class _Frame:
     the frame times ``scale**2`` are power distances in the input.
     """
 
-    keep: np.ndarray      # (n_k,) int64 input indices of the non-duplicate balls
-    x: np.ndarray         # (n_k, k) conditioned coordinates
-    w: np.ndarray         # (n_k,) conditioned weights
+    keep: np.ndarray  # (n_k,) int64 input indices of the non-duplicate balls
+    x: np.ndarray  # (n_k, k) conditioned coordinates
+    w: np.ndarray  # (n_k,) conditioned weights
     scale: float
-    k: int                # affine dimension
-    axes: tuple = ()      # k < d: the input axes the exact predicates project to
+    k: int  # affine dimension
+    axes: tuple = ()  # k < d: the input axes the exact predicates project to
 
 
 def _dedupe(centers: np.ndarray, radii: np.ndarray) -> np.ndarray:
@@ -190,7 +195,7 @@ def _flat_rows(x: np.ndarray, simp: np.ndarray) -> np.ndarray:
         return np.zeros(simp.shape[0], dtype=bool)
     chunk = 1 << 16
     if simp.shape[0] > chunk:
-        return np.concatenate([_flat_rows(x, simp[a:a + chunk]) for a in range(0, simp.shape[0], chunk)])
+        return np.concatenate([_flat_rows(x, simp[a : a + chunk]) for a in range(0, simp.shape[0], chunk)])
     X = np.ascontiguousarray(x.T)
     p0 = X[:, simp[:, 0]]
     vec = [X[:, simp[:, i]] - p0 for i in range(1, k + 1)]
@@ -199,8 +204,9 @@ def _flat_rows(x: np.ndarray, simp: np.ndarray) -> np.ndarray:
         det = vec[0][0] * vec[1][1] - vec[0][1] * vec[1][0]
     else:
         a, b, c = vec
-        det = (a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2])
-               + a[2] * (b[0] * c[1] - b[1] * c[0]))
+        det = (
+            a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0])
+        )
     return np.abs(det) <= 1e-12 * size
 
 
@@ -494,7 +500,7 @@ def _orthocentre_exact(balls: Balls, row) -> np.ndarray:
         raise ValueError("a flat simplex has no orthocentre")
     out = []
     for a in range(d):
-        Ma = [r[:a] + [rhs[j]] + r[a + 1:] for j, r in enumerate(M)]
+        Ma = [r[:a] + [rhs[j]] + r[a + 1 :] for j, r in enumerate(M)]
         out.append(float(det(Ma) / D))
     return np.array(out)
 
@@ -599,7 +605,7 @@ def power_diagram(balls: Balls, *, bbox=None) -> PowerDiagram:
             order = np.lexsort((simp, owner))
             owner, simp = owner[order], simp[order]
             starts = np.searchsorted(owner, np.arange(n + 1))
-            cells = [simp[starts[i]:starts[i + 1]] for i in range(n)]
+            cells = [simp[starts[i] : starts[i + 1]] for i in range(n)]
         for c in cells:
             c.flags.writeable = False
     for a in (hidden, adjacency, box, unbounded):
@@ -663,8 +669,12 @@ def _clip_convex_by_disk(poly, cx, cy, r, step):
         arc_to(leave, first_entry)
     if not out:
         # no vertex inside and no crossing: the disk is inside the polygon or misses it
-        inside = all((poly[(t + 1) % k][0] - poly[t][0]) * (cy - poly[t][1])
-                     - (poly[(t + 1) % k][1] - poly[t][1]) * (cx - poly[t][0]) >= 0 for t in range(k))
+        inside = all(
+            (poly[(t + 1) % k][0] - poly[t][0]) * (cy - poly[t][1])
+            - (poly[(t + 1) % k][1] - poly[t][1]) * (cx - poly[t][0])
+            >= 0
+            for t in range(k)
+        )
         if not inside:
             return np.zeros((0, 2))
         m = max(int(2 * math.pi / step), 8)

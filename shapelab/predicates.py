@@ -51,6 +51,7 @@ as in :func:`shapelab.regular_triangulation`'s treatment of duplicates.
 This module only answers signs; :mod:`shapelab.certify` checks a triangulation with
 them and :mod:`shapelab.incremental` builds one with them.
 """
+
 from __future__ import annotations
 
 import math
@@ -69,12 +70,20 @@ def _expand4(M, plus: bool):
     if plus:
         m01, m02, m03 = c[0] * d[1] + c[1] * d[0], c[0] * d[2] + c[2] * d[0], c[0] * d[3] + c[3] * d[0]
         m12, m13, m23 = c[1] * d[2] + c[2] * d[1], c[1] * d[3] + c[3] * d[1], c[2] * d[3] + c[3] * d[2]
-        return (a[0] * (b[1] * m23 + b[2] * m13 + b[3] * m12) + a[1] * (b[0] * m23 + b[2] * m03 + b[3] * m02)
-                + a[2] * (b[0] * m13 + b[1] * m03 + b[3] * m01) + a[3] * (b[0] * m12 + b[1] * m02 + b[2] * m01))
+        return (
+            a[0] * (b[1] * m23 + b[2] * m13 + b[3] * m12)
+            + a[1] * (b[0] * m23 + b[2] * m03 + b[3] * m02)
+            + a[2] * (b[0] * m13 + b[1] * m03 + b[3] * m01)
+            + a[3] * (b[0] * m12 + b[1] * m02 + b[2] * m01)
+        )
     m01, m02, m03 = c[0] * d[1] - c[1] * d[0], c[0] * d[2] - c[2] * d[0], c[0] * d[3] - c[3] * d[0]
     m12, m13, m23 = c[1] * d[2] - c[2] * d[1], c[1] * d[3] - c[3] * d[1], c[2] * d[3] - c[3] * d[2]
-    return (a[0] * (b[1] * m23 - b[2] * m13 + b[3] * m12) - a[1] * (b[0] * m23 - b[2] * m03 + b[3] * m02)
-            + a[2] * (b[0] * m13 - b[1] * m03 + b[3] * m01) - a[3] * (b[0] * m12 - b[1] * m02 + b[2] * m01))
+    return (
+        a[0] * (b[1] * m23 - b[2] * m13 + b[3] * m12)
+        - a[1] * (b[0] * m23 - b[2] * m03 + b[3] * m02)
+        + a[2] * (b[0] * m13 - b[1] * m03 + b[3] * m01)
+        - a[3] * (b[0] * m12 - b[1] * m02 + b[2] * m01)
+    )
 
 
 def det(M):
@@ -90,8 +99,9 @@ def det(M):
         return M[0][0] * M[1][1] - M[0][1] * M[1][0]
     if n == 3:
         a, b, c = M
-        return (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
-                + a[2] * (b[0] * c[1] - b[1] * c[0]))
+        return (
+            a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])
+        )
     if n == 4:
         return _expand4(M, False)
     raise ValueError(f"det: matrices up to 4x4, got {n}x{n}")
@@ -107,8 +117,9 @@ def permanent(M):
         return M[0][0] * M[1][1] + M[0][1] * M[1][0]
     if n == 3:
         a, b, c = M
-        return (a[0] * (b[1] * c[2] + b[2] * c[1]) + a[1] * (b[0] * c[2] + b[2] * c[0])
-                + a[2] * (b[0] * c[1] + b[1] * c[0]))
+        return (
+            a[0] * (b[1] * c[2] + b[2] * c[1]) + a[1] * (b[0] * c[2] + b[2] * c[0]) + a[2] * (b[0] * c[1] + b[1] * c[0])
+        )
     if n == 4:
         return _expand4(M, True)
     raise ValueError(f"permanent: matrices up to 4x4, got {n}x{n}")
@@ -151,31 +162,47 @@ def _power3(U, W, row):
     ax, ay, az = U[a]
     wa = W[a]
     bx, by, bz = U[b]
-    bx -= ax; by -= ay; bz -= az  # noqa: E702
+    bx -= ax
+    by -= ay
+    bz -= az  # noqa: E702
     s = bx * bx + by * by + bz * bz
     bh, bm = s - W[b] + wa, s + W[b] + wa
     cx, cy, cz = U[c]
-    cx -= ax; cy -= ay; cz -= az  # noqa: E702
+    cx -= ax
+    cy -= ay
+    cz -= az  # noqa: E702
     s = cx * cx + cy * cy + cz * cz
     ch, cm = s - W[c] + wa, s + W[c] + wa
     dx, dy, dz = U[d]
-    dx -= ax; dy -= ay; dz -= az  # noqa: E702
+    dx -= ax
+    dy -= ay
+    dz -= az  # noqa: E702
     s = dx * dx + dy * dy + dz * dz
     dh, dm = s - W[d] + wa, s + W[d] + wa
     ex, ey, ez = U[e]
-    ex -= ax; ey -= ay; ez -= az  # noqa: E702
+    ex -= ax
+    ey -= ay
+    ez -= az  # noqa: E702
     s = ex * ex + ey * ey + ez * ez
     eh, em = s - W[e] + wa, s + W[e] + wa
     m01, m02, m03 = dx * ey - dy * ex, dx * ez - dz * ex, dx * eh - dh * ex
     m12, m13, m23 = dy * ez - dz * ey, dy * eh - dh * ey, dz * eh - dh * ez
-    D = (bx * (cy * m23 - cz * m13 + ch * m12) - by * (cx * m23 - cz * m03 + ch * m02)
-         + bz * (cx * m13 - cy * m03 + ch * m01) - bh * (cx * m12 - cy * m02 + cz * m01))
+    D = (
+        bx * (cy * m23 - cz * m13 + ch * m12)
+        - by * (cx * m23 - cz * m03 + ch * m02)
+        + bz * (cx * m13 - cy * m03 + ch * m01)
+        - bh * (cx * m12 - cy * m02 + cz * m01)
+    )
     bx, by, bz, cx, cy, cz = abs(bx), abs(by), abs(bz), abs(cx), abs(cy), abs(cz)
     dx, dy, dz, ex, ey, ez = abs(dx), abs(dy), abs(dz), abs(ex), abs(ey), abs(ez)
     m01, m02, m03 = dx * ey + dy * ex, dx * ez + dz * ex, dx * em + dm * ex
     m12, m13, m23 = dy * ez + dz * ey, dy * em + dm * ey, dz * em + dm * ez
-    P = (bx * (cy * m23 + cz * m13 + cm * m12) + by * (cx * m23 + cz * m03 + cm * m02)
-         + bz * (cx * m13 + cy * m03 + cm * m01) + bm * (cx * m12 + cy * m02 + cz * m01))
+    P = (
+        bx * (cy * m23 + cz * m13 + cm * m12)
+        + by * (cx * m23 + cz * m03 + cm * m02)
+        + bz * (cx * m13 + cy * m03 + cm * m01)
+        + bm * (cx * m12 + cy * m02 + cz * m01)
+    )
     return D, P
 
 
@@ -318,7 +345,7 @@ class WeightedPoints:
         # those rows are decided exactly, so the floating-point warnings are noise
         with np.errstate(all="ignore"):
             for a in range(0, m, self._BLOCK):
-                out[a:a + self._BLOCK] = one(rows[a:a + self._BLOCK])
+                out[a : a + self._BLOCK] = one(rows[a : a + self._BLOCK])
         return out
 
     def _coords_T(self):
@@ -332,7 +359,7 @@ class WeightedPoints:
 
     def _orient_block(self, rows):
         k = self.k
-        G = self._coords_T()[:, np.ascontiguousarray(rows.T)]          # (k, k+1, m)
+        G = self._coords_T()[:, np.ascontiguousarray(rows.T)]  # (k, k+1, m)
         V = [[G[c, i] - G[c, 0] for c in range(k)] for i in range(1, k + 1)]
         D = det(V)
         P = _rowsum_bound([[np.abs(e) for e in r] for r in V])
@@ -357,7 +384,7 @@ class WeightedPoints:
     def _power_block(self, rows):
         k = self.k
         rT = np.ascontiguousarray(rows.T)
-        G = self._coords_T()[:, rT]          # (k, k+2, m)
+        G = self._coords_T()[:, rT]  # (k, k+2, m)
         if self.global_height:
             T = self.t[rT]
             TM = self.tmag[rT]
@@ -385,8 +412,12 @@ class WeightedPoints:
     def _as_lists(self):
         if self._lists is None:
             gh = self.global_height
-            self._lists = (self.u.tolist(), self.w.tolist(),
-                           self.t.tolist() if gh else None, self.tmag.tolist() if gh else None)
+            self._lists = (
+                self.u.tolist(),
+                self.w.tolist(),
+                self.t.tolist() if gh else None,
+                self.tmag.tolist() if gh else None,
+            )
         return self._lists
 
     def orient1(self, row) -> int:

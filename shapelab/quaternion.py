@@ -53,6 +53,7 @@ Where the notes are wrong
 * :math:`I_q(r) = \\bar Q^T Q r` is right, as a 4×4 identity on pure quaternions; its
   lower-right 3×3 block is the rotation matrix (:meth:`Quaternion.to_matrix`).
 """
+
 from __future__ import annotations
 
 import math
@@ -167,9 +168,15 @@ def qmatrix(q) -> np.ndarray:
     wx, wy, wz = w * x, w * y, w * z
     m = np.stack(
         [
-            1 - 2 * (yy + zz), 2 * (xy - wz), 2 * (xz + wy),
-            2 * (xy + wz), 1 - 2 * (xx + zz), 2 * (yz - wx),
-            2 * (xz - wy), 2 * (yz + wx), 1 - 2 * (xx + yy),
+            1 - 2 * (yy + zz),
+            2 * (xy - wz),
+            2 * (xz + wy),
+            2 * (xy + wz),
+            1 - 2 * (xx + zz),
+            2 * (yz - wx),
+            2 * (xz - wy),
+            2 * (yz + wx),
+            1 - 2 * (xx + yy),
         ],
         axis=-1,
     )

@@ -47,6 +47,7 @@ Where the notes are wrong or imprecise
   :math:`f` in steps 1–2 (and :math:`f` is also the rotation cost).  Step 4 speaks of
   the mean square error, :math:`\\mu/n`, not :math:`\\mu`.
 """
+
 from __future__ import annotations
 
 import warnings
@@ -55,8 +56,6 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.spatial import cKDTree
 
-from ._toolkit.validate import as_float_array as _as_float_array
-from ._toolkit.validate import check_finite as _check_finite
 from ._toolkit.validate import (
     as_finite_scalar,
     as_point,
@@ -65,6 +64,8 @@ from ._toolkit.validate import (
     as_vector,
     check_same_shape,
 )
+from ._toolkit.validate import as_float_array as _as_float_array
+from ._toolkit.validate import check_finite as _check_finite
 from .quaternion import Quaternion, as_points3, qmul, unit_quaternions
 
 __all__ = [

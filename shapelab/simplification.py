@@ -329,5 +329,6 @@ def _kept_persistence(f, g, cancelled, closed) -> CurvePersistence:
     gone = {tuple(map(int, p)) for p in cancelled}
     keep = np.array([tuple(map(int, p)) not in gone for p in P.pairs], dtype=bool)
     pairs = P.pairs[keep]
-    return CurvePersistence(pairs, g[pairs[:, 0]].copy(), g[pairs[:, 1]].copy(),
-                            P.essential_min, P.essential_max, closed)
+    return CurvePersistence(
+        pairs, g[pairs[:, 0]].copy(), g[pairs[:, 1]].copy(), P.essential_min, P.essential_max, closed
+    )

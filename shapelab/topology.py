@@ -48,6 +48,7 @@ pairs (as values) do not depend on how ties are broken, so they equal GUDHI's, w
 break ties differently; zero-length pairs, which do depend on it, are omitted as GUDHI
 does by default.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -120,11 +121,11 @@ class _Summary:
     """Everything the topology of one filtration needs, computed once."""
 
     ambient: int
-    k: int                              # affine dimension of the filtration
-    values: tuple                       # values(j) for j = 0..k
-    neg_edges: np.ndarray               # row indices of edges in the H0 forest (sorted)
-    pos_facets: np.ndarray              # row indices of (k-1)-simplices creating H_{k-1} (sorted)
-    cell_dual: tuple                    # (u, v) dual-edge endpoints per (k-1)-simplex, outside = n_k
+    k: int  # affine dimension of the filtration
+    values: tuple  # values(j) for j = 0..k
+    neg_edges: np.ndarray  # row indices of edges in the H0 forest (sorted)
+    pos_facets: np.ndarray  # row indices of (k-1)-simplices creating H_{k-1} (sorted)
+    cell_dual: tuple  # (u, v) dual-edge endpoints per (k-1)-simplex, outside = n_k
 
 
 def _dual_edges(bnd: np.ndarray, n_facets: int):
@@ -365,8 +366,8 @@ def reduce_h1(S: _Summary, F, *, compress: bool = True):
         keep = piv0 >= 0
         tri, rows, piv0 = tri[keep], rows[keep], piv0[keep]
     rows_l = rows.tolist()
-    owner = {}      # pivot edge -> column position (int), or its reduced column (set)
-    changed = {}    # column position -> final pivot (-1: reduced to zero), for reduced columns
+    owner = {}  # pivot edge -> column position (int), or its reduced column (set)
+    changed = {}  # column position -> final pivot (-1: reduced to zero), for reduced columns
     get = owner.get
     # Most columns are "apparent": nothing before them owns their pivot, so they are
     # recorded as they are and only materialised as sets when a later column needs them.

@@ -6,6 +6,7 @@ loads a GUDHI simplex tree with *our* simplices and values and computes persiste
 over Z/2, so that comparing its diagrams with :func:`shapelab.topology.persistence`
 tests the reduction independently of the geometry.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -17,9 +18,17 @@ from shapelab import topology as T
 ELEMENTS = (("C", 0.62, 1.70), ("N", 0.17, 1.55), ("O", 0.19, 1.52), ("S", 0.02, 1.80))
 
 
-def protein_like(n: int = 5000, *, seed: int = 0, probe: float = 0.0, bond: float = 1.5,
-                 angle_deg: float = 111.0, contact: float = 2.9, density: float = 0.05,
-                 max_tries: int = 40) -> sl.Balls:
+def protein_like(
+    n: int = 5000,
+    *,
+    seed: int = 0,
+    probe: float = 0.0,
+    bond: float = 1.5,
+    angle_deg: float = 111.0,
+    contact: float = 2.9,
+    density: float = 0.05,
+    max_tries: int = 40,
+) -> sl.Balls:
     """A seeded compact packing of heavy-atom chains, like a globular protein (Å).
 
     Chains grow inside a sphere whose volume gives ``density`` atoms per Å^3 (globular
@@ -164,6 +173,7 @@ def _multiset_difference(A, B):
     B = B[np.lexsort((B[:, 1], B[:, 0]))]
     if A.shape == B.shape and np.array_equal(A, B):
         return A[:0], B[:0]
+
     # rank of each row inside its run of equal rows, so that duplicates match one to one
     def keyed(P):
         if P.shape[0] == 0:
@@ -171,6 +181,7 @@ def _multiset_difference(A, B):
         same = np.r_[False, np.all(P[1:] == P[:-1], axis=1)]
         run = np.arange(P.shape[0]) - np.maximum.accumulate(np.where(~same, np.arange(P.shape[0]), 0))
         return list(zip(P[:, 0].tolist(), P[:, 1].tolist(), run.tolist()))
+
     ka, kb = keyed(A), keyed(B)
     sb, sa = set(kb), set(ka)
     ra = np.array([k[:2] for k in ka if k not in sb], dtype=np.float64).reshape(-1, 2)

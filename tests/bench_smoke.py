@@ -1,12 +1,20 @@
 """A tiny benchmark case used only by tests/test_harness.py."""
+
 import numpy as np
 
 from benchmarks.harness import Case
 
 CASES = [
-    Case(name="smoke_norm", module="tests.bench_smoke", peer_name="numpy.linalg.norm", target=1e6,
-         params={"n": 2000}, check="check", description="harness self-test",
-         ladder=(100_000, 300_000, 1_000_000)),
+    Case(
+        name="smoke_norm",
+        module="tests.bench_smoke",
+        peer_name="numpy.linalg.norm",
+        target=1e6,
+        params={"n": 2000},
+        check="check",
+        description="harness self-test",
+        ladder=(100_000, 300_000, 1_000_000),
+    ),
 ]
 
 
@@ -28,8 +36,16 @@ def check(a, b):
 
 # peak memory: the setup's 400 MB transient must not count; the timed calls hold 40 and 160 MB
 CASES.append(
-    Case(name="smoke_memory", module="tests.bench_smoke", peer_name="a larger allocation", setup="setup_big",
-         ours="ours_40mb", peer="peer_160mb", params={}, description="harness self-test: peak memory"),
+    Case(
+        name="smoke_memory",
+        module="tests.bench_smoke",
+        peer_name="a larger allocation",
+        setup="setup_big",
+        ours="ours_40mb",
+        peer="peer_160mb",
+        params={},
+        description="harness self-test: peak memory",
+    ),
 )
 
 
@@ -49,8 +65,15 @@ def peer_160mb(_):
 # peak memory of a heap allocator: the warm-up's freed malloc chunks must not be reused
 # unseen by the timed call (they would be, were they left resident)
 CASES.append(
-    Case(name="smoke_heap", module="tests.bench_smoke", peer_name="100 MB of small malloc chunks",
-         ours="ours_40mb", peer="peer_heap_100mb", params={"n": 1}, description="harness self-test: heap peak"),
+    Case(
+        name="smoke_heap",
+        module="tests.bench_smoke",
+        peer_name="100 MB of small malloc chunks",
+        ours="ours_40mb",
+        peer="peer_heap_100mb",
+        params={"n": 1},
+        description="harness self-test: heap peak",
+    ),
 )
 
 _PINNED = []
@@ -66,8 +89,16 @@ def peer_heap_100mb(_):
 
 # a check that reports a disagreement: the case is not met, however fast ours is
 CASES.append(
-    Case(name="smoke_mismatch", module="tests.bench_smoke", peer_name="a different function", target=1e6,
-         params={"n": 2000}, peer="peer_wrong", check="check_mismatch", description="harness self-test: mismatch"),
+    Case(
+        name="smoke_mismatch",
+        module="tests.bench_smoke",
+        peer_name="a different function",
+        target=1e6,
+        params={"n": 2000},
+        peer="peer_wrong",
+        check="check_mismatch",
+        description="harness self-test: mismatch",
+    ),
 )
 
 

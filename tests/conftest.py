@@ -3,6 +3,7 @@
 The lessons' time budget (60 s each on 2 cores) is a performance figure: it is measured by
 ``python -m benchmarks.lessons`` (``make bench``), not asserted here.
 """
+
 from __future__ import annotations
 
 import os

@@ -8,6 +8,7 @@
 * No module keeps a module-level cache of derived results: results derived from a
   Filtration live on it (``Filtration.derived``), not in module dictionaries.
 """
+
 from __future__ import annotations
 
 import ast
@@ -69,7 +70,7 @@ def crossings(path: Path) -> list[str]:
     tree = ast.parse(path.read_text(encoding="utf-8"))
     me = _module_name(path)
     found = []
-    aliases = {}                       # local name -> shapelab module parts
+    aliases = {}  # local name -> shapelab module parts
     for node in ast.walk(tree):
         if isinstance(node, ast.ImportFrom):
             target = _resolve(path, node)
@@ -108,6 +109,7 @@ def test_no_private_name_crosses_modules(path):
 def test_the_checker_catches_what_it_should(tmp_path):
     """The checker itself, on code written to break the rule (and to keep it)."""
     fake = ROOT / "cavities.py"
+
     def check(src):
         tree_path = tmp_path / "x.py"
         tree_path.write_text(src)
@@ -118,6 +120,7 @@ def test_the_checker_catches_what_it_should(tmp_path):
             return crossings(fake)
         finally:
             Path.read_text = orig
+
     assert check("from .topology import _summary\n") == ["topology._summary"]
     assert check("from . import topology as T\nT._reduce_h1\n") == ["topology._reduce_h1"]
     assert check("from .plot import _style\n") == ["plot._style"]
@@ -146,8 +149,11 @@ def module_caches(path: Path) -> list[str]:
         if isinstance(node, (ast.Assign, ast.AnnAssign)) and node.value is not None:
             v = node.value
             empty_literal = isinstance(v, ast.Dict) and not v.keys
-            factory = isinstance(v, ast.Call) and _call_name(v) in _CACHE_FACTORIES and (
-                _call_name(v).startswith("Weak") or not (v.args or v.keywords))
+            factory = (
+                isinstance(v, ast.Call)
+                and _call_name(v) in _CACHE_FACTORIES
+                and (_call_name(v).startswith("Weak") or not (v.args or v.keywords))
+            )
             if empty_literal or factory:
                 targets = node.targets if isinstance(node, ast.Assign) else [node.target]
                 found += [ast.unparse(t) for t in targets]

@@ -1,4 +1,5 @@
 """Tests of shapelab.balls: the Balls container and the power distance (Notes §23.1)."""
+
 from __future__ import annotations
 
 import numpy as np

@@ -7,9 +7,9 @@ stylesheet or font comes from http(s), every local asset a page references exist
 logs an error to the console in headless Chromium with the network off, and the explorer
 responds to its slider without a kernel.
 """
+
 from __future__ import annotations
 
-import importlib.util
 import json
 import re
 import shutil
@@ -47,8 +47,17 @@ def site(tmp_path_factory):
     # may be building at the same time) is left alone
     src = bc.book_copy(tmp_path_factory.mktemp("book-src"))
     bc.lessons_into_book(execute=False, book=src)
-    rc = subprocess.call([sys.executable, "-m", "course.execute", "--out", str(src / "lessons"),
-                          str(ROOT / "lessons" / f"{EXPLORER_LESSON}.ipynb")], cwd=ROOT)
+    rc = subprocess.call(
+        [
+            sys.executable,
+            "-m",
+            "course.execute",
+            "--out",
+            str(src / "lessons"),
+            str(ROOT / "lessons" / f"{EXPLORER_LESSON}.ipynb"),
+        ],
+        cwd=ROOT,
+    )
     assert rc == 0, f"{EXPLORER_LESSON} failed to execute for the book"
     return bc.build_book(path_output=tmp_path_factory.mktemp("book"), book=src)
 
@@ -79,13 +88,17 @@ def test_no_page_references_the_network(site):
         for tag in TAG.finditer(html):
             text = tag.group(0)
             name = tag.group(1).lower()
-            if name == "link" and not re.search(r"rel=[\"'](stylesheet|preload|icon|modulepreload|shortcut icon)", text, re.I):
+            if name == "link" and not re.search(
+                r"rel=[\"'](stylesheet|preload|icon|modulepreload|shortcut icon)", text, re.I
+            ):
                 continue  # <link rel="canonical"/"next"> is navigation, not an asset
             for _, url in ATTR.findall(text):
                 if REMOTE.match(url):
                     offenders.append(f"{page.relative_to(site)}: {text[:160]}")
         for style in re.findall(r"<style[^>]*>(.*?)</style>", html, re.S | re.I):
-            offenders += [f"{page.relative_to(site)}: inline style {u}" for u in CSS_URL.findall(style) if REMOTE.match(u)]
+            offenders += [
+                f"{page.relative_to(site)}: inline style {u}" for u in CSS_URL.findall(style) if REMOTE.match(u)
+            ]
     for css in site.rglob("*.css"):
         text = css.read_text(encoding="utf-8", errors="replace")
         offenders += [f"{css.relative_to(site)}: {u}" for u in CSS_URL.findall(text) if REMOTE.match(u)]
@@ -122,15 +135,30 @@ def test_math_loads_from_the_site_and_nothing_else_is_fetched(site):
 def _chromium(url: str, profile: Path) -> tuple[str, list[str]]:
     """The page's DOM after load, and its console messages, with the network off."""
     cmd = [
-        CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
-        "--disable-background-networking", "--no-first-run", "--disable-component-update",
-        "--disable-sync", "--disable-extensions", f"--user-data-dir={profile}",
-        "--proxy-server=127.0.0.1:9", "--host-resolver-rules=MAP * ~NOTFOUND",
-        "--enable-logging=stderr", "--log-level=0", "--virtual-time-budget=6000", "--dump-dom", url,
+        CHROMIUM,
+        "--headless",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-dev-shm-usage",
+        "--disable-background-networking",
+        "--no-first-run",
+        "--disable-component-update",
+        "--disable-sync",
+        "--disable-extensions",
+        f"--user-data-dir={profile}",
+        "--proxy-server=127.0.0.1:9",
+        "--host-resolver-rules=MAP * ~NOTFOUND",
+        "--enable-logging=stderr",
+        "--log-level=0",
+        "--virtual-time-budget=6000",
+        "--dump-dom",
+        url,
     ]
     run = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr[-2000:]
-    console = [line[line.index('"'):] if '"' in line else line for line in run.stderr.splitlines() if ":CONSOLE" in line]
+    console = [
+        line[line.index('"') :] if '"' in line else line for line in run.stderr.splitlines() if ":CONSOLE" in line
+    ]
     return run.stdout, console
 
 

@@ -11,6 +11,7 @@ Oracles:
 * GF(2) ranks for tunnels (the representative cycle is a cycle, not a boundary at τ,
   a boundary at its death).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -113,7 +114,7 @@ def monte_carlo_free(balls, tau, cells, n, seed):
 def fibonacci_sphere(m, radius):
     i = np.arange(m) + 0.5
     phi = np.arccos(1 - 2 * i / m)
-    th = np.pi * (1 + 5 ** 0.5) * i
+    th = np.pi * (1 + 5**0.5) * i
     return radius * np.c_[np.cos(th) * np.sin(phi), np.sin(th) * np.sin(phi), np.cos(phi)]
 
 
@@ -150,9 +151,13 @@ def test_number_of_voids_is_the_betti_number(d, seed):
 @pytest.mark.parametrize("d, seed", [(2, 5), (3, 5), (3, 9)])
 def test_void_volume_equals_exact_power_cell_measure(d, seed):
     """The fast fractional inclusion–exclusion against the exact decomposition."""
-    balls = (random_balls(seed, 60, d, spread=5.0, rmax=1.0) if d == 2 else
-             random_balls(seed, 70, d, spread=3.5, rmax=0.9) if seed == 5 else
-             random_balls(seed, 60, d, spread=4.0, rmax=1.0))
+    balls = (
+        random_balls(seed, 60, d, spread=5.0, rmax=1.0)
+        if d == 2
+        else random_balls(seed, 70, d, spread=3.5, rmax=0.9)
+        if seed == 5
+        else random_balls(seed, 60, d, spread=4.0, rmax=1.0)
+    )
     F = sl.alpha_filtration(balls)
     n = 0
     for tau in (0.0, 0.2):
@@ -216,7 +221,7 @@ def test_cage_of_balls_has_one_void_with_monte_carlo_volume(source):
     est, sigma = monte_carlo_free(balls, 0.0, v.cells, 200_000, seed=1)
     assert abs(v.volume - est) < 5 * sigma
     # a crude bound: inside the sphere of radius 3 - 1 there is no ball
-    assert v.volume > 4 / 3 * np.pi * 2.0 ** 3
+    assert v.volume > 4 / 3 * np.pi * 2.0**3
     # it fills when the sphere's centre, at distance 3 from every centre, is covered:
     # 1 + tau = 3^2
     assert v.dies == pytest.approx(9 - 1, rel=1e-9)
@@ -268,7 +273,7 @@ def test_keyhole_is_a_pocket_and_closes_when_the_mouth_disks_touch():
     p = ps[0]
     c = balls.centers
     mouth_gap = np.linalg.norm(c[0] - c[-1])
-    assert p.closes_at == pytest.approx(mouth_gap ** 2 / 4 - 1.0, rel=1e-9)
+    assert p.closes_at == pytest.approx(mouth_gap**2 / 4 - 1.0, rel=1e-9)
     assert p.fills_at > 0.9 * (25 - 1) and p.fills_at <= 25 - 1 + 1e-9
     # the mouth at tau = 0 is the single hull edge across the gap
     assert p.mouth.shape == (1, 2) and sorted(p.mouth[0].tolist()) == [0, len(c) - 1]
@@ -294,7 +299,7 @@ def test_shallow_dent_is_not_a_pocket():
     balls = sl.Balls(arc, r)
     F = sl.alpha_filtration(balls)
     P = F.persistence()[1]
-    assert not np.any(P[:, 1] - P[:, 0] > 0.5)       # no lasting hole ever
+    assert not np.any(P[:, 1] - P[:, 0] > 0.5)  # no lasting hole ever
     assert sl.pockets(F, 0.0, min_persistence=0.5) == ()
     # while the keyhole (Figure 23.2, left) is one
     assert len(sl.pockets(keyhole(), 0.0, min_persistence=0.5)) == 1
@@ -322,9 +327,9 @@ def test_pockets_are_future_voids_open_at_tau(d, seed):
     fval = F.values(d - 1)
     for p in ps:
         assert tau < p.closes_at < p.fills_at
-        assert not void_cells & set(p.cell_ids.tolist())          # open at tau
+        assert not void_cells & set(p.cell_ids.tolist())  # open at tau
         later = {tuple(v.cell_ids): v for v in sl.voids(F, p.closes_at)}
-        v = later[tuple(p.cell_ids)]                                # closed at closes_at
+        v = later[tuple(p.cell_ids)]  # closed at closes_at
         assert v.dies == p.fills_at and v.born == p.closes_at
         assert len(p.mouth_ids) >= 1
         assert np.all((fval[p.mouth_ids] > tau) & (fval[p.mouth_ids] <= p.closes_at))
@@ -342,8 +347,8 @@ def test_pockets_are_future_voids_open_at_tau(d, seed):
 
 def test_pocket_in_a_cage_with_a_hole_3d():
     c = fibonacci_sphere(60, 3.0)
-    c = c[c[:, 2] < 3.0 * np.cos(np.radians(35))]              # cut a cap off: a mouth
-    c = c + np.random.default_rng(1).normal(scale=0.02, size=c.shape)   # not co-spherical
+    c = c[c[:, 2] < 3.0 * np.cos(np.radians(35))]  # cut a cap off: a mouth
+    c = c + np.random.default_rng(1).normal(scale=0.02, size=c.shape)  # not co-spherical
     balls = sl.Balls(c, 1.0)
     F = sl.alpha_filtration(balls)
     assert len(sl.voids(F, 0.0)) == 0
@@ -399,11 +404,11 @@ def test_tube_has_one_tunnel_with_a_winding_cycle():
     t = tn[0]
     assert t.birth <= 0.0 < t.death
     deg = np.bincount(t.cycle.ravel())
-    assert np.all(deg % 2 == 0)                                  # a cycle
-    assert np.all(F.values(1)[t.edge_ids] <= t.birth)            # present from its birth
-    assert winding_parity(t.cycle, balls.centers) == 1           # it goes around the tube
-    assert not in_boundary_span(F, 0.0, t.edge_ids)              # not a boundary at tau
-    assert in_boundary_span(F, t.death, t.edge_ids)              # a boundary at its death
+    assert np.all(deg % 2 == 0)  # a cycle
+    assert np.all(F.values(1)[t.edge_ids] <= t.birth)  # present from its birth
+    assert winding_parity(t.cycle, balls.centers) == 1  # it goes around the tube
+    assert not in_boundary_span(F, 0.0, t.edge_ids)  # not a boundary at tau
+    assert in_boundary_span(F, t.death, t.edge_ids)  # a boundary at its death
 
 
 @pytest.mark.parametrize("seed", [31, 32])
@@ -515,8 +520,8 @@ def test_infinite_growth_times_are_the_ends_of_the_filtration():
     F = sl.alpha_filtration(ring(8, 3.0, 1.2))
     assert sl.voids(F, float("inf")) == sl.voids(F, -np.inf) == ()
     assert sl.pockets(F, np.inf) == ()
-    (p,) = sl.pockets(F, -np.inf)          # before any ball exists, the hole is a dent to be
-    assert p.lining.size == 0 and p.volume > 0     # (every cell free)
+    (p,) = sl.pockets(F, -np.inf)  # before any ball exists, the hole is a dent to be
+    assert p.lining.size == 0 and p.volume > 0  # (every cell free)
     C60 = sl.alpha_filtration(sl.datasets.fullerene_c60())
     assert sl.tunnels(C60, np.inf) == sl.tunnels(C60, -np.inf) == ()
     assert FS.free_measure(F.balls, np.inf, F.simplices(2)).sum() == 0.0
@@ -531,7 +536,6 @@ def test_the_filtration_keyword_is_gone(fn):
         fn(balls, 0.0, filtration=F)
     # the balls are still accepted (their filtration is built once, for the call)
     assert [repr(x) for x in fn(balls, 0.0)] == [repr(x) for x in fn(F, 0.0)]
-
 
     with pytest.raises(ValueError, match="cells"):
         FS.free_measure(balls, 0.0, [[0, 1]])

@@ -4,6 +4,7 @@ A correct student function written here from first principles (independent of th
 library) must pass; typical mistakes must fail; a placeholder must be reported as
 not implemented.  That the correct functions pass also checks the references.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -40,22 +41,33 @@ def good_union(c1, r1, c2, r2):
     return np.pi * (r1**2 + r2**2) - lens
 
 
-@pytest.mark.parametrize("name, fn", [("power_distance", good_power), ("orthogonal_radius", good_orthogonal),
-                                      ("union_area", good_union)])
+@pytest.mark.parametrize(
+    "name, fn", [("power_distance", good_power), ("orthogonal_radius", good_orthogonal), ("union_area", good_union)]
+)
 def test_correct_solutions_pass(name, fn, capsys):
     res = getattr(check, name)(fn)
     assert res.passed and res.n_cases >= 7
     assert "✓" in capsys.readouterr().out
 
 
-@pytest.mark.parametrize("name, fn", [
-    ("power_distance", lambda x, c, r: float(np.sum((np.asarray(x) - c) ** 2) - r)),          # r, not r²
-    ("power_distance", lambda x, c, r: float(np.linalg.norm(np.asarray(x) - c) - r)),        # Euclidean
-    ("orthogonal_radius", lambda c, r: good_orthogonal(c, np.zeros(3))),                    # ignores radii
-    ("orthogonal_radius", lambda c, r: float(np.sqrt(abs(good_orthogonal(c, r))))),         # R, not R²
-    ("union_area", lambda c1, r1, c2, r2: np.pi * (r1**2 + r2**2)),                         # no lens
-    ("union_area", lambda c1, r1, c2, r2: good_union(c1, r1, c2, r2) if np.linalg.norm(np.subtract(c1, c2)) > abs(r1 - r2) else np.pi * (r1**2 + r2**2)),
-])
+@pytest.mark.parametrize(
+    "name, fn",
+    [
+        ("power_distance", lambda x, c, r: float(np.sum((np.asarray(x) - c) ** 2) - r)),  # r, not r²
+        ("power_distance", lambda x, c, r: float(np.linalg.norm(np.asarray(x) - c) - r)),  # Euclidean
+        ("orthogonal_radius", lambda c, r: good_orthogonal(c, np.zeros(3))),  # ignores radii
+        ("orthogonal_radius", lambda c, r: float(np.sqrt(abs(good_orthogonal(c, r))))),  # R, not R²
+        ("union_area", lambda c1, r1, c2, r2: np.pi * (r1**2 + r2**2)),  # no lens
+        (
+            "union_area",
+            lambda c1, r1, c2, r2: (
+                good_union(c1, r1, c2, r2)
+                if np.linalg.norm(np.subtract(c1, c2)) > abs(r1 - r2)
+                else np.pi * (r1**2 + r2**2)
+            ),
+        ),
+    ],
+)
 def test_mistakes_fail(name, fn, capsys):
     res = getattr(check, name)(fn)
     assert not res.passed

@@ -4,6 +4,7 @@ For every check: an independent correct student function passes, a plausible wro
 one fails with the first failing input in the message, and a crashing one is
 reported, not raised.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -48,7 +49,7 @@ def maxima_right(P, S):
     V = np.asarray(P, float)[:-1]
     R = V - S
     E = np.roll(V, -1, axis=0) - V
-    fwd = (R * E).sum(axis=1)                   # slope of F² leaving towards the next vertex
+    fwd = (R * E).sum(axis=1)  # slope of F² leaving towards the next vertex
     bwd = (R * np.roll(E, 1, axis=0)).sum(axis=1)  # slope arriving from the previous one
     return np.sort(np.linalg.norm(R, axis=1)[(fwd < 0) & (bwd > 0)])
 

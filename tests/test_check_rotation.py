@@ -4,13 +4,13 @@ For every check: an independent correct student function passes, a plausible wro
 one fails with the first failing input in the message, and a crashing one is
 reported, not raised.
 """
+
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
 from shapelab import check
-
 
 # ----------------------------------------------------------------- student solutions
 

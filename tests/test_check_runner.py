@@ -6,6 +6,7 @@ never raises, the student's exception; it treats ``NotImplementedError`` (the st
 edition's placeholder) as "not implemented yet"; it explains a non-callable; and it
 never prints the reference solution.
 """
+
 from __future__ import annotations
 
 import inspect
@@ -25,7 +26,7 @@ def reference_norm(v):
 CASES = [
     (np.array([0.0, 5.0]),),
     (np.array([0.0, 0.0]),),
-    (np.array([1.0, -1.0]),),   # the 1-norm (a classic mistake) fails here first
+    (np.array([1.0, -1.0]),),  # the 1-norm (a classic mistake) fails here first
     (np.array([-6.0, 8.0]),),
 ]
 
@@ -127,9 +128,7 @@ def test_student_cannot_corrupt_the_cases(capsys):
 
 
 def test_reference_source_is_never_printed(capsys):
-    source_lines = [
-        line.strip() for line in inspect.getsource(reference_norm).splitlines()[1:] if line.strip()
-    ]
+    source_lines = [line.strip() for line in inspect.getsource(reference_norm).splitlines()[1:] if line.strip()]
 
     def calls_reference_wrongly(v):
         return reference_norm(v) + 1.0
@@ -234,25 +233,35 @@ def test_unprintable_answer_is_a_failure_not_a_crash(capsys):
 from shapelab import check  # noqa: E402
 
 
-@pytest.mark.parametrize("received, expected", [
-    (1.0 + 1e-12, 1.0), (np.array([1.0, 2.0]), [1.0, 2.0]), ((1, 4, 0), (1, 4, 0)), (True, True), (np.True_, True),
-])
+@pytest.mark.parametrize(
+    "received, expected",
+    [
+        (1.0 + 1e-12, 1.0),
+        (np.array([1.0, 2.0]), [1.0, 2.0]),
+        ((1, 4, 0), (1, 4, 0)),
+        (True, True),
+        (np.True_, True),
+    ],
+)
 def test_value_accepts_the_right_answer(received, expected, capsys):
     r = check.value("answer", received, expected)
     assert r.passed and capsys.readouterr().out.strip() == "✓ answer: correct."
 
 
-@pytest.mark.parametrize("received, expected, hint", [
-    (3.5, 1.8271, "too large"),
-    (0.5, 1.8271, "too small"),
-    (np.array([1.0, 9.0, 3.0]), np.array([1.0, 2.5, 3.0]), "1 of 3 entries differ, the first at index 1"),
-    (np.zeros(3), np.zeros(2), "expected shape (2,), got shape (3,)"),
-    (np.zeros(2), 0.25, "expected a single number"),
-    (float("nan"), 0.25, "NaN or inf"),
-    ("0.25", 0.25, "expected a number"),
-    (False, True, "that is not the answer"),
-    (1, True, "expected a bool"),
-])
+@pytest.mark.parametrize(
+    "received, expected, hint",
+    [
+        (3.5, 1.8271, "too large"),
+        (0.5, 1.8271, "too small"),
+        (np.array([1.0, 9.0, 3.0]), np.array([1.0, 2.5, 3.0]), "1 of 3 entries differ, the first at index 1"),
+        (np.zeros(3), np.zeros(2), "expected shape (2,), got shape (3,)"),
+        (np.zeros(2), 0.25, "expected a single number"),
+        (float("nan"), 0.25, "NaN or inf"),
+        ("0.25", 0.25, "expected a number"),
+        (False, True, "that is not the answer"),
+        (1, True, "expected a bool"),
+    ],
+)
 def test_value_hints_without_revealing(received, expected, hint, capsys):
     r = check.value("answer", received, expected)
     out = capsys.readouterr().out

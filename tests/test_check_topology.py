@@ -1,5 +1,6 @@
 """Tests of the self-checks in shapelab.check.topology: right answers pass, each
 typical mistake fails, and the checks never crash on a broken student function."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -31,9 +32,10 @@ def test_euler_right_answer_passes(capsys):
     assert "✓" in capsys.readouterr().out
 
 
-@pytest.mark.parametrize("wrong", [chi_no_triangles, chi_wrong_sign, chi_crashes,
-                                   lambda S: 2, lambda S: float(chi_right(S)) + 0.5,
-                                   lambda S: "1"])
+@pytest.mark.parametrize(
+    "wrong",
+    [chi_no_triangles, chi_wrong_sign, chi_crashes, lambda S: 2, lambda S: float(chi_right(S)) + 0.5, lambda S: "1"],
+)
 def test_euler_mistakes_fail(wrong, capsys):
     r = check.euler_characteristic(wrong)
     assert not r.passed
@@ -80,14 +82,17 @@ def test_betti_right_answer_passes():
     assert r.passed and r.n_cases > 8
 
 
-@pytest.mark.parametrize("wrong", [
-    lambda n, E, T: (1, 0),
-    lambda n, E, T: betti_union_find(n, E, np.zeros((0, 3)))[::-1],
-    lambda n, E, T: (betti_union_find(n, E, T)[0], len(E) - n + 1 - len(T)),   # assumes connected
-    lambda n, E, T: (betti_union_find(n, E, T)[0], 0),                          # no holes ever
-    lambda n, E, T: betti_union_find(n, E, T)[0],                               # not a pair
-    lambda n, E, T: 1 / 0,
-])
+@pytest.mark.parametrize(
+    "wrong",
+    [
+        lambda n, E, T: (1, 0),
+        lambda n, E, T: betti_union_find(n, E, np.zeros((0, 3)))[::-1],
+        lambda n, E, T: (betti_union_find(n, E, T)[0], len(E) - n + 1 - len(T)),  # assumes connected
+        lambda n, E, T: (betti_union_find(n, E, T)[0], 0),  # no holes ever
+        lambda n, E, T: betti_union_find(n, E, T)[0],  # not a pair
+        lambda n, E, T: 1 / 0,
+    ],
+)
 def test_betti_mistakes_fail(wrong):
     assert not check.betti_numbers(wrong, quiet=True).passed
 
@@ -97,4 +102,5 @@ def test_betti_sees_holes_in_library_cases():
     def blind(n, E, T):
         b0, b1 = betti_union_find(n, E, T)
         return (b0, b1 + len(T)) if len(T) > 1 else (b0, b1)
+
     assert not check.betti_numbers(blind, quiet=True).passed

@@ -2,6 +2,7 @@
 circles, ellipses and a square; dense sampling on random polygons; Euler
 characteristic and an independent link-walking classifier on surfaces; signatures;
 bad input."""
+
 from __future__ import annotations
 
 import warnings
@@ -28,8 +29,13 @@ finite = dict(allow_nan=False, allow_infinity=False)
 
 # ------------------------------------------------------------------ circles, ellipses
 @settings(max_examples=40, deadline=None)
-@given(st.floats(-3, 3, **finite), st.floats(-3, 3, **finite), st.floats(0.2, 4, **finite),
-       st.floats(0, 2 * np.pi, **finite), st.floats(0.05, 3, **finite))
+@given(
+    st.floats(-3, 3, **finite),
+    st.floats(-3, 3, **finite),
+    st.floats(0.2, 4, **finite),
+    st.floats(0, 2 * np.pi, **finite),
+    st.floats(0.05, 3, **finite),
+)
 def test_circle_with_off_centre_viewpoint(cx, cy, rho, angle, dist):
     """One minimum at c + ρ u and one maximum at c − ρ u, u the unit vector to S."""
     c = np.array([cx, cy])
@@ -92,8 +98,7 @@ def test_square_seen_from_its_centre_and_off_centre():
     np.testing.assert_allclose(r.parameters, np.arange(8) / 8)
     # S = (1, 0.5): maxima at the corners, minima at the four feet of perpendiculars
     r = critical_points(sq, (1.0, 0.5))
-    np.testing.assert_allclose(np.sort(r.values[r.kinds == "max"]),
-                               np.sort([np.sqrt(1.25)] * 2 + [np.sqrt(3.25)] * 2))
+    np.testing.assert_allclose(np.sort(r.values[r.kinds == "max"]), np.sort([np.sqrt(1.25)] * 2 + [np.sqrt(3.25)] * 2))
     np.testing.assert_allclose(r.minima, [[1, 0], [2, 0.5], [1, 2], [0, 0.5]])
     np.testing.assert_allclose(r.values[r.kinds == "min"], [0.5, 1.0, 1.5, 1.0])
 
@@ -256,8 +261,13 @@ def surface_counts(V, F):
 
 
 @settings(max_examples=25, deadline=None)
-@given(st.integers(0, 10**6), st.floats(-0.6, 0.6, **finite), st.floats(-0.6, 0.6, **finite),
-       st.floats(-0.6, 0.6, **finite), st.integers(1, 2))
+@given(
+    st.integers(0, 10**6),
+    st.floats(-0.6, 0.6, **finite),
+    st.floats(-0.6, 0.6, **finite),
+    st.floats(-0.6, 0.6, **finite),
+    st.integers(1, 2),
+)
 def test_deformed_spheres_have_euler_characteristic_two(seed, sx, sy, sz, sub):
     V, F = bumpy_sphere(sub, bumps=8, amplitude=0.45, seed=seed)
     S = np.array([sx, sy, sz])
@@ -307,7 +317,8 @@ def test_exact_ties_are_broken_by_index_and_monkey_saddles_count_twice():
     apex = r.kinds[r.indices == 6].tolist(), r.multiplicities[r.indices == 6].tolist()
     assert apex == (["saddle"], [2]), apex
     assert set(map(tuple, link_walk_classify(V, F, S).items())) == {
-        (int(i), (k, int(m))) for i, k, m in zip(r.indices, r.kinds, r.multiplicities)}
+        (int(i), (k, int(m))) for i, k, m in zip(r.indices, r.kinds, r.multiplicities)
+    }
 
 
 def test_mesh_generators():

@@ -1,8 +1,8 @@
 """Tests of shapelab.datasets: the geometry each generator promises, checked by
 independent means (closed forms, symmetry, a voxel flood fill, GUDHI's weighted alpha
 persistence), and the topology the lessons rely on."""
-from __future__ import annotations
 
+from __future__ import annotations
 
 import numpy as np
 import pytest
@@ -10,7 +10,8 @@ from scipy import ndimage
 from scipy.spatial import cKDTree
 from scipy.spatial.distance import pdist, squareform
 
-from shapelab import Balls, datasets as D
+from shapelab import Balls
+from shapelab import datasets as D
 
 PHI = (1 + 5**0.5) / 2
 
@@ -29,10 +30,13 @@ def bounded_free_components(balls: Balls, tau: float = 0.0, h: float = 0.2) -> i
     if np.ptp(balls.radii) == 0:  # equal radii: the nearest centre has the least power
         d, _ = cKDTree(balls.centers).query(grid, k=1)
         power = d**2 - balls.radii[0] ** 2
-    elif len(balls) <= 64:        # few balls: brute force, in chunks
-        power = np.concatenate([
-            (((g[:, None, :] - balls.centers[None]) ** 2).sum(-1) - balls.radii**2).min(axis=1)
-            for g in np.array_split(grid, max(1, len(grid) // 20000))])
+    elif len(balls) <= 64:  # few balls: brute force, in chunks
+        power = np.concatenate(
+            [
+                (((g[:, None, :] - balls.centers[None]) ** 2).sum(-1) - balls.radii**2).min(axis=1)
+                for g in np.array_split(grid, max(1, len(grid) // 20000))
+            ]
+        )
     else:  # radii differ by < 0.3 in our large data sets: the least power is among the 8 nearest
         assert np.ptp(balls.radii) < 0.3
         d, i = cKDTree(balls.centers).query(grid, k=8)
@@ -48,8 +52,7 @@ def gudhi_pairs(balls: Balls) -> dict:
     gudhi = pytest.importorskip("gudhi")
     st = gudhi.AlphaComplex(points=balls.centers, weights=balls.radii**2).create_simplex_tree()
     st.compute_persistence()
-    return {k: np.asarray(st.persistence_intervals_in_dimension(k)).reshape(-1, 2)
-            for k in range(balls.dim)}
+    return {k: np.asarray(st.persistence_intervals_in_dimension(k)).reshape(-1, 2) for k in range(balls.dim)}
 
 
 def alive(pairs: np.ndarray, tau: float, min_persistence: float = 0.0) -> np.ndarray:
@@ -97,8 +100,12 @@ def test_c60_icosahedral_symmetry():
     assert np.allclose(c.mean(0), 0, atol=1e-12)
     # 5-fold axis through an icosahedron vertex (0, 1, φ), 3-fold cyclic permutation,
     # 2-fold rotations about the coordinate axes
-    for M in (rotation([0, 1, PHI], 2 * np.pi / 5), np.roll(np.eye(3), 1, axis=0),
-              rotation([1, 0, 0], np.pi), rotation([0, 0, 1], np.pi)):
+    for M in (
+        rotation([0, 1, PHI], 2 * np.pi / 5),
+        np.roll(np.eye(3), 1, axis=0),
+        rotation([1, 0, 0], np.pi),
+        rotation([0, 0, 1], np.pi),
+    ):
         assert same_point_set(c, c @ M.T)
     # and it is not invariant under a generic rotation
     assert not same_point_set(c, c @ rotation([1, 2, 3], 0.3).T, tol=1e-3)
@@ -119,15 +126,16 @@ def test_c60_one_void_voxel_oracle():
 def test_c60_void_lifetime_closed_form():
     b = D.fullerene_c60()
     P = gudhi_pairs(b)
-    (born, dies), = alive(P[2], 0.0)
+    ((born, dies),) = alive(P[2], 0.0)
     R2 = np.sum(b.centers[0] ** 2)
-    assert dies == pytest.approx(R2 - 1.7**2, rel=1e-9)   # the centre is covered
+    assert dies == pytest.approx(R2 - 1.7**2, rel=1e-9)  # the centre is covered
     assert born == pytest.approx(1.4**2 - 1.7**2, rel=1e-9)  # the hexagons close
     assert len(alive(P[1], 0.0)) == 0
 
 
 def test_c60_exactly_one_void_with_shapelab():
     import shapelab
+
     v = shapelab.voids(D.fullerene_c60(), 0.0)
     assert len(v) == 1
     v = shapelab.voids(D.fullerene_c60(jitter=1e-3), 2.0)
@@ -137,6 +145,7 @@ def test_c60_exactly_one_void_with_shapelab():
 @pytest.mark.parametrize("tau", [2.0, 5.0])
 def test_c60_one_void_while_it_lives_degenerate(tau):
     import shapelab
+
     b = D.fullerene_c60()
     assert bounded_free_components(b, tau) == 1
     assert len(shapelab.voids(b, tau)) == 1
@@ -197,24 +206,26 @@ def test_nanotube_slit_groove_becomes_a_tunnel_only_if_narrow():
     arc = R * np.abs(np.arctan2(narrow.centers[:, 1], narrow.centers[:, 0]))
     assert arc.min() >= 1.5 - 1e-9
     P = gudhi_pairs(closed)
-    (born0, dies0), = alive(P[1], 0.0, 1e-6)
+    ((born0, dies0),) = alive(P[1], 0.0, 1e-6)
     assert dies0 == pytest.approx(R**2 - 1.7**2, rel=1e-9)  # the ring of atoms covers the axis
     g = born_later(gudhi_pairs(narrow)[1], 0.0, 2.0)
     g = g[np.isfinite(g[:, 0]) & (g[:, 0] < 1e6)]
-    assert len(g) == 1 and g[0, 1] == pytest.approx(dies0)   # a groove at 0, a tunnel later
+    assert len(g) == 1 and g[0, 1] == pytest.approx(dies0)  # a groove at 0, a tunnel later
     w = gudhi_pairs(wide)[1]
     w = w[(w[:, 1] - w[:, 0] > 2.0) & (w[:, 0] < 1e6)]
-    assert len(w) == 0                                        # a half-pipe never closes
+    assert len(w) == 0  # a half-pipe never closes
 
 
 def test_nanotube_one_tunnel_with_shapelab():
     import shapelab
+
     assert len(shapelab.tunnels(D.nanotube(), 0.0)) == 1
     assert len(shapelab.voids(D.nanotube(), 0.0)) == 0
 
 
 def test_nanotube_no_late_voids_degenerate():
     import shapelab
+
     b = D.nanotube()
     for tau in (22.0, 30.0):
         assert bounded_free_components(b, tau, h=0.3) == 0
@@ -227,11 +238,11 @@ def test_bowl_is_a_pocket():
     assert np.allclose(np.linalg.norm(b.centers, axis=1), 6.0)
     assert np.all(b.centers[:, 2] < 6.0 * np.cos(np.radians(50)))
     P = gudhi_pairs(b)
-    assert len(alive(P[2], 0.0)) == 0          # open at tau = 0 ...
-    late = born_later(P[2], 0.0, 5.0)          # ... and closes into a void later
+    assert len(alive(P[2], 0.0)) == 0  # open at tau = 0 ...
+    late = born_later(P[2], 0.0, 5.0)  # ... and closes into a void later
     assert len(late) == 1
     born, dies = late[0]
-    assert dies == pytest.approx(36.0 - 1.7**2, rel=0.05)   # the centre is covered last
+    assert dies == pytest.approx(36.0 - 1.7**2, rel=0.05)  # the centre is covered last
     assert bounded_free_components(b, 0.0, h=0.3) == 0
     assert bounded_free_components(b, 0.5 * (born + dies), h=0.3) == 1
 
@@ -273,6 +284,7 @@ def test_globule_structure_matches_globule():
 
 def test_example_pdb_is_the_globule():
     from shapelab import read_pdb
+
     s = read_pdb(D.example_pdb())
     g = D.globule_structure(0)
     assert len(s) == len(g)
@@ -296,7 +308,7 @@ def test_figure_23_2_left_is_a_pocket_right_is_not():
     late = born_later(PL[1], 0.0, 1.0)
     assert len(late) == 1
     assert late[0, 0] == pytest.approx(1.0 - 0.65**2, rel=1e-9)  # mouth disks touch
-    assert len(born_later(PR[1], 0.0, 1e-6)) == 0   # never a hole: fills from the bottom
+    assert len(born_later(PR[1], 0.0, 1e-6)) == 0  # never a hole: fills from the bottom
     mid = late[0].mean()
     assert bounded_free_components(left, mid, h=0.05) == 1
     assert bounded_free_components(right, mid, h=0.05) == 0
@@ -304,6 +316,7 @@ def test_figure_23_2_left_is_a_pocket_right_is_not():
 
 def test_figure_23_2_pockets_with_shapelab():
     import shapelab
+
     left, right = D.figure_23_2()
     assert len(shapelab.pockets(left, 0.0)) >= 1
     assert len(shapelab.pockets(left, 0.0, min_persistence=1.0)) == 1
@@ -316,7 +329,7 @@ def test_ring_hole_lifetime_closed_form(n, R, r, dim):
     b = D.ring(n, radius=R, disk_radius=r, dim=dim)
     assert len(b) == n and b.dim == dim
     P = gudhi_pairs(b)
-    (born, dies), = alive(P[1], 0.0)
+    ((born, dies),) = alive(P[1], 0.0)
     assert born == pytest.approx(R**2 * np.sin(np.pi / n) ** 2 - r**2, abs=1e-9)
     assert dies == pytest.approx(R**2 - r**2, rel=1e-9)
 
@@ -337,8 +350,10 @@ def test_swiss_cheese_slit_is_biggest_but_least_persistent():
     g = np.stack(np.meshgrid(xs, ys, indexing="ij"), -1).reshape(-1, 2)
     d, _ = cKDTree(b.centers).query(g)
     lab, n = ndimage.label((d > 0.65).reshape(len(xs), len(ys)))
+
     def area_at(x, y):
         return (lab == lab[int(round((x + 13) / h)), int(round((y + 7) / h))]).sum() * h * h
+
     slit = area_at(0.0, -3 * np.sqrt(3) / 2)
     rounds = [area_at(-7.0, 2.0), area_at(0.0, 2.0), area_at(7.0, 2.0)]
     assert slit > max(rounds) and rounds[0] < rounds[1] < rounds[2]
@@ -350,7 +365,7 @@ def test_nested_pockets_close_at_mouth_then_neck():
     late = born_later(P[1], 0.0, 1.0)
     assert len(late) == 2
     births = np.sort(late[:, 0])
-    assert births[0] == pytest.approx(1.0 - 0.65**2, abs=1e-9)    # the mouth: disks 2 apart
+    assert births[0] == pytest.approx(1.0 - 0.65**2, abs=1e-9)  # the mouth: disks 2 apart
     assert births[1] == pytest.approx(1.5**2 - 0.65**2, abs=1e-9)  # the neck: disks 3 apart
     # the older hole (born at the mouth) lives longer: chamber B is the bigger one
     assert late[np.argmin(late[:, 0]), 1] > late[np.argmax(late[:, 0]), 1]
@@ -361,10 +376,10 @@ def test_mixed_dent_pocket_only_under_probe_growth():
     b = D.mixed_dent()
     assert len(b) == 24 and np.sum(b.radii == 3.0) == 2
     P = gudhi_pairs(b)
-    assert len(born_later(P[1], -1.0, 1e-6)) == 0            # the notes' growth: never a hole
-    grown = lambda p: Balls(b.centers, b.radii + p)        # noqa: E731  (probe growth)
+    assert len(born_later(P[1], -1.0, 1e-6)) == 0  # the notes' growth: never a hole
+    grown = lambda p: Balls(b.centers, b.radii + p)  # noqa: E731  (probe growth)
     assert bounded_free_components(grown(1.5), h=0.02) == 0
-    assert bounded_free_components(grown(1.9), h=0.02) == 1   # the mouth has closed first
+    assert bounded_free_components(grown(1.9), h=0.02) == 1  # the mouth has closed first
     assert bounded_free_components(grown(2.3), h=0.02) == 0
 
 
@@ -378,29 +393,32 @@ def test_figure_23_1_has_two_triangles_at_zero():
 
 
 # ---------------------------------------------------------------- bad input
-@pytest.mark.parametrize("call, exc", [
-    (lambda: D.fullerene_c60(bond_length=0), ValueError),
-    (lambda: D.fullerene_c60(atom_radius=-1), ValueError),
-    (lambda: D.fullerene_c60(bond_length="1"), TypeError),
-    (lambda: D.nanotube(0, 0), ValueError),
-    (lambda: D.nanotube(8, -1), ValueError),
-    (lambda: D.nanotube(8.5, 0), TypeError),
-    (lambda: D.nanotube(8, 8, length=float("nan")), ValueError),
-    (lambda: D.bowl(opening=190), ValueError),
-    (lambda: D.nanotube(slit=40.0), ValueError),
-    (lambda: D.nanotube(slit=-1.0), ValueError),
-    (lambda: D.globule(seed=-1), ValueError),
-    (lambda: D.globule(seed=None), TypeError),
-    (lambda: D.globule(semi_axes=(1, 2)), ValueError),
-    (lambda: D.ring(2), ValueError),
-    (lambda: D.ring(5, dim=4), ValueError),
-    (lambda: D.globule_structure(0, colour="red"), TypeError),
-    (lambda: D.swiss_cheese(disk_radius=0), ValueError),
-    (lambda: D.nested_pockets(disk_radius=-1), ValueError),
-    (lambda: D.mixed_dent(gap="wide"), TypeError),
-    (lambda: D.figure_23_2(disk_radius=np.inf), ValueError),
-    (lambda: D.bowl(radius=0), ValueError),
-])
+@pytest.mark.parametrize(
+    "call, exc",
+    [
+        (lambda: D.fullerene_c60(bond_length=0), ValueError),
+        (lambda: D.fullerene_c60(atom_radius=-1), ValueError),
+        (lambda: D.fullerene_c60(bond_length="1"), TypeError),
+        (lambda: D.nanotube(0, 0), ValueError),
+        (lambda: D.nanotube(8, -1), ValueError),
+        (lambda: D.nanotube(8.5, 0), TypeError),
+        (lambda: D.nanotube(8, 8, length=float("nan")), ValueError),
+        (lambda: D.bowl(opening=190), ValueError),
+        (lambda: D.nanotube(slit=40.0), ValueError),
+        (lambda: D.nanotube(slit=-1.0), ValueError),
+        (lambda: D.globule(seed=-1), ValueError),
+        (lambda: D.globule(seed=None), TypeError),
+        (lambda: D.globule(semi_axes=(1, 2)), ValueError),
+        (lambda: D.ring(2), ValueError),
+        (lambda: D.ring(5, dim=4), ValueError),
+        (lambda: D.globule_structure(0, colour="red"), TypeError),
+        (lambda: D.swiss_cheese(disk_radius=0), ValueError),
+        (lambda: D.nested_pockets(disk_radius=-1), ValueError),
+        (lambda: D.mixed_dent(gap="wide"), TypeError),
+        (lambda: D.figure_23_2(disk_radius=np.inf), ValueError),
+        (lambda: D.bowl(radius=0), ValueError),
+    ],
+)
 def test_bad_input(call, exc):
     with pytest.raises(exc):
         call()
@@ -412,8 +430,7 @@ import hashlib as _hashlib  # noqa: E402
 import json as _json  # noqa: E402
 from importlib import resources as _resources  # noqa: E402
 
-_WATER = {"HOH", "WAT", "H2O", "DOD", "D2O", "TIP", "TIP3", "TIP4", "TIP5", "T3P", "T4P",
-          "T5P", "SOL", "SPC", "SPCE"}
+_WATER = {"HOH", "WAT", "H2O", "DOD", "D2O", "TIP", "TIP3", "TIP4", "TIP5", "T3P", "T4P", "T5P", "SOL", "SPC", "SPCE"}
 
 
 def _slice_records(text, hydrogens):
@@ -433,8 +450,16 @@ def _slice_records(text, hydrogens):
         is_h = element in ("H", "D") if element else line[12:16].strip().lstrip("0123456789")[:1] == "H"
         if is_h and not hydrogens:
             continue
-        out.append((float(line[30:38]), float(line[38:46]), float(line[46:54]), line[17:21].strip(),
-                    int(line[22:26]), line[21].strip()))
+        out.append(
+            (
+                float(line[30:38]),
+                float(line[38:46]),
+                float(line[46:54]),
+                line[17:21].strip(),
+                int(line[22:26]),
+                line[21].strip(),
+            )
+        )
     return out
 
 
@@ -490,8 +515,7 @@ def test_shipped_structure_atom_counts_against_column_slicing(name):
     assert len(D.structure(name, hydrogens=True, water=True)) == a["records"]
     het = [ln for ln in text.splitlines() if ln.startswith("HETATM")]
     assert len(het) == a["hetatm"]
-    het_kept = [ln for ln in het if ln[17:21].strip() not in _WATER
-                and (hyd or ln[76:78].strip() not in ("H", "D"))]
+    het_kept = [ln for ln in het if ln[17:21].strip() not in _WATER and (hyd or ln[76:78].strip() not in ("H", "D"))]
     assert int(s.hetero.sum()) == len(het_kept)
     assert np.all(s.balls.radii > 0) and np.all(np.isfinite(s.balls.centers))
 
@@ -542,6 +566,7 @@ def test_l99a_ligand_sits_inside_the_receptor():
 def test_alpha_filtration_on_a_shipped_structure():
     from shapelab import alpha_filtration
     from shapelab.power import triangulation_report
+
     s = D.structure("1grm", probe=1.4)
     heavy = s.balls
     f = alpha_filtration(heavy)

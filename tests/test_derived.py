@@ -1,4 +1,5 @@
 """Derived results live on the Filtration (Notes §23.1; issue 11): no module-level cache."""
+
 from __future__ import annotations
 
 import dataclasses

@@ -25,7 +25,6 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 from matplotlib.collections import PatchCollection, PathCollection  # noqa: E402
-from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Circle, Polygon  # noqa: E402
 
 figures = pytest.importorskip("course.figures")
@@ -98,8 +97,11 @@ def _data_points(ax) -> np.ndarray:
         if not patch.get_visible():
             continue
         if isinstance(patch, Circle):
-            pts.append(patch.get_transform().transform(np.asarray([patch.center], float)) if False else
-                       ax.transData.transform(np.asarray([patch.center], float)))
+            pts.append(
+                patch.get_transform().transform(np.asarray([patch.center], float))
+                if False
+                else ax.transData.transform(np.asarray([patch.center], float))
+            )
         elif isinstance(patch, Polygon):
             pts.append(patch.get_transform().transform(patch.get_xy()))
     pts = [p for p in pts if p.size]
@@ -123,8 +125,12 @@ def legends_covering_data(fig) -> list[str]:
             continue  # placed outside the axes
         p = _data_points(ax)
         inside = p[(p[:, 0] > frame.x0) & (p[:, 0] < frame.x1) & (p[:, 1] > frame.y0) & (p[:, 1] < frame.y1)]
-        hidden = (inside[:, 0] > box.x0 + 1) & (inside[:, 0] < box.x1 - 1) & (inside[:, 1] > box.y0 + 1) & (
-            inside[:, 1] < box.y1 - 1)
+        hidden = (
+            (inside[:, 0] > box.x0 + 1)
+            & (inside[:, 0] < box.x1 - 1)
+            & (inside[:, 1] > box.y0 + 1)
+            & (inside[:, 1] < box.y1 - 1)
+        )
         if hidden.any():
             bad.append(f"{ax.get_title()!r}: the legend covers {int(hidden.sum())} data point(s)")
     return bad

@@ -5,6 +5,7 @@ to the next (in this process and in a fresh one with another hash seed), the com
 reports failures with a non-zero exit, and the book's gallery page lists exactly the
 registered figures.
 """
+
 from __future__ import annotations
 
 import os
@@ -69,7 +70,7 @@ def test_lessons_have_key_figures():
 # seed, draws every figure while this one does; both must write the same bytes.  It
 # starts with the first figure test and runs alongside the others.
 PDF_TOO = ("fig23_1i", "fig23_3", "l09_barcode")  # PDF's determinism is the writer's, not the figure's
-_FRESH = """
+_FRESH = f"""
 import sys
 from pathlib import Path
 import matplotlib
@@ -81,9 +82,9 @@ for name in sys.argv[2:]:
         continue
     fig = f.build(name)
     f.save(fig, out / (name + ".svg"))
-    if name in {pdf!r}:
+    if name in {PDF_TOO!r}:
         f.save(fig, out / (name + ".pdf"))
-""".format(pdf=PDF_TOO)
+"""
 
 
 @pytest.fixture(scope="module")
@@ -94,10 +95,19 @@ def here(tmp_path_factory):
 @pytest.fixture(scope="module")
 def fresh(tmp_path_factory):
     out = tmp_path_factory.mktemp("fresh_process")
-    env = dict(os.environ, PYTHONHASHSEED="4242", MPLBACKEND="Agg",
-               PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
-    proc = subprocess.Popen([sys.executable, "-c", _FRESH, str(out), *NAMES], env=env,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    env = dict(
+        os.environ,
+        PYTHONHASHSEED="4242",
+        MPLBACKEND="Agg",
+        PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""),
+    )
+    proc = subprocess.Popen(
+        [sys.executable, "-c", _FRESH, str(out), *NAMES],
+        env=env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     yield out, proc
     if proc.poll() is None:
         proc.kill()

@@ -13,6 +13,7 @@ Oracles:
   characteristic and the number of components of K(τ) at every critical τ, which do
   not depend on the triangulation chosen (K(τ) has the homotopy type of the union).
 """
+
 from __future__ import annotations
 
 import itertools
@@ -89,7 +90,9 @@ def critical_taus(*value_sets):
 
 def euler_and_b0_ours(F, tau):
     K = F.complex_at(tau)
-    return K.euler_characteristic(), components(K.simplices(0)[:, 0], K.simplices(1) if K.dimension >= 1 else np.zeros((0, 2), int))
+    return K.euler_characteristic(), components(
+        K.simplices(0)[:, 0], K.simplices(1) if K.dimension >= 1 else np.zeros((0, 2), int)
+    )
 
 
 def components(verts, edges):
@@ -492,8 +495,7 @@ def _exact_orthosphere_power(centers, weights):
     z = [[Q(float(v)) for v in row] for row in centers]
     w = [Q(float(v)) for v in weights]
     a = [[zi[t] - z[0][t] for t in range(len(z[0]))] for zi in z[1:]]
-    b = [(sum(v * v for v in zi) - w[i + 1] - sum(v * v for v in z[0]) + w[0]) / 2
-         for i, zi in enumerate(z[1:])]
+    b = [(sum(v * v for v in zi) - w[i + 1] - sum(v * v for v in z[0]) + w[0]) / 2 for i, zi in enumerate(z[1:])]
     # c - z0 = sum_j lam_j a_j with Gram system G lam = b - a . z0
     rhs = [b[i] - sum(a[i][t] * z[0][t] for t in range(len(z[0]))) for i in range(len(a))]
     G = [[sum(p * q for p, q in zip(ai, aj)) for aj in a] for ai in a]
@@ -554,9 +556,11 @@ def _cramer_orthosphere(centers, weights):
     def det(M):
         if len(M) == 2:
             return M[0][0] * M[1][1] - M[0][1] * M[1][0]
-        return (M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1])
-                - M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0])
-                + M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]))
+        return (
+            M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1])
+            - M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0])
+            + M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0])
+        )
 
     rhs = [(sum(e * e for e in E[i]) - w[i + 1] + w[0]) / 2 for i in range(d)]
     D = det(E)
@@ -565,7 +569,7 @@ def _cramer_orthosphere(centers, weights):
     for t in range(d):  # replace column t of E by rhs
         c.append(det([[rhs[i] if s == t else E[i][s] for s in range(d)] for i in range(d)]) / D)
     rho = sum(v * v for v in c) - w[0]
-    ET = [[E[i][t] for i in range(d)] for t in range(d)]   # columns are the edges
+    ET = [[E[i][t] for i in range(d)] for t in range(d)]  # columns are the edges
     lam = [det([[c[r] if s == i else ET[r][s] for s in range(d)] for r in range(d)]) / D for i in range(d)]
     return rho, [1 - sum(lam)] + lam
 
@@ -693,4 +697,4 @@ def test_certificate_of_the_floating_point_orthospheres():
             exact, lam = _cramer_orthosphere(x[S[t]], w[S[t]])
             assert abs(Q(float(rho[t])) - exact) <= Q(_RTOL) * abs(exact), t
             assert att[t].tolist() == [v < 0 for v in lam], t
-    assert 50 < accepted < 350   # both branches are exercised
+    assert 50 < accepted < 350  # both branches are exercised

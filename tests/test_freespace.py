@@ -1,5 +1,6 @@
 """shapelab.freespace: exact free area against a scan-line oracle (more checks of the
 free space through Void.volume and Pocket.volume live in test_cavities.py)."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -27,7 +28,7 @@ def test_free_measure_matches_scanline_oracle_2d():
 def test_free_points_lie_in_the_cells_and_outside_every_grown_ball():
     balls = random_balls(3, 25, 2, spread=4.0, rmax=1.0)
     F = sl.alpha_filtration(balls)
-    cells = F.simplices(2)[-10:]          # the last to fill: free space left at tau = 0
+    cells = F.simplices(2)[-10:]  # the last to fill: free space left at tau = 0
     tau = 0.0
     pts = FS.free_points(balls, tau, cells, 2000, np.random.default_rng(0))
     assert pts.shape[1] == 2 and len(pts) > 0

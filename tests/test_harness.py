@@ -1,6 +1,6 @@
 """The benchmark harness measures both sides in fresh processes and reports a ratio."""
+
 import json
-import os
 
 import pytest
 

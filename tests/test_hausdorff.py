@@ -5,6 +5,7 @@ Oracles: an independent brute force (``np.sum`` over a full distance tensor),
 scipy's ``directed_hausdorff`` and ``cKDTree``, grid search over translations,
 closed forms (translated copies, one-point sets).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -12,7 +13,6 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
-from scipy.spatial import cKDTree
 from scipy.spatial.distance import directed_hausdorff as scipy_dh
 
 import shapelab
@@ -149,9 +149,14 @@ def test_symmetric_distance_is_max_of_directed_and_symmetric(AB, method):
 
 
 @settings(max_examples=40, deadline=None)
-@given(hnp.arrays(np.float64, st.tuples(st.integers(1, 40), st.integers(1, 4)),
-                  elements=st.floats(-5, 5, allow_nan=False, width=64)),
-       st.randoms(use_true_random=False))
+@given(
+    hnp.arrays(
+        np.float64,
+        st.tuples(st.integers(1, 40), st.integers(1, 4)),
+        elements=st.floats(-5, 5, allow_nan=False, width=64),
+    ),
+    st.randoms(use_true_random=False),
+)
 def test_identical_sets_and_duplicates_give_zero(A, rnd):
     perm = list(range(len(A)))
     rnd.shuffle(perm)
@@ -207,8 +212,9 @@ def test_pruned_equals_scipy_on_sphere_samples(shift):
     assert h == pytest.approx(hausdorff_kdtree(A, B), rel=1e-14)
 
 
-@pytest.mark.parametrize("d, shift, alone", [(3, 3.0, True), (3, 1.2, True), (2, 2.5, True), (1, 4.0, True),
-                                            (4, 3.0, False)])
+@pytest.mark.parametrize(
+    "d, shift, alone", [(3, 3.0, True), (3, 1.2, True), (2, 2.5, True), (1, 4.0, True), (4, 3.0, False)]
+)
 def test_apart_sets_are_solved_by_the_grid_levels_alone(d, shift, alone, monkeypatch):
     """Far apart (or touching) the coarse-to-fine stage finishes without the k-d
     tree fallback in d <= 3, and agrees with scipy to the last bit, witness
@@ -285,8 +291,8 @@ def test_pruned_on_a_small_cluster_against_a_large_set():
 
 def test_pruned_on_grids_with_ties():
     g = np.arange(60.0)
-    A = np.array(np.meshgrid(g, g)).reshape(2, -1).T          # 3600 grid points
-    B = A[(A[:, 0] + A[:, 1]) % 3 != 0] + 0.5                  # shifted, thinned
+    A = np.array(np.meshgrid(g, g)).reshape(2, -1).T  # 3600 grid points
+    B = A[(A[:, 0] + A[:, 1]) % 3 != 0] + 0.5  # shifted, thinned
     for X, Y in ((A, B), (B, A)):
         r = directed_hausdorff(X, Y, method="pruned")
         assert r.distance == directed_hausdorff(X, Y, method="brute").distance
@@ -365,11 +371,12 @@ def test_optimum_is_certified_against_a_grid_search(d):
     grid = np.array(np.meshgrid(*axes, indexing="ij")).reshape(d, -1).T
     vals = np.array([max(brute_directed(A, B + t), brute_directed(B + t, A)) for t in grid])
     assert m.converged
-    assert m.lower_bound <= vals.min() + 1e-12           # a true lower bound
-    assert m.optimal_distance <= vals.min() + 1e-12       # at least as good as the grid
+    assert m.lower_bound <= vals.min() + 1e-12  # a true lower bound
+    assert m.optimal_distance <= vals.min() + 1e-12  # at least as good as the grid
     assert m.optimal_distance - m.lower_bound <= 1e-4 * m.optimal_distance + 1e-12
-    assert m.optimal_distance == max(brute_directed(A, B + m.optimal_translation),
-                                     brute_directed(B + m.optimal_translation, A))
+    assert m.optimal_distance == max(
+        brute_directed(A, B + m.optimal_translation), brute_directed(B + m.optimal_translation, A)
+    )
 
 
 @settings(max_examples=15, deadline=None)

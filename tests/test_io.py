@@ -1,16 +1,17 @@
 """Tests of shapelab.io: the PDB reader and writer."""
+
 from __future__ import annotations
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings, strategies as st
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from shapelab import Balls
 from shapelab.io import VDW_RADII, read_pdb, vdw_radius, write_pdb
 
 
-def atom(serial=1, name=" CA ", resn="ALA", chain="A", resi=1, x=0.0, y=0.0, z=0.0,
-         element="C", rec="ATOM", alt=" "):
+def atom(serial=1, name=" CA ", resn="ALA", chain="A", resi=1, x=0.0, y=0.0, z=0.0, element="C", rec="ATOM", alt=" "):
     """One record built column by column from the wwPDB v3.3 specification."""
     line = (
         f"{rec:<6}{serial:>5} {name:<4}{alt}{resn:>3} {chain}{resi:>4}    "
@@ -29,16 +30,19 @@ def write(tmp_path, lines, name="x.pdb"):
 
 # --------------------------------------------------------------- basics
 def test_reads_atom_and_hetatm(tmp_path):
-    p = write(tmp_path, [
-        "HEADER    TEST",
-        "REMARK   1 anything at all, even ATOM in the middle",
-        atom(1, " N  ", element="N", x=1.0, y=2.0, z=3.0),
-        atom(2, " CA ", element="C", x=-1.5, y=0.25, z=1e3 - 0.001),
-        "TER",
-        atom(3, "ZN  ", resn="ZN", element="ZN", rec="HETATM", resi=101, x=5, y=5, z=5),
-        "CONECT    1    2",
-        "END",
-    ])
+    p = write(
+        tmp_path,
+        [
+            "HEADER    TEST",
+            "REMARK   1 anything at all, even ATOM in the middle",
+            atom(1, " N  ", element="N", x=1.0, y=2.0, z=3.0),
+            atom(2, " CA ", element="C", x=-1.5, y=0.25, z=1e3 - 0.001),
+            "TER",
+            atom(3, "ZN  ", resn="ZN", element="ZN", rec="HETATM", resi=101, x=5, y=5, z=5),
+            "CONECT    1    2",
+            "END",
+        ],
+    )
     s = read_pdb(p)
     assert len(s) == 3
     assert np.allclose(s.balls.centers, [[1, 2, 3], [-1.5, 0.25, 999.999], [5, 5, 5]])
@@ -58,8 +62,19 @@ def test_probe_gives_solvent_accessible_radii(tmp_path):
 
 def test_bondi_table_values():
     # spot values of Bondi (1964) as tabulated by every modelling package
-    for e, r in {"H": 1.20, "C": 1.70, "N": 1.55, "O": 1.52, "P": 1.80, "S": 1.80,
-                 "F": 1.47, "Cl": 1.75, "Br": 1.85, "I": 1.98, "Se": 1.90}.items():
+    for e, r in {
+        "H": 1.20,
+        "C": 1.70,
+        "N": 1.55,
+        "O": 1.52,
+        "P": 1.80,
+        "S": 1.80,
+        "F": 1.47,
+        "Cl": 1.75,
+        "Br": 1.85,
+        "I": 1.98,
+        "Se": 1.90,
+    }.items():
         assert VDW_RADII[e] == r
         assert vdw_radius(e.upper()) == r and vdw_radius(e.lower()) == r
     with pytest.raises(ValueError, match="Bondi"):
@@ -67,10 +82,21 @@ def test_bondi_table_values():
 
 
 def test_endmdl_reads_only_the_first_model(tmp_path):
-    p = write(tmp_path, [
-        "MODEL        1", atom(1, x=1), atom(2, x=2), "ENDMDL",
-        "MODEL        2", atom(1, x=10), atom(2, x=20), atom(3, x=30), "ENDMDL", "END",
-    ])
+    p = write(
+        tmp_path,
+        [
+            "MODEL        1",
+            atom(1, x=1),
+            atom(2, x=2),
+            "ENDMDL",
+            "MODEL        2",
+            atom(1, x=10),
+            atom(2, x=20),
+            atom(3, x=30),
+            "ENDMDL",
+            "END",
+        ],
+    )
     s = read_pdb(p)
     assert s.balls.centers[:, 0].tolist() == [1.0, 2.0]
 
@@ -81,19 +107,24 @@ def test_end_stops_reading(tmp_path):
 
 
 def test_alternate_locations_keep_the_first(tmp_path):
-    p = write(tmp_path, [
-        atom(1, " N  ", element="N"),
-        atom(2, " CB ", alt="A", x=1), atom(3, " CB ", alt="B", x=2),
-        atom(4, " CG ", alt="A", x=3), atom(5, " CG ", alt="B", x=4),
-    ])
+    p = write(
+        tmp_path,
+        [
+            atom(1, " N  ", element="N"),
+            atom(2, " CB ", alt="A", x=1),
+            atom(3, " CB ", alt="B", x=2),
+            atom(4, " CG ", alt="A", x=3),
+            atom(5, " CG ", alt="B", x=4),
+        ],
+    )
     assert read_pdb(p).balls.centers[:, 0].tolist() == [0.0, 1.0, 3.0]
 
 
 def test_element_from_atom_name_when_columns_blank(tmp_path):
     def bare(name, resn="ALA"):
         return atom(1, name, resn=resn)[:66]  # cut before the element columns
-    cases = {" CA ": "C", " N  ": "N", " OG1": "O", "1HG2": "H", "HG21": "H", " SD ": "S",
-             "CL  ": "Cl", "BR  ": "Br"}
+
+    cases = {" CA ": "C", " N  ": "N", " OG1": "O", "1HG2": "H", "HG21": "H", " SD ": "S", "CL  ": "Cl", "BR  ": "Br"}
     for name, want in cases.items():
         p = write(tmp_path, [bare(name)])
         assert read_pdb(p, hydrogens=True).elements[0] == want, name
@@ -113,14 +144,17 @@ def test_unknown_element(tmp_path):
     assert s.balls.radii.tolist() == [1.7 + 0.5, 2.0 + 0.5]
 
 
-@pytest.mark.parametrize("bad, what", [
-    (lambda l: l[:40], "truncated"),
-    (lambda l: l[:30] + "   1.x.0" + l[38:], "x"),
-    (lambda l: l[:38] + "     nan" + l[46:], "finite"),
-    (lambda l: l[:46] + "        " + l[54:], "z"),
-    (lambda l: l[:22] + "12A " + l[26:], "residue number"),
-    (lambda l: l[:76] + "C1", "element"),
-])
+@pytest.mark.parametrize(
+    "bad, what",
+    [
+        (lambda l: l[:40], "truncated"),
+        (lambda l: l[:30] + "   1.x.0" + l[38:], "x"),
+        (lambda l: l[:38] + "     nan" + l[46:], "finite"),
+        (lambda l: l[:46] + "        " + l[54:], "z"),
+        (lambda l: l[:22] + "12A " + l[26:], "residue number"),
+        (lambda l: l[:76] + "C1", "element"),
+    ],
+)
 def test_malformed_line_reports_its_number(tmp_path, bad, what):
     lines = ["HEADER    X", atom(1), atom(2), bad(atom(3)), atom(4)]
     p = write(tmp_path, lines)
@@ -160,8 +194,17 @@ def test_round_trip(tmp_path):
     b = Balls(c, [VDW_RADII[e] for e in elements])
     names = [f"{e}{i % 9}" for i, e in enumerate(elements)]
     het = rng.random(n) < 0.3
-    p = write_pdb(tmp_path / "rt.pdb", b, elements, atom_names=names, residue_names=["GLY"] * n,
-                  residue_numbers=np.arange(n) - 5, chains="B", hetero=het, title="round trip")
+    p = write_pdb(
+        tmp_path / "rt.pdb",
+        b,
+        elements,
+        atom_names=names,
+        residue_names=["GLY"] * n,
+        residue_numbers=np.arange(n) - 5,
+        chains="B",
+        hetero=het,
+        title="round trip",
+    )
     s = read_pdb(p, hydrogens=True)  # hydrogens are dropped by default
     assert np.abs(s.balls.centers - c).max() <= 5e-4 + 1e-9
     assert np.array_equal(s.balls.radii, b.radii)
@@ -170,9 +213,17 @@ def test_round_trip(tmp_path):
     assert list(s.residue_numbers) == list(range(-5, n - 5))
     assert set(s.chains) == {"B"} and np.array_equal(s.hetero, het)
     # and a second round trip is exact
-    p2 = write_pdb(tmp_path / "rt2.pdb", s.balls, s.elements, atom_names=s.atom_names,
-                   residue_names=s.residue_names, residue_numbers=s.residue_numbers,
-                   chains=s.chains, hetero=s.hetero, title="round trip")
+    p2 = write_pdb(
+        tmp_path / "rt2.pdb",
+        s.balls,
+        s.elements,
+        atom_names=s.atom_names,
+        residue_names=s.residue_names,
+        residue_numbers=s.residue_numbers,
+        chains=s.chains,
+        hetero=s.hetero,
+        title="round trip",
+    )
     assert p.read_text() == p2.read_text()
 
 
@@ -195,13 +246,22 @@ def test_writer_rejects_what_does_not_fit(tmp_path):
 # --------------------------------------------------------------- fuzz
 _LINE = st.one_of(
     st.text(max_size=90),
-    st.builds(lambda head, rest: head + rest,
-              st.sampled_from(["ATOM  ", "HETATM", "END", "ENDMDL", "MODEL ", "REMARK"]),
-              st.text(alphabet=st.sampled_from(list(" 0123456789.-+eEnaifCNOSHZ\t\x00é")), max_size=84)),
-    st.builds(lambda ln, cut: ln[:cut],
-              st.builds(atom, x=st.floats(-999, 9999), y=st.floats(-999, 9999), z=st.floats(-999, 9999),
-                        element=st.sampled_from(["C", "N", "O", "FE", "XX", "  "])),
-              st.integers(0, 80)),
+    st.builds(
+        lambda head, rest: head + rest,
+        st.sampled_from(["ATOM  ", "HETATM", "END", "ENDMDL", "MODEL ", "REMARK"]),
+        st.text(alphabet=st.sampled_from(list(" 0123456789.-+eEnaifCNOSHZ\t\x00é")), max_size=84),
+    ),
+    st.builds(
+        lambda ln, cut: ln[:cut],
+        st.builds(
+            atom,
+            x=st.floats(-999, 9999),
+            y=st.floats(-999, 9999),
+            z=st.floats(-999, 9999),
+            element=st.sampled_from(["C", "N", "O", "FE", "XX", "  "]),
+        ),
+        st.integers(0, 80),
+    ),
 )
 
 
@@ -225,11 +285,22 @@ def atom_occ(serial, name, alt, occ, x, resn="LEU", resi=99, chain="A", element=
 
 
 def test_model_selection(tmp_path):
-    p = write(tmp_path, [
-        "MODEL        1", atom(1, x=1), "ENDMDL",
-        "MODEL        2", atom(1, x=10), atom(2, x=20), "ENDMDL",
-        "MODEL        3", atom(1, x=100), "ENDMDL", "END",
-    ])
+    p = write(
+        tmp_path,
+        [
+            "MODEL        1",
+            atom(1, x=1),
+            "ENDMDL",
+            "MODEL        2",
+            atom(1, x=10),
+            atom(2, x=20),
+            "ENDMDL",
+            "MODEL        3",
+            atom(1, x=100),
+            "ENDMDL",
+            "END",
+        ],
+    )
     assert read_pdb(p).balls.centers[:, 0].tolist() == [1.0]
     assert read_pdb(p).model == 1
     s2 = read_pdb(p, model=2)
@@ -247,8 +318,7 @@ def test_model_selection(tmp_path):
 
 
 def test_model_not_read_is_not_parsed_but_the_read_one_is(tmp_path):
-    p = write(tmp_path, ["MODEL        1", atom(1), "ENDMDL",
-                         "MODEL        2", atom(1)[:40], "ENDMDL"])
+    p = write(tmp_path, ["MODEL        1", atom(1), "ENDMDL", "MODEL        2", atom(1)[:40], "ENDMDL"])
     assert len(read_pdb(p)) == 1
     with pytest.raises(ValueError, match="^line 5: truncated"):
         read_pdb(p, model=2)
@@ -262,29 +332,45 @@ def test_malformed_model_records(tmp_path):
 
 
 def test_alternate_locations_highest_occupancy(tmp_path):
-    p = write(tmp_path, [
-        atom(1, " N  ", element="N"),
-        atom_occ(2, " CB ", "A", 0.30, x=1), atom_occ(3, " CB ", "B", 0.70, x=2),
-        atom_occ(4, " CG ", "A", 0.30, x=3), atom_occ(5, " CG ", "B", 0.70, x=4),
-        atom_occ(6, " CD1", "A", 0.50, x=5), atom_occ(7, " CD1", "B", 0.50, x=6),  # tie: first
-        atom_occ(8, " CD2", "A", 0.20, x=7), atom_occ(9, " CD2", "B", 0.20, x=8),
-        atom_occ(10, " CD2", "C", 0.60, x=9),
-    ])
+    p = write(
+        tmp_path,
+        [
+            atom(1, " N  ", element="N"),
+            atom_occ(2, " CB ", "A", 0.30, x=1),
+            atom_occ(3, " CB ", "B", 0.70, x=2),
+            atom_occ(4, " CG ", "A", 0.30, x=3),
+            atom_occ(5, " CG ", "B", 0.70, x=4),
+            atom_occ(6, " CD1", "A", 0.50, x=5),
+            atom_occ(7, " CD1", "B", 0.50, x=6),  # tie: first
+            atom_occ(8, " CD2", "A", 0.20, x=7),
+            atom_occ(9, " CD2", "B", 0.20, x=8),
+            atom_occ(10, " CD2", "C", 0.60, x=9),
+        ],
+    )
     s = read_pdb(p)
     assert s.balls.centers[:, 0].tolist() == [0.0, 2.0, 4.0, 5.0, 9.0]
     assert s.altlocs.tolist() == ["", "B", "B", "A", "C"]
     assert s.occupancies.tolist() == [1.0, 0.7, 0.7, 0.5, 0.6]
     # alternatives of different residues or chains are not confused
-    q = write(tmp_path, [atom_occ(1, " CB ", "A", 0.4, x=1, resi=1), atom_occ(2, " CB ", "B", 0.6, x=2, resi=1),
-                         atom_occ(3, " CB ", "A", 0.9, x=3, resi=2), atom_occ(4, " CB ", "B", 0.1, x=4, resi=2),
-                         atom_occ(5, " CB ", "A", 0.2, x=5, resi=2, chain="B"),
-                         atom_occ(6, " CB ", "B", 0.8, x=6, resi=2, chain="B")], "q.pdb")
+    q = write(
+        tmp_path,
+        [
+            atom_occ(1, " CB ", "A", 0.4, x=1, resi=1),
+            atom_occ(2, " CB ", "B", 0.6, x=2, resi=1),
+            atom_occ(3, " CB ", "A", 0.9, x=3, resi=2),
+            atom_occ(4, " CB ", "B", 0.1, x=4, resi=2),
+            atom_occ(5, " CB ", "A", 0.2, x=5, resi=2, chain="B"),
+            atom_occ(6, " CB ", "B", 0.8, x=6, resi=2, chain="B"),
+        ],
+        "q.pdb",
+    )
     assert read_pdb(q).balls.centers[:, 0].tolist() == [2.0, 3.0, 6.0]
 
 
 def test_chain_selection(tmp_path):
-    p = write(tmp_path, [atom(1, chain="A", x=1), atom(2, chain="B", x=2), atom(3, chain="C", x=3),
-                         atom(4, chain=" ", x=4)])
+    p = write(
+        tmp_path, [atom(1, chain="A", x=1), atom(2, chain="B", x=2), atom(3, chain="C", x=3), atom(4, chain=" ", x=4)]
+    )
     assert read_pdb(p, chain="B").balls.centers[:, 0].tolist() == [2.0]
     assert read_pdb(p, chain=["A", "C"]).balls.centers[:, 0].tolist() == [1.0, 3.0]
     assert read_pdb(p, chain="").balls.centers[:, 0].tolist() == [4.0]
@@ -300,16 +386,20 @@ def test_chain_selection(tmp_path):
 def test_hetatm_and_water_selection(tmp_path):
     def tip3(line):  # CHARMM's four-letter residue name reaches column 21
         return line[:20] + "3" + line[21:]
-    p = write(tmp_path, [
-        atom(1, " CA ", x=1),
-        atom(2, " SG ", resn="CSO", element="S", rec="HETATM", x=2),
-        atom(3, " C1 ", resn="LIG", rec="HETATM", resi=200, x=3),
-        atom(4, " O  ", resn="HOH", element="O", rec="HETATM", resi=301, x=4),
-        tip3(atom(5, " OH2", resn="TIP", element="O", resi=302, x=5)),  # CHARMM water, ATOM
-        atom(6, "ZN  ", resn="ZN", element="ZN", rec="HETATM", resi=400, x=6),
-    ])
+
+    p = write(
+        tmp_path,
+        [
+            atom(1, " CA ", x=1),
+            atom(2, " SG ", resn="CSO", element="S", rec="HETATM", x=2),
+            atom(3, " C1 ", resn="LIG", rec="HETATM", resi=200, x=3),
+            atom(4, " O  ", resn="HOH", element="O", rec="HETATM", resi=301, x=4),
+            tip3(atom(5, " OH2", resn="TIP", element="O", resi=302, x=5)),  # CHARMM water, ATOM
+            atom(6, "ZN  ", resn="ZN", element="ZN", rec="HETATM", resi=400, x=6),
+        ],
+    )
     x = lambda **kw: read_pdb(p, **kw).balls.centers[:, 0].tolist()  # noqa: E731
-    assert x() == [1.0, 2.0, 3.0, 6.0]                    # waters dropped by default
+    assert x() == [1.0, 2.0, 3.0, 6.0]  # waters dropped by default
     assert x(water=True) == [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]
     assert x(hetatm=False) == [1.0]
     assert x(hetatm=False, water=True) == [1.0, 4.0, 5.0]
@@ -323,9 +413,16 @@ def test_hetatm_and_water_selection(tmp_path):
 
 
 def test_hydrogens_dropped_by_default(tmp_path):
-    p = write(tmp_path, [atom(1, " N  ", element="N"), atom(2, " H  ", element="H", x=1),
-                         atom(3, " CA ", x=2), atom(4, " D  ", element="D", x=3),
-                         atom(5, "HG21", element="", x=4)[:66]])
+    p = write(
+        tmp_path,
+        [
+            atom(1, " N  ", element="N"),
+            atom(2, " H  ", element="H", x=1),
+            atom(3, " CA ", x=2),
+            atom(4, " D  ", element="D", x=3),
+            atom(5, "HG21", element="", x=4)[:66],
+        ],
+    )
     assert read_pdb(p).elements.tolist() == ["N", "C"]
     s = read_pdb(p, hydrogens=True)
     assert s.elements.tolist() == ["N", "H", "C", "D", "H"]
@@ -336,8 +433,15 @@ def test_hydrogens_dropped_by_default(tmp_path):
 
 
 def test_radii_table(tmp_path):
-    p = write(tmp_path, [atom(1, " N  ", element="N"), atom(2, " CA ", x=1), atom(3, " CB ", x=2),
-                         atom(4, "FE  ", resn="HEM", element="FE", rec="HETATM", x=3)])
+    p = write(
+        tmp_path,
+        [
+            atom(1, " N  ", element="N"),
+            atom(2, " CA ", x=1),
+            atom(3, " CB ", x=2),
+            atom(4, "FE  ", resn="HEM", element="FE", rec="HETATM", x=3),
+        ],
+    )
     s = read_pdb(p, radii={"c": 1.9, "Fe": 2.0, ("ala", "cb"): 2.1}, probe=0.5)
     assert s.balls.radii.tolist() == [1.55 + 0.5, 1.9 + 0.5, 2.1 + 0.5, 2.0 + 0.5]
     with pytest.raises(ValueError, match="radii="):
@@ -353,13 +457,24 @@ def test_radii_table(tmp_path):
 def test_left_justified_names_in_polymer_residues(tmp_path):
     # CHARMM writes names from column 13: "CA  " of a LEU is carbon, of residue CA calcium
     def charmm(name, resn):
-        line = (f"ATOM  {1:>5} {name:<4} {resn:<4} {1:>4}    {0.0:8.3f}{0.0:8.3f}{0.0:8.3f}"
-                f"{1.0:6.2f}{0.0:6.2f}      PROT")
+        line = (
+            f"ATOM  {1:>5} {name:<4} {resn:<4} {1:>4}    {0.0:8.3f}{0.0:8.3f}{0.0:8.3f}{1.0:6.2f}{0.0:6.2f}      PROT"
+        )
         assert line[12:16] == f"{name:<4}" and line[17:21] == f"{resn:<4}" and line[72:76] == "PROT"
         return line
-    cases = [("CA", "LEU", "C"), ("CD1", "LEU", "C"), ("NE2", "HSD", "N"), ("HE1", "HSD", "H"),
-             ("HG1", "THR", "H"), ("OT1", "GLY", "O"), ("SD", "MET", "S"), ("SE", "MSE", "Se"),
-             ("CA", "CA", "Ca"), ("HG", "HG", "Hg")]
+
+    cases = [
+        ("CA", "LEU", "C"),
+        ("CD1", "LEU", "C"),
+        ("NE2", "HSD", "N"),
+        ("HE1", "HSD", "H"),
+        ("HG1", "THR", "H"),
+        ("OT1", "GLY", "O"),
+        ("SD", "MET", "S"),
+        ("SE", "MSE", "Se"),
+        ("CA", "CA", "Ca"),
+        ("HG", "HG", "Hg"),
+    ]
     for name, resn, want in cases:
         p = write(tmp_path, [charmm(name, resn)])
         s = read_pdb(p, hydrogens=True, default_radius=2.0)
@@ -384,6 +499,7 @@ def test_insertion_codes_and_labels(tmp_path):
 
 def test_gzip_files(tmp_path):
     import gzip
+
     lines = [atom(1, x=1), atom(2, x=2)]
     p = tmp_path / "a.pdb.gz"
     p.write_bytes(gzip.compress(("\n".join(lines) + "\n").encode()))
@@ -394,10 +510,13 @@ def test_gzip_files(tmp_path):
         read_pdb(bad)
 
 
-@pytest.mark.parametrize("bad, what", [
-    (lambda l: l[:54] + "  x.00" + l[60:], "occupancy"),
-    (lambda l: l[:60] + " 2O.00" + l[66:], "B-factor"),
-])
+@pytest.mark.parametrize(
+    "bad, what",
+    [
+        (lambda l: l[:54] + "  x.00" + l[60:], "occupancy"),
+        (lambda l: l[:60] + " 2O.00" + l[66:], "B-factor"),
+    ],
+)
 def test_malformed_occupancy_and_b_factor(tmp_path, bad, what):
     p = write(tmp_path, ["HEADER    X", atom(1), bad(atom(2)), atom(3)])
     with pytest.raises(ValueError, match=f"^line 3: .*{what}"):

@@ -11,6 +11,7 @@ Oracles, all independent of the dual complex:
 * Monte Carlo with a 4σ bound, per ball (ownership by least power distance) and total;
 * freesasa's Lee–Richards surface area at fine slicing (optional peer).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -66,7 +67,9 @@ def union_disks_exact(c, r):
     r = np.asarray(r, float)
     area = perim = 0.0
     for i, p1, p2 in _arcs_of_union(c, r):
-        area += 0.5 * (r[i] ** 2 * (p2 - p1) + r[i] * (c[i, 0] * (np.sin(p2) - np.sin(p1)) - c[i, 1] * (np.cos(p2) - np.cos(p1))))
+        area += 0.5 * (
+            r[i] ** 2 * (p2 - p1) + r[i] * (c[i, 0] * (np.sin(p2) - np.sin(p1)) - c[i, 1] * (np.cos(p2) - np.cos(p1)))
+        )
         perim += r[i] * (p2 - p1)
     return area, perim
 
@@ -149,7 +152,9 @@ def test_single_ball(r):
     assert m3.surface_area == pytest.approx(4 * PI * r**2, rel=1e-14, abs=0)
 
 
-@pytest.mark.parametrize("d, r, R", [(1.0, 1.0, 1.0), (1.5, 1.0, 0.7), (0.3, 1.0, 0.9), (2.5, 2.0, 1.0), (0.1, 3.0, 2.95)])
+@pytest.mark.parametrize(
+    "d, r, R", [(1.0, 1.0, 1.0), (1.5, 1.0, 0.7), (0.3, 1.0, 0.9), (2.5, 2.0, 1.0), (0.1, 3.0, 2.95)]
+)
 def test_two_disks_and_two_balls_closed_form(d, r, R):
     m = union_measure(Balls([[0.0, 0.0], [d, 0.0]], [r, R]))
     assert m.area == pytest.approx(PI * (r**2 + R**2) - lens_area(d, r, R), rel=1e-12)
@@ -223,7 +228,13 @@ def test_random_disks_against_exact_arcs(seed):
 
 @settings(max_examples=60, deadline=None)
 @given(
-    st.lists(st.tuples(st.integers(0, 5), st.integers(0, 5), st.sampled_from([0.5, 1.0, 1.5, 2 ** 0.5 / 2, 2 ** 0.5, 5 ** 0.5 / 2])), min_size=1, max_size=14)
+    st.lists(
+        st.tuples(
+            st.integers(0, 5), st.integers(0, 5), st.sampled_from([0.5, 1.0, 1.5, 2**0.5 / 2, 2**0.5, 5**0.5 / 2])
+        ),
+        min_size=1,
+        max_size=14,
+    )
 )
 def test_integer_disks_hypothesis(rows):
     """Grid centres and radii chosen so that tangencies, cocircular and duplicate
@@ -463,12 +474,15 @@ def _poly_area(P):
     return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
 
 
-@pytest.mark.parametrize("centers, radii", [
-    ([[0, 0], [1, 0], [2, 0]], 0.6),                    # collinear: K has no triangle
-    ([[0, 0], [1, 1]], 0.8),                            # n <= d
-    ([[0, 0], [0.1, 0], [0, 0.1]], [3.0, 0.1, 0.1]),    # all hidden but one
-    ([[0, 0], [0, 0], [0.5, 0]], [1.0, 1.0, 0.7]),      # duplicate centres
-])
+@pytest.mark.parametrize(
+    "centers, radii",
+    [
+        ([[0, 0], [1, 0], [2, 0]], 0.6),  # collinear: K has no triangle
+        ([[0, 0], [1, 1]], 0.8),  # n <= d
+        ([[0, 0], [0.1, 0], [0, 0.1]], [3.0, 0.1, 0.1]),  # all hidden but one
+        ([[0, 0], [0, 0], [0.5, 0]], [1.0, 1.0, 0.7]),  # duplicate centres
+    ],
+)
 def test_low_dimensional_disks(centers, radii):
     b = Balls(centers, radii)
     m = union_measure(b)
@@ -476,11 +490,14 @@ def test_low_dimensional_disks(centers, radii):
     assert m.area == pytest.approx(A, rel=1e-12) and m.perimeter == pytest.approx(L, rel=1e-12)
 
 
-@pytest.mark.parametrize("centers", [
-    [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]],        # coplanar and cocircular
-    [[0, 0, 0], [1, 0, 0], [2, 0, 0]],                   # collinear
-    [[0, 0, 0], [1, 0.2, 0.1]],                          # n <= d
-])
+@pytest.mark.parametrize(
+    "centers",
+    [
+        [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]],  # coplanar and cocircular
+        [[0, 0, 0], [1, 0, 0], [2, 0, 0]],  # collinear
+        [[0, 0, 0], [1, 0.2, 0.1]],  # n <= d
+    ],
+)
 def test_low_dimensional_balls(centers):
     b = Balls(centers, 0.8)
     m = union_measure(b)
@@ -527,7 +544,7 @@ def test_two_tiny_balls_far_apart(dim):
     c[1, 0] = 1.0
     m = union_measure(Balls(c, r))
     if dim == 3:
-        assert m.volume == pytest.approx(2 * 4 / 3 * PI * r**3, rel=1e-14, abs=0)   # 2.26e-16
+        assert m.volume == pytest.approx(2 * 4 / 3 * PI * r**3, rel=1e-14, abs=0)  # 2.26e-16
         assert m.surface_area == pytest.approx(2 * 4 * PI * r**2, rel=1e-14, abs=0)
     else:
         assert m.area == pytest.approx(2 * PI * r**2, rel=1e-14, abs=0)

@@ -5,6 +5,7 @@ outputs strictly.  These tests check what nbval cannot: that outputs were
 committed at all, executed once top to bottom, with no error and no stderr, and
 that each lesson follows the course's conventions (CONTRIBUTING.md).
 """
+
 from __future__ import annotations
 
 import re
@@ -120,4 +121,5 @@ def test_has_speaker_notes_for_the_deck_only(lesson):
     assert notes, f"{path.name}: no speaker notes (a markdown cell with slide type 'notes')"
     for c in notes:
         assert c.cell_type == "markdown" and "remove-cell" in c.metadata.get("tags", []), (
-            f"{path.name}: speaker notes must be markdown tagged 'remove-cell'")
+            f"{path.name}: speaker notes must be markdown tagged 'remove-cell'"
+        )

@@ -1,5 +1,6 @@
 """shapelab.oracles against closed forms and the library's exact answers: the
 naive inclusion–exclusion formula, Monte Carlo, the sampled nerve and the raster."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -43,7 +44,6 @@ def test_monte_carlo_helper_within_bound():
     assert abs(est - union_measure(b).area) < 4 * se
 
 
-
 # ------------------------------------------------------- sampling oracles
 def test_sampled_nerve_and_raster_topology_on_figure_23_1():
     from shapelab import datasets
@@ -67,7 +67,10 @@ def test_truncated_naive_formula():
     one, _, _ = naive_union_area(b, max_order=1)
     two, _, _ = naive_union_area(b, max_order=2)
     assert one == pytest.approx(np.sum(PI * b.radii**2), rel=1e-14)
-    pairs = sum(lens_area(np.linalg.norm(b.centers[i] - b.centers[j]), b.radii[i], b.radii[j])
-                for i in range(6) for j in range(i + 1, 6))
+    pairs = sum(
+        lens_area(np.linalg.norm(b.centers[i] - b.centers[j]), b.radii[i], b.radii[j])
+        for i in range(6)
+        for j in range(i + 1, 6)
+    )
     assert two == pytest.approx(one - pairs, rel=1e-12)
     assert naive_union_area(b, max_order=6)[0] == pytest.approx(full, rel=1e-14)

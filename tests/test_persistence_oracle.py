@@ -11,6 +11,7 @@ differently, both faces before cofaces), so grids, with many tied values, are
 compared the same way.  Betti curves, voids and tunnels, which read the same
 reduction, are checked against GUDHI's intervals on a mid-size protein-like input.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -20,7 +21,7 @@ from hypothesis import strategies as st
 
 import shapelab as sl
 
-from ._oracles import bottleneck, compare, gudhi_diagrams, grid_balls, protein_like, random_balls
+from ._oracles import bottleneck, compare, grid_balls, gudhi_diagrams, protein_like, random_balls
 
 gudhi = pytest.importorskip("gudhi")
 
@@ -50,7 +51,7 @@ def test_protein_like_generator_is_protein_like():
     from scipy.spatial import ConvexHull, cKDTree
 
     d, _ = cKDTree(b.centers).query(b.centers, k=2)
-    assert 1.4 < d[:, 1].min() and d[:, 1].max() < 3.5          # bonded neighbours
+    assert 1.4 < d[:, 1].min() and d[:, 1].max() < 3.5  # bonded neighbours
     assert 0.03 < len(b.centers) / ConvexHull(b.centers).volume < 0.08  # atoms per Å^3
     assert set(np.round(b.radii, 2)) <= {1.52, 1.55, 1.7, 1.8}
     np.testing.assert_array_equal(protein_like(500, seed=0).centers, b.centers)  # seeded
@@ -75,8 +76,9 @@ def test_grid_with_vacancies_and_element_radii_matches_gudhi():
 @settings(max_examples=60, deadline=None)
 @given(
     dim=st.sampled_from([2, 3]),
-    pts=st.lists(st.tuples(st.integers(0, 4), st.integers(0, 4), st.integers(0, 4)),
-                 min_size=5, max_size=30, unique=True),
+    pts=st.lists(
+        st.tuples(st.integers(0, 4), st.integers(0, 4), st.integers(0, 4)), min_size=5, max_size=30, unique=True
+    ),
     radii=st.lists(st.integers(0, 3), min_size=30, max_size=30),
 )
 def test_small_integer_inputs_match_gudhi(dim, pts, radii):
@@ -90,9 +92,24 @@ def test_small_integer_inputs_match_gudhi(dim, pts, radii):
 def test_small_explicit_case_with_ties_3d():
     """A 2x2x3 block of unit spacing plus one off-lattice ball: ties in every
     dimension, an H1 class and a void-free filling; the whole diagram is checked."""
-    X = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0], [0, 0, 1], [1, 0, 1],
-                  [0, 1, 1], [1, 1, 1], [0, 0, 2], [1, 0, 2], [0, 1, 2], [1, 1, 2],
-                  [0.5, 0.5, 3.1]], dtype=np.float64)
+    X = np.array(
+        [
+            [0, 0, 0],
+            [1, 0, 0],
+            [0, 1, 0],
+            [1, 1, 0],
+            [0, 0, 1],
+            [1, 0, 1],
+            [0, 1, 1],
+            [1, 1, 1],
+            [0, 0, 2],
+            [1, 0, 2],
+            [0, 1, 2],
+            [1, 1, 2],
+            [0.5, 0.5, 3.1],
+        ],
+        dtype=np.float64,
+    )
     F = sl.alpha_filtration(sl.Balls(X, 0.3))
     assert_same_diagrams(F)
 

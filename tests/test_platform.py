@@ -1,6 +1,6 @@
 """The platform promises of issue #2: the lab launcher's security, the book config's
 offline wiring, and the pins."""
-import importlib.util
+
 import re
 from pathlib import Path
 
@@ -63,7 +63,9 @@ def test_readme_gives_the_two_commands():
 
 @pytest.mark.parametrize(
     "path",
-    sorted(p.relative_to(ROOT).as_posix() for d in ("shapelab", "course", "benchmarks") for p in (ROOT / d).rglob("*.py")),
+    sorted(
+        p.relative_to(ROOT).as_posix() for d in ("shapelab", "course", "benchmarks") for p in (ROOT / d).rglob("*.py")
+    ),
 )
 def test_source_compiles_without_warnings(path):
     """An invalid escape such as ``\\m`` in a docstring is a warning today (it reached CI's
@@ -87,27 +89,33 @@ def _sanitize(text: str) -> str:
     return text
 
 
-@pytest.mark.parametrize("a, b", [
-    ("<shapelab.Balls object at 0x7f3a2c1d9e80>", "<shapelab.Balls object at 0x7f11aa0b3c10>"),
-    ("<Figure size 800x450 with 1 Axes>", "<Figure size 640x480 with 2 Axes>"),
-    ('<path id="m3f2a9c81d0" d="M 0 0"/>', '<path id="m77bb01e2fa" d="M 0 0"/>'),
-    ('<use xlink:href="#m3f2a9c81d0" x="1"/>', '<use xlink:href="#m77bb01e2fa" x="1"/>'),
-    ('<g clip-path="url(#p3a9f1c2d4e)">', '<g clip-path="url(#p0b1c2d3e4f)">'),
-    ("built 2026-11-23T09:41:07Z", "built 2027-01-02T17:00:00Z"),
-    ("brute force 0.45 s, k-d tree 12 ms", "brute force 0.61 s, k-d tree 9 ms"),
-    ("early break is 3.1× faster", "early break is 2.7× faster"),
-    ("peak 575 MiB", "peak 612 MiB"),
-])
+@pytest.mark.parametrize(
+    "a, b",
+    [
+        ("<shapelab.Balls object at 0x7f3a2c1d9e80>", "<shapelab.Balls object at 0x7f11aa0b3c10>"),
+        ("<Figure size 800x450 with 1 Axes>", "<Figure size 640x480 with 2 Axes>"),
+        ('<path id="m3f2a9c81d0" d="M 0 0"/>', '<path id="m77bb01e2fa" d="M 0 0"/>'),
+        ('<use xlink:href="#m3f2a9c81d0" x="1"/>', '<use xlink:href="#m77bb01e2fa" x="1"/>'),
+        ('<g clip-path="url(#p3a9f1c2d4e)">', '<g clip-path="url(#p0b1c2d3e4f)">'),
+        ("built 2026-11-23T09:41:07Z", "built 2027-01-02T17:00:00Z"),
+        ("brute force 0.45 s, k-d tree 12 ms", "brute force 0.61 s, k-d tree 9 ms"),
+        ("early break is 3.1× faster", "early break is 2.7× faster"),
+        ("peak 575 MiB", "peak 612 MiB"),
+    ],
+)
 def test_sanitize_equates_what_changes_between_runs(a, b):
     assert a != b and _sanitize(a) == _sanitize(b)
 
 
-@pytest.mark.parametrize("a, b", [
-    ("accelerated   35 iterations, final error 0.68°", "accelerated   22 iterations, final error 0.46°"),
-    ("area 12.5664, perimeter 12.5664", "area 12.5665, perimeter 12.5664"),
-    ("Betti (β₀, β₁) = (1, 4)", "Betti (β₀, β₁) = (1, 3)"),
-    ("τ = 0.891", "τ = 0.892"),
-])
+@pytest.mark.parametrize(
+    "a, b",
+    [
+        ("accelerated   35 iterations, final error 0.68°", "accelerated   22 iterations, final error 0.46°"),
+        ("area 12.5664, perimeter 12.5664", "area 12.5665, perimeter 12.5664"),
+        ("Betti (β₀, β₁) = (1, 4)", "Betti (β₀, β₁) = (1, 3)"),
+        ("τ = 0.891", "τ = 0.892"),
+    ],
+)
 def test_sanitize_keeps_the_numbers_a_lesson_teaches(a, b):
     assert _sanitize(a) != _sanitize(b)
 
@@ -129,7 +137,7 @@ def test_pin_versions_marks_only_what_differs(tmp_path):
         'numpy==2.4.6 ; python_version >= "3.11"',
         'numpy==2.2.6 ; python_version < "3.11"',
         "SciPy==1.17.1",
-        "six==1.17.0 ; python_version >= \"3.11\"",
+        'six==1.17.0 ; python_version >= "3.11"',
         'tomli==2.5.0 ; python_version < "3.11"',
     ]
     bad = tmp_path / "bad.txt"

@@ -1,5 +1,6 @@
 """Tests of shapelab.plot.balls: figures of disks, power diagrams, dual complexes,
 filtrations and 3D views (smoke + structure: what is drawn matches the library)."""
+
 from __future__ import annotations
 
 import matplotlib
@@ -8,12 +9,11 @@ matplotlib.use("Agg")
 
 import numpy as np
 import pytest
-from matplotlib.collections import EllipseCollection, LineCollection, PolyCollection
 from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.collections import EllipseCollection, LineCollection, PolyCollection
 from matplotlib.figure import Figure
 
-from shapelab import Balls, alpha_filtration, power_diagram
-from shapelab import plot
+from shapelab import Balls, alpha_filtration, plot, power_diagram
 from shapelab.plot.balls import DualComplexView
 
 
@@ -137,14 +137,17 @@ def test_3d_views():
         plot.balls3d(rand(3, 2))
 
 
-@pytest.mark.parametrize("centers, radii", [
-    (np.zeros((0, 2)), 1.0),                       # nothing
-    ([[0.0, 0.0]], 1.0),                           # one disk
-    ([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]], 0.6),   # collinear: no triangles
-    ([[0.0, 0.0], [0.0, 0.0], [1.0, 1.0]], 0.5),   # duplicate centres
-    ([[0.0, 0.0], [0.1, 0.0], [0.0, 0.1]], [3.0, 0.1, 0.1]),  # all hidden but one
-    ([[1e6, 1e6], [1e6 + 1, 1e6], [1e6, 1e6 + 1]], 0.7),     # huge offset
-])
+@pytest.mark.parametrize(
+    "centers, radii",
+    [
+        (np.zeros((0, 2)), 1.0),  # nothing
+        ([[0.0, 0.0]], 1.0),  # one disk
+        ([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]], 0.6),  # collinear: no triangles
+        ([[0.0, 0.0], [0.0, 0.0], [1.0, 1.0]], 0.5),  # duplicate centres
+        ([[0.0, 0.0], [0.1, 0.0], [0.0, 0.1]], [3.0, 0.1, 0.1]),  # all hidden but one
+        ([[1e6, 1e6], [1e6 + 1, 1e6], [1e6, 1e6 + 1]], 0.7),  # huge offset
+    ],
+)
 def test_degenerate_inputs_draw(centers, radii):
     b = Balls(centers, radii)
     for fig in (plot.disks(b), plot.dual_complex(b), plot.filtration(alpha_filtration(b))):

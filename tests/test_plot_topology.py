@@ -1,5 +1,6 @@
 """Tests of shapelab.plot.topology and shapelab.widgets.topology: the figures draw
 exactly the data they are given (counted from the artists), and bad input is refused."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -27,6 +28,7 @@ PAIRS = {
 def render(fig):
     """Draw the figure for real (3D collections project their data when drawn)."""
     import io
+
     fig.savefig(io.BytesIO(), format="png")
 
 
@@ -125,20 +127,23 @@ def test_betti_curve_from_arrays_and_default_taus():
     assert ax.get_yscale() == "symlog"  # ~100 components at first
 
 
-@pytest.mark.parametrize("call, exc", [
-    (lambda: PT.persistence_diagram([1, 2]), TypeError),
-    (lambda: PT.persistence_diagram({0: [[1.0, 0.0]]}), ValueError),
-    (lambda: PT.persistence_diagram({0: [[np.nan, 1.0]]}), ValueError),
-    (lambda: PT.persistence_diagram({"a": [[0.0, 1.0]]}), ValueError),
-    (lambda: PT.persistence_diagram(PAIRS, dims=[5]), ValueError),
-    (lambda: PT.persistence_diagram(PAIRS, tau=np.inf), ValueError),
-    (lambda: PT.barcode(PAIRS, max_bars=0), ValueError),
-    (lambda: PT.barcode(PAIRS, min_persistence=-1), ValueError),
-    (lambda: PT.betti_curve("F"), TypeError),
-    (lambda: PT.betti_curve((np.arange(3), np.zeros((2, 2)))), ValueError),
-    (lambda: PT.voids(np.zeros((3, 2)), voids=[]), TypeError),
-    (lambda: PT.pockets(D.ring(5), pockets=[], tau="x"), TypeError),
-])
+@pytest.mark.parametrize(
+    "call, exc",
+    [
+        (lambda: PT.persistence_diagram([1, 2]), TypeError),
+        (lambda: PT.persistence_diagram({0: [[1.0, 0.0]]}), ValueError),
+        (lambda: PT.persistence_diagram({0: [[np.nan, 1.0]]}), ValueError),
+        (lambda: PT.persistence_diagram({"a": [[0.0, 1.0]]}), ValueError),
+        (lambda: PT.persistence_diagram(PAIRS, dims=[5]), ValueError),
+        (lambda: PT.persistence_diagram(PAIRS, tau=np.inf), ValueError),
+        (lambda: PT.barcode(PAIRS, max_bars=0), ValueError),
+        (lambda: PT.barcode(PAIRS, min_persistence=-1), ValueError),
+        (lambda: PT.betti_curve("F"), TypeError),
+        (lambda: PT.betti_curve((np.arange(3), np.zeros((2, 2)))), ValueError),
+        (lambda: PT.voids(np.zeros((3, 2)), voids=[]), TypeError),
+        (lambda: PT.pockets(D.ring(5), pockets=[], tau="x"), TypeError),
+    ],
+)
 def test_bad_input(call, exc):
     with pytest.raises(exc):
         call()
@@ -173,10 +178,14 @@ class FakeTunnel:
 
 def polys(ax, color):
     from matplotlib.colors import to_rgba
+
     out = []
     for c in ax.collections:
-        if isinstance(c, PolyCollection) and len(c.get_facecolors()) and \
-                np.allclose(c.get_facecolors()[0][:3], to_rgba(color)[:3]):
+        if (
+            isinstance(c, PolyCollection)
+            and len(c.get_facecolors())
+            and np.allclose(c.get_facecolors()[0][:3], to_rgba(color)[:3])
+        ):
             out.extend(c.get_paths())
     return out
 
@@ -210,8 +219,7 @@ def test_voids_grow_the_disks():
 
 def test_pockets_2d_draws_mouths():
     b = D.ring(6, radius=2.0, disk_radius=1.2)
-    p = FakePocket(np.array([[0, 1, 2], [0, 2, 3]]), np.array([[0, 3], [1, 2]]), np.array([0, 1, 2, 3]),
-                   0.5, 2.0, 0.4)
+    p = FakePocket(np.array([[0, 1, 2], [0, 2, 3]]), np.array([[0, 3], [1, 2]]), np.array([0, 1, 2, 3]), 0.5, 2.0, 0.4)
     fig = PT.pockets(b, pockets=[p], tau=0.0, show_voids=False)
     ax = fig.axes[0]
     assert len(polys(ax, COLORS["accent"])) == 2
@@ -231,6 +239,7 @@ def test_tunnels_3d_draws_the_cycle():
     ax = fig.axes[0]
     assert ax.name == "3d"
     from mpl_toolkits.mplot3d.art3d import Line3DCollection
+
     lines = [c for c in ax.collections if isinstance(c, Line3DCollection)]
     assert len(lines) == 1 and len(lines[0].get_segments()) == 8
 
@@ -267,6 +276,7 @@ def test_plots_of_real_features():
 
 def test_pocket_explorer_widget():
     from shapelab.widgets import pocket_explorer
+
     left, _ = D.figure_23_2()
     w = pocket_explorer(left, tau=0.0, steps=20)
     assert repr(w).startswith("PocketExplorer(n_balls=112, tau=0.00")

@@ -4,7 +4,7 @@ Only the diff logic and the variants' environments are tested here, cheaply and
 deterministically; running lessons under other BLAS kernels is a local diagnostic,
 never part of CI (CONTRIBUTING.md, *Portable outputs*).
 """
-import importlib.util
+
 from pathlib import Path
 
 import nbformat
@@ -31,16 +31,27 @@ def _stdout(*texts):
 
 
 def _nb(value="0.80°", took="0.45 s", png="AAAA", model="a" * 32):
-    return new_notebook(cells=[
-        new_markdown_cell("# 99 · Title"),
-        new_code_cell("print(...)", outputs=_stdout(f"took {took}\n")),
-        new_markdown_cell("## A section"),
-        new_code_cell("print(...)", outputs=_stdout(f"final error {value}\n", "done\n")),
-        new_code_cell("fig", outputs=[new_output(
-            "display_data",
-            data={"text/plain": "<Figure size 800x450 with 1 Axes>", "image/png": png,
-                  "application/vnd.jupyter.widget-view+json": {"model_id": model}})]),
-    ])
+    return new_notebook(
+        cells=[
+            new_markdown_cell("# 99 · Title"),
+            new_code_cell("print(...)", outputs=_stdout(f"took {took}\n")),
+            new_markdown_cell("## A section"),
+            new_code_cell("print(...)", outputs=_stdout(f"final error {value}\n", "done\n")),
+            new_code_cell(
+                "fig",
+                outputs=[
+                    new_output(
+                        "display_data",
+                        data={
+                            "text/plain": "<Figure size 800x450 with 1 Axes>",
+                            "image/png": png,
+                            "application/vnd.jupyter.widget-view+json": {"model_id": model},
+                        },
+                    )
+                ],
+            ),
+        ]
+    )
 
 
 def test_identical_notebooks_do_not_differ(cp, patterns):

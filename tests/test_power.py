@@ -5,6 +5,7 @@ orthospheres, argmin of the power distance for sampled points), a linear program
 "the cell of ball i is empty" (hidden balls), the convex hull's volume (DT tiles the
 hull), GUDHI's weighted alpha complex (top simplices).
 """
+
 from __future__ import annotations
 
 import itertools
@@ -230,9 +231,7 @@ def test_power_diagram_2d_cells(seed):
     # adjacency: the DT edges; the vertices: orthocentres of the triangles
     edges = {tuple(sorted(e)) for t in T.tolist() for e in itertools.combinations(t, 2)}
     assert as_set(pd.adjacency) == edges
-    np.testing.assert_allclose(
-        pd.vertices, [orthocentre(balls.centers[t], balls.weights[t]) for t in T], atol=1e-12
-    )
+    np.testing.assert_allclose(pd.vertices, [orthocentre(balls.centers[t], balls.weights[t]) for t in T], atol=1e-12)
 
 
 def test_power_diagram_bbox_and_degenerate():

@@ -4,6 +4,7 @@ Oracles independent of the code under test: the multiplication table of the basi
 (i² = j² = k² = ijk = −1) extended bilinearly, the 2×2 complex-matrix representation
 of the quaternions, SciPy's Rotation (which stores (x, y, z, w)!), and closed forms.
 """
+
 from __future__ import annotations
 
 import dataclasses
@@ -51,10 +52,22 @@ unit4 = quat4.map(unit).filter(lambda q: q is not None)
 
 # basis products e_a e_b = sign * e_c, from i^2 = j^2 = k^2 = ijk = -1 (Hamilton)
 _TABLE = {
-    (0, 0): (1, 0), (0, 1): (1, 1), (0, 2): (1, 2), (0, 3): (1, 3),
-    (1, 0): (1, 1), (1, 1): (-1, 0), (1, 2): (1, 3), (1, 3): (-1, 2),
-    (2, 0): (1, 2), (2, 1): (-1, 3), (2, 2): (-1, 0), (2, 3): (1, 1),
-    (3, 0): (1, 3), (3, 1): (1, 2), (3, 2): (-1, 1), (3, 3): (-1, 0),
+    (0, 0): (1, 0),
+    (0, 1): (1, 1),
+    (0, 2): (1, 2),
+    (0, 3): (1, 3),
+    (1, 0): (1, 1),
+    (1, 1): (-1, 0),
+    (1, 2): (1, 3),
+    (1, 3): (-1, 2),
+    (2, 0): (1, 2),
+    (2, 1): (-1, 3),
+    (2, 2): (-1, 0),
+    (2, 3): (1, 1),
+    (3, 0): (1, 3),
+    (3, 1): (1, 2),
+    (3, 2): (-1, 1),
+    (3, 3): (-1, 0),
 }
 
 
@@ -114,9 +127,7 @@ def test_associative_not_commutative(a, b, c):
 def test_norm_is_multiplicative_and_conjugate_reverses(q, r):
     Q, R = Quaternion(*q), Quaternion(*r)
     assert np.isclose((Q * R).norm(), Q.norm() * R.norm(), rtol=1e-12, atol=1e-12)
-    np.testing.assert_allclose(
-        (Q * R).conjugate().as_array(), (R.conjugate() * Q.conjugate()).as_array(), atol=1e-9
-    )
+    np.testing.assert_allclose((Q * R).conjugate().as_array(), (R.conjugate() * Q.conjugate()).as_array(), atol=1e-9)
     # q q* = |q|^2, and <q, r> is the dot product
     np.testing.assert_allclose((Q * Q.conjugate()).as_array(), [Q.norm() ** 2, 0, 0, 0], atol=1e-9)
     assert np.isclose(Q.inner(R), float(np.dot(q, r)), atol=1e-12)
@@ -154,7 +165,7 @@ def test_immutable_hashable_float64():
 @SET
 @given(quat4, quat4)
 def test_left_and_right_matrices(q, r):
-    Q, R = Quaternion(*q), Quaternion(*r)
+    Q = Quaternion(*q)
     np.testing.assert_allclose(Q.left_matrix() @ r, table_product(q, r), atol=1e-9)
     np.testing.assert_allclose(Q.right_matrix() @ r, table_product(r, q), atol=1e-9)
     # Q and Q-bar commute (left and right multiplications commute by associativity)
@@ -242,9 +253,7 @@ def test_axis_angle_round_trip_and_scipy(axis, angle):
     expect = Rotation.from_rotvec(rotvec).magnitude()
     assert np.isclose(ang, expect, atol=1e-7)
     np.testing.assert_allclose(Quaternion.from_rotation_vector(rotvec).to_matrix(), q.to_matrix(), atol=1e-9)
-    np.testing.assert_allclose(
-        Rotation.from_rotvec(q.to_rotation_vector()).as_matrix(), q.to_matrix(), atol=1e-9
-    )
+    np.testing.assert_allclose(Rotation.from_rotvec(q.to_rotation_vector()).as_matrix(), q.to_matrix(), atol=1e-9)
 
 
 def test_to_axis_angle_of_identity_and_negative_w():
@@ -326,12 +335,14 @@ def notes_product(q, r):
     """The component formula of q·r exactly as printed in the notes."""
     q0, q1, q2, q3 = q
     r0, r1, r2, r3 = r
-    return np.array([
-        q0 * r0 - q1 * r1 - q2 * r2 - q3 * r3,
-        q0 * r1 + q1 * r0 + q2 * r3 - q3 * r2,
-        q0 * r2 - q1 * r3 + q2 * r0 + q3 * r1,
-        q0 * r3 - q1 * r2 + q2 * r1 + q3 * r0,
-    ])
+    return np.array(
+        [
+            q0 * r0 - q1 * r1 - q2 * r2 - q3 * r3,
+            q0 * r1 + q1 * r0 + q2 * r3 - q3 * r2,
+            q0 * r2 - q1 * r3 + q2 * r0 + q3 * r1,
+            q0 * r3 - q1 * r2 + q2 * r1 + q3 * r0,
+        ]
+    )
 
 
 def test_notes_k_component_has_the_wrong_sign():
@@ -357,7 +368,7 @@ def test_notes_matrix_times_q_is_q_squared_not_qr():
 
 def test_zero_quaternion_is_not_a_rotation():
     z = Quaternion(0.0, 0.0, 0.0, 0.0)
-    for call in (z.rotate, ):
+    for call in (z.rotate,):
         with pytest.raises(ValueError, match="zero quaternion"):
             call([1.0, 0, 0])
     for call in (z.to_matrix, z.to_axis_angle, z.normalized, z.to_rotation_vector):

@@ -5,6 +5,7 @@ products, an SVD (Kabsch with the det fix) written here, SciPy's
 ``Rotation.align_vectors``, brute-force nearest neighbours, and a plain transcription
 of the notes' four ICP steps.
 """
+
 from __future__ import annotations
 
 import dataclasses
@@ -334,12 +335,19 @@ def test_plain_icp_is_the_notes_algorithm():
 
 
 @SET
-@given(seeds, st.floats(0, 120), st.booleans(), st.sampled_from([None, 0.3, 2.0]),
-       st.sampled_from(["lumpy", "cube", "sphere"]))
+@given(
+    seeds,
+    st.floats(0, 120),
+    st.booleans(),
+    st.sampled_from([None, 0.3, 2.0]),
+    st.sampled_from(["lumpy", "cube", "sphere"]),
+)
 def test_icp_cost_never_increases(seed, degrees, accelerate, max_distance, kind):
     rng = np.random.default_rng(seed)
     src = sample_shape(kind, 120, seed=seed)
-    truth = RigidMotion(Quaternion.from_axis_angle(rng.normal(size=3) + 0.1, np.radians(degrees)), 0.2 * rng.normal(size=3))
+    truth = RigidMotion(
+        Quaternion.from_axis_angle(rng.normal(size=3) + 0.1, np.radians(degrees)), 0.2 * rng.normal(size=3)
+    )
     tgt = truth.apply(sample_shape(kind, 100, seed=seed + 1))
     res = icp(src, tgt, tol=0.0, max_iter=30, accelerate=accelerate, max_distance=max_distance)
     assert np.all(np.diff(res.mse) <= 0), res.mse
@@ -416,7 +424,9 @@ def test_icp_init_and_max_iter_zero():
     res = icp(src, tgt, max_iter=0, init=truth)
     assert res.n_iter == 0 and not res.converged and res.mse[0] < 1e-20
     assert res.motion is truth
-    res = icp(src, tgt, tol=1e-14, init=RigidMotion(Quaternion.from_axis_angle([0, 0, 1], np.radians(160)), [1.0, 0, 0]))
+    res = icp(
+        src, tgt, tol=1e-14, init=RigidMotion(Quaternion.from_axis_angle([0, 0, 1], np.radians(160)), [1.0, 0, 0])
+    )
     assert np.degrees(res.motion.rotation.angle_to(truth.rotation)) < 1e-3
     assert isinstance(res, ICPResult) and "converged=True" in repr(res)
 

@@ -16,7 +16,6 @@ no check's result may be displayed a second time (as a ``CheckResult(...)`` repr
 from __future__ import annotations
 
 import ast
-import importlib.util
 import json
 import os
 import queue
@@ -53,7 +52,7 @@ def _blocks(lines):
 
 
 def _used_after(source: str, end_line: int) -> set:
-    after = "\n".join(source.splitlines()[end_line + 1:])
+    after = "\n".join(source.splitlines()[end_line + 1 :])
     try:
         tree = ast.parse(textwrap.dedent(after))
     except SyntaxError:
@@ -69,7 +68,7 @@ def _wrong(source: str, wrong: str) -> tuple[str, list]:
     for begin, end in _blocks(lines):
         out += lines[pos:begin]
         indent = BEGIN.match(lines[begin]).group(1)
-        block = textwrap.dedent("\n".join(lines[begin + 1:end]))
+        block = textwrap.dedent("\n".join(lines[begin + 1 : end]))
         if indent:  # inside a function body: the function returns the wrong answer
             out.append(f"{indent}return {wrong}")
         else:
@@ -78,8 +77,13 @@ def _wrong(source: str, wrong: str) -> tuple[str, list]:
             for node in tree.body:
                 if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
                     out += [f"def {node.name}(*args, **kwargs):", f"    return {wrong}"]
-            assigned = [n.id for node in tree.body if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef))
-                        for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)]
+            assigned = [
+                n.id
+                for node in tree.body
+                if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef))
+                for n in ast.walk(node)
+                if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)
+            ]
             for name in dict.fromkeys(assigned):
                 if name in used:
                     out.append(f"{name} = {wrong}")
@@ -91,8 +95,13 @@ def _wrong(source: str, wrong: str) -> tuple[str, list]:
 
 class Kernel:
     def __init__(self, cwd: Path):
-        env = dict(os.environ, PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""),
-                   PYTHONHASHSEED="0", PYDEVD_DISABLE_FILE_VALIDATION="1", SHAPELAB_STATIC_EXPLORERS="0")
+        env = dict(
+            os.environ,
+            PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""),
+            PYTHONHASHSEED="0",
+            PYDEVD_DISABLE_FILE_VALIDATION="1",
+            SHAPELAB_STATIC_EXPLORERS="0",
+        )
         self.km, self.kc = jupyter_client.manager.start_new_kernel(kernel_name="python3", cwd=str(cwd), env=env)
 
     def run(self, code: str, timeout: float = 300.0):
@@ -125,9 +134,11 @@ class Kernel:
 def _values(kernel: Kernel, names) -> dict:
     if not names:
         return {}
-    code = ("import json as _j, numbers as _n\n"
-            f"print(_j.dumps({{k: float(v) for k, v in (( _k, globals().get(_k)) for _k in {list(names)!r}) "
-            "if isinstance(v, _n.Real) and not isinstance(v, bool)}))")
+    code = (
+        "import json as _j, numbers as _n\n"
+        f"print(_j.dumps({{k: float(v) for k, v in (( _k, globals().get(_k)) for _k in {list(names)!r}) "
+        "if isinstance(v, _n.Real) and not isinstance(v, bool)}))"
+    )
     out, err, _ = kernel.run(code)
     return json.loads(out.strip().splitlines()[-1]) if err is None and out.strip() else {}
 

@@ -107,12 +107,15 @@ def test_the_distance_along_a_curve_is_simplified_to_its_persistent_extrema():
     assert S.error <= 0.05
 
 
-@pytest.mark.parametrize("bad, exc, match", [
-    ([1.0], ValueError, "at least 2"),
-    ([[1.0, 2.0]], ValueError, "1-D"),
-    ([1.0, np.nan], ValueError, "finite"),
-    ("abc", (TypeError, ValueError), "values"),
-])
+@pytest.mark.parametrize(
+    "bad, exc, match",
+    [
+        ([1.0], ValueError, "at least 2"),
+        ([[1.0, 2.0]], ValueError, "1-D"),
+        ([1.0, np.nan], ValueError, "finite"),
+        ("abc", (TypeError, ValueError), "values"),
+    ],
+)
 def test_bad_values_are_refused(bad, exc, match):
     with pytest.raises(exc, match=match):
         curve_persistence(bad)

@@ -7,9 +7,9 @@ and headless Chromium with the network off shows a slide show (reveal.js ready,
 MathJax typeset).  A stock nbconvert deck, which loads reveal.js from a CDN, is the
 negative control: under the same flags it never becomes a slide show.
 """
+
 from __future__ import annotations
 
-import importlib.util
 import re
 import shutil
 import subprocess
@@ -25,7 +25,9 @@ pytest.importorskip("nbconvert")
 LESSONS = sorted((ROOT / "lessons").glob("[0-9][0-9]_*.ipynb"))
 # every deck is checked; Chromium opens lesson 00 and the first lesson with stored widgets
 DECK_LESSONS = LESSONS
-WIDGET_LESSON = next((p for p in LESSONS if "application/vnd.jupyter.widget-state+json" in p.read_text(encoding="utf-8")), None)
+WIDGET_LESSON = next(
+    (p for p in LESSONS if "application/vnd.jupyter.widget-state+json" in p.read_text(encoding="utf-8")), None
+)
 
 REMOTE = re.compile(r"^(https?:)?//", re.I)
 TAG = re.compile(r"<(script|link|img|source|iframe|video|audio|embed)\b[^>]*>", re.I)
@@ -64,7 +66,9 @@ def decks(slides, tmp_path_factory):
 def _asset_urls(html: str):
     for tag in TAG.finditer(html):
         text = tag.group(0)
-        if tag.group(1).lower() == "link" and not re.search(r"rel=[\"']?(stylesheet|preload|icon|modulepreload)", text, re.I):
+        if tag.group(1).lower() == "link" and not re.search(
+            r"rel=[\"']?(stylesheet|preload|icon|modulepreload)", text, re.I
+        ):
             continue
         for _, url in ATTR.findall(text):
             yield text, url
@@ -98,14 +102,18 @@ def test_the_check_above_catches_a_stock_nbconvert_deck():
 def test_local_assets_exist(decks):
     missing = set()
     for deck in decks.glob("*.html"):
-        for tag, url in _asset_urls(deck.read_text(encoding="utf-8")):
+        for _tag, url in _asset_urls(deck.read_text(encoding="utf-8")):
             if REMOTE.match(url) or url.startswith(("data:", "#", "mailto:")):
                 continue
             if not (deck.parent / urlsplit(url).path).exists():
                 missing.add(f"{deck.name} -> {url}")
     # the modules the decks require() and the theme's fonts
-    needed = ["vendor/reveal.js/dist/reveal.js", "vendor/reveal.js/plugin/notes/notes.js",
-              "vendor/mathjax/output/chtml/fonts/woff-v2", "vendor/html-manager/embed-amd.js"]
+    needed = [
+        "vendor/reveal.js/dist/reveal.js",
+        "vendor/reveal.js/plugin/notes/notes.js",
+        "vendor/mathjax/output/chtml/fonts/woff-v2",
+        "vendor/html-manager/embed-amd.js",
+    ]
     missing |= {n for n in needed if not (decks / n).exists()}
     for css in (decks / "vendor").rglob("*.css"):
         for u in CSS_URL.findall(css.read_text(encoding="utf-8", errors="replace")):
@@ -146,8 +154,9 @@ def test_slide_metadata_makes_the_slides(decks, slides):
         deck, _ = slides.prepare(nb, with_solutions=False)
         shown = deck.cells
         kinds = [slides.slide_type(c) for c in shown]
-        assert kinds.count("slide") == sum(slides.slide_type(c) == "slide" for c in nb.cells
-                                           if "solution" not in c.metadata.get("tags", []))
+        assert kinds.count("slide") == sum(
+            slides.slide_type(c) == "slide" for c in nb.cells if "solution" not in c.metadata.get("tags", [])
+        )
         expected = kinds.count("slide") + (kinds[0] != "slide")
         html = (decks / f"{lesson.stem}.slides.html").read_text(encoding="utf-8")
         slides_part = html.split('<div class="slides">', 1)[1]
@@ -166,19 +175,32 @@ def test_slide_metadata_makes_the_slides(decks, slides):
 
 
 def test_a_bad_slide_type_is_refused(slides):
-    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_markdown_cell("# t", metadata={"slideshow": {"slide_type": "slyde"}})])
+    nb = nbformat.v4.new_notebook(
+        cells=[nbformat.v4.new_markdown_cell("# t", metadata={"slideshow": {"slide_type": "slyde"}})]
+    )
     with pytest.raises(ValueError, match="slyde"):
         slides.prepare(nb, with_solutions=False)
 
 
 def _dump_dom(url: str, profile: Path) -> str:
     cmd = [
-        CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
-        "--disable-background-networking", "--no-first-run", "--disable-component-update",
-        "--disable-sync", "--disable-extensions", f"--user-data-dir={profile}",
+        CHROMIUM,
+        "--headless",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-dev-shm-usage",
+        "--disable-background-networking",
+        "--no-first-run",
+        "--disable-component-update",
+        "--disable-sync",
+        "--disable-extensions",
+        f"--user-data-dir={profile}",
         # the network is off: every connection goes to a closed port, no name resolves
-        "--proxy-server=127.0.0.1:9", "--host-resolver-rules=MAP * ~NOTFOUND",
-        "--virtual-time-budget=8000", "--dump-dom", url,
+        "--proxy-server=127.0.0.1:9",
+        "--host-resolver-rules=MAP * ~NOTFOUND",
+        "--virtual-time-budget=8000",
+        "--dump-dom",
+        url,
     ]
     run = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr[-2000:]
@@ -273,10 +295,20 @@ def test_every_slide_fits_with_all_fragments_shown(decks, tmp_path):
         probe.write_text(deck.read_text(encoding="utf-8").replace("</body>", FIT_PROBE + "</body>"), encoding="utf-8")
         try:
             cmd = [
-                CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
-                "--no-first-run", "--disable-extensions", f"--user-data-dir={tmp_path / 'profile'}",
-                "--window-size=1280,720", "--proxy-server=127.0.0.1:9", "--host-resolver-rules=MAP * ~NOTFOUND",
-                "--virtual-time-budget=30000", "--dump-dom", probe.as_uri(),
+                CHROMIUM,
+                "--headless",
+                "--no-sandbox",
+                "--disable-gpu",
+                "--disable-dev-shm-usage",
+                "--no-first-run",
+                "--disable-extensions",
+                f"--user-data-dir={tmp_path / 'profile'}",
+                "--window-size=1280,720",
+                "--proxy-server=127.0.0.1:9",
+                "--host-resolver-rules=MAP * ~NOTFOUND",
+                "--virtual-time-budget=30000",
+                "--dump-dom",
+                probe.as_uri(),
             ]
             run = subprocess.run(cmd, capture_output=True, text=True, timeout=180)
         finally:
@@ -300,7 +332,9 @@ def test_figures_get_their_own_slide_without_code_and_long_slides_continue(slide
     md = lambda text, t="-": nbformat.v4.new_markdown_cell(text, metadata={"slideshow": {"slide_type": t}})  # noqa: E731
     fig = nbformat.v4.new_code_cell("plot()", metadata={"slideshow": {"slide_type": "fragment"}})
     fig.outputs = [nbformat.v4.new_output("display_data", data={"image/png": "iVBORw0KGgo=", "text/plain": "<Figure>"})]
-    long = [md("# Title", "slide")] + [md("A paragraph of some length that fills a line of the slide. " * 2) for _ in range(30)]
+    long = [md("# Title", "slide")] + [
+        md("A paragraph of some length that fills a line of the slide. " * 2) for _ in range(30)
+    ]
     nb = nbformat.v4.new_notebook(cells=[md("# One", "slide"), md("text"), fig, *long])
     deck, counts = slides.prepare(nb, with_solutions=False)
     f = deck.cells[2]

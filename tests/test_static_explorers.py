@@ -154,14 +154,26 @@ window.addEventListener("load", function () {
 });
 </script>"""
     page = tmp_path / "players.html"
-    page.write_text(f"<!doctype html><html><head><meta charset='utf-8'></head><body>{body}{probe}</body></html>",
-                    encoding="utf-8")
+    page.write_text(
+        f"<!doctype html><html><head><meta charset='utf-8'></head><body>{body}{probe}</body></html>", encoding="utf-8"
+    )
     cmd = [
-        CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
-        "--disable-background-networking", "--no-first-run", "--disable-component-update",
-        "--disable-sync", "--disable-extensions", f"--user-data-dir={tmp_path / 'profile'}",
-        "--proxy-server=127.0.0.1:9", "--host-resolver-rules=MAP * ~NOTFOUND",
-        "--virtual-time-budget=5000", "--dump-dom", page.as_uri(),
+        CHROMIUM,
+        "--headless",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-dev-shm-usage",
+        "--disable-background-networking",
+        "--no-first-run",
+        "--disable-component-update",
+        "--disable-sync",
+        "--disable-extensions",
+        f"--user-data-dir={tmp_path / 'profile'}",
+        "--proxy-server=127.0.0.1:9",
+        "--host-resolver-rules=MAP * ~NOTFOUND",
+        "--virtual-time-budget=5000",
+        "--dump-dom",
+        page.as_uri(),
     ]
     run = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr[-2000:]

@@ -8,10 +8,10 @@
 * The student edition of lesson 00, executed, says "not implemented yet" at the
   self-check instead of failing with an error.
 """
+
 from __future__ import annotations
 
 import ast
-import importlib.util
 import os
 import re
 import textwrap
@@ -80,7 +80,8 @@ def test_student_edition_has_no_solution_text(editions):
     assert stats["exercises"] >= 1, f"{path.name}: no exercise found"
     public = set(outside)
     leaked = [
-        ln for ln in inside
+        ln
+        for ln in inside
         if ln not in TRIVIAL and not SIGNATURE.match(ln) and ln not in public and ln in _student_lines(student)
     ]
     assert not leaked, f"{path.name}: solution lines in the student edition: {leaked[:5]}"
@@ -97,7 +98,9 @@ def test_student_edition_keeps_exercises_and_checks(editions):
         assert after(ex.source) == after(sol.source), "the self-check call after the markers is unchanged"
         assert "NotImplementedError" in ex.source, "the placeholder is there"
     n_md = sum(1 for c in instructor.cells if c.cell_type == "markdown")
-    n_md_sol = sum(1 for c in instructor.cells if c.cell_type == "markdown" and "solution" in c.metadata.get("tags", []))
+    n_md_sol = sum(
+        1 for c in instructor.cells if c.cell_type == "markdown" and "solution" in c.metadata.get("tags", [])
+    )
     n_notes = sum(1 for c in instructor.cells if c.metadata.get("slideshow", {}).get("slide_type") == "notes")
     assert sum(1 for c in student.cells if c.cell_type == "markdown") == n_md - n_md_sol - n_notes
 
@@ -106,8 +109,11 @@ def test_student_edition_is_clean(editions):
     path, _, student, _ = editions
     nbformat.validate(student)
     assert "widgets" not in student.metadata, "widget state removed"
-    assert not [c for c in student.cells if c.metadata.get("slideshow", {}).get("slide_type") == "notes"
-                or "**Speaker notes.**" in c.source], f"{path.name}: the instructor's speaker notes stay out"
+    assert not [
+        c
+        for c in student.cells
+        if c.metadata.get("slideshow", {}).get("slide_type") == "notes" or "**Speaker notes.**" in c.source
+    ], f"{path.name}: the instructor's speaker notes stay out"
     for i, cell in enumerate(student.cells):
         if cell.cell_type != "code":
             continue
@@ -144,13 +150,13 @@ def test_a_function_solution_becomes_its_signature_and_a_raise():
 
 
 def test_indented_markers_inside_a_function():
-    out = _strip('''
+    out = _strip("""
         def my_norm(v):
             # BEGIN SOLUTION
             return sum(x * x for x in v) ** 0.5
             # END SOLUTION
         check.norm(my_norm)
-        ''')
+        """)
     assert "sum(x * x" not in out
     ns = {}
     exec(out.replace("check.norm(my_norm)", ""), ns)
@@ -159,20 +165,20 @@ def test_indented_markers_inside_a_function():
 
 
 def test_a_value_solution_names_only_what_the_cell_uses():
-    out = _strip('''
+    out = _strip("""
         # BEGIN SOLUTION
         helper = 2.0 * 3.0
         answer = helper + 1.0
         # END SOLUTION
         print(answer)
-        ''')
+        """)
     assert "helper" not in out and "6.0" not in out
     with pytest.raises(NotImplementedError, match="answer"):
         exec(out, {})
 
 
 def test_two_blocks_in_one_cell():
-    out = _strip('''
+    out = _strip("""
         # BEGIN SOLUTION
         a = 1
         # END SOLUTION
@@ -181,21 +187,26 @@ def test_two_blocks_in_one_cell():
         def f():
             return 42
         # END SOLUTION
-        ''')
+        """)
     assert "a = 1" not in out and "42" not in out and "between = True" in out
     assert out.count("# BEGIN SOLUTION") == 2
 
 
-@pytest.mark.parametrize("source", [
-    "# BEGIN SOLUTION\nx = 1\n",                                         # BEGIN without END
-    "x = 1\n# END SOLUTION\n",                                           # END without BEGIN
-    "# BEGIN SOLUTION\n# BEGIN SOLUTION\nx = 1\n# END SOLUTION\n",       # nested
-])
+@pytest.mark.parametrize(
+    "source",
+    [
+        "# BEGIN SOLUTION\nx = 1\n",  # BEGIN without END
+        "x = 1\n# END SOLUTION\n",  # END without BEGIN
+        "# BEGIN SOLUTION\n# BEGIN SOLUTION\nx = 1\n# END SOLUTION\n",  # nested
+    ],
+)
 def test_unbalanced_markers_are_refused(source, tmp_path, capsys):
-    nb = nbformat.v4.new_notebook(cells=[
-        nbformat.v4.new_markdown_cell("# 99 · Bad"),
-        nbformat.v4.new_code_cell(source, metadata={"tags": ["solution"]}),
-    ])
+    nb = nbformat.v4.new_notebook(
+        cells=[
+            nbformat.v4.new_markdown_cell("# 99 · Bad"),
+            nbformat.v4.new_code_cell(source, metadata={"tags": ["solution"]}),
+        ]
+    )
     bad = tmp_path / "99_bad.ipynb"
     nbformat.write(nb, bad)
     out = tmp_path / "student"
@@ -211,14 +222,20 @@ def test_a_solution_cell_without_markers_is_refused():
 
 
 def test_markdown_solutions_and_outputs_are_removed():
-    code = nbformat.v4.new_code_cell("# BEGIN SOLUTION\ny = 41 + 1\n# END SOLUTION\nprint(y)",
-                                     metadata={"tags": ["solution"], "execution": {"iopub.execute_input": "2026-01-01T00:00:00Z"}}, execution_count=3)
+    code = nbformat.v4.new_code_cell(
+        "# BEGIN SOLUTION\ny = 41 + 1\n# END SOLUTION\nprint(y)",
+        metadata={"tags": ["solution"], "execution": {"iopub.execute_input": "2026-01-01T00:00:00Z"}},
+        execution_count=3,
+    )
     code.outputs = [nbformat.v4.new_output("stream", name="stdout", text="42\n")]
-    nb = nbformat.v4.new_notebook(cells=[
-        nbformat.v4.new_markdown_cell("Exercise: compute y."),
-        nbformat.v4.new_markdown_cell("The answer is forty-two.", metadata={"tags": ["solution"]}),
-        code,
-    ], metadata={"widgets": {"state": {}}})
+    nb = nbformat.v4.new_notebook(
+        cells=[
+            nbformat.v4.new_markdown_cell("Exercise: compute y."),
+            nbformat.v4.new_markdown_cell("The answer is forty-two.", metadata={"tags": ["solution"]}),
+            code,
+        ],
+        metadata={"widgets": {"state": {}}},
+    )
     student, stats = se.student_notebook(nb)
     text = nbformat.writes(student)
     assert "forty-two" not in text and "41 + 1" not in text and '"42' not in text
@@ -249,7 +266,8 @@ def test_every_solution_passes_its_own_self_check(path):
         assert not [v for v in verdicts if not v.startswith("✓")], f"{path.name}: {verdicts}"
         assert "passed=False" not in text
         assert re.search(r"\bcheck\.\w+\(", cell.source.split("# END SOLUTION")[-1]), (
-            f"{path.name}: every exercise ends with a self-check call after its solution:\n{cell.source[-300:]}")
+            f"{path.name}: every exercise ends with a self-check call after its solution:\n{cell.source[-300:]}"
+        )
         assert verdicts, f"{path.name}: a solution calls a check but no verdict was printed"
         checked += 1
     assert checked >= 1, f"{path.name}: no exercise has a self-check"
@@ -270,8 +288,9 @@ def test_student_edition_of_lesson_00_says_not_implemented(tmp_path, monkeypatch
     student, _ = se.student_notebook(nbformat.read(LESSONS[0], as_version=4))
     monkeypatch.setenv("PYTHONPATH", str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
     monkeypatch.setenv("MPLBACKEND", "Agg")
-    NotebookClient(student, timeout=120, kernel_name="python3", allow_errors=True,
-                   resources={"metadata": {"path": str(tmp_path)}}).execute()
+    NotebookClient(
+        student, timeout=120, kernel_name="python3", allow_errors=True, resources={"metadata": {"path": str(tmp_path)}}
+    ).execute()
     exercises = [c for c in student.cells if "exercise" in c.metadata.get("tags", [])]
     with_check = [c for c in exercises if "check." in c.source.split("# END SOLUTION")[-1]]
     assert with_check
@@ -340,8 +359,11 @@ def test_binder_environment_covers_every_lesson_import():
             if cell.cell_type != "code" or cell.source.lstrip().startswith(("%", "!")):
                 continue
             for node in ast.walk(ast.parse(cell.source)):
-                mods = [a.name for a in node.names] if isinstance(node, ast.Import) else (
-                    [node.module] if isinstance(node, ast.ImportFrom) and node.module and not node.level else [])
+                mods = (
+                    [a.name for a in node.names]
+                    if isinstance(node, ast.Import)
+                    else ([node.module] if isinstance(node, ast.ImportFrom) and node.module and not node.level else [])
+                )
                 for mod in mods:
                     top = mod.split(".")[0]
                     if top == "shapelab" or top in sys.stdlib_module_names:

@@ -1,4 +1,5 @@
 """The internal toolkit (shapelab._toolkit) against numpy and brute force."""
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -35,8 +36,9 @@ def test_elder_merges_matches_brute_force_components(n, edges):
     u = np.array([e[0] for e in edges], dtype=np.int64)
     v = np.array([e[1] for e in edges], dtype=np.int64)
     merges = []
-    parent, oldest = unionfind.elder_merges(n, u, v, np.arange(len(edges)), list(range(n)),
-                                            lambda e, a, b, old: merges.append((e, old[a], old[b])))
+    parent, oldest = unionfind.elder_merges(
+        n, u, v, np.arange(len(edges)), list(range(n)), lambda e, a, b, old: merges.append((e, old[a], old[b]))
+    )
     # brute force: components by repeated relabelling; the elder is the smallest index
     label = list(range(n))
     expected = []

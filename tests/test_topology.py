@@ -9,6 +9,7 @@ Oracles:
 * the Euler–Poincaré formula χ = Σ(-1)^k β_k at every τ;
 * closed forms for synthetic shapes (a ring of disks, a cage of balls).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -34,7 +35,7 @@ class GudhiFiltration:
         points = np.asarray(points, dtype=float)
         radii = np.broadcast_to(np.asarray(radii, dtype=float), (len(points),))
         self.balls = sl.Balls(points, radii)
-        self.st = gudhi.AlphaComplex(points=points, weights=radii ** 2).create_simplex_tree()
+        self.st = gudhi.AlphaComplex(points=points, weights=radii**2).create_simplex_tree()
         by = {}
         for s, f in self.st.get_filtration():
             by.setdefault(len(s) - 1, []).append((sorted(s), f))
@@ -46,8 +47,8 @@ class GudhiFiltration:
         for k in range(1, self.dimension + 1):
             row = {tuple(r): i for i, r in enumerate(self._s[k - 1].tolist())}
             self._b[k] = np.array(
-                [[row[tuple(r[:j] + r[j + 1:])] for j in range(k + 1)] for r in self._s[k].tolist()],
-                dtype=np.int64).reshape(-1, k + 1)
+                [[row[tuple(r[:j] + r[j + 1 :])] for j in range(k + 1)] for r in self._s[k].tolist()], dtype=np.int64
+            ).reshape(-1, k + 1)
 
     def simplices(self, k):
         return self._s.get(k, np.empty((0, k + 1), np.int64))
@@ -156,7 +157,7 @@ def test_persistence_matches_gudhi_on_alpha_filtration(d, n, seed):
     p, r = random_balls(rng, n, d, spread=n ** (1 / d) * 1.2, rmax=0.9)
     F = sl.alpha_filtration(sl.Balls(p, r))
     P = F.persistence()
-    stree = gudhi.AlphaComplex(points=p, weights=r ** 2).create_simplex_tree()
+    stree = gudhi.AlphaComplex(points=p, weights=r**2).create_simplex_tree()
     stree.compute_persistence()
     for k in range(d + 1):
         ref = np.asarray(stree.persistence_intervals_in_dimension(k), float).reshape(-1, 2)
@@ -187,7 +188,7 @@ def test_persistence_on_degenerate_grids_matches_gudhi(pts, radii):
 
 
 @settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(seed=st.integers(0, 10 ** 6), n=st.integers(5, 25), scale=st.sampled_from([1e-3, 1.0, 50.0]))
+@given(seed=st.integers(0, 10**6), n=st.integers(5, 25), scale=st.sampled_from([1e-3, 1.0, 50.0]))
 def test_persistence_random_3d_matches_gudhi(seed, n, scale):
     rng = np.random.default_rng(seed)
     p = rng.uniform(0, 3, (n, 3)) * scale
@@ -230,7 +231,7 @@ def test_betti_counts_the_alive_persistence_intervals():
 
 
 @settings(max_examples=20, deadline=None)
-@given(seed=st.integers(0, 10 ** 6), n=st.integers(4, 30), d=st.sampled_from([2, 3]))
+@given(seed=st.integers(0, 10**6), n=st.integers(4, 30), d=st.sampled_from([2, 3]))
 def test_betti_euler_characteristic_random(seed, n, d):
     rng = np.random.default_rng(seed)
     p, r = random_balls(rng, n, d, spread=2.5)
@@ -247,7 +248,7 @@ def test_betti_euler_characteristic_random(seed, n, d):
 
 def test_ring_of_disks_has_one_hole_with_closed_form_lifetime():
     n, R, rad = 16, 4.0, 1.0
-    t = 2 * np.pi * (np.arange(n) + 0.1 * np.sin(np.arange(n))) / n   # co-circular, uneven gaps
+    t = 2 * np.pi * (np.arange(n) + 0.1 * np.sin(np.arange(n))) / n  # co-circular, uneven gaps
     c = R * np.c_[np.cos(t), np.sin(t)]
     F = sl.alpha_filtration(sl.Balls(c, rad))
     assert F.betti(0.0) == (1, 1, 0)
@@ -260,8 +261,8 @@ def test_ring_of_disks_has_one_hole_with_closed_form_lifetime():
     # born when the most distant neighbours touch: (max gap / 2)^2 - r^2 (Gabriel edges);
     # dies when the centre region is covered: the largest circumradius^2 - r^2 <= R^2 - r^2
     gaps = np.linalg.norm(c - np.roll(c, -1, axis=0), axis=1)
-    assert big[0] == pytest.approx((gaps.max() / 2) ** 2 - rad ** 2, rel=1e-9)
-    assert big[1] <= R ** 2 - rad ** 2 + 1e-9 and big[1] > 0.9 * (R ** 2 - rad ** 2)
+    assert big[0] == pytest.approx((gaps.max() / 2) ** 2 - rad**2, rel=1e-9)
+    assert big[1] <= R**2 - rad**2 + 1e-9 and big[1] > 0.9 * (R**2 - rad**2)
     assert len(P[1]) == 1
 
 
@@ -270,7 +271,7 @@ def test_cage_of_balls_has_one_void():
     m = 80
     i = np.arange(m) + 0.5
     phi = np.arccos(1 - 2 * i / m)
-    th = np.pi * (1 + 5 ** 0.5) * i
+    th = np.pi * (1 + 5**0.5) * i
     c = 3 * np.c_[np.cos(th) * np.sin(phi), np.sin(th) * np.sin(phi), np.cos(phi)]
     F = sl.alpha_filtration(sl.Balls(c, 1.0))
     assert F.betti(0.0) == (1, 0, 1, 0)

@@ -12,6 +12,7 @@ Oracles independent of the code under test:
   hull's volume (scipy's Qhull) and the complex has Euler characteristic 1;
 * the certificate itself, evaluated on the output with fresh predicates.
 """
+
 from __future__ import annotations
 
 import itertools
@@ -130,8 +131,11 @@ small = st.integers(-4, 4)
 
 
 @settings(max_examples=150, deadline=None)
-@given(st.lists(st.tuples(small, small, small), min_size=4, max_size=4),
-       st.sampled_from([1.0, 1e-6, 3.0]), st.sampled_from([0.0, 1e6]))
+@given(
+    st.lists(st.tuples(small, small, small), min_size=4, max_size=4),
+    st.sampled_from([1.0, 1e-6, 3.0]),
+    st.sampled_from([0.0, 1e6]),
+)
 def test_orient_is_the_rational_determinant(pts, scale, offset):
     c = np.array(pts, dtype=float) * scale + offset
     P = WeightedPoints(c, np.zeros(4))
@@ -141,8 +145,11 @@ def test_orient_is_the_rational_determinant(pts, scale, offset):
 
 
 @settings(max_examples=200, deadline=None)
-@given(st.lists(st.tuples(small, small, small), min_size=5, max_size=5),
-       st.lists(st.integers(0, 2), min_size=5, max_size=5), st.permutations(range(5)))
+@given(
+    st.lists(st.tuples(small, small, small), min_size=5, max_size=5),
+    st.lists(st.integers(0, 2), min_size=5, max_size=5),
+    st.permutations(range(5)),
+)
 def test_power_with_simulation_of_simplicity(pts, radii, prio):
     c = np.array(pts, dtype=float)
     r = np.array(radii, dtype=float)
@@ -176,8 +183,10 @@ def test_filter_decides_random_input_and_exact_decides_ties():
 
 # ------------------------------------------------------------------ brute force
 @settings(max_examples=60, deadline=None)
-@given(st.lists(st.tuples(st.integers(0, 3), st.integers(0, 3)), min_size=3, max_size=9, unique=True),
-       st.lists(st.integers(0, 1), min_size=9, max_size=9))
+@given(
+    st.lists(st.tuples(st.integers(0, 3), st.integers(0, 3)), min_size=3, max_size=9, unique=True),
+    st.lists(st.integers(0, 1), min_size=9, max_size=9),
+)
 def test_small_integer_inputs_2d_equal_brute_force(pts, radii):
     c = np.array(pts, dtype=float)
     if np.linalg.matrix_rank(c - c[0]) < 2:
@@ -189,9 +198,10 @@ def test_small_integer_inputs_2d_equal_brute_force(pts, radii):
 
 
 @settings(max_examples=25, deadline=None)
-@given(st.lists(st.tuples(st.integers(0, 2), st.integers(0, 2), st.integers(0, 2)), min_size=4, max_size=8,
-                unique=True),
-       st.lists(st.integers(0, 1), min_size=8, max_size=8))
+@given(
+    st.lists(st.tuples(st.integers(0, 2), st.integers(0, 2), st.integers(0, 2)), min_size=4, max_size=8, unique=True),
+    st.lists(st.integers(0, 1), min_size=8, max_size=8),
+)
 def test_small_integer_inputs_3d_equal_brute_force(pts, radii):
     c = np.array(pts, dtype=float)
     if np.linalg.matrix_rank(c - c[0]) < 3:
@@ -214,9 +224,14 @@ def polyhedra():
     cube = np.array(list(itertools.product([-1.0, 1.0], repeat=3)))
     octa = np.vstack([np.eye(3), -np.eye(3)])
     ico = np.array([p for s1 in (-1, 1) for s2 in (-1, 1) for p in ([0, s1, s2 * g], [s1, s2 * g, 0], [s2 * g, 0, s1])])
-    dode = np.vstack([cube, [[0, s1 / g, s2 * g] for s1 in (-1, 1) for s2 in (-1, 1)],
-                      [[s1 / g, s2 * g, 0] for s1 in (-1, 1) for s2 in (-1, 1)],
-                      [[s2 * g, 0, s1 / g] for s1 in (-1, 1) for s2 in (-1, 1)]])
+    dode = np.vstack(
+        [
+            cube,
+            [[0, s1 / g, s2 * g] for s1 in (-1, 1) for s2 in (-1, 1)],
+            [[s1 / g, s2 * g, 0] for s1 in (-1, 1) for s2 in (-1, 1)],
+            [[s2 * g, 0, s1 / g] for s1 in (-1, 1) for s2 in (-1, 1)],
+        ]
+    )
     tetra = np.array([[1, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1.0]])
     return {"tetra": tetra, "cube": cube, "octa": octa, "ico": ico, "dode": dode}
 
@@ -248,7 +263,9 @@ def families():
     a = np.tile(2 * np.pi * np.arange(12) / 12, 6)
     out["cylinder"] = Balls(np.c_[2 * np.cos(a), 2 * np.sin(a), z], 0.5)
     dup = rng.random((40, 3))
-    out["duplicates"] = Balls(np.vstack([dup, dup[:10], dup[:5]]), np.r_[np.full(40, 0.1), np.full(10, 0.1), np.full(5, 0.2)])
+    out["duplicates"] = Balls(
+        np.vstack([dup, dup[:10], dup[:5]]), np.r_[np.full(40, 0.1), np.full(10, 0.1), np.full(5, 0.2)]
+    )
     g = grid(5, 3)
     out["lattice-noise"] = Balls(g + 1e-12 * rng.standard_normal(g.shape), 0.3)
     g2 = grid(10, 2)
@@ -324,8 +341,9 @@ def test_cage_falls_back_and_matches_gudhi_betti():
         assert chi_o == chi_g
 
 
-@pytest.mark.parametrize("name", ["cage24", "cage150-mixed", "grid3d", "grid2d", "lattice-noise", "ico+centre",
-                                  "cylinder", "duplicates"])
+@pytest.mark.parametrize(
+    "name", ["cage24", "cage150-mixed", "grid3d", "grid2d", "lattice-noise", "ico+centre", "cylinder", "duplicates"]
+)
 def test_euler_characteristic_matches_gudhi_between_critical_values(name):
     """χ(K(τ)) from our filtration equals GUDHI's exact alpha complex strictly between
     critical values (where both are the union's, whatever triangulation of ties)."""

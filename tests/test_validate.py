@@ -1,4 +1,5 @@
 """Shared input validation: every message names the argument and the problem."""
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -64,8 +65,13 @@ def test_same_shape():
 
 
 @settings(max_examples=60, deadline=None)
-@given(hnp.arrays(np.float64, hnp.array_shapes(min_dims=2, max_dims=2, min_side=1, max_side=5),
-                  elements=st.floats(allow_nan=True, allow_infinity=True, width=64)))
+@given(
+    hnp.arrays(
+        np.float64,
+        hnp.array_shapes(min_dims=2, max_dims=2, min_side=1, max_side=5),
+        elements=st.floats(allow_nan=True, allow_infinity=True, width=64),
+    )
+)
 def test_points_never_lets_a_nonfinite_value_through(arr):
     try:
         out = v.as_points(arr, "P")

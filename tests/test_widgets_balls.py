@@ -1,4 +1,5 @@
 """Tests of the α-explorer (shapelab.widgets.alpha_explorer)."""
+
 from __future__ import annotations
 
 import matplotlib

@@ -1,4 +1,5 @@
 """Tests of the topology explorers (shapelab.widgets.persistence_explorer)."""
+
 from __future__ import annotations
 
 import matplotlib

@@ -5,6 +5,7 @@ Data: balls at protein-like density, centres uniform in a cube (square in 2D) of
 ``gudhi.AlphaComplex(points, weights=r**2).create_simplex_tree()`` at the default
 precision ("safe").  Ours: :func:`shapelab.alpha_filtration`.
 """
+
 from __future__ import annotations
 
 import numpy as np

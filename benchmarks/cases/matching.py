@@ -28,6 +28,7 @@ would take about an hour.  It is measured once, outside the harness, with
 ``python -m benchmarks.cases.matching --slow-peers`` (the k-d tree of the apart
 regime is extrapolated from 2·10⁴ queries, disclosed as such).
 """
+
 from __future__ import annotations
 
 import numpy as np

@@ -9,6 +9,7 @@ slices per atom, probe radius 0 (so that it measures the same union of balls), o
 thread.  The accuracy note compares the two surface areas: ours is exact to
 round-off, Lee–Richards has a discretisation error.
 """
+
 from __future__ import annotations
 
 import numpy as np

@@ -27,6 +27,7 @@ and ICP against Open3D.
     both sides.  If it were not, ``check`` reports "not reached" and the case is a
     miss, not a silent pass.
 """
+
 from __future__ import annotations
 
 import hashlib
@@ -123,7 +124,11 @@ def _calibrate(src, tgt, max_distance, truth) -> dict:
     best = _error_deg(T, truth)
     for k in range(1, CAP + 1):
         T = reg.registration_icp(
-            ps, pt, max_distance, T, reg.TransformationEstimationPointToPoint(),
+            ps,
+            pt,
+            max_distance,
+            T,
+            reg.TransformationEstimationPointToPoint(),
             reg.ICPConvergenceCriteria(relative_fitness=0.0, relative_rmse=0.0, max_iteration=1),
         ).transformation
         best = min(best, _error_deg(T, truth))
@@ -162,7 +167,11 @@ def ours_icp(data):
     from shapelab import icp
 
     res = icp(data["src"], data["tgt"], tol=0.0, max_iter=data["k_ours"], max_distance=data["max_distance"])
-    return {"k": res.n_iter, "err": float(np.degrees(res.motion.rotation.angle_to(data["truth"].rotation))), "cal": data["cal"]}
+    return {
+        "k": res.n_iter,
+        "err": float(np.degrees(res.motion.rotation.angle_to(data["truth"].rotation))),
+        "cal": data["cal"],
+    }
 
 
 def peer_icp(data):
@@ -170,7 +179,10 @@ def peer_icp(data):
 
     reg = o3d.pipelines.registration
     res = reg.registration_icp(
-        data["pcd_src"], data["pcd_tgt"], data["max_distance"], np.eye(4),
+        data["pcd_src"],
+        data["pcd_tgt"],
+        data["max_distance"],
+        np.eye(4),
         reg.TransformationEstimationPointToPoint(),
         reg.ICPConvergenceCriteria(relative_fitness=0.0, relative_rmse=0.0, max_iteration=data["k_peer"]),
     )
@@ -182,7 +194,7 @@ def check_icp(ours, peer) -> str:
         ok = "reached" if r["err"] < THRESHOLD_DEG else "NOT reached"
         return f"{name}: {r['k']} it, {r['err']:.4f}° ({ok})"
 
-    tag = "MISMATCH: " if ours["err"] >= THRESHOLD_DEG else ""   # ours must reach the goal
+    tag = "MISMATCH: " if ours["err"] >= THRESHOLD_DEG else ""  # ours must reach the goal
     return f"{tag}{side('ours', ours)}; {side('open3d', peer)}; ours' fixed point {ours['cal']['floor_ours']:.4f}°"
 
 

@@ -21,6 +21,7 @@ computes from scratch.
   included; ``Pocket.volume`` is exact and computed lazily on first access, so it is
   not part of this time.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -116,11 +117,13 @@ def ours_betti(data):
 
 def check_betti(ours_result, st) -> str:
     taus, B = ours_result
-    mids = np.r_[(taus[1:] + taus[:-1]) / 2, taus[-1] + 1.0]      # B[i] holds on [taus[i], taus[i+1])
+    mids = np.r_[(taus[1:] + taus[:-1]) / 2, taus[-1] + 1.0]  # B[i] holds on [taus[i], taus[i+1])
     bad = 0
     for k in range(4):
         I = np.asarray(st.persistence_intervals_in_dimension(k), float).reshape(-1, 2)
-        alive = np.searchsorted(np.sort(I[:, 0]), mids, side="right") - np.searchsorted(np.sort(I[:, 1]), mids, side="right")
+        alive = np.searchsorted(np.sort(I[:, 0]), mids, side="right") - np.searchsorted(
+            np.sort(I[:, 1]), mids, side="right"
+        )
         bad += int(np.sum(alive != B[:, k]))
     tag = "MISMATCH: " if bad else ""
     return f"{tag}{len(taus)} values of tau; Betti numbers differing from GUDHI's intervals: {bad}"

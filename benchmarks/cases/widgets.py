@@ -9,6 +9,7 @@ one matplotlib frame costs, not a competitor; so ``target`` is None and the chec
 note reports the absolute times against the 100 ms goal, including the full widget
 callback (status line with Betti numbers and union area, PNG encoding).
 """
+
 from __future__ import annotations
 
 import itertools
@@ -70,8 +71,10 @@ def check(ours_result, peer_result) -> str:
         t_full.append(t2 - t1)
     med = 1e3 * float(np.median(t_upd))
     full = 1e3 * float(np.median(t_full))
-    return (f"update+render {med:.0f} ms (goal < 100 ms: {'met' if med < 100 else 'MISSED'}); "
-            f"full slider callback incl. Betti, area and PNG encode {full:.0f} ms")
+    return (
+        f"update+render {med:.0f} ms (goal < 100 ms: {'met' if med < 100 else 'MISSED'}); "
+        f"full slider callback incl. Betti, area and PNG encode {full:.0f} ms"
+    )
 
 
 CASES = [

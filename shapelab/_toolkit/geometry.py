@@ -4,6 +4,7 @@ Vectors are stored component-first, shape ``(d, m)``: one row per coordinate, on
 column per simplex (or a tuple of ``d`` arrays), so that every operation runs on
 long contiguous rows.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -33,9 +34,14 @@ def cross(a, b):
 
 def cross_rows(a, b):
     """Cross product of 3-vectors stored along the last axis, shape ``(..., 3)``."""
-    return np.stack([a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1],
-                     a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2],
-                     a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]], axis=-1)
+    return np.stack(
+        [
+            a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1],
+            a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2],
+            a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0],
+        ],
+        axis=-1,
+    )
 
 
 def _spread_bits(v: np.ndarray, k: int) -> np.ndarray:
@@ -43,12 +49,22 @@ def _spread_bits(v: np.ndarray, k: int) -> np.ndarray:
     in, k = 3: 21 bits in), by the usual magic-number shifts."""
     v = v.astype(np.uint64)
     if k == 2:
-        steps = [(16, 0x0000FFFF0000FFFF), (8, 0x00FF00FF00FF00FF), (4, 0x0F0F0F0F0F0F0F0F),
-                 (2, 0x3333333333333333), (1, 0x5555555555555555)]
+        steps = [
+            (16, 0x0000FFFF0000FFFF),
+            (8, 0x00FF00FF00FF00FF),
+            (4, 0x0F0F0F0F0F0F0F0F),
+            (2, 0x3333333333333333),
+            (1, 0x5555555555555555),
+        ]
         v &= np.uint64(0xFFFFFFFF)
     else:
-        steps = [(32, 0x1F00000000FFFF), (16, 0x1F0000FF0000FF), (8, 0x100F00F00F00F00F),
-                 (4, 0x10C30C30C30C30C3), (2, 0x1249249249249249)]
+        steps = [
+            (32, 0x1F00000000FFFF),
+            (16, 0x1F0000FF0000FF),
+            (8, 0x100F00F00F00F00F),
+            (4, 0x10C30C30C30C30C3),
+            (2, 0x1249249249249249),
+        ]
         v &= np.uint64(0x1FFFFF)
     for shift, mask in steps:
         v = (v | (v << np.uint64(shift))) & np.uint64(mask)

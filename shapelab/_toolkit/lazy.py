@@ -6,6 +6,7 @@ access (PEP 562 module ``__getattr__``), so that ``import shapelab`` stays fast 
 a notebook only pays for the modules it uses.  (The Scientific Python
 ``lazy_loader`` package does the same; it is not a dependency of shapelab.)
 """
+
 from __future__ import annotations
 
 import importlib

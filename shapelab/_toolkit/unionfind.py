@@ -6,6 +6,7 @@ reports every merge to a callback; :mod:`shapelab.topology` uses it for the
 H0 pairs and the dual merges, :mod:`shapelab.cavities` for the merge tree of the
 free space.
 """
+
 from __future__ import annotations
 
 __all__ = ["elder_merges"]

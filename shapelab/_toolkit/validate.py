@@ -10,6 +10,7 @@ Every function here raises :class:`ValueError` or :class:`TypeError` with a mess
 that names the offending argument, so that a student sees *which* input is wrong and
 *why*, instead of a crash deep inside numpy or a silent NaN.
 """
+
 from __future__ import annotations
 
 import functools
@@ -176,9 +177,7 @@ def as_positive_int(x, name: str, *, minimum: int = 1) -> int:
 def check_same_shape(a: np.ndarray, b: np.ndarray, name_a: str, name_b: str) -> None:
     """Raise if two arrays of points do not pair up row by row."""
     if a.shape != b.shape:
-        raise ValueError(
-            f"{name_a} and {name_b} must have the same shape to be paired, got {a.shape} and {b.shape}"
-        )
+        raise ValueError(f"{name_a} and {name_b} must have the same shape to be paired, got {a.shape} and {b.shape}")
 
 
 def as_tau(tau, name: str = "tau", *, finite: bool = False) -> float:
@@ -278,9 +277,7 @@ def as_bbox(bbox, d: int) -> np.ndarray:
     if b.shape == (2 * d,):
         b = b.reshape(2, d) if d == 2 else np.array([b[:d], b[d:]])
     if b.shape != (2, d):
-        raise ValueError(
-            f"bbox must have shape (2, {d}) as [lower corner, upper corner], got shape {b.shape}"
-        )
+        raise ValueError(f"bbox must have shape (2, {d}) as [lower corner, upper corner], got shape {b.shape}")
     check_finite(b, "bbox")
     if np.any(b[1] <= b[0]):
         raise ValueError(f"bbox must have lower corner < upper corner in every coordinate, got {b.tolist()}")

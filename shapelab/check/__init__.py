@@ -8,6 +8,7 @@ which says how a wrong answer is off but never what it should be.
 
 One module per topic holds the checks; all are re-exported here.
 """
+
 from __future__ import annotations
 
 from .._toolkit.lazy import attach

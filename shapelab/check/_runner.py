@@ -4,14 +4,16 @@ with the library's answer, and report kindly.
 A check never raises because of the student's code and never prints the solution:
 it shows the first failing input, the expected value and the received value.
 """
+
 from __future__ import annotations
 
 import signal
 import threading
 import traceback
+from collections.abc import Callable, Iterable
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from typing import Any, Callable, Iterable
+from typing import Any
 
 import numpy as np
 
@@ -86,9 +88,7 @@ def _time_limit(seconds: float | None):
     """Interrupt the block after ``seconds`` (POSIX, main thread: where a kernel runs
     cells).  Elsewhere, or with ``seconds=None``, there is no limit."""
     usable = (
-        seconds is not None
-        and hasattr(signal, "setitimer")
-        and threading.current_thread() is threading.main_thread()
+        seconds is not None and hasattr(signal, "setitimer") and threading.current_thread() is threading.main_thread()
     )
     if not usable:
         yield
@@ -192,7 +192,8 @@ def _hint(received, expected, rtol: float, atol: float) -> str | None:
     expected value away."""
     if isinstance(expected, (bool, np.bool_, str)):
         if type(received) is not type(expected) and not (
-                isinstance(expected, (bool, np.bool_)) and isinstance(received, (bool, np.bool_))):
+            isinstance(expected, (bool, np.bool_)) and isinstance(received, (bool, np.bool_))
+        ):
             return f"expected a {type(expected).__name__}, got a {type(received).__name__}"
         return None if received == expected else "that is not the answer"
     try:

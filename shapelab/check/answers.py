@@ -12,8 +12,19 @@ import numpy as np
 
 from ._runner import CheckResult, value
 
-__all__ = ["connected_time", "distinct_complexes", "standard_error_factor", "neck_closing", "mouth_closing",
-           "torus_viewpoints", "radical_center", "void_count", "ring_tunnel", "curve_pairs", "most_exposed_residue"]
+__all__ = [
+    "connected_time",
+    "distinct_complexes",
+    "standard_error_factor",
+    "neck_closing",
+    "mouth_closing",
+    "torus_viewpoints",
+    "radical_center",
+    "void_count",
+    "ring_tunnel",
+    "curve_pairs",
+    "most_exposed_residue",
+]
 
 
 def connected_time(tau_connected, F, *, atol: float = 2e-3) -> CheckResult:
@@ -42,7 +53,9 @@ def standard_error_factor(shrink, balls, *, seed: int = 0) -> CheckResult:
     samples (measured on ``balls`` with 10⁴ and 10⁶ samples, to 5 %)."""
     from ..oracles import monte_carlo_union_measure
 
-    ratio = monte_carlo_union_measure(balls, 10**4, seed=seed)[1] / monte_carlo_union_measure(balls, 10**6, seed=seed)[1]
+    ratio = (
+        monte_carlo_union_measure(balls, 10**4, seed=seed)[1] / monte_carlo_union_measure(balls, 10**6, seed=seed)[1]
+    )
     return value("the factor per 100 times more samples", shrink, ratio, rtol=0.05)
 
 
@@ -68,8 +81,9 @@ def _torus_kind(S, R: float, r: float) -> str | None:
     return None
 
 
-def torus_viewpoints(viewpoints, counts, *, n_major: int = 24, n_minor: int = 12,
-                     R: float = 1.0, r: float = 0.4) -> CheckResult:
+def torus_viewpoints(
+    viewpoints, counts, *, n_major: int = 24, n_minor: int = 12, R: float = 1.0, r: float = 0.4
+) -> CheckResult:
     """Lesson 11: three viewpoints on ``torus(24, 12)`` (far outside, in the hole,
     inside the tube) and the student's ``(#min, #saddles, #max)`` from each.
 
@@ -88,10 +102,13 @@ def torus_viewpoints(viewpoints, counts, *, n_major: int = 24, n_minor: int = 12
         return value(name, C if C.shape != (3, 3) else None, np.zeros((3, 3)))
     kinds = [_torus_kind(S, R, r) for S in P]
     if sorted(k or "" for k in kinds) != ["far outside", "in the hole", "inside the tube"]:
-        msg = (f"✗ {name}: the viewpoints must be one far outside (more than {R + r + 0.6:g} from the "
-               f"centre), one in the hole (within {0.75 * (R - r):g} of the centre) and one inside the "
-               f"tube (within {0.5 * r:g} of its core circle); yours are: "
-               + ", ".join(k or "none of these" for k in kinds) + ".")
+        msg = (
+            f"✗ {name}: the viewpoints must be one far outside (more than {R + r + 0.6:g} from the "
+            f"centre), one in the hole (within {0.75 * (R - r):g} of the centre) and one inside the "
+            f"tube (within {0.5 * r:g} of its core circle); yours are: "
+            + ", ".join(k or "none of these" for k in kinds)
+            + "."
+        )
         print(msg)
         return CheckResult(name, False, 1, msg)
     V, F = torus(n_major, n_minor, R=R, r=r)
@@ -115,8 +132,13 @@ def mouth_closing(student) -> CheckResult:
     for balls in (figure_23_2()[0], nested_pockets(), figure_23_2(disk_radius=0.6)[0]):
         for p in pockets(alpha_filtration(balls), 0.0, min_persistence=1e-9):
             cases.append((p, balls))
-    return run_check("when a pocket's mouth closes", student, cases, lambda p, b: p.closes_at,
-                     describe=lambda case: f"a pocket with {len(case[0].mouth)} mouth edges among {len(case[1])} disks")
+    return run_check(
+        "when a pocket's mouth closes",
+        student,
+        cases,
+        lambda p, b: p.closes_at,
+        describe=lambda case: f"a pocket with {len(case[0].mouth)} mouth edges among {len(case[1])} disks",
+    )
 
 
 def radical_center(student) -> CheckResult:
@@ -127,16 +149,23 @@ def radical_center(student) -> CheckResult:
     from ._runner import run_check
 
     rng = np.random.default_rng(23)
-    cases = [(Balls([[0.0, 0.0], [4.0, 0.0], [0.0, 3.0]], [1.0, 1.0, 1.0]),),
-             (Balls([[0.0, 0.0], [3.0, 0.5], [1.0, 2.5]], [1.0, 1.2, 0.8]),)]
+    cases = [
+        (Balls([[0.0, 0.0], [4.0, 0.0], [0.0, 3.0]], [1.0, 1.0, 1.0]),),
+        (Balls([[0.0, 0.0], [3.0, 0.5], [1.0, 2.5]], [1.0, 1.2, 0.8]),),
+    ]
     while len(cases) < 6:
         b = Balls(rng.uniform(-3, 3, size=(3, 2)), rng.uniform(0.3, 1.5, size=3))
         d = power_diagram(b)
         area2 = np.cross(b.centers[1] - b.centers[0], b.centers[2] - b.centers[0])
         if abs(area2) > 1.0 and len(d.vertices) == 1 and not np.any(d.hidden):
             cases.append((b,))
-    return run_check("radical centre of three disks", student, cases, lambda b: power_diagram(b).vertices[0],
-                     describe=lambda c: f"centres {np.round(c[0].centers, 3).tolist()}, radii {np.round(c[0].radii, 3).tolist()}")
+    return run_check(
+        "radical centre of three disks",
+        student,
+        cases,
+        lambda b: power_diagram(b).vertices[0],
+        describe=lambda c: f"centres {np.round(c[0].centers, 3).tolist()}, radii {np.round(c[0].radii, 3).tolist()}",
+    )
 
 
 def void_count(student) -> CheckResult:
@@ -150,9 +179,14 @@ def void_count(student) -> CheckResult:
     F60, Fch, Fring = alpha_filtration(fullerene_c60()), alpha_filtration(swiss_cheese()), alpha_filtration(ring(12))
     cases = [(F60, 0.0), (F60, 20.0), (Fch, 0.0), (Fch, 0.45), (Fch, 5.0), (Fring, 0.0), (Fring, 8.5)]
     names = {id(F60): "C60", id(Fch): "the 2D swiss cheese", id(Fring): "a 2D ring of 12 disks"}
-    return run_check("voids from the Betti numbers", student, cases, lambda F, t: len(voids(F, t)),
-                     compare=lambda e, r: isinstance(r, (int, np.integer)) and not isinstance(r, bool) and int(r) == e,
-                     describe=lambda c: f"{names[id(c[0])]} at τ = {c[1]:g}")
+    return run_check(
+        "voids from the Betti numbers",
+        student,
+        cases,
+        lambda F, t: len(voids(F, t)),
+        compare=lambda e, r: isinstance(r, (int, np.integer)) and not isinstance(r, bool) and int(r) == e,
+        describe=lambda c: f"{names[id(c[0])]} at τ = {c[1]:g}",
+    )
 
 
 def ring_tunnel(student) -> CheckResult:
@@ -169,8 +203,13 @@ def ring_tunnel(student) -> CheckResult:
         return P[k]
 
     cases = [(12, 3.0, 1.0), (8, 2.0, 0.9), (10, 4.0, 0.5), (6, 1.5, 0.2), (20, 5.0, 0.3)]
-    return run_check("birth and death of a ring's tunnel", student, cases, reference,
-                     describe=lambda c: f"n = {c[0]}, R = {c[1]}, r = {c[2]}")
+    return run_check(
+        "birth and death of a ring's tunnel",
+        student,
+        cases,
+        reference,
+        describe=lambda c: f"n = {c[0]}, R = {c[1]}, r = {c[2]}",
+    )
 
 
 def curve_pairs(student) -> CheckResult:
@@ -194,8 +233,11 @@ def curve_pairs(student) -> CheckResult:
         return R.shape == expected.shape and bool(np.allclose(R, expected))
 
     rng = np.random.default_rng(9)
-    cases = [(np.array([0.0, 3.0, 1.0, 2.0, -1.0, 4.0]),), (np.array([1.0, 2.0, 3.0]),),
-             (np.array([2.0, 0.0, 2.0, 0.0, 2.0]),)]
+    cases = [
+        (np.array([0.0, 3.0, 1.0, 2.0, -1.0, 4.0]),),
+        (np.array([1.0, 2.0, 3.0]),),
+        (np.array([2.0, 0.0, 2.0, 0.0, 2.0]),),
+    ]
     cases += [(rng.integers(-5, 6, size=n).astype(float),) for n in (8, 15, 30)]
     cases += [(np.round(rng.normal(size=50), 3),)]
     return run_check("persistence pairs along a path", student, cases, reference, compare=compare)

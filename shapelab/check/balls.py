@@ -9,6 +9,7 @@ Each runs the student's function on edge cases first, then on seeded random case
 and compares with the library (:func:`shapelab.power_distance`,
 :func:`shapelab.alpha_filtration`, :func:`shapelab.union_measure`).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -82,8 +83,9 @@ def orthogonal_radius(student_fn, *, quiet: bool = False) -> CheckResult:
     def reference(centers, radii):
         return float(alpha_filtration(Balls(centers, radii)).values(2)[0])
 
-    return run_check("orthogonal circle (squared radius)", student_fn, cases, reference,
-                     allclose(atol=1e-9, rtol=1e-8), quiet=quiet)
+    return run_check(
+        "orthogonal circle (squared radius)", student_fn, cases, reference, allclose(atol=1e-9, rtol=1e-8), quiet=quiet
+    )
 
 
 def union_area(student_fn, *, quiet: bool = False) -> CheckResult:
@@ -109,10 +111,13 @@ def union_area(student_fn, *, quiet: bool = False) -> CheckResult:
     ]
     rng = np.random.default_rng(22)
     for _ in range(6):
-        cases.append((rng.uniform(-2, 2, 2), float(rng.uniform(0.2, 2)), rng.uniform(-2, 2, 2), float(rng.uniform(0.2, 2))))
+        cases.append(
+            (rng.uniform(-2, 2, 2), float(rng.uniform(0.2, 2)), rng.uniform(-2, 2, 2), float(rng.uniform(0.2, 2)))
+        )
 
     def reference(c1, r1, c2, r2):
         return float(union_measure(Balls(np.array([c1, c2]), [r1, r2])).area)
 
-    return run_check("area of the union of two disks", student_fn, cases, reference,
-                     allclose(atol=1e-9, rtol=1e-9), quiet=quiet)
+    return run_check(
+        "area of the union of two disks", student_fn, cases, reference, allclose(atol=1e-9, rtol=1e-9), quiet=quiet
+    )

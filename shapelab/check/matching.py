@@ -5,6 +5,7 @@ Each check runs *your* function on edge cases first (single points, identical
 sets, duplicates, one dimension, a set inside the other), then on random sets, and
 compares with the library (:mod:`shapelab.distance`, :mod:`shapelab.critical`).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -17,9 +18,9 @@ __all__ = ["hausdorff", "directed_hausdorff", "critical_points"]
 def _pair_cases():
     rng = np.random.default_rng(2320)
     cases = [
-        (np.array([[0.0, 0.0]]), np.array([[3.0, 4.0]])),                       # one point each: 5
+        (np.array([[0.0, 0.0]]), np.array([[3.0, 4.0]])),  # one point each: 5
         (np.array([[0.0, 0.0], [1.0, 0.0]]), np.array([[0.0, 0.0], [1.0, 0.0]])),  # identical: 0
-        (np.array([[0.0], [1.0]]), np.array([[0.0], [3.0]])),                   # 1D
+        (np.array([[0.0], [1.0]]), np.array([[0.0], [3.0]])),  # 1D
         (np.array([[0.0, 0.0], [1.0, 1.0]]), np.array([[0.0, 0.0], [1.0, 1.0], [5.0, 5.0]])),  # A inside B
         (np.array([[1.0, 1.0]] * 3 + [[2.0, 0.0]]), np.array([[0.0, 0.0], [0.0, 0.0], [2.0, 1.0]])),  # duplicates
     ]
@@ -30,7 +31,9 @@ def _pair_cases():
 
 def _describe(case):
     A, B = case
-    return f"A with {len(A)} point(s) in {A.shape[1]}D, B with {len(B)}; A = {A[:3].tolist()}..., B = {B[:3].tolist()}..."
+    return (
+        f"A with {len(A)} point(s) in {A.shape[1]}D, B with {len(B)}; A = {A[:3].tolist()}..., B = {B[:3].tolist()}..."
+    )
 
 
 def directed_hausdorff(fn, *, quiet: bool = False) -> CheckResult:
@@ -41,16 +44,24 @@ def directed_hausdorff(fn, *, quiet: bool = False) -> CheckResult:
     """
     from ..distance import directed_hausdorff as ref
 
-    return run_check("directed Hausdorff distance", fn, _pair_cases(), lambda A, B: ref(A, B).distance,
-                     allclose(1e-9, 1e-9), describe=_describe, quiet=quiet)
+    return run_check(
+        "directed Hausdorff distance",
+        fn,
+        _pair_cases(),
+        lambda A, B: ref(A, B).distance,
+        allclose(1e-9, 1e-9),
+        describe=_describe,
+        quiet=quiet,
+    )
 
 
 def hausdorff(fn, *, quiet: bool = False) -> CheckResult:
     """Check ``fn(A, B) -> float``, the Hausdorff distance H(A, B) of the notes (§23.2)."""
     from ..distance import hausdorff as ref
 
-    return run_check("Hausdorff distance", fn, _pair_cases(), ref, allclose(1e-9, 1e-9),
-                     describe=_describe, quiet=quiet)
+    return run_check(
+        "Hausdorff distance", fn, _pair_cases(), ref, allclose(1e-9, 1e-9), describe=_describe, quiet=quiet
+    )
 
 
 def _curve_cases():
@@ -66,12 +77,12 @@ def _curve_cases():
     blob = np.c_[r * np.cos(a), r * np.sin(a)]
     blob = np.vstack([blob, blob[:1]])
     return [
-        (square, np.array([1.0, 1.0])),   # centre: 4 maxima at corners, 4 minima at midpoints
+        (square, np.array([1.0, 1.0])),  # centre: 4 maxima at corners, 4 minima at midpoints
         (square, np.array([1.0, 0.5])),
         (spike, np.array([0.0, 0.0])),
         (ellipse, np.array([0.3, 0.2])),
         (blob, np.array([0.1, -0.1])),
-        (blob, np.array([3.0, 0.0])),     # S outside the curve
+        (blob, np.array([3.0, 0.0])),  # S outside the curve
     ]
 
 

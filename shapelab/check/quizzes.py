@@ -46,70 +46,168 @@ def _q(text, options, key):
 #: The quizzes, by part.  Each key is ``_digest(part, number, correct letter)``.
 QUIZZES: dict[str, tuple[Question, ...]] = {
     "I": (
-        _q("The power distance $\\pi_i(x) = \\|x - z_i\\|^2 - r_i^2$ of a point $x$ from the ball $B_i$ is negative when",
-           ["$x$ lies outside $B_i$", "$x$ lies inside $B_i$", "$x$ lies on the sphere bounding $B_i$", "never: it is a squared distance"],
-           "208dff8284633d7d68ec"),
-        _q("The points with equal power distance from two balls (with distinct centres) form",
-           ["a hyperbola", "a sphere", "the perpendicular bisector of the centres, whatever the radii", "a hyperplane orthogonal to the line through the centres"],
-           "647c9619c71421938793"),
-        _q("The power cell of a ball is empty exactly when",
-           ["the ball is hidden: other balls have smaller power distance everywhere", "never", "two balls have the same radius", "the ball is the largest"],
-           "8b70a4860dc3dcf76083"),
-        _q("In the growth model, at time $\\tau$ a ball of radius $r$ has radius",
-           ["$r + \\tau$", "$r\\,\\tau$", "$\\sqrt{r^2 + \\tau}$", "$r^2 + \\tau$"],
-           "877f3461d07936855fba"),
-        _q("The dual complex $K$ of a union of balls has, in general,",
-           ["the same shape as the union", "the same homotopy type as the union: components, holes and voids", "more holes than the union", "the same volume as the union"],
-           "16f79cfea7d0ba4d8d55"),
-        _q("The short inclusion–exclusion formula for the area of a union of disks sums over",
-           ["all subsets of the disks", "the triangles of the Delaunay triangulation of the centres", "the pairs of disks only", "the simplices of the dual complex $K$"],
-           "f6c7b0796410a12044a5"),
+        _q(
+            "The power distance $\\pi_i(x) = \\|x - z_i\\|^2 - r_i^2$ of a point $x$ from the ball $B_i$ is negative when",
+            [
+                "$x$ lies outside $B_i$",
+                "$x$ lies inside $B_i$",
+                "$x$ lies on the sphere bounding $B_i$",
+                "never: it is a squared distance",
+            ],
+            "208dff8284633d7d68ec",
+        ),
+        _q(
+            "The points with equal power distance from two balls (with distinct centres) form",
+            [
+                "a hyperbola",
+                "a sphere",
+                "the perpendicular bisector of the centres, whatever the radii",
+                "a hyperplane orthogonal to the line through the centres",
+            ],
+            "647c9619c71421938793",
+        ),
+        _q(
+            "The power cell of a ball is empty exactly when",
+            [
+                "the ball is hidden: other balls have smaller power distance everywhere",
+                "never",
+                "two balls have the same radius",
+                "the ball is the largest",
+            ],
+            "8b70a4860dc3dcf76083",
+        ),
+        _q(
+            "In the growth model, at time $\\tau$ a ball of radius $r$ has radius",
+            ["$r + \\tau$", "$r\\,\\tau$", "$\\sqrt{r^2 + \\tau}$", "$r^2 + \\tau$"],
+            "877f3461d07936855fba",
+        ),
+        _q(
+            "The dual complex $K$ of a union of balls has, in general,",
+            [
+                "the same shape as the union",
+                "the same homotopy type as the union: components, holes and voids",
+                "more holes than the union",
+                "the same volume as the union",
+            ],
+            "16f79cfea7d0ba4d8d55",
+        ),
+        _q(
+            "The short inclusion–exclusion formula for the area of a union of disks sums over",
+            [
+                "all subsets of the disks",
+                "the triangles of the Delaunay triangulation of the centres",
+                "the pairs of disks only",
+                "the simplices of the dual complex $K$",
+            ],
+            "f6c7b0796410a12044a5",
+        ),
     ),
     "II": (
-        _q("A void of a union of balls is",
-           ["a bounded component of the complement", "any concave region of the boundary", "a class of $H_1$", "a hidden ball"],
-           "9eda76c280348c9c06af"),
-        _q("In the growth model, a pocket at time $\\tau$ is",
-           ["a void at $\\tau$", "a tunnel", "a region still connected to the outside at $\\tau$ that becomes a void later", "any region within one probe radius of the surface"],
-           "cb0ecc03b2fd34610a95"),
-        _q("A tunnel through a molecule corresponds to",
-           ["a void", "a class of $H_2$", "a component ($H_0$)", "a class of $H_1$"],
-           "c44b6cc8f1982d8a1835"),
-        _q("The persistence of a feature in the growth model measures",
-           ["its volume", "how long it lives as the balls grow: its thickness, not its size", "its surface area", "the number of balls that line it"],
-           "9f9f5adeab8ef27e3b61"),
-        _q("By the elder rule, when two components merge",
-           ["the older one dies", "both die", "the younger one (born later) dies", "neither dies"],
-           "e0fb94949bcb83212e55"),
-        _q("Growing every radius by a water probe of 1.4 Å (the solvent-accessible model)",
-           ["can seal a pocket with a narrow mouth into a void", "never changes which features are voids", "removes every void", "makes the union smaller"],
-           "b6f930fb1a58d645675b"),
+        _q(
+            "A void of a union of balls is",
+            [
+                "a bounded component of the complement",
+                "any concave region of the boundary",
+                "a class of $H_1$",
+                "a hidden ball",
+            ],
+            "9eda76c280348c9c06af",
+        ),
+        _q(
+            "In the growth model, a pocket at time $\\tau$ is",
+            [
+                "a void at $\\tau$",
+                "a tunnel",
+                "a region still connected to the outside at $\\tau$ that becomes a void later",
+                "any region within one probe radius of the surface",
+            ],
+            "cb0ecc03b2fd34610a95",
+        ),
+        _q(
+            "A tunnel through a molecule corresponds to",
+            ["a void", "a class of $H_2$", "a component ($H_0$)", "a class of $H_1$"],
+            "c44b6cc8f1982d8a1835",
+        ),
+        _q(
+            "The persistence of a feature in the growth model measures",
+            [
+                "its volume",
+                "how long it lives as the balls grow: its thickness, not its size",
+                "its surface area",
+                "the number of balls that line it",
+            ],
+            "9f9f5adeab8ef27e3b61",
+        ),
+        _q(
+            "By the elder rule, when two components merge",
+            ["the older one dies", "both die", "the younger one (born later) dies", "neither dies"],
+            "e0fb94949bcb83212e55",
+        ),
+        _q(
+            "Growing every radius by a water probe of 1.4 Å (the solvent-accessible model)",
+            [
+                "can seal a pocket with a narrow mouth into a void",
+                "never changes which features are voids",
+                "removes every void",
+                "makes the union smaller",
+            ],
+            "b6f930fb1a58d645675b",
+        ),
     ),
     "III": (
-        _q("The directed Hausdorff distance $h(R, G) = \\max_{r\\in R}\\min_{g\\in G} d(r, g)$ is",
-           ["symmetric in $R$ and $G$", "always zero for sets of equal size", "not symmetric in general", "a metric on finite sets"],
-           "0cabd311256dd17c894d"),
-        _q("For matching finite point sets under translation with the Hausdorff distance, the centroid",
-           ["is not a reference point: piling up copies of a point moves it", "is a reference point", "gives the optimal translation", "is the bounding-box centre"],
-           "4f29f4d68cdc7a68f8a0"),
-        _q("With closest-point pairing, the cost of ICP from one iteration to the next",
-           ["can increase", "needs a one-to-one pairing to be defined", "always reaches the global minimum", "never increases"],
-           "d3b073c3a2e859bca758"),
-        _q("A unit quaternion $q$ rotates a vector $r$ (as a pure quaternion) to",
-           ["$q\\,r$", "$q\\,r\\,q^*$", "$q^*\\,r$", "$q^2\\,r$"],
-           "e20aace77274d2a8f603"),
-        _q("The unit quaternions $q$ and $-q$",
-           ["are the same rotation", "are different rotations", "are inverse rotations", "are not both unit"],
-           "0712d82f715262364455"),
-        _q("Horn's optimal rotation is the unit eigenvector of his $4\\times4$ matrix $A$ for",
-           ["its smallest eigenvalue", "the eigenvalue zero", "its largest eigenvalue", "any eigenvalue"],
-           "9655478012ad21a067c8"),
+        _q(
+            "The directed Hausdorff distance $h(R, G) = \\max_{r\\in R}\\min_{g\\in G} d(r, g)$ is",
+            [
+                "symmetric in $R$ and $G$",
+                "always zero for sets of equal size",
+                "not symmetric in general",
+                "a metric on finite sets",
+            ],
+            "0cabd311256dd17c894d",
+        ),
+        _q(
+            "For matching finite point sets under translation with the Hausdorff distance, the centroid",
+            [
+                "is not a reference point: piling up copies of a point moves it",
+                "is a reference point",
+                "gives the optimal translation",
+                "is the bounding-box centre",
+            ],
+            "4f29f4d68cdc7a68f8a0",
+        ),
+        _q(
+            "With closest-point pairing, the cost of ICP from one iteration to the next",
+            [
+                "can increase",
+                "needs a one-to-one pairing to be defined",
+                "always reaches the global minimum",
+                "never increases",
+            ],
+            "d3b073c3a2e859bca758",
+        ),
+        _q(
+            "A unit quaternion $q$ rotates a vector $r$ (as a pure quaternion) to",
+            ["$q\\,r$", "$q\\,r\\,q^*$", "$q^*\\,r$", "$q^2\\,r$"],
+            "e20aace77274d2a8f603",
+        ),
+        _q(
+            "The unit quaternions $q$ and $-q$",
+            ["are the same rotation", "are different rotations", "are inverse rotations", "are not both unit"],
+            "0712d82f715262364455",
+        ),
+        _q(
+            "Horn's optimal rotation is the unit eigenvector of his $4\\times4$ matrix $A$ for",
+            ["its smallest eigenvalue", "the eigenvalue zero", "its largest eigenvalue", "any eigenvalue"],
+            "9655478012ad21a067c8",
+        ),
     ),
 }
 
-_TITLES = {"I": "Part I: the union of balls (lessons 00–05)",
-           "II": "Part II: voids, pockets, tunnels and persistence (lessons 06–10)",
-           "III": "Part III: shape matching (lessons 11–15)"}
+_TITLES = {
+    "I": "Part I: the union of balls (lessons 00–05)",
+    "II": "Part II: voids, pockets, tunnels and persistence (lessons 06–10)",
+    "III": "Part III: shape matching (lessons 11–15)",
+}
 
 
 def _part(part) -> str:
@@ -126,8 +224,9 @@ def quiz_markdown(part: str) -> str:
     lines = [f"**Quiz, {_TITLES[part]}.** Answer with a dict `{{number: letter}}`.", ""]
     for n, q in enumerate(QUIZZES[part], 1):
         lines.append(f"{n}. {q.text}")
-        lines += [f"   ({LETTERS[k]}) {opt}" + ("  " if k < len(q.options) - 1 else "")
-                  for k, opt in enumerate(q.options)]
+        lines += [
+            f"   ({LETTERS[k]}) {opt}" + ("  " if k < len(q.options) - 1 else "") for k, opt in enumerate(q.options)
+        ]
     return "\n".join(lines)
 
 

@@ -5,6 +5,7 @@ Each check calls *your* function on edge cases first, then on random ones, and
 compares with the library (:mod:`shapelab.quaternion`, :mod:`shapelab.registration`).
 Quaternions are 4-arrays ``(w, x, y, z)``, scalar part first, as in the notes.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -36,7 +37,9 @@ def quaternion_product(fn, *, quiet: bool = False) -> CheckResult:
     -\\mathbf k`, ... (the notes print the :math:`\\mathbf k` component with the wrong
     sign, so copying it fails here), then random quaternions.
     """
-    return run_check("quaternion product", fn, _product_cases(), lambda q, r: qmul(q, r), allclose(1e-10, 1e-9), quiet=quiet)
+    return run_check(
+        "quaternion product", fn, _product_cases(), lambda q, r: qmul(q, r), allclose(1e-10, 1e-9), quiet=quiet
+    )
 
 
 def _unit_cases():

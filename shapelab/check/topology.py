@@ -5,6 +5,7 @@ cases: nothing, one vertex, a hollow and a filled triangle) and then on dual com
 :math:`K_\\tau` of the course's data sets at several growth times τ (Notes §23.1), and
 compares with the library.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -37,9 +38,11 @@ def _library_complexes(two_d_only: bool):
     import shapelab
     from shapelab import datasets as D
 
-    sets = [(D.ring(10, radius=2.5, disk_radius=0.9), (-0.5, 0.0, 3.0, 6.0)),
-            (D.figure_23_1(), (-0.2, 0.0, 0.8, 1.5, 5.0)),
-            (D.figure_23_2()[0], (0.0, 1.0, 3.0))]
+    sets = [
+        (D.ring(10, radius=2.5, disk_radius=0.9), (-0.5, 0.0, 3.0, 6.0)),
+        (D.figure_23_1(), (-0.2, 0.0, 0.8, 1.5, 5.0)),
+        (D.figure_23_2()[0], (0.0, 1.0, 3.0)),
+    ]
     if not two_d_only:
         sets.append((D.fullerene_c60(), (-2.0, -1.0, 0.0, 9.0, 10.0)))
     for balls, taus in sets:
@@ -56,10 +59,13 @@ def _hand_made():
     return [
         [v(0)],
         [v(1)],
-        [v(3), tri_edges],                                   # hollow triangle
-        [v(3), tri_edges, np.array([[0, 1, 2]])],            # filled triangle
-        [v(4), np.array([[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], [2, 3]]),
-         np.array([[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]])],  # tetrahedron boundary
+        [v(3), tri_edges],  # hollow triangle
+        [v(3), tri_edges, np.array([[0, 1, 2]])],  # filled triangle
+        [
+            v(4),
+            np.array([[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], [2, 3]]),
+            np.array([[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]]),
+        ],  # tetrahedron boundary
         [v(5), e, t],
     ]
 
@@ -86,10 +92,18 @@ def euler_characteristic(student_fn, *, quiet: bool = False) -> CheckResult:
 
     def describe(case):
         return "complex with " + ", ".join(
-            f"{len(s)} {name}" for s, name in zip(case[0], ("vertices", "edges", "triangles", "tetrahedra")))
+            f"{len(s)} {name}" for s, name in zip(case[0], ("vertices", "edges", "triangles", "tetrahedra"))
+        )
 
-    return run_check("Euler characteristic", student_fn, cases + lib, _chi,
-                     compare=lambda e, r: _as_int(r) == e, describe=describe, quiet=quiet)
+    return run_check(
+        "Euler characteristic",
+        student_fn,
+        cases + lib,
+        _chi,
+        compare=lambda e, r: _as_int(r) == e,
+        describe=describe,
+        quiet=quiet,
+    )
 
 
 def _as_int(x):
@@ -155,6 +169,12 @@ def betti_numbers(student_fn, *, quiet: bool = False) -> CheckResult:
             return False
         return r == tuple(expected)
 
-    return run_check("Betti numbers (β0, β1) in 2D", student_fn, cases, _betti_planar,
-                     compare=compare, describe=describe, quiet=quiet)
-
+    return run_check(
+        "Betti numbers (β0, β1) in 2D",
+        student_fn,
+        cases,
+        _betti_planar,
+        compare=compare,
+        describe=describe,
+        quiet=quiet,
+    )

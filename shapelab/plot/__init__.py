@@ -11,6 +11,7 @@ the rest of the library.
 ``rotation``      point sets, ICP steps and convergence, rotations in 3D
 ================  ==============================================================
 """
+
 from __future__ import annotations
 
 from .._toolkit.lazy import attach

@@ -8,6 +8,7 @@ book, the slides and ``python -m course.figures``.
 The palette is Okabe & Ito's colour-blind-safe set (Okabe, M. and Ito, K., *Color
 Universal Design*, 2008); sequential data uses ``viridis``/``cividis``.
 """
+
 from __future__ import annotations
 
 from contextlib import contextmanager
@@ -31,15 +32,15 @@ PALETTE = (
 
 #: Named roles, so that every figure means the same thing by the same colour.
 COLORS = {
-    "ball": "#56B4E9",       # disks and balls
+    "ball": "#56B4E9",  # disks and balls
     "ball_edge": "#0072B2",
-    "cell": "#E69F00",       # power cells
-    "complex": "#000000",    # vertices and edges of K
-    "triangle": "#009E73",   # 2-simplices
-    "void": "#D55E00",       # voids, holes, pockets
+    "cell": "#E69F00",  # power cells
+    "complex": "#000000",  # vertices and edges of K
+    "triangle": "#009E73",  # 2-simplices
+    "void": "#D55E00",  # voids, holes, pockets
     "mouth": "#CC79A7",
-    "red": "#D55E00",        # the notes' red point set R
-    "green": "#009E73",      # the notes' green point set G
+    "red": "#D55E00",  # the notes' red point set R
+    "green": "#009E73",  # the notes' green point set G
     "accent": "#E69F00",
     "muted": "#999999",
 }

@@ -17,6 +17,7 @@ and returns its figure) and computes no geometry of its own: cells, complexes an
 entry times come from :mod:`shapelab.power` and :mod:`shapelab.filtration`.  The
 cells :math:`B_i \\cap \\Pi(B_i)` come from :func:`shapelab.power.clipped_cells`.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -36,8 +37,17 @@ from .._toolkit.validate import (
 from ..balls import Balls
 from ._style import COLORS, PAGE, PALETTE, new_figure, style
 
-__all__ = ["disks", "power_diagram", "dual_complex", "filtration", "balls3d", "complex3d", "lifting",
-           "method_comparison", "DualComplexView"]
+__all__ = [
+    "disks",
+    "power_diagram",
+    "dual_complex",
+    "filtration",
+    "balls3d",
+    "complex3d",
+    "lifting",
+    "method_comparison",
+    "DualComplexView",
+]
 
 
 # ------------------------------------------------------------------ helpers
@@ -96,8 +106,14 @@ def _limits_2d(ax, centers, radii, bbox=None):
 
 def _disk_collection(ax, centers, radii, **kw):
     coll = EllipseCollection(
-        2 * radii, 2 * radii, np.zeros(len(radii)), units="xy",
-        offsets=centers if len(centers) else np.zeros((0, 2)), offset_transform=ax.transData, **kw)
+        2 * radii,
+        2 * radii,
+        np.zeros(len(radii)),
+        units="xy",
+        offsets=centers if len(centers) else np.zeros((0, 2)),
+        offset_transform=ax.transData,
+        **kw,
+    )
     ax.add_collection(coll, autolim=False)
     return coll
 
@@ -191,17 +207,35 @@ def power_diagram(balls_or_diagram, *, bbox=None, ax=None, show_disks=True, labe
     fig, ax = _axes(ax)
     with style():
         polys = [c for c in pd.cells if len(c) >= 3]
-        ax.add_collection(PolyCollection(polys, facecolors=[to_rgba(COLORS["cell"], 0.10)],
-                                         edgecolors=[COLORS["cell"]], linewidths=1.4, zorder=1))
+        ax.add_collection(
+            PolyCollection(
+                polys, facecolors=[to_rgba(COLORS["cell"], 0.10)], edgecolors=[COLORS["cell"]], linewidths=1.4, zorder=1
+            )
+        )
         handles = [Patch(facecolor=to_rgba(COLORS["cell"], 0.10), edgecolor=COLORS["cell"], label="power cell Π(B)")]
         vis = ~pd.hidden
         if show_disks:
-            _disk_collection(ax, balls.centers[vis], balls.radii[vis], facecolors=[to_rgba(COLORS["ball"], 0.25)],
-                             edgecolors=[COLORS["ball_edge"]], linewidths=1.0, zorder=2)
+            _disk_collection(
+                ax,
+                balls.centers[vis],
+                balls.radii[vis],
+                facecolors=[to_rgba(COLORS["ball"], 0.25)],
+                edgecolors=[COLORS["ball_edge"]],
+                linewidths=1.0,
+                zorder=2,
+            )
             handles.append(Patch(facecolor=to_rgba(COLORS["ball"], 0.25), edgecolor=COLORS["ball_edge"], label="disk"))
         if pd.hidden.any():
-            _disk_collection(ax, balls.centers[pd.hidden], balls.radii[pd.hidden], facecolors="none",
-                             edgecolors=[COLORS["void"]], linewidths=1.3, linestyles="--", zorder=3)
+            _disk_collection(
+                ax,
+                balls.centers[pd.hidden],
+                balls.radii[pd.hidden],
+                facecolors="none",
+                edgecolors=[COLORS["void"]],
+                linewidths=1.3,
+                linestyles="--",
+                zorder=3,
+            )
             ax.scatter(*balls.centers[pd.hidden].T, s=18, facecolors="white", edgecolors=COLORS["void"], zorder=4)
             handles.append(Line2D([], [], color=COLORS["void"], ls="--", label="hidden disk (empty cell)"))
         if vis.any():
@@ -237,8 +271,20 @@ class DualComplexView:
     """
 
     @filtration_first(name="DualComplexView")
-    def __init__(self, F, tau=0.0, *, ax=None, show_cells=True, show_disks=True,
-                 bbox=None, labels=False, title=None, legend=True, view_tau=None):
+    def __init__(
+        self,
+        F,
+        tau=0.0,
+        *,
+        ax=None,
+        show_cells=True,
+        show_disks=True,
+        bbox=None,
+        labels=False,
+        title=None,
+        legend=True,
+        view_tau=None,
+    ):
         F = _filtration_of(F, "DualComplexView")
         balls = F.balls
         _check_balls(balls, dim=2)
@@ -256,17 +302,30 @@ class DualComplexView:
                 # with the cells shown, the disks' outlines are thin and light: inside the union
                 # they are not boundaries, the cells' edges are (Figure 23.1 (i))
                 edge = to_rgba(COLORS["ball_edge"], 0.45) if show_cells else COLORS["ball_edge"]
-                self._disks = _disk_collection(ax, balls.centers, r, facecolors=[disk_face],
-                                               edgecolors=[edge], linewidths=0.8 if show_cells else 1.0, zorder=3)
+                self._disks = _disk_collection(
+                    ax,
+                    balls.centers,
+                    r,
+                    facecolors=[disk_face],
+                    edgecolors=[edge],
+                    linewidths=0.8 if show_cells else 1.0,
+                    zorder=3,
+                )
             self._cells = None
             if show_cells and len(balls):
                 self._cell_bbox = self._cell_box(balls, bbox)
-                self._cells = PolyCollection([], facecolors=[to_rgba(COLORS["cell"], 0.25)],
-                                             edgecolors=["#8A4B00"], linewidths=2.0, zorder=3.5)
+                self._cells = PolyCollection(
+                    [], facecolors=[to_rgba(COLORS["cell"], 0.25)], edgecolors=["#8A4B00"], linewidths=2.0, zorder=3.5
+                )
                 ax.add_collection(self._cells, autolim=False)
                 self._set_cells(tau)
-            self._tri = PolyCollection([], facecolors=[to_rgba(COLORS["triangle"], 0.55)],
-                                       edgecolors=[COLORS["triangle"]], linewidths=0.6, zorder=4)
+            self._tri = PolyCollection(
+                [],
+                facecolors=[to_rgba(COLORS["triangle"], 0.55)],
+                edgecolors=[COLORS["triangle"]],
+                linewidths=0.6,
+                zorder=4,
+            )
             ax.add_collection(self._tri, autolim=False)
             self._edges = LineCollection([], colors=[COLORS["complex"]], linewidths=1.6, zorder=5)
             ax.add_collection(self._edges, autolim=False)
@@ -281,14 +340,27 @@ class DualComplexView:
             if legend:
                 handles = []
                 if show_disks:
-                    handles.append(Patch(facecolor=disk_face, label="disk $B_i$",
-                                         edgecolor=to_rgba(COLORS["ball_edge"], 0.45) if show_cells else COLORS["ball_edge"]))
+                    handles.append(
+                        Patch(
+                            facecolor=disk_face,
+                            label="disk $B_i$",
+                            edgecolor=to_rgba(COLORS["ball_edge"], 0.45) if show_cells else COLORS["ball_edge"],
+                        )
+                    )
                 if show_cells:
-                    handles.append(Patch(facecolor=to_rgba(COLORS["cell"], 0.30), edgecolor="#8A4B00", linewidth=2.0,
-                                         label="$B_i \\cap \\Pi(B_i)$"))
+                    handles.append(
+                        Patch(
+                            facecolor=to_rgba(COLORS["cell"], 0.30),
+                            edgecolor="#8A4B00",
+                            linewidth=2.0,
+                            label="$B_i \\cap \\Pi(B_i)$",
+                        )
+                    )
                 handles += [
                     Line2D([], [], color=COLORS["complex"], marker="o", ms=4, lw=1.6, label="vertex, edge of K"),
-                    Patch(facecolor=to_rgba(COLORS["triangle"], 0.55), edgecolor=COLORS["triangle"], label="triangle of K"),
+                    Patch(
+                        facecolor=to_rgba(COLORS["triangle"], 0.55), edgecolor=COLORS["triangle"], label="triangle of K"
+                    ),
                 ]
                 ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0))
         self._set_complex(self.complex)
@@ -313,8 +385,11 @@ class DualComplexView:
         v = K.simplices(0)[:, 0] if K.dimension >= 0 else np.zeros(0, dtype=np.int64)
         self._verts.set_offsets(c[v] if len(v) else np.zeros((0, 2)))
         n = K.counts() + (0,) * (3 - len(K.counts()))
-        self.ax.set_title(self._title if self._title is not None else
-                          f"Dual complex K at {_tau_title(K.tau)}\n{n[0]} vertices, {n[1]} edges, {n[2]} triangles")
+        self.ax.set_title(
+            self._title
+            if self._title is not None
+            else f"Dual complex K at {_tau_title(K.tau)}\n{n[0]} vertices, {n[1]} edges, {n[2]} triangles"
+        )
 
     # ---------------------------------------------------- fast re-rendering
     def _dynamic(self):
@@ -386,8 +461,7 @@ class DualComplexView:
 
 
 @filtration_first(name="plot.dual_complex")
-def dual_complex(F, tau=0.0, *, ax=None, show_cells=True, show_disks=True, bbox=None,
-                 labels=False, title=None):
+def dual_complex(F, tau=0.0, *, ax=None, show_cells=True, show_disks=True, bbox=None, labels=False, title=None):
     """Figure 23.1 (i): disks, clipped cells :math:`B_i \\cap \\Pi(B_i)` and the dual
     complex K on top (Notes §23.1).
 
@@ -408,8 +482,9 @@ def dual_complex(F, tau=0.0, *, ax=None, show_cells=True, show_disks=True, bbox=
     -------
     matplotlib.figure.Figure
     """
-    return DualComplexView(F, tau, ax=ax, show_cells=show_cells, show_disks=show_disks,
-                           bbox=bbox, labels=labels, title=title).figure
+    return DualComplexView(
+        F, tau, ax=ax, show_cells=show_cells, show_disks=show_disks, bbox=bbox, labels=labels, title=title
+    ).figure
 
 
 # ------------------------------------------------------------ filtration
@@ -456,17 +531,26 @@ def filtration(F, *, tau=None, ax=None, cmap="cividis", show_disks=False, title=
             bounds = np.array([bounds[0] - 0.5, bounds[0] + 0.5])
         norm = BoundaryNorm(bounds, 256)
         if show_disks:
-            _disk_collection(ax, c, F.balls.radii, facecolors="none", edgecolors=[to_rgba(COLORS["muted"], 0.6)],
-                             linewidths=0.8, zorder=0)
+            _disk_collection(
+                ax,
+                c,
+                F.balls.radii,
+                facecolors="none",
+                edgecolors=[to_rgba(COLORS["muted"], 0.6)],
+                linewidths=0.8,
+                zorder=0,
+            )
         if K.dimension >= 2:
-            tri = PolyCollection(list(_segments(c, K.simplices(2))), array=K.values(2), cmap=cmap, norm=norm,
-                                 edgecolors="none", zorder=1)
+            tri = PolyCollection(
+                list(_segments(c, K.simplices(2))), array=K.values(2), cmap=cmap, norm=norm, edgecolors="none", zorder=1
+            )
             ax.add_collection(tri)
         if K.dimension >= 1:
             ev = K.values(1)
             lw = 0.6 + 2.6 * (1 - np.searchsorted(bounds, ev, side="right") / bounds.size)
-            edges = LineCollection(list(_segments(c, K.simplices(1))), array=ev, cmap=cmap, norm=norm,
-                                   linewidths=lw, zorder=2)
+            edges = LineCollection(
+                list(_segments(c, K.simplices(1))), array=ev, cmap=cmap, norm=norm, linewidths=lw, zorder=2
+            )
             ax.add_collection(edges)
         if K.dimension >= 0:
             ax.scatter(*c[K.simplices(0)[:, 0]].T, s=12, color=COLORS["complex"], zorder=3)
@@ -476,8 +560,11 @@ def filtration(F, *, tau=None, ax=None, cmap="cividis", show_disks=False, title=
         _limits_2d(ax, c, F.balls.radii if show_disks else np.zeros(len(c)))
         n = K.counts() + (0,) * (3 - len(K.counts()))
         what = "all of DT" if tau is None else _tau_title(t)
-        ax.set_title(title if title is not None else
-                     f"α-filtration shaded by entry time ({what})\n{n[0]} vertices, {n[1]} edges, {n[2]} triangles")
+        ax.set_title(
+            title
+            if title is not None
+            else f"α-filtration shaded by entry time ({what})\n{n[0]} vertices, {n[1]} edges, {n[2]} triangles"
+        )
     return fig
 
 
@@ -562,18 +649,32 @@ def balls3d(balls, *, tau=0.0, ax=None, resolution=10, alpha=0.35, color=None, e
     live = r > 0
     with style():
         quads, normals = _sphere_quads(balls.centers[live], r[live], resolution)
-        coll = Poly3DCollection(quads, facecolors=_shade(color or COLORS["ball"], normals, alpha),
-                                edgecolors="none", linewidths=0)
+        coll = Poly3DCollection(
+            quads, facecolors=_shade(color or COLORS["ball"], normals, alpha), edgecolors="none", linewidths=0
+        )
         ax.add_collection3d(coll)
         _setup_3d(ax, *_bounds_3d(balls.centers, r), elev, azim)
-        ax.legend(handles=[Patch(facecolor=to_rgba(color or COLORS["ball"], 0.6), label="ball")],
-                  loc="upper left", bbox_to_anchor=(1.02, 1.0))
+        ax.legend(
+            handles=[Patch(facecolor=to_rgba(color or COLORS["ball"], 0.6), label="ball")],
+            loc="upper left",
+            bbox_to_anchor=(1.02, 1.0),
+        )
         ax.set_title(title if title is not None else f"{len(balls)} balls" + (f", {_tau_title(tau)}" if tau else ""))
     return fig
 
 
-def complex3d(complex_or_filtration, *, tau=None, ax=None, show_balls=False, cmap="cividis", elev=20.0, azim=35.0,
-              resolution=8, title=None):
+def complex3d(
+    complex_or_filtration,
+    *,
+    tau=None,
+    ax=None,
+    show_balls=False,
+    cmap="cividis",
+    elev=20.0,
+    azim=35.0,
+    resolution=8,
+    title=None,
+):
     """Draw a 3D dual complex: vertices, edges (lines), triangles (Notes §23.1).
 
     Parameters
@@ -609,7 +710,9 @@ def complex3d(complex_or_filtration, *, tau=None, ax=None, show_balls=False, cma
             raise ValueError("tau is only used with a Filtration; a Complex already has its tau")
         K, shaded = complex_or_filtration, False
     else:
-        raise TypeError(f"complex_or_filtration must be a Complex or a Filtration, got {type(complex_or_filtration).__name__}")
+        raise TypeError(
+            f"complex_or_filtration must be a Complex or a Filtration, got {type(complex_or_filtration).__name__}"
+        )
     balls = _check_balls(K.balls, "complex_or_filtration.balls", dim=3)
     c = balls.centers
     fig, ax = _axes(ax, projection="3d")
@@ -625,14 +728,18 @@ def complex3d(complex_or_filtration, *, tau=None, ax=None, show_balls=False, cma
         if show_balls:
             live = r > 0
             quads, normals = _sphere_quads(c[live], r[live], resolution)
-            ax.add_collection3d(Poly3DCollection(quads, facecolors=_shade(COLORS["ball"], normals, 0.12),
-                                                 edgecolors="none", linewidths=0))
+            ax.add_collection3d(
+                Poly3DCollection(
+                    quads, facecolors=_shade(COLORS["ball"], normals, 0.12), edgecolors="none", linewidths=0
+                )
+            )
             handles.append(Patch(facecolor=to_rgba(COLORS["ball"], 0.3), label="ball"))
         if K.dimension >= 2:
             T = K.simplices(2)
             fc = sm.to_rgba(K.values(2), alpha=0.45) if shaded else [to_rgba(COLORS["triangle"], 0.4)]
-            ax.add_collection3d(Poly3DCollection(c[T], facecolors=fc, edgecolors=[to_rgba(COLORS["triangle"], 0.5)],
-                                                 linewidths=0.3))
+            ax.add_collection3d(
+                Poly3DCollection(c[T], facecolors=fc, edgecolors=[to_rgba(COLORS["triangle"], 0.5)], linewidths=0.3)
+            )
             handles.append(Patch(facecolor=to_rgba(COLORS["triangle"], 0.4), label=f"{len(T)} triangles"))
         if K.dimension >= 1:
             E = K.simplices(1)
@@ -649,9 +756,12 @@ def complex3d(complex_or_filtration, *, tau=None, ax=None, show_balls=False, cma
         _setup_3d(ax, *_bounds_3d(c, r if show_balls else np.zeros(len(c))), elev, azim)
         n = K.counts() + (0,) * (4 - len(K.counts()))
         ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(-0.25, 1.0))
-        ax.set_title(title if title is not None else
-                     f"Dual complex K at {_tau_title(K.tau) if np.isfinite(K.tau) else 'τ = ∞ (all of DT)'}\n"
-                     f"{n[0]} vertices, {n[1]} edges, {n[2]} triangles, {n[3]} tetrahedra")
+        ax.set_title(
+            title
+            if title is not None
+            else f"Dual complex K at {_tau_title(K.tau) if np.isfinite(K.tau) else 'τ = ∞ (all of DT)'}\n"
+            f"{n[0]} vertices, {n[1]} edges, {n[2]} triangles, {n[3]} tetrahedra"
+        )
     return fig
 
 
@@ -700,14 +810,21 @@ def lifting(balls, *, ax=None, elev=18.0, azim=-60.0, title=None):
             tri = regular_triangulation(balls) if len(balls) >= 3 else np.zeros((0, 3), dtype=np.int64)
             hidden = _pd(balls).hidden
             if tri.shape[1] == 3 and len(tri):
-                ax.add_collection3d(Poly3DCollection(lifted[tri], facecolors=[to_rgba(COLORS["triangle"], 0.35)],
-                                                     edgecolors=[COLORS["triangle"]], linewidths=0.8))
+                ax.add_collection3d(
+                    Poly3DCollection(
+                        lifted[tri],
+                        facecolors=[to_rgba(COLORS["triangle"], 0.35)],
+                        edgecolors=[COLORS["triangle"]],
+                        linewidths=0.8,
+                    )
+                )
                 flat = np.concatenate([c[tri], np.full(tri.shape + (1,), floor)], axis=2)
                 edges = np.concatenate([flat[:, [0, 1]], flat[:, [1, 2]], flat[:, [2, 0]]])
                 ax.add_collection3d(Line3DCollection(edges, colors=[COLORS["complex"]], linewidths=0.7))
             drops = np.stack([lifted, np.column_stack([c, np.full(len(c), floor)])], axis=1)
-            ax.add_collection3d(Line3DCollection(drops, colors=[to_rgba(COLORS["muted"], 0.7)], linewidths=0.6,
-                                                 linestyles=":"))
+            ax.add_collection3d(
+                Line3DCollection(drops, colors=[to_rgba(COLORS["muted"], 0.7)], linewidths=0.6, linestyles=":")
+            )
             vis = ~hidden
             ax.scatter(*lifted[vis].T, s=18, color=COLORS["ball_edge"], depthshade=False)
             if hidden.any():
@@ -719,14 +836,24 @@ def lifting(balls, *, ax=None, elev=18.0, azim=-60.0, title=None):
         ax.set_xlabel("x")
         ax.set_ylabel("y")
         ax.set_zlabel(r"$|z|^2 - r^2$")
-        ax.legend(handles=[
-            Line2D([], [], color=COLORS["muted"], lw=0.6, label=r"paraboloid $x_3 = |x|^2$"),
-            Line2D([], [], ls="", marker="o", ms=5, color=COLORS["ball_edge"], label="lifted disk"),
-            Line2D([], [], ls="", marker="o", ms=6, mfc="white", mec=COLORS["void"], label="hidden: above the hull"),
-            Patch(facecolor=to_rgba(COLORS["triangle"], 0.35), edgecolor=COLORS["triangle"], label="lower convex hull"),
-            Line2D([], [], color=COLORS["complex"], lw=0.7, label="its projection: DT"),
-        ], loc="upper left", bbox_to_anchor=(1.02, 1.0))
-        ax.set_title(title if title is not None else "The lifting map: the lower hull projects to the regular triangulation")
+        ax.legend(
+            handles=[
+                Line2D([], [], color=COLORS["muted"], lw=0.6, label=r"paraboloid $x_3 = |x|^2$"),
+                Line2D([], [], ls="", marker="o", ms=5, color=COLORS["ball_edge"], label="lifted disk"),
+                Line2D(
+                    [], [], ls="", marker="o", ms=6, mfc="white", mec=COLORS["void"], label="hidden: above the hull"
+                ),
+                Patch(
+                    facecolor=to_rgba(COLORS["triangle"], 0.35), edgecolor=COLORS["triangle"], label="lower convex hull"
+                ),
+                Line2D([], [], color=COLORS["complex"], lw=0.7, label="its projection: DT"),
+            ],
+            loc="upper left",
+            bbox_to_anchor=(1.02, 1.0),
+        )
+        ax.set_title(
+            title if title is not None else "The lifting map: the lower hull projects to the regular triangulation"
+        )
     return fig
 
 

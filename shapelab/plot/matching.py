@@ -12,6 +12,7 @@
 Every function returns a :class:`matplotlib.figure.Figure` (or draws into ``ax=``
 and returns its figure) and computes no geometry beyond calling the library.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -44,8 +45,18 @@ def _check_result(result, sources):
         raise ValueError(f"result comes from a {result.source}; this figure needs one of {sources}")
 
 
-def critical_points(curve, result, *, ax=None, profile_ax=None, profile: bool = True,
-                    rays: bool = True, title: str | None = None, size=SLIDE, n: int = 600):
+def critical_points(
+    curve,
+    result,
+    *,
+    ax=None,
+    profile_ax=None,
+    profile: bool = True,
+    rays: bool = True,
+    title: str | None = None,
+    size=SLIDE,
+    n: int = 600,
+):
     """Figure 23.3: a closed curve seen from S, with its critical points.
 
     Parameters
@@ -104,18 +115,40 @@ def critical_points(curve, result, *, ax=None, profile_ax=None, profile: bool = 
             if rays:
                 for x in X:
                     ax.plot([S[0], x[0]], [S[1], x[1]], color=st["color"], lw=0.9, ls="--", alpha=0.8, zorder=1)
-            ax.scatter(X[:, 0], X[:, 1], s=70, color=st["color"], marker=st["marker"], zorder=4,
-                       edgecolor="white", linewidth=0.6, label=f"{st['label']} ({int(sel.sum())})")
-        ax.scatter([S[0]], [S[1]], s=90, color=COLORS["accent"], marker="*", zorder=5, edgecolor="black",
-                   linewidth=0.5, label="viewpoint S")
+            ax.scatter(
+                X[:, 0],
+                X[:, 1],
+                s=70,
+                color=st["color"],
+                marker=st["marker"],
+                zorder=4,
+                edgecolor="white",
+                linewidth=0.6,
+                label=f"{st['label']} ({int(sel.sum())})",
+            )
+        ax.scatter(
+            [S[0]],
+            [S[1]],
+            s=90,
+            color=COLORS["accent"],
+            marker="*",
+            zorder=5,
+            edgecolor="black",
+            linewidth=0.5,
+            label="viewpoint S",
+        )
         ax.annotate("S", S[:2], xytext=(6, 6), textcoords="offset points", fontsize=11)
         ax.set_aspect("equal")
         ax.set_xlabel("x")
         ax.set_ylabel("y")
         deg = " — F constant: every point is critical" if result.degenerate else ""
         ax.set_title(title or f"Critical points of F(x) = |x − S|{deg}")
-        ax.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0) if profile_ax is None else (0.0, -0.2),
-                  ncol=1 if profile_ax is None else 2, fontsize=9)
+        ax.legend(
+            loc="upper left",
+            bbox_to_anchor=(1.0, 1.0) if profile_ax is None else (0.0, -0.2),
+            ncol=1 if profile_ax is None else 2,
+            fontsize=9,
+        )
         if profile_ax is not None:
             s, F = distance_along(curve, S, n=n)
             pax = profile_ax
@@ -123,9 +156,17 @@ def critical_points(curve, result, *, ax=None, profile_ax=None, profile: bool = 
             for kind in ("min", "max"):
                 sel = result.kinds == kind
                 st = _KIND_STYLE[kind]
-                pax.scatter(result.parameters[sel], result.values[sel], s=55, color=st["color"],
-                            marker=st["marker"], zorder=4, edgecolor="white", linewidth=0.6)
-                for p, v in zip(result.parameters[sel], result.values[sel]):
+                pax.scatter(
+                    result.parameters[sel],
+                    result.values[sel],
+                    s=55,
+                    color=st["color"],
+                    marker=st["marker"],
+                    zorder=4,
+                    edgecolor="white",
+                    linewidth=0.6,
+                )
+                for p in result.parameters[sel]:
                     pax.axvline(p, color=st["color"], lw=0.6, ls=":", zorder=0)
             pax.set_xlabel(param_label)
             pax.set_ylabel("F = |x − S|")
@@ -133,8 +174,18 @@ def critical_points(curve, result, *, ax=None, profile_ax=None, profile: bool = 
     return fig
 
 
-def critical_surface(vertices, faces, result, *, ax=None, size=PAGE, elev: float = 20.0,
-                     azim: float = -60.0, title: str | None = None, colorbar: bool = True):
+def critical_surface(
+    vertices,
+    faces,
+    result,
+    *,
+    ax=None,
+    size=PAGE,
+    elev: float = 20.0,
+    azim: float = -60.0,
+    title: str | None = None,
+    colorbar: bool = True,
+):
     """A closed surface shaded by F = |x − S| with its minima, saddles and maxima.
 
     Parameters
@@ -167,18 +218,39 @@ def critical_surface(vertices, faces, result, *, ax=None, size=PAGE, elev: float
     with style():
         norm = Normalize(h.min(), h.max())
         cmap = colormaps["viridis"]
-        coll = Poly3DCollection(V[F], facecolors=cmap(norm(h[F].mean(axis=1))), edgecolor=(0, 0, 0, 0.12),
-                                linewidth=0.2, alpha=0.55)
+        coll = Poly3DCollection(
+            V[F], facecolors=cmap(norm(h[F].mean(axis=1))), edgecolor=(0, 0, 0, 0.12), linewidth=0.2, alpha=0.55
+        )
         ax.add_collection3d(coll)
         for kind in ("min", "saddle", "max"):
             sel = result.kinds == kind
             st = _KIND_STYLE[kind]
             X = result.positions[sel]
             count = int(result.multiplicities[sel].sum())
-            ax.scatter(X[:, 0], X[:, 1], X[:, 2], s=60, color=st["color"], marker=st["marker"],
-                       edgecolor="black", linewidth=0.4, depthshade=False, label=f"{st['label']} ({count})")
-        ax.scatter([S[0]], [S[1]], [S[2]], s=90, color=COLORS["accent"], marker="*", edgecolor="black",
-                   linewidth=0.5, depthshade=False, label="viewpoint S")
+            ax.scatter(
+                X[:, 0],
+                X[:, 1],
+                X[:, 2],
+                s=60,
+                color=st["color"],
+                marker=st["marker"],
+                edgecolor="black",
+                linewidth=0.4,
+                depthshade=False,
+                label=f"{st['label']} ({count})",
+            )
+        ax.scatter(
+            [S[0]],
+            [S[1]],
+            [S[2]],
+            s=90,
+            color=COLORS["accent"],
+            marker="*",
+            edgecolor="black",
+            linewidth=0.5,
+            depthshade=False,
+            label="viewpoint S",
+        )
         lo, hi = V.min(axis=0), V.max(axis=0)
         c, r = 0.5 * (lo + hi), 0.5 * float((hi - lo).max())
         ax.set_xlim(c[0] - r, c[0] + r)
@@ -201,8 +273,7 @@ def critical_surface(vertices, faces, result, *, ax=None, size=PAGE, elev: float
     return fig
 
 
-def hausdorff(A, B, *, ax=None, size=PAGE, labels=("A", "B"), disks: bool = True,
-              title: str | None = None):
+def hausdorff(A, B, *, ax=None, size=PAGE, labels=("A", "B"), disks: bool = True, title: str | None = None):
     """Two planar point sets with the witnesses of both directed Hausdorff distances.
 
     The segment from ``A[i]`` to its nearest point ``B[j]`` realises h(A, B);
@@ -276,10 +347,20 @@ def translation(A, B, match, *, size=SLIDE, labels=("A", "B"), title: str | None
     B = as_points(B, "B", dim=2)
     fig, axes = new_figure(1, 2, size=size)
     la, lb = labels
-    hausdorff(A, B + match.centroid_translation, ax=axes[0], labels=(la, f"{lb}+t"),
-              title=f"centroids aligned: H = {match.centroid_distance:.3f}")
-    hausdorff(A, B + match.optimal_translation, ax=axes[1], labels=(la, f"{lb}+t"),
-              title=f"optimal translation: H = {match.optimal_distance:.3f}")
+    hausdorff(
+        A,
+        B + match.centroid_translation,
+        ax=axes[0],
+        labels=(la, f"{lb}+t"),
+        title=f"centroids aligned: H = {match.centroid_distance:.3f}",
+    )
+    hausdorff(
+        A,
+        B + match.optimal_translation,
+        ax=axes[1],
+        labels=(la, f"{lb}+t"),
+        title=f"optimal translation: H = {match.optimal_distance:.3f}",
+    )
     with style():
         lims = np.array([a.get_xlim() + a.get_ylim() for a in axes])
         for a in axes:

@@ -5,6 +5,7 @@ Every function returns a :class:`matplotlib.figure.Figure` (or draws into ``ax``
 returns its figure).  Geometry comes from :mod:`shapelab.registration` and
 :mod:`shapelab.quaternion`; nothing is recomputed here.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -52,8 +53,18 @@ def _marker_size(n: int) -> float:
     return float(np.clip(1200.0 / max(n, 1) ** 0.75, 1.0, 36.0))
 
 
-def point_sets(R, G, *, pairs: bool = False, labels=("R", "G"), ax=None, title=None,
-               max_pairs: int = 400, elev: float = 20.0, azim: float = 35.0):
+def point_sets(
+    R,
+    G,
+    *,
+    pairs: bool = False,
+    labels=("R", "G"),
+    ax=None,
+    title=None,
+    max_pairs: int = 400,
+    elev: float = 20.0,
+    azim: float = 35.0,
+):
     """The red set R and the green set G of the notes (§23.2), in 2D or 3D.
 
     Parameters
@@ -98,11 +109,30 @@ def point_sets(R, G, *, pairs: bool = False, labels=("R", "G"), ax=None, title=N
         for P, color, label, marker in ((R, COLORS["red"], labels[0], "o"), (G, COLORS["green"], labels[1], "s")):
             s = _marker_size(len(P))
             if three:
-                ax.scatter(P[:, 0], P[:, 1], P[:, 2], s=s, color=color, label=label, marker=marker,
-                           depthshade=False, alpha=0.85, linewidths=0)
+                ax.scatter(
+                    P[:, 0],
+                    P[:, 1],
+                    P[:, 2],
+                    s=s,
+                    color=color,
+                    label=label,
+                    marker=marker,
+                    depthshade=False,
+                    alpha=0.85,
+                    linewidths=0,
+                )
             else:
-                ax.scatter(P[:, 0], P[:, 1], s=s * 1.5, color=color, label=label, marker=marker, alpha=0.9,
-                           linewidths=0, zorder=3)
+                ax.scatter(
+                    P[:, 0],
+                    P[:, 1],
+                    s=s * 1.5,
+                    color=color,
+                    label=label,
+                    marker=marker,
+                    alpha=0.9,
+                    linewidths=0,
+                    zorder=3,
+                )
         if three:
             _cube_limits(ax, np.vstack([R, G]))
             ax.view_init(elev=elev, azim=azim)
@@ -122,13 +152,23 @@ def _correspondence_at(result: ICPResult, k: int) -> np.ndarray:
     if k == result.n_iter:
         return result.correspondence
     raise ValueError(
-        f"the correspondence of iteration {k} was not kept; run icp(..., keep_history=True) "
-        "to draw intermediate steps"
+        f"the correspondence of iteration {k} was not kept; run icp(..., keep_history=True) to draw intermediate steps"
     )
 
 
-def icp_step(source, target, result: ICPResult, k: int = 0, *, ax=None, max_lines: int = 300,
-             show_next: bool = True, title=None, elev: float = 20.0, azim: float = 35.0):
+def icp_step(
+    source,
+    target,
+    result: ICPResult,
+    k: int = 0,
+    *,
+    ax=None,
+    max_lines: int = 300,
+    show_next: bool = True,
+    title=None,
+    elev: float = 20.0,
+    azim: float = 35.0,
+):
     """One ICP iteration (Notes §23.2, steps 1–3) in 3D.
 
     Draws the target (green), the source at motion ``result.motions[k]`` (red), the
@@ -163,10 +203,25 @@ def icp_step(source, target, result: ICPResult, k: int = 0, *, ax=None, max_line
 
     with style():
         s = _marker_size(max(len(src), len(tgt)))
-        ax.scatter(*tgt.T, s=s, color=COLORS["green"], marker="s", depthshade=False, alpha=0.55, linewidths=0,
-                   label="target (fixed)")
-        ax.scatter(*moved.T, s=s, color=COLORS["red"], depthshade=False, alpha=0.9, linewidths=0,
-                   label=f"source at iteration {k}")
+        ax.scatter(
+            *tgt.T,
+            s=s,
+            color=COLORS["green"],
+            marker="s",
+            depthshade=False,
+            alpha=0.55,
+            linewidths=0,
+            label="target (fixed)",
+        )
+        ax.scatter(
+            *moved.T,
+            s=s,
+            color=COLORS["red"],
+            depthshade=False,
+            alpha=0.9,
+            linewidths=0,
+            label=f"source at iteration {k}",
+        )
         idx = _stride(len(src), max_lines)
         idx = idx[corr[idx] >= 0]
         seg = np.stack([moved[idx], tgt[corr[idx]]], axis=1)
@@ -175,8 +230,16 @@ def icp_step(source, target, result: ICPResult, k: int = 0, *, ax=None, max_line
         pts = [tgt, moved]
         if show_next and k < result.n_iter:
             nxt = result.motions[k + 1].apply(src)
-            ax.scatter(*nxt[idx].T, s=2.2 * s, facecolors="none", edgecolors=COLORS["red"], linewidths=0.7,
-                       depthshade=False, alpha=0.8, label="after steps 2–3")
+            ax.scatter(
+                *nxt[idx].T,
+                s=2.2 * s,
+                facecolors="none",
+                edgecolors=COLORS["red"],
+                linewidths=0.7,
+                depthshade=False,
+                alpha=0.8,
+                label="after steps 2–3",
+            )
             pts.append(nxt)
         _cube_limits(ax, np.vstack(pts))
         ax.view_init(elev=elev, azim=azim)
@@ -214,8 +277,15 @@ def icp_convergence(result, *, truth: RigidMotion | None = None, ax=None, mark: 
         for (name, r), color in zip(runs.items(), colors * 4):
             it = np.arange(r.n_iter + 1)
             mse = np.where(r.mse > 0, r.mse, np.nan)
-            (h,) = ax.plot(it, mse, "o-", color=color, ms=3.5, lw=1.6,
-                           label=f"{name}: MSE" + (" (converged)" if r.converged else ""))
+            (h,) = ax.plot(
+                it,
+                mse,
+                "o-",
+                color=color,
+                ms=3.5,
+                lw=1.6,
+                label=f"{name}: MSE" + (" (converged)" if r.converged else ""),
+            )
             handles.append(h)
             if ax2 is not None:
                 err = np.degrees([m.rotation.angle_to(truth.rotation) for m in r.motions])
@@ -238,8 +308,7 @@ def icp_convergence(result, *, truth: RigidMotion | None = None, ax=None, mark: 
     return fig
 
 
-def rotation_axis(rotation, angle=None, *, points=None, ax=None, title=None, elev: float = 22.0,
-                  azim: float = -55.0):
+def rotation_axis(rotation, angle=None, *, points=None, ax=None, title=None, elev: float = 22.0, azim: float = -55.0):
     """A rotation about an axis through the origin, Figure 23.4 of the notes in 3D.
 
     Draws the unit axis :math:`u` as an arrow, each point before (red) and after
@@ -295,19 +364,20 @@ def rotation_axis(rotation, angle=None, *, points=None, ax=None, title=None, ele
             ax.plot(*arc.T, color=COLORS["accent"], lw=2.6, label="rotation by θ" if j == 0 else None)
             if abs(theta) > 1e-9:
                 d = arc[-1] - arc[-4]
-                ax.quiver(*arc[-4], *d, color=COLORS["accent"], lw=2.6, arrow_length_ratio=0.9,
-                          length=1.0, normalize=False)
+                ax.quiver(
+                    *arc[-4], *d, color=COLORS["accent"], lw=2.6, arrow_length_ratio=0.9, length=1.0, normalize=False
+                )
             for end in (p, q):
                 ax.plot(*np.stack([c, end]).T, color=COLORS["muted"], lw=1.0, ls="--")
             ax.scatter(*p, s=60, color=COLORS["red"], depthshade=False, label="r" if j == 0 else None, zorder=5)
-            ax.scatter(*q, s=60, color=COLORS["green"], depthshade=False, label="q r q*" if j == 0 else None,
-                       zorder=5)
+            ax.scatter(*q, s=60, color=COLORS["green"], depthshade=False, label="q r q*" if j == 0 else None, zorder=5)
             mid = arc[len(arc) // 2]
             ax.text(*(c + 1.18 * (mid - c)), "θ", color=COLORS["accent"], fontsize=13)
             everything += [circle, p[None], q[None]]
         _cube_limits(ax, np.vstack(everything), pad=0.02)
         ax.view_init(elev=elev, azim=azim)
         ax.legend(loc="upper left")
-        ax.set_title(title or (f"Rotation by θ = {np.degrees(theta):.1f}° about "
-                               f"u = ({u[0]:.2f}, {u[1]:.2f}, {u[2]:.2f})"))
+        ax.set_title(
+            title or (f"Rotation by θ = {np.degrees(theta):.1f}° about u = ({u[0]:.2f}, {u[1]:.2f}, {u[2]:.2f})")
+        )
     return fig

@@ -10,6 +10,7 @@
 Every function returns a :class:`matplotlib.figure.Figure` (or draws into ``ax=`` and
 returns its figure) and computes nothing itself beyond calling the library.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -33,8 +34,9 @@ def _dim_color(k: int) -> str:
 
 
 def _dim_label(k: int, d: int | None) -> str:
-    name = {0: "components", 1: "holes" if d == 2 else ("tunnels" if d == 3 else "loops"),
-            2: "voids"}.get(k, f"{k}-cycles")
+    name = {0: "components", 1: "holes" if d == 2 else ("tunnels" if d == 3 else "loops"), 2: "voids"}.get(
+        k, f"{k}-cycles"
+    )
     return f"H{_SUB[k] if k < 4 else k} {name}"
 
 
@@ -55,7 +57,8 @@ def _pairs_of(obj, dim=None):
     else:
         raise TypeError(
             "pairs_or_filtration must be a Filtration or a dict {k: (p, 2) array of (birth, death)}, "
-            f"got {type(obj).__name__}")
+            f"got {type(obj).__name__}"
+        )
     out = {}
     for k, a in P.items():
         if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or k < 0:
@@ -103,15 +106,18 @@ def _field(obj, *names):
 
 def _check_tau(tau, name="tau"):
     if isinstance(tau, (list, tuple)):
-        raise TypeError(f"{name} must be a real number, got a {type(tau).__name__}; computed features are "
-                        "passed by keyword: plot.voids(F, tau, voids=V), plot.pockets(F, tau, pockets=P)")
+        raise TypeError(
+            f"{name} must be a real number, got a {type(tau).__name__}; computed features are "
+            "passed by keyword: plot.voids(F, tau, voids=V), plot.pockets(F, tau, pockets=P)"
+        )
     # drawing needs balls of finite radius
     return as_tau(tau, name, finite=True)
 
 
 # ------------------------------------------------------------- persistence
-def persistence_diagram(pairs_or_filtration, *, dims=None, tau=None, min_persistence=None,
-                        ax=None, title="Persistence diagram", dim=None):
+def persistence_diagram(
+    pairs_or_filtration, *, dims=None, tau=None, min_persistence=None, ax=None, title="Persistence diagram", dim=None
+):
     """The persistence diagram: one point (birth, death) per feature (Notes §23.1).
 
     Parameters
@@ -153,25 +159,44 @@ def persistence_diagram(pairs_or_filtration, *, dims=None, tau=None, min_persist
         ax.fill_between(xs, lo_, xs, color="#eeeeee", zorder=0, lw=0)
         ax.plot(xs, xs, color=COLORS["muted"], lw=1, zorder=1)
         if min_persistence:
-            ax.fill_between(xs, xs, xs + min_persistence, color=COLORS["muted"], alpha=0.25, lw=0,
-                            zorder=1, label=f"persistence < {min_persistence:g}")
+            ax.fill_between(
+                xs,
+                xs,
+                xs + min_persistence,
+                color=COLORS["muted"],
+                alpha=0.25,
+                lw=0,
+                zorder=1,
+                label=f"persistence < {min_persistence:g}",
+            )
         if any(np.isinf(P[k][:, 1]).any() for k in dims):
             ax.axhline(inf_y, color=COLORS["muted"], ls="--", lw=1, zorder=1)
             ax.text(lo_, inf_y, " ∞", va="bottom", ha="left", color=COLORS["muted"])
         if tau is not None:
-            ax.fill_between([lo_, tau], tau, hi_, color=COLORS["accent"], alpha=0.12, lw=0, zorder=0,
-                            label=f"alive at τ = {tau:g}")
+            ax.fill_between(
+                [lo_, tau], tau, hi_, color=COLORS["accent"], alpha=0.12, lw=0, zorder=0, label=f"alive at τ = {tau:g}"
+            )
             ax.axvline(tau, color=COLORS["accent"], lw=1, ls=":")
             ax.axhline(tau, color=COLORS["accent"], lw=1, ls=":")
         for k in dims:
             a = P[k]
             y = np.where(np.isinf(a[:, 1]), inf_y, a[:, 1])
             small = (a[:, 1] - a[:, 0] < min_persistence) if min_persistence else np.zeros(len(a), bool)
-            ax.scatter(a[~small, 0], y[~small], s=28, marker=_MARKERS[k % 4], color=_dim_color(k),
-                       edgecolor="white", linewidth=0.5, zorder=3, label=f"{_dim_label(k, d)} ({len(a)})")
+            ax.scatter(
+                a[~small, 0],
+                y[~small],
+                s=28,
+                marker=_MARKERS[k % 4],
+                color=_dim_color(k),
+                edgecolor="white",
+                linewidth=0.5,
+                zorder=3,
+                label=f"{_dim_label(k, d)} ({len(a)})",
+            )
             if small.any():
-                ax.scatter(a[small, 0], y[small], s=14, marker=_MARKERS[k % 4], color=COLORS["muted"],
-                           alpha=0.6, zorder=2)
+                ax.scatter(
+                    a[small, 0], y[small], s=14, marker=_MARKERS[k % 4], color=COLORS["muted"], alpha=0.6, zorder=2
+                )
         ax.set_xlim(lo_, hi_)
         ax.set_ylim(lo_, hi_)
         ax.set_aspect("equal")
@@ -182,8 +207,9 @@ def persistence_diagram(pairs_or_filtration, *, dims=None, tau=None, min_persist
     return fig
 
 
-def barcode(pairs_or_filtration, *, dims=None, tau=None, min_persistence=0.0, max_bars=60,
-            ax=None, title="Barcode", dim=None):
+def barcode(
+    pairs_or_filtration, *, dims=None, tau=None, min_persistence=0.0, max_bars=60, ax=None, title="Barcode", dim=None
+):
     """The barcode: one horizontal bar [birth, death) per feature (Notes §23.1).
 
     Bars are grouped by homology dimension, longest first within a group is not
@@ -264,8 +290,7 @@ def barcode(pairs_or_filtration, *, dims=None, tau=None, min_persistence=0.0, ma
     return fig
 
 
-def betti_curve(F_or_curve, *, taus=None, tau=None, log=None, ax=None,
-                title="Betti numbers as the balls grow"):
+def betti_curve(F_or_curve, *, taus=None, tau=None, log=None, ax=None, title="Betti numbers as the balls grow"):
     """:math:`\\beta_k(\\tau)` against the growth time τ, one step curve per k.
 
     Parameters
@@ -298,16 +323,18 @@ def betti_curve(F_or_curve, *, taus=None, tau=None, log=None, ax=None,
         F = F_or_curve
         d = F.balls.dim
         if taus is None:
-            vals = np.concatenate([np.asarray(F.values(k)) for k in range(F.dimension + 1)]) \
-                if F.dimension >= 0 else np.zeros(1)
+            vals = (
+                np.concatenate([np.asarray(F.values(k)) for k in range(F.dimension + 1)])
+                if F.dimension >= 0
+                else np.zeros(1)
+            )
             P = F.persistence()
             deaths = np.concatenate([np.asarray(a)[:, 1] for a in P.values() if len(a)] or [np.zeros(0)])
             births = vals.min() if len(vals) else 0.0
             stop = deaths[np.isfinite(deaths)].max() if np.isfinite(deaths).any() else vals.max()
             stop = max(stop, births + 1e-9)
             margin = 0.08 * (stop - births)
-            t = np.unique(np.concatenate([vals[(vals >= births) & (vals <= stop)],
-                                          [births - margin, stop + margin]]))
+            t = np.unique(np.concatenate([vals[(vals >= births) & (vals <= stop)], [births - margin, stop + margin]]))
         else:
             t = np.sort(np.asarray(taus, dtype=np.float64).reshape(-1))
         curve = np.asarray(F.betti_curve(t))
@@ -322,8 +349,14 @@ def betti_curve(F_or_curve, *, taus=None, tau=None, log=None, ax=None,
         for k in range(curve.shape[1]):
             if k == d and not curve[:, k].any():
                 continue  # β_d of a complex in R^d is always 0
-            ax.step(t, curve[:, k], where="post", color=_dim_color(k), lw=1.8,
-                    label=f"β{_SUB[k] if k < 4 else k} ({_dim_label(k, d).split(' ', 1)[1]})")
+            ax.step(
+                t,
+                curve[:, k],
+                where="post",
+                color=_dim_color(k),
+                lw=1.8,
+                label=f"β{_SUB[k] if k < 4 else k} ({_dim_label(k, d).split(' ', 1)[1]})",
+            )
         if tau is not None:
             ax.axvline(tau, color=COLORS["accent"], ls="--", lw=1.2)
         if log is None:
@@ -355,8 +388,9 @@ def _draw_disks(ax, balls, tau, *, highlight=None, alpha=1.0, zorder=2):
         hl = np.zeros(len(balls), bool)
         hl[np.asarray(highlight, dtype=np.int64)] = True
         face[hl[ok]] = _rgba("#a6d7f2", alpha)
-    ax.add_collection(PatchCollection(patches, facecolors=face, edgecolors=COLORS["ball_edge"],
-                                      linewidths=0.6, zorder=zorder))
+    ax.add_collection(
+        PatchCollection(patches, facecolors=face, edgecolors=COLORS["ball_edge"], linewidths=0.6, zorder=zorder)
+    )
     ax.scatter(c[:, 0], c[:, 1], s=3, color=COLORS["ball_edge"], zorder=zorder + 0.1)
     lo = (c - r[:, None]).min(0)
     hi = (c + r[:, None]).max(0)
@@ -380,8 +414,7 @@ def _draw_complex_2d(ax, F, tau):
     E = np.asarray(K.simplices(1))
     T = np.asarray(K.simplices(2))
     if len(T):
-        ax.add_collection(PolyCollection(c[T], facecolors=_rgba(COLORS["triangle"], 0.25),
-                                         edgecolors="none", zorder=3))
+        ax.add_collection(PolyCollection(c[T], facecolors=_rgba(COLORS["triangle"], 0.25), edgecolors="none", zorder=3))
     if len(E):
         ax.add_collection(LineCollection(c[E], colors=COLORS["complex"], linewidths=0.7, zorder=3))
 
@@ -437,17 +470,32 @@ def _draw_balls_3d(ax, balls, tau, *, highlight=None, half=1.0):
     base = ok.copy()
     if highlight is not None:
         base[np.asarray(highlight, dtype=np.int64)] = False
-    ax.scatter(*c[base].T, s=s[base], color=COLORS["ball"], alpha=0.3 if highlight is None else 0.12,
-               edgecolors="none",
-               depthshade=True, zorder=1)
+    ax.scatter(
+        *c[base].T,
+        s=s[base],
+        color=COLORS["ball"],
+        alpha=0.3 if highlight is None else 0.12,
+        edgecolors="none",
+        depthshade=True,
+        zorder=1,
+    )
     if highlight is None:  # the centres: the structure shows through the blur (tunnel figures)
-        ax.scatter(*c[base].T, s=5, color=COLORS["ball_edge"], alpha=0.8, edgecolors="none",
-                   depthshade=False, zorder=1.5)
+        ax.scatter(
+            *c[base].T, s=5, color=COLORS["ball_edge"], alpha=0.8, edgecolors="none", depthshade=False, zorder=1.5
+        )
     if highlight is not None and len(highlight):
         h = np.asarray(highlight, dtype=np.int64)
         h = h[ok[h]]
-        ax.scatter(*c[h].T, s=s[h] * 0.2, color=COLORS["ball_edge"], alpha=0.55, edgecolors="white",
-                   linewidths=0.3, depthshade=True, zorder=2)
+        ax.scatter(
+            *c[h].T,
+            s=s[h] * 0.2,
+            color=COLORS["ball_edge"],
+            alpha=0.55,
+            edgecolors="white",
+            linewidths=0.3,
+            depthshade=True,
+            zorder=2,
+        )
 
 
 def _features_or_compute(F, features, tau, fn_name, **kw):
@@ -467,8 +515,9 @@ def _filtration_of(F, who):
 
 
 @filtration_first(name="plot.voids")
-def voids(F, tau=0.0, *, voids=None, ax=None, show_complex=False, elev=20, azim=35,
-          title=None, show_volumes=None, legend=True):
+def voids(
+    F, tau=0.0, *, voids=None, ax=None, show_complex=False, elev=20, azim=35, title=None, show_volumes=None, legend=True
+):
     """Draw the voids of the union of balls grown to τ (holes in 2D, Notes §23.1).
 
     A void is a bounded component of :math:`\\mathbb{R}^d \\setminus \\bigcup B_i`; it is
@@ -513,14 +562,39 @@ def voids(F, tau=0.0, *, voids=None, ax=None, show_complex=False, elev=20, azim=
     V = _features_or_compute(F, voids, tau, "voids")
     word = "hole" if balls.dim == 2 else "void"
     title = title or f"{len(V)} {word}{'s' if len(V) != 1 else ''} at τ = {tau:g}"
-    return _draw_features(F, tau, V, [], [], ax=ax, show_complex=show_complex, elev=elev,
-                          azim=azim, title=title, show_volumes=show_volumes, legend=legend)
+    return _draw_features(
+        F,
+        tau,
+        V,
+        [],
+        [],
+        ax=ax,
+        show_complex=show_complex,
+        elev=elev,
+        azim=azim,
+        title=title,
+        show_volumes=show_volumes,
+        legend=legend,
+    )
 
 
 @filtration_first(name="plot.pockets")
-def pockets(F, tau=0.0, *, pockets=None, voids=None, show_voids=True, ax=None,
-            show_complex=False, min_persistence=1e-9, elev=20, azim=35, title=None,
-            show_volumes=None, legend=True):
+def pockets(
+    F,
+    tau=0.0,
+    *,
+    pockets=None,
+    voids=None,
+    show_voids=True,
+    ax=None,
+    show_complex=False,
+    min_persistence=1e-9,
+    elev=20,
+    azim=35,
+    title=None,
+    show_volumes=None,
+    legend=True,
+):
     """Draw the pockets of the growth model at τ with their mouths (Notes §23.1, Fig. 23.2).
 
     A pocket is a region of the complement still connected to the outside at τ that
@@ -553,20 +627,31 @@ def pockets(F, tau=0.0, *, pockets=None, voids=None, show_voids=True, ax=None,
     balls = F.balls
     tau = _check_tau(tau)
     Pk = _features_or_compute(F, pockets, tau, "pockets", min_persistence=min_persistence)
-    V = (_features_or_compute(F, voids, tau, "voids") if show_voids else [])
+    V = _features_or_compute(F, voids, tau, "voids") if show_voids else []
     word = "hole" if balls.dim == 2 else "void"
     if title is None:
         title = f"{len(Pk)} pocket{'s' if len(Pk) != 1 else ''}"
         if show_voids:
             title += f", {len(V)} {word}{'s' if len(V) != 1 else ''}"
         title += f" at τ = {tau:g}"
-    return _draw_features(F, tau, V, Pk, [], ax=ax, show_complex=show_complex, elev=elev,
-                          azim=azim, title=title, show_volumes=show_volumes, legend=legend)
+    return _draw_features(
+        F,
+        tau,
+        V,
+        Pk,
+        [],
+        ax=ax,
+        show_complex=show_complex,
+        elev=elev,
+        azim=azim,
+        title=title,
+        show_volumes=show_volumes,
+        legend=legend,
+    )
 
 
 @filtration_first(name="plot.tunnels")
-def tunnels(F, tau=0.0, *, tunnels=None, ax=None, show_complex=False, elev=20, azim=35,
-            title=None, legend=True):
+def tunnels(F, tau=0.0, *, tunnels=None, ax=None, show_complex=False, elev=20, azim=35, title=None, legend=True):
     """Draw the tunnels alive at τ: a representative cycle of each H₁ class (Notes §23.1).
 
     Parameters
@@ -589,8 +674,9 @@ def tunnels(F, tau=0.0, *, tunnels=None, ax=None, show_complex=False, elev=20, a
     tau = _check_tau(tau)
     T = _features_or_compute(F, tunnels, tau, "tunnels")
     title = title or f"{len(T)} tunnel{'s' if len(T) != 1 else ''} at τ = {tau:g}"
-    return _draw_features(F, tau, [], [], T, ax=ax, show_complex=show_complex, elev=elev,
-                          azim=azim, title=title, legend=legend)
+    return _draw_features(
+        F, tau, [], [], T, ax=ax, show_complex=show_complex, elev=elev, azim=azim, title=title, legend=legend
+    )
 
 
 def _cycle_edges(t):
@@ -634,23 +720,33 @@ def _draw_features(F, tau, V, Pk, T, *, ax, show_complex, elev, azim, title, sho
             _draw_disks(ax, balls, tau, highlight=hl, zorder=2)
             for i, v in enumerate(V, 1):
                 cells = _cells_of(v)
-                ax.add_collection(PolyCollection(c[cells].reshape(-1, 3, 2), facecolors=COLORS["void"],
-                                                 edgecolors="none", zorder=1))
-                legend.append(Patch(color=COLORS["void"],
-                                    label=f"{void_word} " + _feature_label("V", i, v, d, show_volumes)))
+                ax.add_collection(
+                    PolyCollection(c[cells].reshape(-1, 3, 2), facecolors=COLORS["void"], edgecolors="none", zorder=1)
+                )
+                legend.append(
+                    Patch(color=COLORS["void"], label=f"{void_word} " + _feature_label("V", i, v, d, show_volumes))
+                )
                 _tag(ax, balls, cells, f"V{i}")
             # larger pockets first, so that nested ones show on top of them
             order = sorted(range(len(Pk)), key=lambda j: -len(_cells_of(Pk[j])))
             for i, p in enumerate(Pk, 1):
                 cells = _cells_of(p)
-                ax.add_collection(PolyCollection(c[cells].reshape(-1, 3, 2), facecolors=_pocket_color(i),
-                                                 edgecolors="none", zorder=1 + 0.01 * order.index(i - 1)))
+                ax.add_collection(
+                    PolyCollection(
+                        c[cells].reshape(-1, 3, 2),
+                        facecolors=_pocket_color(i),
+                        edgecolors="none",
+                        zorder=1 + 0.01 * order.index(i - 1),
+                    )
+                )
                 mouth = np.asarray(_field(p, "mouth"), dtype=np.int64).reshape(-1, 2)
                 if len(mouth):
-                    ax.add_collection(LineCollection(c[mouth], colors=COLORS["mouth"], linewidths=3.0,
-                                                     zorder=4, capstyle="round"))
-                legend.append(Patch(color=_pocket_color(i), label="pocket " + _feature_label("P", i, p, d,
-                                                                                            show_volumes)))
+                    ax.add_collection(
+                        LineCollection(c[mouth], colors=COLORS["mouth"], linewidths=3.0, zorder=4, capstyle="round")
+                    )
+                legend.append(
+                    Patch(color=_pocket_color(i), label="pocket " + _feature_label("P", i, p, d, show_volumes))
+                )
                 _tag(ax, balls, cells, f"P{i}")
             if show_complex:
                 _draw_complex_2d(ax, F, tau)
@@ -670,18 +766,26 @@ def _draw_features(F, tau, V, Pk, T, *, ax, show_complex, elev, azim, title, sho
             for i, v in enumerate(V, 1):
                 pts = free_points(balls, tau, _cells_of(v), 3000, rng)
                 ax.scatter(*pts.T, s=3, color=COLORS["void"], alpha=0.9, depthshade=False, zorder=3)
-                legend.append(Patch(color=COLORS["void"],
-                                    label=f"{void_word} " + _feature_label("V", i, v, d, show_volumes)))
+                legend.append(
+                    Patch(color=COLORS["void"], label=f"{void_word} " + _feature_label("V", i, v, d, show_volumes))
+                )
             for i, p in enumerate(Pk, 1):
                 pts = free_points(balls, tau, _cells_of(p), 3000, rng)
                 ax.scatter(*pts.T, s=3, color=_pocket_color(i), alpha=0.9, depthshade=False, zorder=3)
                 mouth = np.asarray(_field(p, "mouth"), dtype=np.int64).reshape(-1, 3)
                 if len(mouth):
-                    ax.add_collection3d(Poly3DCollection(c[mouth], facecolors=_rgba(COLORS["mouth"], 0.2),
-                                                         edgecolors=_rgba(COLORS["mouth"], 0.8), linewidths=0.4,
-                                                         zorder=4))
-                legend.append(Patch(color=_pocket_color(i), label="pocket " + _feature_label("P", i, p, d,
-                                                                                            show_volumes)))
+                    ax.add_collection3d(
+                        Poly3DCollection(
+                            c[mouth],
+                            facecolors=_rgba(COLORS["mouth"], 0.2),
+                            edgecolors=_rgba(COLORS["mouth"], 0.8),
+                            linewidths=0.4,
+                            zorder=4,
+                        )
+                    )
+                legend.append(
+                    Patch(color=_pocket_color(i), label="pocket " + _feature_label("P", i, p, d, show_volumes))
+                )
             for t in T:
                 e = _cycle_edges(t)
                 ax.add_collection3d(Line3DCollection(c[e], colors=COLORS["void"], linewidths=3.0, zorder=5))
@@ -693,13 +797,18 @@ def _draw_features(F, tau, V, Pk, T, *, ax, show_complex, elev, azim, title, sho
     if show_complex and d == 2:
         legend.append(Line2D([], [], color=COLORS["complex"], lw=0.8, label="K(τ)"))
     if hl is not None and len(hl):
-        legend.append(Patch(facecolor="#a6d7f2" if d == 2 else COLORS["ball_edge"], edgecolor=COLORS["ball_edge"],
-                            label="lining balls"))
+        legend.append(
+            Patch(
+                facecolor="#a6d7f2" if d == 2 else COLORS["ball_edge"],
+                edgecolor=COLORS["ball_edge"],
+                label="lining balls",
+            )
+        )
     if legend and want_legend:
         with style():
-            if own_figure:   # outside, to the right; constrained layout makes room
+            if own_figure:  # outside, to the right; constrained layout makes room
                 fig.legend(handles=legend, loc="outside right upper", fontsize=9)
-            else:            # drawing into a panel of a bigger figure
+            else:  # drawing into a panel of a bigger figure
                 ax.legend(handles=legend, loc="lower left", fontsize=8, framealpha=0.85, frameon=True)
     return fig
 
@@ -708,5 +817,4 @@ def _tag(ax, balls, cells, text):
     if not len(cells):
         return
     x = _label_point(balls, cells)
-    ax.annotate(text, x, ha="center", va="center", fontsize=8, zorder=6, color="white",
-                fontweight="bold")
+    ax.annotate(text, x, ha="center", va="center", fontsize=8, zorder=6, color="white", fontweight="bold")

@@ -14,6 +14,7 @@ still show and move.
                   :func:`persistence_explorer`: topological simplification
 ================  ==========================================================
 """
+
 from __future__ import annotations
 
 from .._toolkit.lazy import attach

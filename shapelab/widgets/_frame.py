@@ -4,6 +4,7 @@ rendering of a matplotlib figure into it.
 An Image (not an Output widget) renders the same in a live kernel, under
 nbclient/nbval and from the widget state stored in the static course site.
 """
+
 from __future__ import annotations
 
 import io
@@ -20,8 +21,10 @@ def image(size_inches, dpi: int = DPI) -> W.Image:
     narrower); the height follows the frame's own aspect ratio, so a frame is never
     squashed, whatever the page width or the figure's actual size."""
     w, _ = size_inches
-    return W.Image(format="png", layout=W.Layout(width="100%", max_width=f"{int(round(w * dpi))}px",
-                                                 height="auto", object_fit="contain"))
+    return W.Image(
+        format="png",
+        layout=W.Layout(width="100%", max_width=f"{int(round(w * dpi))}px", height="auto", object_fit="contain"),
+    )
 
 
 def png(fig, dpi: int = DPI) -> bytes:

@@ -1,4 +1,5 @@
 """The α-explorer: the growth model with a slider in τ (Notes §23.1)."""
+
 from __future__ import annotations
 
 import ipywidgets as W
@@ -39,8 +40,7 @@ def _default_range(F):
 
 
 @filtration_first(name="alpha_explorer")
-def alpha_explorer(F, *, tau=0.0, tau_range=None, steps=100, show_cells=True,
-                   show_measure=True, bbox=None):
+def alpha_explorer(F, *, tau=0.0, tau_range=None, steps=100, show_cells=True, show_measure=True, bbox=None):
     """A slider in the growth time τ over the disks grown to :math:`\\sqrt{r_i^2+\\tau}`
     and their dual complex :math:`K_\\tau` (Notes §23.1, Figure 23.1).
 
@@ -77,7 +77,7 @@ def alpha_explorer(F, *, tau=0.0, tau_range=None, steps=100, show_cells=True,
     from ..filtration import as_filtration
     from ._frame import check_balls, value_range
 
-    if hasattr(F, "centers"):   # the disks: checked before their filtration is built
+    if hasattr(F, "centers"):  # the disks: checked before their filtration is built
         check_balls(F, dim=2, who="alpha_explorer", what="disk")
     F = as_filtration(F, "alpha_explorer")
     balls = F.balls
@@ -108,11 +108,24 @@ class AlphaExplorer(StaticFallback, W.VBox):
         self._balls = balls
         self._F = F
         self._show_measure = show_measure
-        self.view = DualComplexView(F, tau, show_cells=show_cells, bbox=bbox, view_tau=hi,
-                                    title="The disks grown to time τ and their dual complex $K_\\tau$")
-        self.slider = W.FloatSlider(value=tau, min=lo, max=hi, step=step, description="τ",
-                                    continuous_update=False, readout_format=".3f",
-                                    layout=W.Layout(width="70%"))
+        self.view = DualComplexView(
+            F,
+            tau,
+            show_cells=show_cells,
+            bbox=bbox,
+            view_tau=hi,
+            title="The disks grown to time τ and their dual complex $K_\\tau$",
+        )
+        self.slider = W.FloatSlider(
+            value=tau,
+            min=lo,
+            max=hi,
+            step=step,
+            description="τ",
+            continuous_update=False,
+            readout_format=".3f",
+            layout=W.Layout(width="70%"),
+        )
         self.status = W.HTML()
         self.image = _frame.image(self.view.figure.get_size_inches(), dpi=self.view.figure.dpi)
         super().__init__([self.slider, self.status, self.image])
@@ -155,8 +168,10 @@ class AlphaExplorer(StaticFallback, W.VBox):
         self.image.value = self.view.png()
 
     def __repr__(self):
-        return (f"AlphaExplorer(n_balls={len(self._balls)}, tau={self.slider.value:.3f}, "
-                f"range=({self.slider.min:.3f}, {self.slider.max:.3f}))")
+        return (
+            f"AlphaExplorer(n_balls={len(self._balls)}, tau={self.slider.value:.3f}, "
+            f"range=({self.slider.min:.3f}, {self.slider.max:.3f}))"
+        )
 
 
 # --------------------------------------------------------------------------- power
@@ -235,10 +250,24 @@ class PowerExplorer(StaticFallback, W.VBox):
         self._radii = balls.radii.copy()
         self._mode = mode
         self._bbox = bbox
-        self.disk = W.IntSlider(value=index, min=0, max=len(balls) - 1, description="disk",
-                                continuous_update=False, layout=W.Layout(width="30%"))
-        self.slider = W.FloatSlider(value=radius, min=lo, max=hi, step=step, description="radius",
-                                    continuous_update=False, readout_format=".3f", layout=W.Layout(width="55%"))
+        self.disk = W.IntSlider(
+            value=index,
+            min=0,
+            max=len(balls) - 1,
+            description="disk",
+            continuous_update=False,
+            layout=W.Layout(width="30%"),
+        )
+        self.slider = W.FloatSlider(
+            value=radius,
+            min=lo,
+            max=hi,
+            step=step,
+            description="radius",
+            continuous_update=False,
+            readout_format=".3f",
+            layout=W.Layout(width="55%"),
+        )
         self.status = W.HTML()
         self.image = _frame.image(self.SIZE)
         super().__init__([W.HBox([self.disk, self.slider]), self.status, self.image])
@@ -286,16 +315,23 @@ class PowerExplorer(StaticFallback, W.VBox):
 
         i = self.disk.value
         if self._mode == "dual":
-            fig = plot.dual_complex(self.balls, 0.0, bbox=self._bbox, labels=True,
-                                    title=f"Disk {i} at radius {self.slider.value:.2f}: cells and dual complex K")
+            fig = plot.dual_complex(
+                self.balls,
+                0.0,
+                bbox=self._bbox,
+                labels=True,
+                title=f"Disk {i} at radius {self.slider.value:.2f}: cells and dual complex K",
+            )
         else:
-            fig = plot.power_diagram(self.diagram, labels=True,
-                                     title=f"Disk {i} at radius {self.slider.value:.2f}: the power diagram")
+            fig = plot.power_diagram(
+                self.diagram, labels=True, title=f"Disk {i} at radius {self.slider.value:.2f}: the power diagram"
+            )
         from matplotlib.patches import Circle
 
         ax = fig.axes[0]
-        ax.add_patch(Circle(self._balls.centers[i], self.slider.value, fill=False, lw=2.5,
-                            color=plot.COLORS["accent"], zorder=6))
+        ax.add_patch(
+            Circle(self._balls.centers[i], self.slider.value, fill=False, lw=2.5, color=plot.COLORS["accent"], zorder=6)
+        )
         fig.set_size_inches(*self.SIZE)
         return fig
 
@@ -308,14 +344,15 @@ class PowerExplorer(StaticFallback, W.VBox):
         self.image.value = _frame.png(self.figure())
 
     def __repr__(self):
-        return (f"PowerExplorer(n_balls={len(self._balls)}, disk={self.disk.value}, "
-                f"radius={self.slider.value:.3f}, mode={self._mode!r})")
+        return (
+            f"PowerExplorer(n_balls={len(self._balls)}, disk={self.disk.value}, "
+            f"radius={self.slider.value:.3f}, mode={self._mode!r})"
+        )
 
 
 # --------------------------------------------------------------------------- 3D
 @filtration_first(name="complex3d_explorer")
-def complex3d_explorer(F, *, tau=0.0, tau_range=None, steps=60, azim=35.0, elev=20.0,
-                       show_balls=True, resolution=8):
+def complex3d_explorer(F, *, tau=0.0, tau_range=None, steps=60, azim=35.0, elev=20.0, show_balls=True, resolution=8):
     """The growth model in 3D: a slider in τ and one for the view angle (Notes §23.1).
 
     Draws the balls grown to :math:`\\sqrt{r_i^2+\\tau}` (translucent) and the dual
@@ -348,7 +385,7 @@ def complex3d_explorer(F, *, tau=0.0, tau_range=None, steps=60, azim=35.0, elev=
     from ..filtration import as_filtration
     from ._frame import check_balls, value_range
 
-    if hasattr(F, "centers"):   # the balls: checked before their filtration is built
+    if hasattr(F, "centers"):  # the balls: checked before their filtration is built
         check_balls(F, dim=3, who="complex3d_explorer")
     F = as_filtration(F, "complex3d_explorer")
     balls = F.balls
@@ -359,8 +396,9 @@ def complex3d_explorer(F, *, tau=0.0, tau_range=None, steps=60, azim=35.0, elev=
     steps = as_positive_int(steps, "steps", minimum=2)
     resolution = as_positive_int(resolution, "resolution", minimum=3)
     lo, hi = _default_range(F) if tau_range is None else value_range(tau_range, "tau_range")
-    return Complex3DExplorer(balls, F, min(max(tau, lo), hi), lo, hi, (hi - lo) / steps, azim % 360.0, elev,
-                             bool(show_balls), resolution)
+    return Complex3DExplorer(
+        balls, F, min(max(tau, lo), hi), lo, hi, (hi - lo) / steps, azim % 360.0, elev, bool(show_balls), resolution
+    )
 
 
 class Complex3DExplorer(StaticFallback, W.VBox):
@@ -375,10 +413,26 @@ class Complex3DExplorer(StaticFallback, W.VBox):
         self._elev = elev
         self._show_balls = show_balls
         self._resolution = resolution
-        self.slider = W.FloatSlider(value=tau, min=lo, max=hi, step=step, description="τ",
-                                    continuous_update=False, readout_format=".3f", layout=W.Layout(width="50%"))
-        self.azim = W.FloatSlider(value=azim, min=0.0, max=360.0, step=5.0, description="turn",
-                                  continuous_update=False, readout_format=".0f", layout=W.Layout(width="35%"))
+        self.slider = W.FloatSlider(
+            value=tau,
+            min=lo,
+            max=hi,
+            step=step,
+            description="τ",
+            continuous_update=False,
+            readout_format=".3f",
+            layout=W.Layout(width="50%"),
+        )
+        self.azim = W.FloatSlider(
+            value=azim,
+            min=0.0,
+            max=360.0,
+            step=5.0,
+            description="turn",
+            continuous_update=False,
+            readout_format=".0f",
+            layout=W.Layout(width="35%"),
+        )
         self.status = W.HTML()
         self.image = _frame.image(self.SIZE)
         super().__init__([W.HBox([self.slider, self.azim]), self.status, self.image])
@@ -395,15 +449,23 @@ class Complex3DExplorer(StaticFallback, W.VBox):
         n = tuple(self._F.complex_at(t).counts()) + (0,) * 4
         alpha = f"α = √τ = {np.sqrt(t):.3f}" if t >= 0 else "α undefined (τ < 0)"
         b = self._F.betti(t)
-        return (f"τ = {t:.3f} · {alpha} · K: {n[0]} vertices, {n[1]} edges, {n[2]} triangles, "
-                f"{n[3]} tetrahedra · β₀ = {b[0]} components, β₁ = {b[1]} tunnels, β₂ = {b[2]} voids")
+        return (
+            f"τ = {t:.3f} · {alpha} · K: {n[0]} vertices, {n[1]} edges, {n[2]} triangles, "
+            f"{n[3]} tetrahedra · β₀ = {b[0]} components, β₁ = {b[1]} tunnels, β₂ = {b[2]} voids"
+        )
 
     def figure(self):
         from .. import plot
 
-        fig = plot.complex3d(self._F, tau=self.tau, show_balls=self._show_balls, elev=self._elev,
-                             azim=float(self.azim.value), resolution=self._resolution,
-                             title="The balls grown to time τ and their dual complex $K_\\tau$")
+        fig = plot.complex3d(
+            self._F,
+            tau=self.tau,
+            show_balls=self._show_balls,
+            elev=self._elev,
+            azim=float(self.azim.value),
+            resolution=self._resolution,
+            title="The balls grown to time τ and their dual complex $K_\\tau$",
+        )
         fig.set_size_inches(*self.SIZE)
         return fig
 
@@ -413,5 +475,7 @@ class Complex3DExplorer(StaticFallback, W.VBox):
         self.image.value = _frame.png(self.figure())
 
     def __repr__(self):
-        return (f"Complex3DExplorer(n_balls={len(self._balls)}, tau={self.slider.value:.3f}, "
-                f"range=({self.slider.min:.3f}, {self.slider.max:.3f}))")
+        return (
+            f"Complex3DExplorer(n_balls={len(self._balls)}, tau={self.slider.value:.3f}, "
+            f"range=({self.slider.min:.3f}, {self.slider.max:.3f}))"
+        )

@@ -1,5 +1,6 @@
 """The critical-points explorer: move the viewpoint S and watch the extrema of
 F(x) = |x − S| move, appear and cancel (notes §23.2, Figure 23.3)."""
+
 from __future__ import annotations
 
 import io
@@ -17,8 +18,9 @@ _SIZE = (10.0, 4.6)
 _DPI = 80
 
 
-def critical_points_explorer(curve, *, viewpoint=None, x_range=None, y_range=None, steps: int = 60,
-                             close: bool = False):
+def critical_points_explorer(
+    curve, *, viewpoint=None, x_range=None, y_range=None, steps: int = 60, close: bool = False
+):
     """Two sliders move the viewpoint S; the figure of Figure 23.3 follows.
 
     Parameters
@@ -73,10 +75,12 @@ class CriticalPointsExplorer(StaticFallback, W.VBox):
         self._curve = curve
         self._close = close
         kw = dict(continuous_update=False, readout_format=".2f", layout=W.Layout(width="45%"))
-        self.sx = W.FloatSlider(value=float(np.clip(S[0], *xr)), min=xr[0], max=xr[1],
-                                step=(xr[1] - xr[0]) / steps, description="S x", **kw)
-        self.sy = W.FloatSlider(value=float(np.clip(S[1], *yr)), min=yr[0], max=yr[1],
-                                step=(yr[1] - yr[0]) / steps, description="S y", **kw)
+        self.sx = W.FloatSlider(
+            value=float(np.clip(S[0], *xr)), min=xr[0], max=xr[1], step=(xr[1] - xr[0]) / steps, description="S x", **kw
+        )
+        self.sy = W.FloatSlider(
+            value=float(np.clip(S[1], *yr)), min=yr[0], max=yr[1], step=(yr[1] - yr[0]) / steps, description="S y", **kw
+        )
         self.status = W.HTML()
         # a PNG image, not an Output widget: it renders the same in a live kernel, in
         # nbclient/nbval runs and from the stored widget state on the static site
@@ -110,5 +114,7 @@ class CriticalPointsExplorer(StaticFallback, W.VBox):
 
     def __repr__(self):
         S = self.viewpoint
-        return (f"CriticalPointsExplorer(S=({S[0]:.2f}, {S[1]:.2f}), {self.result.n_min} minima, "
-                f"{self.result.n_max} maxima)")
+        return (
+            f"CriticalPointsExplorer(S=({S[0]:.2f}, {S[1]:.2f}), {self.result.n_min} minima, "
+            f"{self.result.n_max} maxima)"
+        )

@@ -4,6 +4,7 @@ All iterations are computed once, by :func:`shapelab.icp` with ``keep_history=Tr
 moving the slider only redraws (:func:`shapelab.plot.icp_step` and
 :func:`shapelab.plot.icp_convergence`).
 """
+
 from __future__ import annotations
 
 import io
@@ -21,8 +22,18 @@ _SIZE = (11.0, 4.6)  # inches
 _DPI = 90
 
 
-def icp_explorer(source, target, *, max_iter: int = 30, tol: float = 0.0, accelerate: bool = False,
-                 init=None, max_distance=None, truth=None, max_lines: int = 200):
+def icp_explorer(
+    source,
+    target,
+    *,
+    max_iter: int = 30,
+    tol: float = 0.0,
+    accelerate: bool = False,
+    init=None,
+    max_distance=None,
+    truth=None,
+    max_lines: int = 200,
+):
     """A slider over the iterations of ICP, with the step and the convergence plot.
 
     Parameters
@@ -49,8 +60,16 @@ def icp_explorer(source, target, *, max_iter: int = 30, tol: float = 0.0, accele
     max_lines = as_positive_int(max_lines, "max_lines")
     if truth is not None and not isinstance(truth, RigidMotion):
         raise TypeError(f"truth must be a RigidMotion, got {type(truth).__name__}")
-    result = icp(src, tgt, tol=tol, max_iter=max_iter, init=init, max_distance=max_distance,
-                 accelerate=accelerate, keep_history=True)
+    result = icp(
+        src,
+        tgt,
+        tol=tol,
+        max_iter=max_iter,
+        init=init,
+        max_distance=max_distance,
+        accelerate=accelerate,
+        keep_history=True,
+    )
     return ICPExplorer(src, tgt, result, truth, max_lines)
 
 
@@ -60,8 +79,15 @@ class ICPExplorer(StaticFallback, W.VBox):
     def __init__(self, source, target, result, truth, max_lines):
         self.source, self.target, self.result = source, target, result
         self._truth, self._max_lines = truth, max_lines
-        self.slider = W.IntSlider(value=0, min=0, max=result.n_iter, step=1, description="iteration",
-                                  continuous_update=False, layout=W.Layout(width="60%"))
+        self.slider = W.IntSlider(
+            value=0,
+            min=0,
+            max=result.n_iter,
+            step=1,
+            description="iteration",
+            continuous_update=False,
+            layout=W.Layout(width="60%"),
+        )
         self.status = W.HTML()
         # a PNG image, not an Output widget: it renders the same in a live kernel, in
         # nbclient/nbval runs and from the stored widget state on the static site

@@ -149,10 +149,15 @@ def static_html(explorer, *, frames: int = FRAMES) -> str:
     name = html.escape(control.description or "value")
     readouts = [f"{control.description or 'value'} = {_readout(control, v)}" for v in values]
     others = [s for s in _sliders(explorer) if s is not control]
-    note = (f"Static page: {len(values)} precomputed frames along {name}"
-            + (f" ({', '.join(html.escape(s.description or 'slider') for s in others)} fixed at "
-               "the values shown)" if others else "")
-            + ". Run the notebook for the live explorer.")
+    note = (
+        f"Static page: {len(values)} precomputed frames along {name}"
+        + (
+            f" ({', '.join(html.escape(s.description or 'slider') for s in others)} fixed at the values shown)"
+            if others
+            else ""
+        )
+        + ". Run the notebook for the live explorer."
+    )
     payload = json.dumps({"frames": pngs, "status": lines, "readout": readouts}, separators=(",", ":"))
     payload = payload.replace("</", "<\\/")  # never closes the script element early
     uid = "slx-" + hashlib.sha1(payload.encode()).hexdigest()[:12]

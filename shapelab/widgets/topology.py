@@ -1,4 +1,5 @@
 """The pocket explorer: voids and pockets as the disks grow (Notes §23.1, Figure 23.2)."""
+
 from __future__ import annotations
 
 import io
@@ -28,8 +29,7 @@ def _default_range(balls, F):
 
 
 @filtration_first(name="pocket_explorer")
-def pocket_explorer(F, *, tau=0.0, tau_range=None, steps=100, min_persistence=1e-9,
-                    show_complex=False):
+def pocket_explorer(F, *, tau=0.0, tau_range=None, steps=100, min_persistence=1e-9, show_complex=False):
     """A slider in τ over the disks grown to :math:`\\sqrt{r^2+\\tau}`, with the holes
     (voids) and the pockets with their mouths at that τ (Notes §23.1, Figure 23.2).
 
@@ -63,7 +63,7 @@ def pocket_explorer(F, *, tau=0.0, tau_range=None, steps=100, min_persistence=1e
     from ..filtration import as_filtration
     from ._frame import check_balls, value_range
 
-    if hasattr(F, "centers"):   # the balls: checked before their filtration is built
+    if hasattr(F, "centers"):  # the balls: checked before their filtration is built
         check_balls(F, dim=None, who="pocket_explorer")
     F = as_filtration(F, "pocket_explorer")
     balls = F.balls
@@ -87,9 +87,16 @@ class PocketExplorer(StaticFallback, W.VBox):
         self._F = F
         self._minp = min_persistence
         self._show_complex = show_complex
-        self.slider = W.FloatSlider(value=tau, min=lo, max=hi, step=step, description="τ",
-                                    continuous_update=False, readout_format=".2f",
-                                    layout=W.Layout(width="60%"))
+        self.slider = W.FloatSlider(
+            value=tau,
+            min=lo,
+            max=hi,
+            step=step,
+            description="τ",
+            continuous_update=False,
+            readout_format=".2f",
+            layout=W.Layout(width="60%"),
+        )
         self.status = W.HTML()
         # a PNG image, not an Output widget: it renders the same in a live kernel, in
         # nbclient/nbval runs and from the stored widget state on the static site
@@ -119,15 +126,18 @@ class PocketExplorer(StaticFallback, W.VBox):
     def _redraw(self, change=None):
         P, V = self.features()
         word = "hole" if self._balls.dim == 2 else "void"
-        self.status.value = (f"&nbsp;{len(P)} pocket{'' if len(P) == 1 else 's'}, "
-                             f"{len(V)} {word}{'' if len(V) == 1 else 's'}")
+        self.status.value = (
+            f"&nbsp;{len(P)} pocket{'' if len(P) == 1 else 's'}, {len(V)} {word}{'' if len(V) == 1 else 's'}"
+        )
         buf = io.BytesIO()
         self.figure().savefig(buf, format="png", dpi=_DPI)
         self.image.value = buf.getvalue()
 
     def __repr__(self):
-        return (f"PocketExplorer(n_balls={len(self._balls)}, tau={self.slider.value:.2f}, "
-                f"range=({self.slider.min:.2f}, {self.slider.max:.2f}))")
+        return (
+            f"PocketExplorer(n_balls={len(self._balls)}, tau={self.slider.value:.2f}, "
+            f"range=({self.slider.min:.2f}, {self.slider.max:.2f}))"
+        )
 
 
 # --------------------------------------------------------------------------- persistence
@@ -160,8 +170,9 @@ def persistence_explorer(filtration, *, threshold=0.0, threshold_range=None, ste
     from ..filtration import Filtration
 
     if not isinstance(filtration, Filtration):
-        raise TypeError(f"filtration must be a shapelab Filtration (alpha_filtration(balls)), "
-                        f"got {type(filtration).__name__}")
+        raise TypeError(
+            f"filtration must be a shapelab Filtration (alpha_filtration(balls)), got {type(filtration).__name__}"
+        )
     threshold = as_finite_scalar(threshold, "threshold", nonnegative=True)
     if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 2:
         raise ValueError(f"steps must be an integer >= 2, got {steps!r}")
@@ -174,8 +185,7 @@ def persistence_explorer(filtration, *, threshold=0.0, threshold_range=None, ste
         if bad:
             raise ValueError(f"dims must be among {sorted(P)}, got {list(dims)!r}")
     if threshold_range is None:
-        pers = np.concatenate([np.diff(np.asarray(P[k]).reshape(-1, 2), axis=1).ravel() for k in dims] or
-                              [np.zeros(0)])
+        pers = np.concatenate([np.diff(np.asarray(P[k]).reshape(-1, 2), axis=1).ravel() for k in dims] or [np.zeros(0)])
         pers = pers[np.isfinite(pers)]
         lo, hi = 0.0, (float(pers.max()) * 1.05 if pers.size else 1.0)
     else:
@@ -194,8 +204,16 @@ class PersistenceExplorer(StaticFallback, W.VBox):
 
         self._P = pairs
         self._dims = dims
-        self.slider = W.FloatSlider(value=threshold, min=lo, max=hi, step=step, description="threshold",
-                                    continuous_update=False, readout_format=".3f", layout=W.Layout(width="60%"))
+        self.slider = W.FloatSlider(
+            value=threshold,
+            min=lo,
+            max=hi,
+            step=step,
+            description="threshold",
+            continuous_update=False,
+            readout_format=".3f",
+            layout=W.Layout(width="60%"),
+        )
         self.status = W.HTML()
         self.image = _frame.image(self.SIZE)
         super().__init__([self.slider, self.status, self.image])
@@ -217,8 +235,9 @@ class PersistenceExplorer(StaticFallback, W.VBox):
     def status_text(self) -> str:
         kept = self.kept()
         total = {k: len(np.asarray(self._P[k]).reshape(-1, 2)) for k in self._dims}
-        return (f"persistence ≥ {self.threshold:.3f} keeps "
-                + ", ".join(f"{kept[k]} of {total[k]} in H{k}" for k in self._dims))
+        return f"persistence ≥ {self.threshold:.3f} keeps " + ", ".join(
+            f"{kept[k]} of {total[k]} in H{k}" for k in self._dims
+        )
 
     def figure(self):
         from ..plot import new_figure
@@ -226,8 +245,13 @@ class PersistenceExplorer(StaticFallback, W.VBox):
 
         fig, (a, b) = new_figure(1, 2, size=self.SIZE)
         t = self.threshold
-        persistence_diagram(self._P, dims=self._dims, min_persistence=t if t > 0 else None, ax=a,
-                            title="Diagram: greyed points are removed")
+        persistence_diagram(
+            self._P,
+            dims=self._dims,
+            min_persistence=t if t > 0 else None,
+            ax=a,
+            title="Diagram: greyed points are removed",
+        )
         barcode(self._P, dims=self._dims, min_persistence=t, ax=b, title="Barcode")
         return fig
 
