@@ -21,6 +21,7 @@ Modules, one per concept of the notes:
 ``shapelab.matching``     :func:`hausdorff_under_translation`, reference points
 ``shapelab.critical``     :func:`critical_points` on curves and surfaces
 ``shapelab.simplification`` :func:`simplify`: ε-simplification along a curve (ELZ 2002)
+``shapelab.diagrams``     :func:`bottleneck_distance`, :func:`wasserstein_distance`
 ``shapelab.io``           :func:`read_pdb`
 ``shapelab.datasets``     generated molecules and the inputs of the figures
 ``shapelab.plot``         one function per kind of figure, a shared style
@@ -67,6 +68,9 @@ _EXPORTS = {
     "critical_points": "critical",
     "CriticalPoints": "critical",
     "read_pdb": "io",
+    "bottleneck_distance": "diagrams",
+    "wasserstein_distance": "diagrams",
+    "DiagramMatching": "diagrams",
     "curve_persistence": "simplification",
     "simplify": "simplification",
 }
