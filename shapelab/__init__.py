@@ -22,6 +22,7 @@ Modules, one per concept of the notes:
 ``shapelab.critical``     :func:`critical_points` on curves and surfaces
 ``shapelab.simplification`` :func:`simplify`: ε-simplification along a curve (ELZ 2002)
 ``shapelab.diagrams``     :func:`bottleneck_distance`, :func:`wasserstein_distance`
+``shapelab.docking``      :func:`docking_score`: buried area minus clashes
 ``shapelab.io``           :func:`read_pdb`
 ``shapelab.datasets``     generated molecules and the inputs of the figures
 ``shapelab.plot``         one function per kind of figure, a shared style
@@ -71,6 +72,8 @@ _EXPORTS = {
     "bottleneck_distance": "diagrams",
     "wasserstein_distance": "diagrams",
     "DiagramMatching": "diagrams",
+    "docking_score": "docking",
+    "DockingScore": "docking",
     "curve_persistence": "simplification",
     "simplify": "simplification",
 }
