@@ -23,6 +23,7 @@ Modules, one per concept of the notes:
 ``shapelab.simplification`` :func:`simplify`: ε-simplification along a curve (ELZ 2002)
 ``shapelab.diagrams``     :func:`bottleneck_distance`, :func:`wasserstein_distance`
 ``shapelab.docking``      :func:`docking_score`: buried area minus clashes
+``shapelab.features``     :func:`coarse_align`: starts for ICP from pose-free features
 ``shapelab.io``           :func:`read_pdb`
 ``shapelab.datasets``     generated molecules and the inputs of the figures
 ``shapelab.plot``         one function per kind of figure, a shared style
@@ -73,6 +74,7 @@ _EXPORTS = {
     "wasserstein_distance": "diagrams",
     "DiagramMatching": "diagrams",
     "docking_score": "docking",
+    "coarse_align": "features",
     "DockingScore": "docking",
     "curve_persistence": "simplification",
     "simplify": "simplification",
