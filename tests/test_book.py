@@ -20,12 +20,13 @@ from urllib.parse import urlsplit
 
 import pytest
 
+from tests._chromium import CHROMIUM, dump_dom
+
 ROOT = Path(__file__).resolve().parent.parent
 pytest.importorskip("jupyter_book")
 pytestmark = pytest.mark.book
 
 EXPLORER_LESSON = "03_alpha_filtration"
-CHROMIUM = next((shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome") if shutil.which(n)), None)
 REMOTE = re.compile(r"^(https?:)?//", re.I)
 TAG = re.compile(r"<(script|link|img|source)\b[^>]*>", re.I)
 ATTR = re.compile(r"\b(src|href)\s*=\s*[\"']([^\"']+)[\"']", re.I)
@@ -134,32 +135,7 @@ def test_math_loads_from_the_site_and_nothing_else_is_fetched(site):
 
 def _chromium(url: str, profile: Path) -> tuple[str, list[str]]:
     """The page's DOM after load, and its console messages, with the network off."""
-    cmd = [
-        CHROMIUM,
-        "--headless",
-        "--no-sandbox",
-        "--disable-gpu",
-        "--disable-dev-shm-usage",
-        "--disable-background-networking",
-        "--no-first-run",
-        "--disable-component-update",
-        "--disable-sync",
-        "--disable-extensions",
-        f"--user-data-dir={profile}",
-        "--proxy-server=127.0.0.1:9",
-        "--host-resolver-rules=MAP * ~NOTFOUND",
-        "--enable-logging=stderr",
-        "--log-level=0",
-        "--virtual-time-budget=6000",
-        "--dump-dom",
-        url,
-    ]
-    run = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
-    assert run.returncode == 0, run.stderr[-2000:]
-    console = [
-        line[line.index('"') :] if '"' in line else line for line in run.stderr.splitlines() if ":CONSOLE" in line
-    ]
-    return run.stdout, console
+    return dump_dom(url, profile, budget_ms=6000, console=True)
 
 
 CONSOLE_ERROR = re.compile(r"Uncaught|Error|Failed to load|Refused|net::ERR", re.I)

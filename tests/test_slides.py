@@ -11,13 +11,13 @@ negative control: under the same flags it never becomes a slide show.
 from __future__ import annotations
 
 import re
-import shutil
-import subprocess
 from pathlib import Path
 from urllib.parse import urlsplit
 
 import nbformat
 import pytest
+
+from tests._chromium import CHROMIUM, dump_dom
 
 ROOT = Path(__file__).resolve().parent.parent
 pytest.importorskip("nbconvert")
@@ -35,8 +35,6 @@ ATTR = re.compile(r"\b(src|href|data)\s*=\s*[\"']([^\"']+)[\"']", re.I)
 CSS_URL = re.compile(r"(?:url\(\s*[\"']?|@import\s+[\"'])([^\"')\s]+)", re.I)
 INLINE_SCRIPT = re.compile(r"<script(?P<attrs>[^>]*)>(?P<body>.*?)</script>", re.S | re.I)
 JS_REMOTE = re.compile(r"[\"'`](https?:)?//[a-z0-9.-]+\.[a-z]{2,}[^\"'`]*[\"'`]", re.I)
-
-CHROMIUM = next((shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome") if shutil.which(n)), None)
 
 
 def _slides():
@@ -183,28 +181,7 @@ def test_a_bad_slide_type_is_refused(slides):
 
 
 def _dump_dom(url: str, profile: Path) -> str:
-    cmd = [
-        CHROMIUM,
-        "--headless",
-        "--no-sandbox",
-        "--disable-gpu",
-        "--disable-dev-shm-usage",
-        "--disable-background-networking",
-        "--no-first-run",
-        "--disable-component-update",
-        "--disable-sync",
-        "--disable-extensions",
-        f"--user-data-dir={profile}",
-        # the network is off: every connection goes to a closed port, no name resolves
-        "--proxy-server=127.0.0.1:9",
-        "--host-resolver-rules=MAP * ~NOTFOUND",
-        "--virtual-time-budget=8000",
-        "--dump-dom",
-        url,
-    ]
-    run = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
-    assert run.returncode == 0, run.stderr[-2000:]
-    return run.stdout
+    return dump_dom(url, profile)
 
 
 @pytest.mark.skipif(CHROMIUM is None, reason="Chromium is not installed (CI installs it: `apt-get install chromium`)")
@@ -294,26 +271,10 @@ def test_every_slide_fits_with_all_fragments_shown(decks, tmp_path):
         probe = deck.with_name("_fit_" + deck.name)
         probe.write_text(deck.read_text(encoding="utf-8").replace("</body>", FIT_PROBE + "</body>"), encoding="utf-8")
         try:
-            cmd = [
-                CHROMIUM,
-                "--headless",
-                "--no-sandbox",
-                "--disable-gpu",
-                "--disable-dev-shm-usage",
-                "--no-first-run",
-                "--disable-extensions",
-                f"--user-data-dir={tmp_path / 'profile'}",
-                "--window-size=1280,720",
-                "--proxy-server=127.0.0.1:9",
-                "--host-resolver-rules=MAP * ~NOTFOUND",
-                "--virtual-time-budget=30000",
-                "--dump-dom",
-                probe.as_uri(),
-            ]
-            run = subprocess.run(cmd, capture_output=True, text=True, timeout=180)
+            dom = dump_dom(probe.as_uri(), tmp_path / "profile", budget_ms=30000, window=(1280, 720))
         finally:
             probe.unlink()
-        m = re.search(r'<pre id="fit"[^>]*>(.*?)</pre>', run.stdout, re.S)
+        m = re.search(r'<pre id="fit"[^>]*>(.*?)</pre>', dom, re.S)
         assert m, f"{deck.name}: the probe did not run"
         res = json.loads(m.group(1).replace("&quot;", '"').replace("&amp;", "&"))
         H = res["H"]

@@ -11,8 +11,6 @@ from __future__ import annotations
 import base64
 import json
 import re
-import shutil
-import subprocess
 
 import numpy as np
 import pytest
@@ -20,9 +18,9 @@ import pytest
 import shapelab as sl
 from shapelab import datasets, widgets
 from shapelab.widgets import static
+from tests._chromium import CHROMIUM, dump_dom
 
 FRAMES = 5
-CHROMIUM = next((shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome") if shutil.which(n)), None)
 DATA = re.compile(r'<script type="application/json" class="slx-data">(.*?)</script>', re.S)
 
 
@@ -157,27 +155,8 @@ window.addEventListener("load", function () {
     page.write_text(
         f"<!doctype html><html><head><meta charset='utf-8'></head><body>{body}{probe}</body></html>", encoding="utf-8"
     )
-    cmd = [
-        CHROMIUM,
-        "--headless",
-        "--no-sandbox",
-        "--disable-gpu",
-        "--disable-dev-shm-usage",
-        "--disable-background-networking",
-        "--no-first-run",
-        "--disable-component-update",
-        "--disable-sync",
-        "--disable-extensions",
-        f"--user-data-dir={tmp_path / 'profile'}",
-        "--proxy-server=127.0.0.1:9",
-        "--host-resolver-rules=MAP * ~NOTFOUND",
-        "--virtual-time-budget=5000",
-        "--dump-dom",
-        page.as_uri(),
-    ]
-    run = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
-    assert run.returncode == 0, run.stderr[-2000:]
-    m = re.search(r'<pre id="result">(.*?)</pre>', run.stdout, re.S)
+    dom = dump_dom(page.as_uri(), tmp_path / "profile", budget_ms=5000)
+    m = re.search(r'<pre id="result">(.*?)</pre>', dom, re.S)
     assert m, "the probe did not run"
     result = json.loads(m.group(1).replace("&quot;", '"').replace("&amp;", "&"))
     assert result.pop("requests") == [], "the page made a network request"
