@@ -199,7 +199,9 @@ def main(argv=None) -> int:
         os.environ.clear()
         os.environ.update(env)  # the kernels inherit it
         try:
-            execute_lessons.main([*map(str, paths), "--out", str(out), "--limit", str(args.limit), "--no-static-explorers"])
+            execute_lessons.main(
+                [*map(str, paths), "--out", str(out), "--limit", str(args.limit), "--no-static-explorers"]
+            )
         finally:
             os.environ.clear()
             os.environ.update(saved)
