@@ -76,3 +76,20 @@ def test_bad_input(kwargs, exc, match):
     args.update(kwargs)
     with pytest.raises(exc, match=match):
         coarse_align(args.pop("R"), args.pop("G"), **args)
+
+
+def test_two_stage_figure_draws_one_panel_per_stage_and_rejects_bad_stages():
+    from shapelab import plot
+    from shapelab.datasets import sample_shape
+
+    R = sample_shape("lumpy", 200, seed=1)
+    truth = RigidMotion(Quaternion.from_axis_angle([1.0, 2.0, 3.0], np.radians(150)), [0.3, 0.0, 0.0])
+    G = truth.apply(R)
+    best = coarse_align(R, G)[0]
+    fig = plot.two_stage(R, G, {"start": RigidMotion(), "stage 1": best.motion, "stage 2": icp(R, G, init=best.motion)})
+    assert [ax.get_title() for ax in fig.axes] == ["start", "stage 1", "stage 2"]
+    assert all(ax.name == "3d" for ax in fig.axes)
+    with pytest.raises(TypeError, match="stages"):
+        plot.two_stage(R, G, {"x": np.eye(3)})
+    with pytest.raises(TypeError, match="stages"):
+        plot.two_stage(R, G, {})

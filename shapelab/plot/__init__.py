@@ -41,6 +41,7 @@ _EXPORTS = {
     "icp_convergence": "rotation",
     "rotation_axis": "rotation",
     "point_sets": "rotation",
+    "two_stage": "rotation",
 }
 
 __all__ = ["COLORS", "PALETTE", "PAGE", "RC", "SLIDE", "new_figure", "style", "thin_3d_ticks", *sorted(_EXPORTS)]

@@ -15,7 +15,7 @@ from ..quaternion import Quaternion, qfrom_axis_angle, qrotate
 from ..registration import ICPResult, RigidMotion
 from ._style import COLORS, PAGE, new_figure, style
 
-__all__ = ["point_sets", "icp_step", "icp_convergence", "rotation_axis"]
+__all__ = ["point_sets", "icp_step", "icp_convergence", "rotation_axis", "two_stage"]
 
 
 def _axes(ax, *, size=PAGE, projection=None):
@@ -380,4 +380,44 @@ def rotation_axis(rotation, angle=None, *, points=None, ax=None, title=None, ele
         ax.set_title(
             title or (f"Rotation by θ = {np.degrees(theta):.1f}° about u = ({u[0]:.2f}, {u[1]:.2f}, {u[2]:.2f})")
         )
+    return fig
+
+
+def two_stage(source, target, stages: dict, *, size=(12.0, 4.5), elev: float = 20.0, azim: float = 35.0):
+    """Two-stage matching (Notes §23.2): one 3D panel per stage, the moved source on the target.
+
+    Parameters
+    ----------
+    source, target : array_like, shape (n, 3), (m, 3)
+        The red set R and the green set G.
+    stages : dict of str → RigidMotion or ICPResult
+        Panel title → the motion to draw (an :class:`~shapelab.ICPResult` draws its
+        final motion), in panel order; for example the plain ICP result, the best
+        :func:`shapelab.coarse_align` candidate, and ICP started from it.
+    size : (float, float)
+        Figure size in inches.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    source = as_points(source, "source", dim=3)
+    target = as_points(target, "target", dim=3)
+    if not isinstance(stages, dict) or not stages:
+        raise TypeError("stages must be a non-empty dict of title -> RigidMotion or ICPResult")
+    motions = {}
+    for title, m in stages.items():
+        if isinstance(m, ICPResult):
+            m = m.motion
+        if not isinstance(m, RigidMotion):
+            raise TypeError(f"stages[{title!r}] must be a RigidMotion or an ICPResult, got {type(m).__name__}")
+        motions[str(title)] = m
+    fig, axes = new_figure(1, len(motions), size=size, projection="3d")
+    axes = np.atleast_1d(axes)
+    for ax, (title, m) in zip(axes, motions.items(), strict=True):
+        point_sets(m.apply(source), target, ax=ax, title=title, labels=("R moved", "G"), elev=elev, azim=azim)
+    for ax in axes[1:]:
+        legend = ax.get_legend()
+        if legend is not None:
+            legend.remove()
     return fig
