@@ -604,6 +604,35 @@ def l15_optimal_rotation():
     return fig
 
 
+@register(
+    "l16_docking_landscape",
+    "Docking HIV-1 protease's inhibitor (PDB 1HVR): the score (buried solvent-accessible "
+    "area minus clashes) over turns about the inhibitor's C2 axis and shifts along it; "
+    "the crystal pose and its 180° twin are the two peaks.",
+    source="Lesson 16",
+    lesson="16_docking",
+    needs=("datasets.structure", "Docking", "plot.docking_landscape"),
+)
+def l16_docking_landscape():
+    sl = _sl()
+    s = sl.datasets.structure("1hvr")
+    lig = s.hetero & (s.residue_names == "XK2")
+    protease, inhibitor = s.select(~lig), s.select(lig)
+    dock = sl.Docking(protease.balls, inhibitor.balls, probe=1.4)
+    c = inhibitor.balls.centers
+    axis = np.linalg.eigh(np.cov((c - c.mean(axis=0)).T))[1][:, 0]
+    angles, shifts = np.radians(np.arange(-180, 181, 15)), np.arange(-4.0, 4.01, 1.0)
+    fig, ax = _slide()
+    _plot().docking_landscape(
+        angles,
+        shifts,
+        dock.landscape(angles, shifts, axis=axis, direction=axis),
+        marks={"crystal pose": (0.0, 0.0), "turned by 180°": (np.pi, 0.0)},
+        ax=ax,
+    )
+    return fig
+
+
 # ============================================================== the gallery page
 GALLERY_DIR = "_gallery"  # relative to book/, written by course/build.py
 

@@ -22,7 +22,7 @@ Modules, one per concept of the notes:
 ``shapelab.critical``     :func:`critical_points` on curves and surfaces
 ``shapelab.simplification`` :func:`simplify`: ε-simplification along a curve (ELZ 2002)
 ``shapelab.diagrams``     :func:`bottleneck_distance`, :func:`wasserstein_distance`
-``shapelab.docking``      :func:`docking_score`: buried area minus clashes
+``shapelab.docking``      :func:`docking_score`, :class:`Docking`: buried area minus clashes, two-stage docking
 ``shapelab.features``     :func:`coarse_align`: starts for ICP from pose-free features
 ``shapelab.io``           :func:`read_pdb`
 ``shapelab.datasets``     generated molecules and the inputs of the figures
@@ -76,6 +76,8 @@ _EXPORTS = {
     "docking_score": "docking",
     "coarse_align": "features",
     "DockingScore": "docking",
+    "Docking": "docking",
+    "DockedPose": "docking",
     "curve_persistence": "simplification",
     "simplify": "simplification",
 }

@@ -83,3 +83,79 @@ def test_bad_input(kwargs, exc, match):
         docking_score(A, B, **args)
     with pytest.raises(ValueError, match="3D"):
         docking_score(sl.Balls([[0.0, 0]], 1.0), sl.Balls([[1.0, 0]], 1.0))
+
+
+# ------------------------------------------------------------------ Docking
+def _key_and_lock():
+    """A block of unit balls (three layers, jittered) with an L-shaped well in its top two
+    layers, and the L-shaped key that fills the well."""
+    grid = np.array([[x, y, z] for x in range(-3, 5) for y in range(-3, 5) for z in (0, 1, 2)], float) * 1.6
+    grid += np.random.default_rng(7).uniform(-0.05, 0.05, grid.shape)
+    key_cells = np.array([[0, 0], [1, 0], [2, 0], [0, 1], [0, 2]], float) * 1.6
+    hole = np.zeros(len(grid), bool)
+    for c in key_cells:
+        hole |= (np.linalg.norm(grid[:, :2] - c, axis=1) < 0.2) & (grid[:, 2] > 1.0)
+    lock = sl.Balls(grid[~hole], 1.0)
+    key = sl.Balls(grid[hole], 1.0)
+    return lock, key
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_docking_score_equals_the_global_formula(seed):
+    """The local score (receptor balls near the ligand only) against docking_score, the
+    union of everything, at random poses near and in the lock."""
+    lock, key = _key_and_lock()
+    rng = np.random.default_rng(seed)
+    dock = sl.Docking(lock, key, probe=0.4)
+    for _ in range(5):
+        m = RigidMotion(Quaternion.from_rotation_vector(rng.normal(size=3) * 0.5), rng.normal(size=3))
+        a, b = dock.score(m), docking_score(lock, key, m, probe=0.4)
+        assert a.buried_area == pytest.approx(b.buried_area, rel=1e-9, abs=1e-9)
+        assert a.clash == pytest.approx(b.clash, rel=1e-12, abs=1e-12)
+        assert a.score == pytest.approx(b.score, rel=1e-9, abs=1e-9)
+
+
+def test_refine_never_loses_and_search_docks_the_key():
+    lock, key = _key_and_lock()
+    dock = sl.Docking(lock, key, probe=0.4)
+    true = dock.score()
+    start = RigidMotion(Quaternion.from_axis_angle([0, 0, 1], 0.3), [0.6, -0.4, 1.0])
+    refined = dock.refine(start, max_evals=150)
+    assert refined.score.score >= dock.score(start).score
+    assert refined.evaluations <= 150
+    # two stages: the site is where the key was; the search must put it back
+    site = key.centers
+    best = dock.search(site, n_starts=4, max_evals=150)[0]
+    moved = best.motion.apply(key.centers)
+    assert best.score.score >= true.score - 1e-6 * abs(true.score)
+    assert sl.hausdorff(moved, key.centers) < 0.5
+
+
+def test_landscape_peaks_at_the_true_pose():
+    lock, key = _key_and_lock()
+    dock = sl.Docking(lock, key, probe=0.4)
+    angles, shifts = np.radians([-40.0, -20.0, 0.0, 20.0, 40.0]), np.array([-1.0, 0.0, 1.0])
+    L = dock.landscape(angles, shifts, axis=[0, 0, 1], direction=[1, 0, 0])
+    assert L.shape == (5, 3)
+    assert np.unravel_index(np.argmax(L), L.shape) == (2, 1)
+    assert L[2, 1] == pytest.approx(dock.score().score)
+
+
+@pytest.mark.parametrize(
+    "call, exc, match",
+    [
+        (lambda d: d.score(np.eye(4)), TypeError, "motion"),
+        (lambda d: d.refine(max_evals=0), ValueError, "max_evals"),
+        (lambda d: d.search(np.zeros((2, 3))), ValueError, "site"),
+        (lambda d: d.landscape([0.0], [0.0], axis=[0, 0, 0], direction=[1, 0, 0]), ValueError, "axis"),
+        (lambda d: d.landscape([np.nan], [0.0], axis=[0, 0, 1], direction=[1, 0, 0]), ValueError, "angles"),
+    ],
+)
+def test_docking_bad_input(call, exc, match):
+    lock, key = _key_and_lock()
+    with pytest.raises(exc, match=match):
+        call(sl.Docking(lock, key))
+    with pytest.raises(TypeError, match="receptor"):
+        sl.Docking(np.zeros((3, 3)), key)
+    with pytest.raises(ValueError, match="probe"):
+        sl.Docking(lock, key, probe=-1.0)

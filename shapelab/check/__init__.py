@@ -41,6 +41,7 @@ _EXPORTS = {
     "radical_center": "answers",
     "void_count": "answers",
     "ring_tunnel": "answers",
+    "buried_area": "answers",
     "curve_pairs": "answers",
     "most_exposed_residue": "answers",
     # quizzes.py: the end-of-part quizzes

@@ -24,6 +24,7 @@ __all__ = [
     "ring_tunnel",
     "curve_pairs",
     "most_exposed_residue",
+    "buried_area",
 ]
 
 
@@ -258,3 +259,23 @@ def most_exposed_residue(answer, structure, probe: float = 1.4) -> CheckResult:
     expected = max(totals, key=lambda k: (totals[k], k))
     received = answer.strip().upper() if isinstance(answer, str) else answer
     return value("the most exposed residue", received, expected)
+
+
+def buried_area(answer, receptor, ligand, probe: float = 0.0) -> CheckResult:
+    """Lesson 16: the area buried when ``ligand`` binds ``receptor`` as given,
+    :math:`|\\partial A| + |\\partial B| - |\\partial(A\\cup B)|` with radii grown by ``probe``
+    (to 1e-6 relative)."""
+    from ..balls import Balls
+    from ..measure import union_measure
+
+    grow = probe
+
+    def area(centers, radii):
+        return union_measure(Balls(centers, radii + grow)).surface_area
+
+    expected = (
+        area(receptor.centers, receptor.radii)
+        + area(ligand.centers, ligand.radii)
+        - area(np.vstack([receptor.centers, ligand.centers]), np.concatenate([receptor.radii, ligand.radii]))
+    )
+    return value("the buried area (Å²)", answer, expected, rtol=1e-6)

@@ -36,6 +36,8 @@ _EXPORTS = {
     "critical_points": "matching",
     "critical_surface": "matching",
     "hausdorff": "matching",
+    "docking_landscape": "matching",
+    "docking_pose": "matching",
     # rotation.py
     "icp_step": "rotation",
     "icp_convergence": "rotation",

@@ -21,7 +21,15 @@ from matplotlib.ticker import MaxNLocator
 
 from ._style import COLORS, PAGE, PALETTE, SLIDE, new_figure, style
 
-__all__ = ["critical_points", "critical_surface", "hausdorff", "translation", "timings"]
+__all__ = [
+    "critical_points",
+    "critical_surface",
+    "hausdorff",
+    "translation",
+    "timings",
+    "docking_landscape",
+    "docking_pose",
+]
 
 _KIND_STYLE = {
     "min": dict(color=PALETTE[0], marker="v", label="minimum"),
@@ -424,4 +432,89 @@ def timings(seconds: dict, *, ax=None, size=PAGE, title: str | None = None, log:
             ax.text(v, k, "  " + text, va="center", fontsize=9)
         ax.set_xlabel("time (s)")
         ax.set_title(title or "Running time")
+    return fig
+
+
+def docking_landscape(angles, shifts, scores, *, marks=None, ax=None, size=PAGE, title: str | None = None):
+    """The docking score on a grid of poses (:meth:`shapelab.Docking.landscape`), as a heat map.
+
+    Parameters
+    ----------
+    angles : array_like, shape (a,)
+        Turns in radians (drawn in degrees, horizontally).
+    shifts : array_like, shape (s,)
+        Shifts in Å (vertically).
+    scores : array_like, shape (a, s)
+        ``scores[i, j]`` at ``angles[i]``, ``shifts[j]``.
+    marks : dict of str → (angle, shift), optional
+        Poses to mark (angle in radians), e.g. the crystal pose and the one found.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    A = np.degrees(np.asarray(angles, float).ravel())
+    S = np.asarray(shifts, float).ravel()
+    Z = np.asarray(scores, float)
+    if Z.shape != (len(A), len(S)):
+        raise ValueError(f"scores must have shape (len(angles), len(shifts)) = {(len(A), len(S))}, got {Z.shape}")
+    if not (np.all(np.isfinite(Z)) and np.all(np.isfinite(A)) and np.all(np.isfinite(S))):
+        raise ValueError("angles, shifts and scores must be finite")
+    fig, ax = _axes(ax, size=size)
+    with style():
+        lo = np.percentile(Z, 5)  # clashes make some scores hugely negative: clip the colour scale
+        mesh = ax.pcolormesh(A, S, Z.T, shading="nearest", cmap="viridis", vmin=lo, vmax=Z.max())
+        fig.colorbar(mesh, ax=ax, label="score: buried area − penalty × clash (Å²)")
+        styles = iter([("*", "white", 18), ("o", COLORS["red"], 10), ("s", COLORS["green"], 9), ("D", "black", 8)])
+        for label, (a, s) in (marks or {}).items():
+            m, c, z = next(styles, ("x", "black", 9))
+            ax.plot(np.degrees(a), s, marker=m, color=c, markersize=z, markeredgecolor="black", ls="", label=label)
+        if marks:
+            ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.14), ncols=len(marks), frameon=False)
+        ax.set_xlabel("turn about the ligand's axis (°)")
+        ax.set_ylabel("shift (Å)")
+        ax.set_title(title or "Docking score landscape")
+    return fig
+
+
+def docking_pose(
+    receptor, crystal, docked, *, radius: float = 8.0, ax=None, size=PAGE, title=None, elev=20.0, azim=35.0
+):
+    """A docked ligand against the crystal pose, among the receptor atoms near it.
+
+    Parameters
+    ----------
+    receptor : array_like, shape (n, 3)
+        Receptor atom centres; those within ``radius`` of a crystal ligand atom are drawn.
+    crystal, docked : array_like, shape (m, 3)
+        The ligand's atom centres in the crystal and as docked.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    from scipy.spatial import cKDTree
+
+    from .._toolkit.validate import as_points
+
+    receptor = as_points(receptor, "receptor", dim=3)
+    crystal = as_points(crystal, "crystal", dim=3)
+    docked = as_points(docked, "docked", dim=3)
+    near = cKDTree(crystal).query(receptor, distance_upper_bound=radius)[0] < np.inf
+    fig, ax = _axes(ax, size=size, projection="3d")
+    with style():
+        R = receptor[near]
+        ax.scatter(*R.T, s=14, color=COLORS["muted"], alpha=0.25, linewidths=0, depthshade=False, label="receptor")
+        ax.scatter(*crystal.T, s=70, color=COLORS["green"], alpha=0.9, linewidths=0, label="crystal pose")
+        ax.scatter(*docked.T, s=30, color=COLORS["red"], alpha=0.95, marker="D", linewidths=0, label="docked")
+        c = crystal.mean(axis=0)
+        h = radius * 0.9
+        ax.set_xlim(c[0] - h, c[0] + h)
+        ax.set_ylim(c[1] - h, c[1] + h)
+        ax.set_zlim(c[2] - h, c[2] + h)
+        ax.set_box_aspect((1, 1, 1))
+        ax.view_init(elev=elev, azim=azim)
+        ax.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), frameon=False, markerscale=1.2)
+        if title:
+            ax.set_title(title)
     return fig
