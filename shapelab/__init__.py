@@ -21,7 +21,8 @@ Modules, one per concept of the notes:
 ``shapelab.matching``     :func:`hausdorff_under_translation`, reference points
 ``shapelab.critical``     :func:`critical_points` on curves and surfaces
 ``shapelab.simplification`` :func:`simplify`: ε-simplification along a curve (ELZ 2002)
-``shapelab.diagrams``     :func:`bottleneck_distance`, :func:`wasserstein_distance`
+``shapelab.diagrams``     :func:`bottleneck_distance`, :func:`wasserstein_distance`, ``distance_matrix``
+``shapelab.embedding``    :func:`classical_mds`: a distance matrix drawn in the plane
 ``shapelab.docking``      :func:`docking_score`, :class:`Docking`: buried area minus clashes, two-stage docking
 ``shapelab.features``     :func:`coarse_align`: starts for ICP from pose-free features
 ``shapelab.io``           :func:`read_pdb`
@@ -73,6 +74,8 @@ _EXPORTS = {
     "bottleneck_distance": "diagrams",
     "wasserstein_distance": "diagrams",
     "DiagramMatching": "diagrams",
+    "classical_mds": "embedding",
+    "Embedding": "embedding",
     "docking_score": "docking",
     "coarse_align": "features",
     "DockingScore": "docking",

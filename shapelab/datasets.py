@@ -80,6 +80,7 @@ __all__ = [
     "bumpy_sphere",
     "torus",
     "sample_shape",
+    "shape_family",
     "GRAPHENE_LATTICE_CONSTANT",
     "CARBON_RADIUS",
 ]
@@ -1107,13 +1108,14 @@ def sample_shape(kind: str, n: int, *, seed: int = 0) -> np.ndarray:
 
     Parameters
     ----------
-    kind : {"lumpy", "ellipsoid", "sphere", "cube"}
+    kind : {"lumpy", "ellipsoid", "sphere", "cube", "torus"}
         ``"lumpy"``: an ellipsoid with semi-axes (1, 0.75, 0.55) carrying five bumps
         of different sizes in asymmetric directions — no symmetry at all, so ICP has
         a unique answer.  ``"ellipsoid"``: the same ellipsoid without bumps (three
         mirror planes, 4 rotational symmetries).  ``"sphere"``: the unit sphere (every
         rotation is a symmetry).  ``"cube"``: the surface of the cube [-1, 1]³
-        (24 rotational symmetries), uniformly.
+        (24 rotational symmetries), uniformly.  ``"torus"``: the torus of radii 1 and
+        0.4 about the z axis, with both angles uniform (denser on the inner side).
     n : int
         Number of points.
     seed : int
@@ -1130,6 +1132,10 @@ def sample_shape(kind: str, n: int, *, seed: int = 0) -> np.ndarray:
         raise TypeError(f"kind must be a string, got {type(kind).__name__}")
     n = as_positive_int(n, "n")
     rng = np.random.default_rng(seed)
+    if kind == "torus":
+        u, v = rng.uniform(0.0, 2.0 * np.pi, (2, n))
+        ring = 1.0 + 0.4 * np.cos(v)
+        return np.column_stack([ring * np.cos(u), ring * np.sin(u), 0.4 * np.sin(v)])
     if kind == "cube":
         face = rng.integers(0, 6, n)
         p = rng.uniform(-1.0, 1.0, (n, 3))
@@ -1150,4 +1156,36 @@ def sample_shape(kind: str, n: int, *, seed: int = 0) -> np.ndarray:
         width = np.array([0.15, 0.25, 0.1, 0.3, 0.2])
         rho = 1.0 + (height * np.exp((u @ centres.T - 1.0) / width)).sum(axis=1)
         return u * rho[:, None] * semi
-    raise ValueError(f"kind must be one of 'lumpy', 'ellipsoid', 'sphere', 'cube'; got {kind!r}")
+    raise ValueError(f"kind must be one of 'lumpy', 'ellipsoid', 'sphere', 'cube', 'torus'; got {kind!r}")
+
+
+def shape_family(kinds=("sphere", "ellipsoid", "cube", "torus"), per_class: int = 5, n: int = 400, *, noise=0.02, seed=0):
+    """A family of sampled shapes in classes, for shape classification (lesson 17).
+
+    Each member is :func:`sample_shape` of its kind with its own sampling, turned by a
+    random rotation, scaled by a factor in [0.95, 1.05] and moved by Gaussian noise of
+    standard deviation ``noise``; deterministic in ``seed``.
+
+    Returns
+    -------
+    shapes : list of ndarray, shape (n, 3)
+    labels : list of str
+        The kind of each shape; members of one class are contiguous.
+    """
+    from .quaternion import Quaternion
+
+    if isinstance(kinds, str) or not kinds:
+        raise TypeError("kinds must be a non-empty sequence of shape kinds")
+    per_class = as_positive_int(per_class, "per_class")
+    n = as_positive_int(n, "n", minimum=4)
+    noise = as_finite_scalar(noise, "noise", nonnegative=True)
+    rng = _rng(seed)
+    shapes, labels = [], []
+    for kind in kinds:
+        for _ in range(per_class):
+            X = sample_shape(kind, n, seed=int(rng.integers(2**31)))
+            q = Quaternion(*rng.normal(size=4))
+            X = q.rotate(X) * rng.uniform(0.95, 1.05) + noise * rng.normal(size=X.shape)
+            shapes.append(X)
+            labels.append(str(kind))
+    return shapes, labels

@@ -38,6 +38,10 @@ _EXPORTS = {
     "hausdorff": "matching",
     "docking_landscape": "matching",
     "docking_pose": "matching",
+    "point_clouds": "matching",
+    "distance_matrix": "matching",
+    "embedding": "matching",
+    "stability": "matching",
     # rotation.py
     "icp_step": "rotation",
     "icp_convergence": "rotation",

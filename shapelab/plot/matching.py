@@ -518,3 +518,150 @@ def docking_pose(
         if title:
             ax.set_title(title)
     return fig
+
+
+# ====================================================== shape classification
+def _class_colors(labels):
+    names = list(dict.fromkeys(labels))
+    return names, {c: PALETTE[k % len(PALETTE)] for k, c in enumerate(names)}
+
+
+def point_clouds(clouds: dict, *, size=SLIDE, elev: float = 20.0, azim: float = 35.0):
+    """Small multiples of 3D point sets, one panel each (a family of shapes).
+
+    Parameters
+    ----------
+    clouds : dict of str → array_like, shape (n, 3)
+        Panel title → points.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    from .._toolkit.validate import as_points
+
+    if not isinstance(clouds, dict) or not clouds:
+        raise TypeError("clouds must be a non-empty dict of title -> (n, 3) points")
+    pts = {str(k): as_points(v, f"clouds[{k!r}]", dim=3) for k, v in clouds.items()}
+    fig, axes = new_figure(1, len(pts), size=size, projection="3d")
+    with style():
+        for k, (ax, (title, X)) in enumerate(zip(np.atleast_1d(axes), pts.items(), strict=True)):
+            ax.scatter(*X.T, s=6, color=PALETTE[k % len(PALETTE)], depthshade=True, linewidths=0)
+            h = np.abs(X - X.mean(axis=0)).max()
+            c = X.mean(axis=0)
+            ax.set_xlim(c[0] - h, c[0] + h)
+            ax.set_ylim(c[1] - h, c[1] + h)
+            ax.set_zlim(c[2] - h, c[2] + h)
+            ax.set_box_aspect((1, 1, 1))
+            ax.view_init(elev=elev, azim=azim)
+            ax.set_title(title)
+            ax.set_xticklabels([])
+            ax.set_yticklabels([])
+            ax.set_zticklabels([])
+    return fig
+
+
+def distance_matrix(D, labels, *, ax=None, size=PAGE, title: str | None = None, unit: str = ""):
+    """A distance matrix between the shapes of a family, as a heat map grouped by class.
+
+    Parameters
+    ----------
+    D : array_like, shape (k, k)
+    labels : sequence of str, length k
+        The class of each shape; rows of one class should be contiguous.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    D = np.asarray(D, float)
+    labels = [str(s) for s in labels]
+    if D.ndim != 2 or D.shape != (len(labels), len(labels)):
+        raise ValueError(f"D must be a square matrix with one row per label, got {D.shape} and {len(labels)} labels")
+    fig, ax = _axes(ax, size=size)
+    names, _ = _class_colors(labels)
+    with style():
+        im = ax.imshow(D, cmap="magma_r", interpolation="nearest")
+        fig.colorbar(im, ax=ax, label=f"distance{f' ({unit})' if unit else ''}")
+        starts = [labels.index(c) for c in names]
+        ends = [len(labels) - labels[::-1].index(c) for c in names]
+        mids = [(a + b - 1) / 2 for a, b in zip(starts, ends, strict=True)]
+        for b in ends[:-1]:
+            ax.axhline(b - 0.5, color="white", lw=1.5)
+            ax.axvline(b - 0.5, color="white", lw=1.5)
+        ax.set_xticks(mids, names, rotation=30, ha="right")
+        ax.set_yticks(mids, names)
+        ax.set_title(title or "Distances between the shapes")
+    return fig
+
+
+def embedding(points, labels, *, ax=None, size=PAGE, title: str | None = None):
+    """Shapes as points in the plane (:func:`shapelab.classical_mds`), coloured by class.
+
+    Parameters
+    ----------
+    points : array_like, shape (k, 2)
+    labels : sequence of str, length k
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    from .._toolkit.validate import as_points
+
+    X = as_points(points, "points", dim=2)
+    labels = [str(s) for s in labels]
+    if len(labels) != len(X):
+        raise ValueError(f"labels must have one entry per point, got {len(labels)} for {len(X)} points")
+    fig, ax = _axes(ax, size=size)
+    names, colors = _class_colors(labels)
+    markers = "osD^vP*X"
+    with style():
+        for k, c in enumerate(names):
+            P = X[[i for i, s in enumerate(labels) if s == c]]
+            ax.scatter(*P.T, s=70, color=colors[c], marker=markers[k % len(markers)], label=c, edgecolors="white")
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), frameon=False)
+        ax.set_xlabel("first coordinate")
+        ax.set_ylabel("second coordinate")
+        ax.set_title(title or "The family in the plane (classical MDS)")
+    return fig
+
+
+def stability(perturbation, distances: dict, *, ax=None, size=PAGE, title: str | None = None, unit: str = ""):
+    """The stability theorem at work: diagram distance against the perturbation's size.
+
+    Parameters
+    ----------
+    perturbation : array_like, shape (k,)
+        Sizes δ > 0 of the perturbations (drawn on log axes).
+    distances : dict of str → array_like, shape (k,)
+        Label → the bottleneck distance measured at each δ.  Zero distances are drawn
+        at the bottom of the axes.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    x = np.asarray(perturbation, float).ravel()
+    if x.size == 0 or not np.all(np.isfinite(x)) or np.any(x <= 0):
+        raise ValueError("perturbation must hold positive finite sizes")
+    if not isinstance(distances, dict) or not distances:
+        raise TypeError("distances must be a non-empty dict of label -> distances")
+    fig, ax = _axes(ax, size=size)
+    with style():
+        ax.plot(x, x, color="black", lw=1.5, ls="--", label="bound: distance = δ")
+        floor = x.min() / 30
+        for k, (label, y) in enumerate(distances.items()):
+            y = np.asarray(y, float).ravel()
+            if y.shape != x.shape:
+                raise ValueError(f"distances[{label!r}] must have one value per perturbation")
+            ax.plot(x, np.maximum(y, floor), marker="os^D"[k % 4], color=PALETTE[k % len(PALETTE)], label=label)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        u = f" ({unit})" if unit else ""
+        ax.set_xlabel(f"perturbation δ{u}")
+        ax.set_ylabel(f"bottleneck distance{u}")
+        ax.legend(loc="upper left", frameon=False)
+        ax.set_title(title or "Stability: the diagrams move no more than the points")
+    return fig
