@@ -47,7 +47,7 @@ SITE_PATH = "vendor/3dmol/3Dmol-min.js"
 #: One colour per kind of feature (Okabe-Ito, colour-blind safe); pockets cycle
 #: through their own four.  No two kinds share a colour, and none is the atoms' grey.
 FEATURE_COLORS = {
-    "atom": "#C8C8C8",
+    "atom": "#A0A0A0",
     "void": COLORS["void"],  # vermillion
     "pocket": (PALETTE[1], PALETTE[2], PALETTE[6], PALETTE[5]),  # orange, green, yellow, sky blue
     "mouth": COLORS["mouth"],  # reddish purple
@@ -311,12 +311,12 @@ _SCRIPT = """
       m.addAtoms(atoms);
     }
     model(plain, data.opacity);
-    model(lined, Math.min(1, 2 * data.opacity));
+    model(lined, Math.min(1, 3 * data.opacity));
     data.points.forEach(function (f) {
       var pts = [];
       for (var j = 0; j < f.p.length; j += 3)
         pts.push({elem: "X", x: f.p[j], y: f.p[j + 1], z: f.p[j + 2], serial: j / 3, index: j / 3,
-                  style: {sphere: {radius: 0.35, color: f.c}}});
+                  style: {sphere: {radius: 0.5, color: f.c}}});
       model(pts, 1);
     });
     data.meshes.forEach(function (m) {
@@ -470,7 +470,7 @@ def view3d(structure_or_balls, features=(), *, style="auto", opacity=None, width
         Atom colours: by element (a structure's elements; a Balls' are all carbon-grey)
         or one light grey; ``"auto"``: grey when there are features, else by element.
     opacity : float in (0, 1], optional
-        Of the atoms (lining atoms get twice as much, at most 1).  Default 0.35 with
+        Of the atoms (lining atoms get three times as much, at most 1).  Default 0.25 with
         features (so that the features inside show through), else 1.
     width, height : int
         Size of the canvas in pixels.
@@ -505,7 +505,7 @@ def view3d(structure_or_balls, features=(), *, style="auto", opacity=None, width
     if not isinstance(style, str) or style not in STYLES:
         raise ValueError(f"style must be one of {STYLES}, got {style!r}")
     if opacity is None:
-        opacity = 0.35 if feats else 1.0
+        opacity = 0.25 if feats else 1.0
     if isinstance(opacity, bool) or not isinstance(opacity, (int, float, np.floating, np.integer)):
         raise TypeError(f"opacity must be a number, got {type(opacity).__name__}")
     opacity = float(opacity)
