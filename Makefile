@@ -30,7 +30,7 @@ $(VENV)/.installed-%: pyproject.toml $(CONSTRAINTS) | $(PY)
 	@touch $@
 
 book/node_modules/.installed: book/package.json book/package-lock.json
-	@echo "installing the book's JavaScript (MathJax, require.js, widgets, reveal.js) from the npm registry ..."
+	@echo "installing the book's JavaScript (MathJax, require.js, widgets, reveal.js, 3Dmol.js) from the npm registry ..."
 	cd book && npm ci --no-audit --no-fund --loglevel=error
 	@touch $@
 

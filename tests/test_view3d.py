@@ -279,3 +279,22 @@ def test_a_built_page_draws_offline_from_the_vendored_library(built_page, tmp_pa
     assert 'data-content_root="../"' in html
     assert not [u for u in SCRIPT_SRC.findall(html) if re.match(r"(https?:)?//", u)]
     _assert_drawn(_probe(built_page, tmp_path / "profile"), 1)
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason=SKIP_REASON)
+@pytest.mark.skipif(not NODE_3DMOL.exists(), reason=NO_3DMOL)
+def test_a_deck_draws_offline_from_its_vendor_folder_beside_require_js(tmp_path, view):
+    """A deck (course/slides.py) has no data-content_root; its scripts come from
+    ``vendor/``, require.js among them, whose ``define`` must not swallow 3Dmol.js."""
+    import course.slides
+
+    assert course.slides.ASSETS["3dmol/build/3Dmol-min.js"] == "3dmol/3Dmol-min.js"
+    (tmp_path / "vendor" / "3dmol").mkdir(parents=True)
+    shutil.copy(NODE_3DMOL, tmp_path / "vendor" / "3dmol" / "3Dmol-min.js")
+    shutil.copy(ROOT / "book" / "node_modules" / "requirejs" / "require.js", tmp_path / "vendor" / "require.js")
+    page = tmp_path / "deck.slides.html"
+    page.write_text(
+        '<!DOCTYPE html><html><head><meta charset="utf-8"><script src="vendor/require.js"></script></head>'
+        f"<body>{view.html(library=False)}</body></html>"
+    )
+    _assert_drawn(_probe(page, tmp_path / "profile"), 1)

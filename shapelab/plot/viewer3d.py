@@ -16,11 +16,13 @@ Where 3Dmol.js comes from
   source checkout shapelab is installed from (``pip install -e``).  A relative URL
   would not do here: JupyterLab resolves it against ``/lab/tree/...``, not the
   notebook's folder.
-* **The course site (no kernel, no network).**  The book build copies
-  ``3Dmol-min.js`` to ``vendor/3dmol/`` at the site's root (``course/build.py``) and
-  strips the inline copies from the lessons' outputs (:func:`without_library`); a
-  view's script then loads ``<site root>/vendor/3dmol/3Dmol-min.js``, the root being
-  read from the page itself (Sphinx's ``data-content_root``), once per page.
+* **The course site and the decks (no kernel, no network).**  The book build copies
+  ``3Dmol-min.js`` to ``vendor/3dmol/`` at the site's root (``course/build.py``; the
+  decks' ``vendor/`` gets it too, ``course/slides.py``) and strips the inline copies
+  from the lessons' outputs (:func:`without_library`); a view's script then loads
+  ``<root>/vendor/3dmol/3Dmol-min.js`` once per page, the root being read from the
+  page itself (Sphinx's ``data-content_root``, else the page's other scripts from
+  ``vendor/``).  One copy for the whole site, fetched only by pages with a view.
 
 py3Dmol (PyPI) is not used: its views load 3Dmol.js from a URL (a CDN by default),
 its element ids come from the clock, and it ships no copy of the library.
@@ -338,11 +340,13 @@ _SCRIPT = """
     root.shapelabViewer = v;
   }
   if (window.$3Dmol) { draw(); return; }
-  // the course site: 3Dmol.js is vendored at the site's root, found from the page's own markup
+  // the course site and decks: 3Dmol.js is vendored beside their other scripts, at
+  // <root>/vendor/3dmol/; the root is read from the page's own markup (Sphinx's
+  // data-content_root, else the folder of a script the page loads from <root>/vendor/)
   var base = document.documentElement.getAttribute("data-content_root");
   if (base === null) {
-    var opts = document.querySelector('script[src$="_static/documentation_options.js"]');
-    if (opts) base = opts.getAttribute("src").replace(/_static\\/documentation_options\\.js$/, "");
+    var vendored = document.querySelector('script[src*="vendor/"]');
+    if (vendored) base = vendored.getAttribute("src").replace(/vendor\\/.*$/, "");
   }
   if (base === null) {
     say("3Dmol.js is not loaded on this page: show a view3d(...) with library=True " +
