@@ -436,7 +436,7 @@ class View3D:
         return (
             f"{lib}"
             f'<div class="shapelab-view3d" id="{self.id}"><style>{_CSS}</style>'
-            f'<div class="shapelab-view3d-canvas" style="width:{self.width}px;height:{self.height}px"></div>'
+            f'<div class="shapelab-view3d-canvas" style="width:{self.width}px;max-width:100%;height:{self.height}px"></div>'
             f'<div class="shapelab-view3d-note"></div>'
             f'<ul class="shapelab-view3d-legend">{items}</ul>'
             f"<small>Drag to rotate, scroll to zoom, right-drag to move.</small>"
