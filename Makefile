@@ -30,7 +30,7 @@ $(VENV)/.installed-%: pyproject.toml $(CONSTRAINTS) | $(PY)
 	@touch $@
 
 book/node_modules/.installed: book/package.json book/package-lock.json
-	@echo "installing the book's JavaScript (MathJax, require.js, widgets, reveal.js) from the npm registry ..."
+	@echo "installing the book's JavaScript (MathJax, require.js, widgets, reveal.js, 3Dmol.js) from the npm registry ..."
 	cd book && npm ci --no-audit --no-fund --loglevel=error
 	@touch $@
 
@@ -69,7 +69,10 @@ figures: $(VENV)/.installed-book
 student: $(VENV)/.installed-book
 	$(PY) -m course.build --only student
 
+# 3Dmol.js (book/node_modules) lets shapelab.plot.view3d draw in JupyterLab offline;
+# without npm the lab still starts and a view says what is missing
 lab: $(VENV)/.installed-lab
+	@$(MAKE) -s book/node_modules/.installed || echo "npm unavailable: shapelab.plot.view3d will not draw in JupyterLab"
 	@$(PY) -m course.lab
 
 bench: $(VENV)/.installed-bench

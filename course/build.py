@@ -31,6 +31,10 @@ ASSETS = {
     "requirejs/require.js": "require.min.js",
     "@jupyter-widgets/html-manager/dist": "html-manager",
     "mathjax/es5": "mathjax",
+    # shapelab.plot.view3d's pages load it from here (lazily: only pages with a view)
+    "3dmol/build/3Dmol-min.js": "3dmol/3Dmol-min.js",
+    "3dmol/build/3Dmol-min.js.LICENSE.txt": "3dmol/3Dmol-min.js.LICENSE.txt",
+    "3dmol/LICENSE": "3dmol/LICENSE",
 }
 
 
@@ -89,6 +93,33 @@ def lessons_into_book(execute: bool, book: Path = BOOK) -> None:
             print(f"  copied {path.name} (committed outputs)")
 
 
+def strip_inline_libraries(lessons: Path) -> int:
+    """Drop the inline copies of 3Dmol.js from the lessons' outputs in ``lessons``.
+
+    In JupyterLab the first ``shapelab.plot.view3d`` of a notebook carries the library
+    inline (a kernel cannot serve a file to the page); the site serves it once from
+    ``vendor/3dmol/`` (ASSETS) and each view loads it from there.  Returns how many
+    notebooks changed."""
+    import nbformat
+
+    from shapelab.plot.viewer3d import without_library
+
+    changed = 0
+    for path in sorted(lessons.glob("*.ipynb")):
+        if "data-shapelab-library" not in path.read_text(encoding="utf-8"):
+            continue
+        nb = nbformat.read(path, as_version=4)
+        for cell in nb.cells:
+            for out in cell.get("outputs", []):
+                html = out.get("data", {}).get("text/html")
+                if html is not None:
+                    text = html if isinstance(html, str) else "".join(html)
+                    out["data"]["text/html"] = without_library(text)
+        nbformat.write(nb, path)
+        changed += 1
+    return changed
+
+
 def build_gallery(out: Path = GALLERY) -> bool:
     """Draw the figures that book/gallery.md shows, as SVG (python -m course.figures).
 
@@ -116,6 +147,9 @@ def build_book(path_output: Path | None = None, gallery: bool = True, book: Path
     ``path_output/_build/html`` (default: inside ``book``); the offline JavaScript and
     the gallery's figures go into ``book`` too."""
     vendor_assets(dest=VENDOR if book == BOOK else book / "_extra" / "vendor")
+    stripped = strip_inline_libraries(book / "lessons")
+    if stripped:
+        print(f"  3Dmol.js: inline copies dropped from {stripped} lesson(s); the site serves vendor/3dmol/", flush=True)
     if gallery:
         build_gallery(GALLERY if book == BOOK else book / "_gallery")
     cmd = [str(Path(sys.executable).parent / "jupyter-book"), "build", str(book), "--keep-going"]

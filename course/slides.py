@@ -59,6 +59,9 @@ ASSETS = {
     "mathjax/es5/a11y": "mathjax/a11y",
     "mathjax/LICENSE": "mathjax/LICENSE",
     "@jupyter-widgets/html-manager/dist": "html-manager",
+    # shapelab.plot.view3d loads it from here when the lesson's output does not carry it
+    "3dmol/build/3Dmol-min.js": "3dmol/3Dmol-min.js",
+    "3dmol/LICENSE": "3dmol/LICENSE",
 }
 IGNORE = shutil.ignore_patterns("*.map", "*.md", "*.d.ts", "embed.js", "libembed-amd.js", "*.LICENSE.txt")
 

@@ -126,6 +126,8 @@ def test_math_loads_from_the_site_and_nothing_else_is_fetched(site):
     page = (site / "lessons" / "00_start_here.html").read_text(encoding="utf-8")
     assert "vendor/mathjax/tex-mml-chtml.js" in page
     assert (site / "vendor" / "mathjax" / "output" / "chtml" / "fonts" / "woff-v2").is_dir()
+    # shapelab.plot.view3d's pages load 3Dmol.js from here (tests/test_view3d.py opens one)
+    assert (site / "vendor" / "3dmol" / "3Dmol-min.js").is_file()
     for p in _pages(site):
         html = p.read_text(encoding="utf-8", errors="replace")
         # no live-code (thebe) or widget-manager scripts: nothing on a static page could use them

@@ -9,6 +9,8 @@ the rest of the library.
 ``topology``      persistence diagrams, barcodes, Betti curves, voids, pockets
 ``matching``      critical points, Hausdorff witnesses
 ``rotation``      point sets, ICP steps and convergence, rotations in 3D
+``viewer3d``      ``view3d``: an interactive 3Dmol.js view of a molecule and its
+                  voids, pockets, mouths and tunnels (HTML, not a Figure), offline
 ================  ==============================================================
 """
 
@@ -48,6 +50,8 @@ _EXPORTS = {
     "rotation_axis": "rotation",
     "point_sets": "rotation",
     "two_stage": "rotation",
+    # viewer3d.py: interactive, in the browser (3Dmol.js), not matplotlib
+    "view3d": "viewer3d",
 }
 
 __all__ = ["COLORS", "PALETTE", "PAGE", "RC", "SLIDE", "new_figure", "style", "thin_3d_ticks", *sorted(_EXPORTS)]
