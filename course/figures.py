@@ -633,6 +633,30 @@ def l16_docking_landscape():
     return fig
 
 
+@register(
+    "l17_shape_classification",
+    "Twenty sampled surfaces (spheres, ellipsoids, cubes, tori; each turned, scaled and "
+    "blurred) placed in the plane by classical MDS of the 2-Wasserstein distances between "
+    "their persistence diagrams: the classes separate without any alignment.",
+    source="Lesson 17",
+    lesson="17_shape_classification",
+    needs=("datasets.shape_family", "alpha_filtration", "classical_mds", "plot.embedding"),
+)
+def l17_shape_classification():
+    sl = _sl()
+    from shapelab.diagrams import distance_matrix
+
+    shapes, labels = sl.datasets.shape_family(per_class=5, n=400, seed=0)
+    dgms = []
+    for X in shapes:
+        pairs = sl.alpha_filtration(sl.Balls(X, 0.0)).persistence()
+        dgms.append({k: np.sqrt(np.maximum(np.asarray(pairs[k], float), 0.0)) for k in (1, 2)})
+    W = np.hypot(*(distance_matrix([d[k] for d in dgms], p=2) for k in (1, 2)))
+    fig, ax = _slide()
+    _plot().embedding(sl.classical_mds(W).points, labels, ax=ax, title="Shapes by the distance of their diagrams")
+    return fig
+
+
 # ============================================================== the gallery page
 GALLERY_DIR = "_gallery"  # relative to book/, written by course/build.py
 

@@ -1159,7 +1159,9 @@ def sample_shape(kind: str, n: int, *, seed: int = 0) -> np.ndarray:
     raise ValueError(f"kind must be one of 'lumpy', 'ellipsoid', 'sphere', 'cube', 'torus'; got {kind!r}")
 
 
-def shape_family(kinds=("sphere", "ellipsoid", "cube", "torus"), per_class: int = 5, n: int = 400, *, noise=0.02, seed=0):
+def shape_family(
+    kinds=("sphere", "ellipsoid", "cube", "torus"), per_class: int = 5, n: int = 400, *, noise=0.02, seed=0
+):
     """A family of sampled shapes in classes, for shape classification (lesson 17).
 
     Each member is :func:`sample_shape` of its kind with its own sampling, turned by a

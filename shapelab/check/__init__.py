@@ -42,6 +42,7 @@ _EXPORTS = {
     "void_count": "answers",
     "ring_tunnel": "answers",
     "buried_area": "answers",
+    "most_spread_class": "answers",
     "curve_pairs": "answers",
     "most_exposed_residue": "answers",
     # quizzes.py: the end-of-part quizzes

@@ -25,6 +25,7 @@ __all__ = [
     "curve_pairs",
     "most_exposed_residue",
     "buried_area",
+    "most_spread_class",
 ]
 
 
@@ -279,3 +280,17 @@ def buried_area(answer, receptor, ligand, probe: float = 0.0) -> CheckResult:
         - area(np.vstack([receptor.centers, ligand.centers]), np.concatenate([receptor.radii, ligand.radii]))
     )
     return value("the buried area (Å²)", answer, expected, rtol=1e-6)
+
+
+def most_spread_class(answer, distances, labels) -> CheckResult:
+    """Lesson 17: the class with the largest distance between two of its members."""
+    D = np.asarray(distances, dtype=float)
+    labels = [str(s) for s in labels]
+    spread = {}
+    for i, a in enumerate(labels):
+        for j, b in enumerate(labels):
+            if a == b:
+                spread[a] = max(spread.get(a, 0.0), float(D[i, j]))
+    expected = max(spread, key=lambda k: (spread[k], k))
+    received = answer.strip().lower() if isinstance(answer, str) else answer
+    return value("the most spread-out class", received, expected)

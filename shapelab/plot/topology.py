@@ -116,7 +116,15 @@ def _check_tau(tau, name="tau"):
 
 # ------------------------------------------------------------- persistence
 def persistence_diagram(
-    pairs_or_filtration, *, dims=None, tau=None, min_persistence=None, ax=None, title="Persistence diagram", dim=None
+    pairs_or_filtration,
+    *,
+    dims=None,
+    tau=None,
+    min_persistence=None,
+    ax=None,
+    title="Persistence diagram",
+    dim=None,
+    scale: str = "τ",
 ):
     """The persistence diagram: one point (birth, death) per feature (Notes §23.1).
 
@@ -138,6 +146,9 @@ def persistence_diagram(
     dim : int, optional
         Ambient dimension (names H₁ "holes" in 2D, "tunnels" in 3D); taken from the
         filtration's balls if not given.
+    scale : str
+        The name of the axes' quantity: ``"τ"`` (the growth time, default) or, for
+        diagrams converted to radii, ``"ρ"``.
 
     Returns
     -------
@@ -200,8 +211,8 @@ def persistence_diagram(
         ax.set_xlim(lo_, hi_)
         ax.set_ylim(lo_, hi_)
         ax.set_aspect("equal")
-        ax.set_xlabel("birth τ")
-        ax.set_ylabel("death τ")
+        ax.set_xlabel(f"birth {scale}")
+        ax.set_ylabel(f"death {scale}")
         ax.set_title(title)
         ax.legend(loc="lower right", fontsize=9)
     return fig
