@@ -50,6 +50,7 @@ _EXPORTS = {
     "rotation_axis": "rotation",
     "point_sets": "rotation",
     "two_stage": "rotation",
+    "displacement": "rotation",
     # viewer3d.py: interactive, in the browser (3Dmol.js), not matplotlib
     "view3d": "viewer3d",
 }

@@ -13,9 +13,11 @@ import numpy as np
 from .._toolkit.validate import as_finite_scalar, as_point, as_points, as_positive_int
 from ..quaternion import Quaternion, qfrom_axis_angle, qrotate
 from ..registration import ICPResult, RigidMotion
-from ._style import COLORS, PAGE, new_figure, style
+from ._style import COLORS, PAGE, PALETTE, new_figure, style
 
-__all__ = ["point_sets", "icp_step", "icp_convergence", "rotation_axis", "two_stage"]
+_SHADES = tuple(PALETTE[k] for k in (1, 4, 5))
+
+__all__ = ["point_sets", "icp_step", "icp_convergence", "rotation_axis", "two_stage", "displacement"]
 
 
 def _axes(ax, *, size=PAGE, projection=None):
@@ -420,4 +422,42 @@ def two_stage(source, target, stages: dict, *, size=(12.0, 4.5), elev: float = 2
         legend = ax.get_legend()
         if legend is not None:
             legend.remove()
+    return fig
+
+
+def displacement(residues, displacements: dict, *, domains: dict | None = None, ax=None, title=None, unit: str = "Å"):
+    """Per-residue displacement after a superposition, one curve per fit.
+
+    Parameters
+    ----------
+    residues : array_like, shape (n,)
+        Residue numbers (the horizontal axis).
+    displacements : dict of str → array_like, shape (n,)
+        Label → the distance of each residue's atom to its partner after that fit.
+    domains : dict of str → (first, last), optional
+        Residue ranges to shade and name (e.g. a protein's mobile domains).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    x = np.asarray(residues, float).ravel()
+    if not isinstance(displacements, dict) or not displacements:
+        raise TypeError("displacements must be a non-empty dict of label -> per-residue distances")
+    fig, ax = _axes(ax)
+    with style():
+        for k, (name, (a, b)) in enumerate((domains or {}).items()):
+            ax.axvspan(a - 0.5, b + 0.5, color=_SHADES[k % len(_SHADES)], alpha=0.35, lw=0)
+            ax.text((a + b) / 2, 1.0, name, transform=ax.get_xaxis_transform(), ha="center", va="bottom", fontsize=10)
+        for k, (label, d) in enumerate(displacements.items()):
+            d = np.asarray(d, float).ravel()
+            if d.shape != x.shape:
+                raise ValueError(f"displacements[{label!r}] must have one value per residue")
+            ax.plot(x, d, color=(COLORS["red"], COLORS["green"], COLORS["muted"])[k % 3], lw=1.6, label=label)
+        ax.set_xlabel("residue")
+        ax.set_ylabel(f"displacement ({unit})")
+        ax.set_ylim(bottom=0)
+        ax.legend(loc="upper center", frameon=False)
+        if title:
+            ax.set_title(title, pad=18)
     return fig
