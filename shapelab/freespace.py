@@ -541,7 +541,7 @@ def free_measure(balls, tau, cells) -> np.ndarray:
     -------
     ndarray, shape (m,)
     """
-    return _free_space(balls, tau, cells, False)[0]
+    return _free_space(balls, tau, cells, False).measure
 
 
 @dataclass(frozen=True, eq=False)
