@@ -260,7 +260,11 @@ class CavityReport:
         if not out_dir.is_dir():
             raise FileNotFoundError(f"output directory {os.fspath(out_dir)!r} does not exist")
         targets = [out_dir / f"{stem}_cavities.{ext}" for ext in ("csv", "md", "pdb")]
-        writers = [self.to_csv, lambda p: Path(p).write_text(self.to_markdown(), encoding="utf-8"), self._write_marked_pdb]
+        writers = [
+            self.to_csv,
+            lambda p: Path(p).write_text(self.to_markdown(), encoding="utf-8"),
+            self._write_marked_pdb,
+        ]
         temps = []
         try:
             for t, writer in zip(targets, writers):
@@ -487,9 +491,7 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
             s = structure
             names = tuple(str(s.atom_names[i]) for i in lining)
             res = tuple(
-                dict.fromkeys(
-                    (str(s.chains[i]), str(s.residue_names[i]), int(s.residue_numbers[i])) for i in lining
-                )
+                dict.fromkeys((str(s.chains[i]), str(s.residue_names[i]), int(s.residue_numbers[i])) for i in lining)
             )
         else:
             names = ("",) * len(lining)
