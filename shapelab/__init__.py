@@ -26,6 +26,7 @@ Modules, one per concept of the notes:
 ``shapelab.docking``      :func:`docking_score`, :class:`Docking`: buried area minus clashes, two-stage docking
 ``shapelab.features``     :func:`coarse_align`: starts for ICP from pose-free features
 ``shapelab.io``           :func:`read_pdb`
+``shapelab.report``       :func:`report`: CASTp-style table of voids and pockets (also a CLI)
 ``shapelab.datasets``     generated molecules and the inputs of the figures
 ``shapelab.plot``         one function per kind of figure, a shared style
 ``shapelab.widgets``      ipywidgets explorers built on :mod:`shapelab.plot`
@@ -110,3 +111,20 @@ __all__ = sorted(_EXPORTS) + ["__version__"]
 
 
 __getattr__, __dir__ = attach(__name__, _EXPORTS, _SUBMODULES, eager=__all__)
+
+# ``shapelab.report`` is the function, although ``shapelab/report.py`` is a module of
+# the same name: importing it here binds the attribute to the function once and for
+# all (a later ``import shapelab.report`` finds the module in sys.modules and leaves
+# the attribute alone), while ``python -m shapelab.report`` still runs the module.
+# The module imports nothing heavy at import time, so this keeps ``import shapelab`` fast.
+import warnings as _warnings  # noqa: E402
+
+# runpy warns that the module was imported with its package before ``-m`` ran it:
+# harmless here (main() is only run from ``__main__``), and it would break the CLI's
+# quiet stderr
+_warnings.filterwarnings(
+    "ignore", message="'shapelab.report' found in sys.modules", category=RuntimeWarning, module="runpy"
+)
+from .report import CavityReport, report  # noqa: E402
+
+__all__ += ["report", "CavityReport"]

@@ -21,6 +21,7 @@ triple-ball volumes).
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from functools import lru_cache
 from itertools import combinations
 
@@ -31,7 +32,7 @@ from ._toolkit.validate import as_tau, check_balls
 from .balls import power_distance
 from .filtration import derived
 
-__all__ = ["free_measure", "void_measure", "vertex_values", "free_points"]
+__all__ = ["free_measure", "free_space", "FreeSpace", "void_measure", "vertex_values", "free_points"]
 
 
 def vertex_values(F, n_balls: int) -> np.ndarray:
@@ -345,22 +346,28 @@ def _segment_integral(kind, h, d, la, lb, r):
     return out
 
 
-def _ball_clip_measure(A, b, r, eps, keep=0):
+def _ball_clip_measure(A, b, r, eps, keep=0, boundary=False):
     """Measure of the ball (disk) of radius r at the origin ∩ the bounded polytope
     {x : A x <= b}: a sum of closed-form radial integrals over the polytope's edges
-    (2D) or its faces' edges (3D), each signed by the side the centre lies on."""
+    (2D) or its faces' edges (3D), each signed by the side the centre lies on.
+
+    With ``boundary=True`` returns ``(measure, sphere)``, where ``sphere`` is the
+    measure of the sphere (circle) of radius r inside the polytope, from the
+    divergence theorem about the centre: ``d * measure = r * sphere + Σ_f h_f |f ∩ B|``
+    (``h_f`` the signed distance of facet f's plane, ``|f ∩ B|`` the facet's part in the
+    ball), so no further integral is needed."""
     if A.shape[1] == 3:
-        return _ball_clip_measure3(A, b, r, eps, keep)
+        return _ball_clip_measure3(A, b, r, eps, keep, boundary)
     nA = np.linalg.norm(A, axis=1)
     dist = b / nA  # signed distance of the centre to each line
     if np.any(dist <= -r):
-        return 0.0  # the disk misses a halfplane
+        return (0.0, 0.0) if boundary else 0.0  # the disk misses a halfplane
     if np.all(dist >= r):
-        return np.pi * r * r
+        return (np.pi * r * r, 2 * np.pi * r) if boundary else np.pi * r * r
     V = _poly_vertices(A, b, eps)
     if V.shape[0] < 3:
-        return 0.0
-    D, LA, LB, S = [], [], [], []
+        return (0.0, 0.0) if boundary else 0.0
+    D, LA, LB, S, H = [], [], [], [], []
     for q in range(A.shape[0]):
         n = A[q] / nA[q]
         on = np.abs(V @ n - dist[q]) <= 10 * eps
@@ -379,11 +386,18 @@ def _ball_clip_measure(A, b, r, eps, keep=0):
         la = a_ @ u
         D.append(np.linalg.norm(a_ - la * u)), LA.append(la), LB.append(la + L)
         S.append(np.sign(_cross2(ab, -a_)))
+        H.append(dist[q])
     if not D:
-        return 0.0
-    D, LA, LB, S = (np.asarray(x, dtype=np.float64) for x in (D, LA, LB, S))
+        return (0.0, 0.0) if boundary else 0.0
+    D, LA, LB, S, H = (np.asarray(x, dtype=np.float64) for x in (D, LA, LB, S, H))
     I = _segment_integral(2, np.zeros_like(D), D, LA, LB, np.full(D.shape, r))
-    return float(np.sum(S * I))
+    area = float(np.sum(S * I))
+    if not boundary:
+        return area
+    # chord of each edge inside the disk, weighted by the edge line's signed distance
+    half = np.sqrt(np.maximum(r * r - D * D, 0.0))
+    chord = np.maximum(np.minimum(LB, half) - np.maximum(LA, -half), 0.0)
+    return area, max((2.0 * area - float(np.sum(H * chord))) / r, 0.0)
 
 
 @lru_cache(maxsize=64)
@@ -412,7 +426,7 @@ _BOX = np.vstack([np.eye(3), -np.eye(3)])
 _REF = (np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]))
 
 
-def _ball_clip_measure3(A, b, r, eps, keep=0):
+def _ball_clip_measure3(A, b, r, eps, keep=0, boundary=False):
     """Volume of the ball of radius r at the origin ∩ the bounded polytope {x : A x <= b}.
 
     Planes the ball lies inside are dropped, except the first ``keep`` rows (which
@@ -424,10 +438,10 @@ def _ball_clip_measure3(A, b, r, eps, keep=0):
     nA = np.sqrt((A * A).sum(1))
     dist = b / nA
     if np.any(dist <= -r):
-        return 0.0
+        return (0.0, 0.0) if boundary else 0.0
     cut = dist < r
     if not np.any(cut):
-        return 4.0 / 3.0 * np.pi * r**3
+        return (4.0 / 3.0 * np.pi * r**3, 4.0 * np.pi * r * r) if boundary else 4.0 / 3.0 * np.pi * r**3
     if keep:
         cut[:keep] = True
         A2, b2 = A[cut] / nA[cut, None], dist[cut]
@@ -436,7 +450,7 @@ def _ball_clip_measure3(A, b, r, eps, keep=0):
         b2 = np.concatenate([dist[cut], np.full(6, 2.0 * r)])
     V = _vertices3(A2, b2, eps)
     if V.shape[0] < 4:
-        return 0.0
+        return (0.0, 0.0) if boundary else 0.0
     inc = np.abs(V @ A2.T - b2) <= 10 * eps
     cnt = inc.sum(axis=0)
     planes = np.flatnonzero(cnt >= 3)
@@ -474,7 +488,14 @@ def _ball_clip_measure3(A, b, r, eps, keep=0):
     dd = np.sqrt((perp * perp).sum(1))
     side = np.sign((cross_rows(ab, foot - a_) * n).sum(1))
     I = _segment_integral(3, h, dd, la, la + L, np.full(h.shape, r))
-    return float(np.sum(h / 3.0 * side * I))
+    vol = float(np.sum(h / 3.0 * side * I))
+    if not boundary:
+        return vol
+    # the facets' parts in the ball: disks of radius sqrt(r² - h²) clipped by the facet,
+    # from the same edges (kind 2); then the divergence theorem gives the sphere's part
+    rho = np.sqrt(np.maximum(r * r - h * h, 0.0))
+    I2 = _segment_integral(2, h, dd, la, la + L, rho)
+    return vol, max((3.0 * vol - float(np.sum(h * side * I2))) / r, 0.0)
 
 
 def _simplex_halfspaces(X):
@@ -520,6 +541,61 @@ def free_measure(balls, tau, cells) -> np.ndarray:
     -------
     ndarray, shape (m,)
     """
+    return _free_space(balls, tau, cells, False).measure
+
+
+@dataclass(frozen=True, eq=False)
+class FreeSpace:
+    """Free measure and wall of simplices (see :func:`free_space`).
+
+    Attributes
+    ----------
+    measure : ndarray, shape (m,)
+        Free volume (area in 2D) of each simplex: as :func:`free_measure`.
+    wall : ndarray, shape (m,)
+        Measure of :math:`\\partial U_\\tau \\cap t`: the area (length in 2D) of the
+        union's boundary inside each simplex.
+    contact_cell, contact_ball, contact_wall : ndarray, shape (q,)
+        The wall split by ball: simplex row, ball index and the measure of
+        :math:`\\partial B_i \\cap \\Pi_i \\cap t` (positive entries only); summed per
+        simplex they give ``wall``.
+    """
+
+    measure: np.ndarray
+    wall: np.ndarray
+    contact_cell: np.ndarray
+    contact_ball: np.ndarray
+    contact_wall: np.ndarray
+
+
+def free_space(balls, tau, cells) -> FreeSpace:
+    """Exact free measure and wall of simplices: :func:`free_measure` plus the boundary.
+
+    The wall of a simplex :math:`t` is :math:`\\partial U_\\tau \\cap t
+    = \\bigsqcup_i \\partial B_i \\cap \\Pi_i \\cap t` (a point of sphere i inside its
+    power cell is on the boundary of the union).  Each piece comes from the same
+    clipped ball as the volume, by the divergence theorem about the ball's centre
+    (:math:`d\\,\\mathrm{vol}(B \\cap Q) = r\\,|\\partial B \\cap Q| + \\sum_f h_f |f \\cap B|`,
+    the facet parts being disks (chords in 2D) clipped by a polygon, in closed form):
+    exact, no sampling.  Summed over the cells of a void it is the void's surface
+    area (Notes §23.1, "Voids and pockets").
+
+    Parameters
+    ----------
+    balls : Balls
+    tau : float
+    cells : array_like, shape (m, d+1), int
+        Simplices as ball indices (any simplices, not only Delaunay ones).
+
+    Returns
+    -------
+    FreeSpace
+    """
+    return _free_space(balls, tau, cells, True)
+
+
+def _free_space(balls, tau, cells, boundary):
+
     from scipy.spatial import cKDTree
 
     check_balls(balls)
@@ -533,8 +609,15 @@ def free_measure(balls, tau, cells) -> np.ndarray:
     w = balls.weights + tau
     alive = np.flatnonzero(w >= 0)
     out = np.zeros(cells.shape[0])
+    wall = np.zeros(cells.shape[0])
+    cc, cb, cw = [], [], []
+
+    def result():
+        ints = lambda x: np.asarray(x, dtype=np.int64)  # noqa: E731
+        return FreeSpace(out, wall, ints(cc), ints(cb), np.asarray(cw, dtype=np.float64))
+
     if cells.shape[0] == 0 or tau == np.inf:  # at τ = inf the balls cover everything
-        return out
+        return result()
     C = balls.centers
     tree = cKDTree(C[alive]) if alive.size else None
     rmax = float(np.sqrt(w[alive].max())) if alive.size else 0.0
@@ -569,9 +652,15 @@ def free_measure(balls, tau, cells) -> np.ndarray:
             bp = (Z[js] ** 2).sum(1) - (Z[i] ** 2).sum() - R[js] ** 2 + R[i] ** 2
             A = np.vstack([As, Ap])
             b = np.concatenate([bs, bp])
-            covered += _ball_clip_measure(A, b - A @ Z[i], float(R[i]), eps, keep=d + 1)
+            got = _ball_clip_measure(A, b - A @ Z[i], float(R[i]), eps, keep=d + 1, boundary=boundary)
+            if boundary:
+                got, sph = got
+                if sph > 0:
+                    wall[m] += sph
+                    cc.append(m), cb.append(int(cand[i])), cw.append(sph)
+            covered += got
         out[m] = meas - covered
-    return out
+    return result()
 
 
 def free_points(balls, tau, cells, n_points, rng) -> np.ndarray:

@@ -644,6 +644,7 @@ def write_pdb(
     chains=None,
     hetero=None,
     title=None,
+    b_factors=None,
 ) -> Path:
     """Write 3D balls as ATOM/HETATM records of a PDB file.
 
@@ -666,6 +667,9 @@ def write_pdb(
         True writes HETATM instead of ATOM.
     title : str, optional
         Written as a TITLE record (at most 70 characters).
+    b_factors : sequence of float, optional
+        Values for the B-factor column (61–66), e.g. a label per atom as
+        :func:`shapelab.report` writes; each must fit ``%6.2f``.  Default 0.
 
     Returns
     -------
@@ -701,6 +705,14 @@ def write_pdb(
     if hetero.shape != (n,):
         raise ValueError(f"hetero must have shape ({n},), got {hetero.shape}")
 
+    if b_factors is None:
+        b_factors = np.zeros(n)
+    b_factors = np.asarray(b_factors, dtype=np.float64)
+    if b_factors.shape != (n,):
+        raise ValueError(f"b_factors must have shape ({n},), got {b_factors.shape}")
+    if not np.all(np.isfinite(b_factors)) or np.any(b_factors <= -99.995) or np.any(b_factors >= 999.995):
+        raise ValueError("b_factors must be finite and lie in (-100, 1000) to fit columns 61-66")
+
     lines = []
     if title is not None:
         t = str(title)
@@ -716,7 +728,7 @@ def write_pdb(
         lines.append(
             f"{rec:<6}{(i + 1) % 100000:>5} {name:<4} {residue_names[i]:>3} {chains[i]:1}"
             f"{int(residue_numbers[i]):>4}    {c[i, 0]:8.3f}{c[i, 1]:8.3f}{c[i, 2]:8.3f}"
-            f"{1.0:6.2f}{0.0:6.2f}          {elements[i].upper():>2}"
+            f"{1.0:6.2f}{b_factors[i]:6.2f}          {elements[i].upper():>2}"
         )
     lines.append("END")
     out = Path(path)

@@ -1,0 +1,564 @@
+"""A CASTp-style report of the voids and pockets of a molecule, offline (Notes §23.1).
+
+Notes §23.1, "Voids and pockets": a *void* is a bounded component of the complement
+of the union of balls; a *pocket* is a dent of the surface that closes into a void
+as the balls grow.  :func:`report` finds both in the solvent-accessible (SA) model,
+measures each in the SA and in the van der Waals (vdW) model, lists its mouths
+(pockets) and the atoms and residues lining it, and :class:`CavityReport` writes the
+result as CSV, Markdown and a PDB file with the lining atoms marked -- the tables
+that CASTp (Liang, Edelsbrunner & Woodward, "Anatomy of protein pockets and cavities:
+measurement of binding site geometry and implications for ligand design", *Protein
+Science* 7 (1998) 1884–1897) serves online, computed here without a server.
+
+Run as a program::
+
+    python -m shapelab.report FILE.pdb [--probe 1.4] [--out DIR] [--chain A] [--hetatm]
+
+prints the Markdown table and writes ``<stem>_cavities.csv``, ``.md`` and ``.pdb`` to
+``DIR``.  A malformed or empty PDB file exits with status 2 and one line on stderr,
+and writes nothing.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import io as _stdio
+import os
+import sys
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+__all__ = ["CavityRow", "CavityReport", "report", "main"]
+
+#: Wall area (Å²) below which an atom does not count as lining a cavity (round-off).
+LINING_MIN_AREA = 1e-8
+
+
+# ============================================================================ results
+@dataclass(frozen=True)
+class CavityRow:
+    """One void or pocket of a :class:`CavityReport`.
+
+    Attributes
+    ----------
+    kind : str
+        ``"void"`` or ``"pocket"``.
+    id : int
+        1, 2, ... over the whole report (voids first, each kind by SA volume,
+        largest first); the value written in the B-factor column of the PDB file.
+    volume_sa, area_sa : float
+        Free volume (Å³) of the cavity's Delaunay cells in the SA model and the area
+        (Å²) of the SA surface inside them (the cavity's wall; for a pocket the mouth
+        is not wall).  Exact.
+    volume_vdw, area_vdw : float
+        The same cells measured in the vdW model (radii without the probe).  Exact.
+    mouths : int
+        Connected components of the mouth triangles (0 for a void).
+    mouth_area, mouth_perimeter : float
+        Free area (Å²) of the mouth triangles in the SA model -- the opening a probe
+        centre passes through -- and the length (Å) of its rim, the circle arcs where
+        the SA spheres cut the mouth triangles.  0 for a void.
+    birth, death : float
+        Persistence of the feature in the growth parameter τ (Å²): for a void
+        ``Void.born``/``Void.dies``, for a pocket ``Pocket.closes_at``/``fills_at``.
+    lining_atoms : tuple of int
+        Indices (into the structure's atoms) of the atoms whose SA sphere bounds the
+        cavity: positive wall area inside its cells.
+    lining_atom_names : tuple of str
+        Their atom names (``""`` for bare balls).
+    lining_residues : tuple of (str, str, int)
+        Distinct ``(chain, residue name, residue number)`` of the lining atoms, in
+        atom order (empty for bare balls).  Insertion codes are not told apart.
+    """
+
+    kind: str
+    id: int
+    volume_sa: float
+    area_sa: float
+    volume_vdw: float
+    area_vdw: float
+    mouths: int
+    mouth_area: float
+    mouth_perimeter: float
+    birth: float
+    death: float
+    lining_atoms: tuple
+    lining_atom_names: tuple
+    lining_residues: tuple
+
+    @property
+    def persistence(self) -> float:
+        """``death - birth``."""
+        return self.death - self.birth
+
+    def residue_labels(self) -> list[str]:
+        """Lining residues as labels, e.g. ``['A:LEU99', ...]`` (``':LEU99'`` without chain)."""
+        return [f"{c}:{n}{s}" for c, n, s in self.lining_residues]
+
+
+_COLUMNS = (
+    "kind",
+    "id",
+    "volume_sa",
+    "area_sa",
+    "volume_vdw",
+    "area_vdw",
+    "mouths",
+    "mouth_area",
+    "mouth_perimeter",
+    "birth",
+    "death",
+    "persistence",
+    "n_lining_atoms",
+    "lining_residues",
+    "lining_atoms",
+)
+
+
+@dataclass(frozen=True)
+class CavityReport:
+    """The voids and pockets of a structure: the rows of :func:`report`.
+
+    Attributes
+    ----------
+    rows : tuple of CavityRow
+    probe : float
+        The probe radius (Å) of the SA model.
+    name : str
+        The structure's name (file stem, or what was passed to :func:`report`).
+    tau : float
+        The growth time the cavities were found at.
+    structure : object
+        The :class:`~shapelab.io.PDBStructure` or :class:`~shapelab.Balls` reported
+        on (for the PDB output); not compared.
+    """
+
+    rows: tuple
+    probe: float
+    name: str
+    tau: float = 0.0
+    structure: object = field(default=None, compare=False, repr=False)
+
+    def __len__(self) -> int:
+        return len(self.rows)
+
+    @property
+    def voids(self) -> tuple:
+        """The rows of kind ``"void"``."""
+        return tuple(r for r in self.rows if r.kind == "void")
+
+    @property
+    def pockets(self) -> tuple:
+        """The rows of kind ``"pocket"``."""
+        return tuple(r for r in self.rows if r.kind == "pocket")
+
+    # ----------------------------------------------------------------- formats
+    def _csv_text(self) -> str:
+        buf = _stdio.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        w.writerow(_COLUMNS)
+        for r in self.rows:
+            w.writerow(
+                [
+                    r.kind,
+                    r.id,
+                    f"{r.volume_sa:.6f}",
+                    f"{r.area_sa:.6f}",
+                    f"{r.volume_vdw:.6f}",
+                    f"{r.area_vdw:.6f}",
+                    r.mouths,
+                    f"{r.mouth_area:.6f}",
+                    f"{r.mouth_perimeter:.6f}",
+                    f"{r.birth:.6f}",
+                    f"{r.death:.6f}",
+                    f"{r.persistence:.6f}",
+                    len(r.lining_atoms),
+                    " ".join(r.residue_labels()),
+                    " ".join(str(i) for i in r.lining_atoms),
+                ]
+            )
+        return buf.getvalue()
+
+    def to_csv(self, path) -> Path:
+        """Write the rows as CSV (one row per feature, columns as :class:`CavityRow`)."""
+        out = Path(path)
+        out.write_text(self._csv_text(), encoding="utf-8")
+        return out
+
+    def to_markdown(self) -> str:
+        """The rows as a Markdown table headed by the structure's name and the probe."""
+        lines = [
+            f"## Cavities of {self.name} (probe {self.probe:g} Å, τ = {self.tau:g})",
+            "",
+            f"{len(self.voids)} voids, {len(self.pockets)} pockets.  Volumes in Å³, areas in Å², "
+            "lengths in Å; SA = solvent-accessible model, vdW = van der Waals model.",
+            "",
+            "| kind | id | V SA | A SA | V vdW | A vdW | mouths | mouth area | mouth perimeter "
+            "| birth | death | lining atoms | lining residues |",
+            "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|",
+        ]
+        for r in self.rows:
+            lines.append(
+                f"| {r.kind} | {r.id} | {r.volume_sa:.2f} | {r.area_sa:.2f} | {r.volume_vdw:.2f} "
+                f"| {r.area_vdw:.2f} | {r.mouths} | {r.mouth_area:.2f} | {r.mouth_perimeter:.2f} "
+                f"| {r.birth:.3f} | {r.death:.3f} | {len(r.lining_atoms)} | {' '.join(r.residue_labels())} |"
+            )
+        return "\n".join(lines) + "\n"
+
+    def _write_marked_pdb(self, path) -> None:
+        import numpy as np
+
+        from .balls import Balls
+        from .io import PDBStructure, write_pdb
+
+        s = self.structure
+        if s is None:
+            raise ValueError("this CavityReport holds no structure to write as PDB")
+        balls = s.balls if isinstance(s, PDBStructure) else s
+        if not isinstance(balls, Balls):
+            raise TypeError(f"cannot write a PDB file of {type(s).__name__}")
+        mark = np.zeros(len(balls))
+        for r in sorted(self.rows, key=lambda r: -r.id):  # the smallest id wins
+            mark[list(r.lining_atoms)] = r.id
+        title = f"{self.name[:40]} cavities, probe {self.probe:g}: B-factor = feature id"
+        if isinstance(s, PDBStructure):
+            write_pdb(
+                path,
+                balls,
+                s.elements,
+                atom_names=s.atom_names,
+                residue_names=s.residue_names,
+                residue_numbers=s.residue_numbers,
+                chains=s.chains,
+                hetero=s.hetero,
+                title=title,
+                b_factors=mark,
+            )
+        else:
+            write_pdb(path, balls, "C", title=title, b_factors=mark)
+
+    def write(self, out_dir, stem) -> tuple:
+        """Write ``<stem>_cavities.csv``, ``.md`` and ``.pdb`` into ``out_dir``, atomically.
+
+        The three files are first written to temporary files in ``out_dir`` and only
+        renamed into place once all three are complete; on any error the temporary
+        files are removed and no target file is created.  In the PDB file every atom
+        lining a feature carries the feature's id in the B-factor column (the
+        smallest id if it lines several), the others 0.
+
+        Returns
+        -------
+        tuple of pathlib.Path
+            The CSV, Markdown and PDB paths.
+        """
+        out_dir = Path(out_dir)
+        stem = str(stem)
+        if not stem or os.sep in stem or (os.altsep and os.altsep in stem):
+            raise ValueError(f"stem must be a non-empty file name without directories, got {stem!r}")
+        if not out_dir.is_dir():
+            raise FileNotFoundError(f"output directory {os.fspath(out_dir)!r} does not exist")
+        targets = [out_dir / f"{stem}_cavities.{ext}" for ext in ("csv", "md", "pdb")]
+        writers = [
+            self.to_csv,
+            lambda p: Path(p).write_text(self.to_markdown(), encoding="utf-8"),
+            self._write_marked_pdb,
+        ]
+        temps = []
+        try:
+            for t, writer in zip(targets, writers):
+                fd, tmp = tempfile.mkstemp(dir=out_dir, prefix=f".{t.name}.", suffix=".tmp")
+                os.close(fd)
+                temps.append(Path(tmp))
+                writer(tmp)
+            done = []
+            try:
+                for tmp, t in zip(temps, targets):
+                    os.replace(tmp, t)
+                    done.append(t)
+            except BaseException:
+                for t in done:  # an all-or-nothing result: undo the renames made
+                    t.unlink(missing_ok=True)
+                raise
+        finally:
+            for tmp in temps:
+                tmp.unlink(missing_ok=True)
+        return tuple(targets)
+
+
+# ========================================================================= compute
+def _mouth_sections(sa, tau, triangles):
+    """Free area and rim length of each mouth triangle in the SA model.
+
+    The union cut by a triangle's plane is a union of disks (the sections of the
+    balls, squared radii :math:`w_j + \\tau - h_j^2`), and the power diagram of the
+    sections is the section of the power diagram; so the free area of the triangle
+    and the length of the section circles inside it are the 2D
+    :func:`~shapelab.freespace.free_space` of the triangle among those disks.
+    """
+    import numpy as np
+    from scipy.spatial import cKDTree
+
+    from .balls import Balls
+    from .freespace import free_space
+
+    C = sa.centers
+    w = sa.weights + tau
+    area = np.zeros(len(triangles))
+    rim = np.zeros(len(triangles))
+    if len(triangles) == 0:
+        return area, rim
+    tree = cKDTree(C)
+    rmax = float(np.sqrt(max(w.max(), 0.0)))
+    for m, tri in enumerate(np.asarray(triangles, dtype=np.int64)):
+        X = C[tri]
+        n = np.cross(X[1] - X[0], X[2] - X[0])
+        nn = np.linalg.norm(n)
+        if nn == 0:
+            continue
+        n /= nn
+        e1 = (X[1] - X[0]) / np.linalg.norm(X[1] - X[0])
+        e2 = np.cross(n, e1)
+        o = X.mean(axis=0)
+        reach = float(np.max(np.linalg.norm(X - o, axis=1))) + rmax
+        cand = np.asarray(tree.query_ball_point(o, reach), dtype=np.int64)
+        cand = cand[~np.isin(cand, tri)]
+        rel = C[cand] - X[0]
+        h = rel @ n
+        rho2 = w[cand] - h * h
+        keep = rho2 > 0
+        cand, rel, rho2 = cand[keep], rel[keep], rho2[keep]
+        P = np.vstack([(X - X[0]) @ np.stack([e1, e2], axis=1), rel @ np.stack([e1, e2], axis=1)])
+        R = np.sqrt(np.r_[np.maximum(w[tri], 0.0), rho2])
+        fs = free_space(Balls(P, R), 0.0, np.array([[0, 1, 2]]))
+        area[m] = fs.measure[0]
+        rim[m] = fs.wall[0]
+    return area, rim
+
+
+def _components(triangles) -> list:
+    """Groups (lists of row indices) of triangles connected through shared edges."""
+    import numpy as np
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    t = np.sort(np.asarray(triangles, dtype=np.int64).reshape(-1, 3), axis=1)
+    q = t.shape[0]
+    if q == 0:
+        return []
+    edges = np.concatenate([t[:, [0, 1]], t[:, [0, 2]], t[:, [1, 2]]])
+    _, eid = np.unique(edges, axis=0, return_inverse=True)
+    eid = eid.ravel()
+    tri_of = np.tile(np.arange(q), 3)
+    ne = int(eid.max()) + 1
+    g = coo_matrix((np.ones(3 * q), (tri_of, q + eid)), shape=(q + ne, q + ne))
+    _, lab = connected_components(g, directed=False)
+    lab = lab[:q]
+    return [np.flatnonzero(lab == v).tolist() for v in np.unique(lab)]
+
+
+def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> CavityReport:
+    """Voids and pockets of a molecule, measured as CASTp does (Notes §23.1).
+
+    The cavities are found in the solvent-accessible (SA) model, balls of radius
+    van der Waals radius + ``probe``, with :func:`shapelab.voids` and
+    :func:`shapelab.pockets` on its α-filtration (Notes §23.1, "Voids and pockets";
+    Liang, Edelsbrunner & Woodward 1998).  For each one the report gives
+
+    * **SA volume and area**: the free volume of the cavity's Delaunay cells (what no
+      SA ball covers: the space a probe centre can occupy) and the area of the SA
+      surface inside those cells, i.e. the part of the union's boundary facing into
+      the cavity.  Both are exact, from :func:`shapelab.freespace.free_space`: the
+      power-cell decomposition :math:`U \\cap t = \\bigsqcup_i B_i \\cap \\Pi_i \\cap t`
+      in closed form, the wall by the divergence theorem on each clipped ball.  For a
+      void the volume equals ``Void.volume``; for a pocket ``Pocket.volume``.
+    * **vdW volume and area**: the *same cells* (the same region of space) measured
+      in the van der Waals model -- the space inside them that no vdW ball covers, and
+      the area of the vdW surface inside them.  Exact, by the same code.
+    * **mouths** (pockets): the mouth triangles of ``Pocket.mouth`` grouped into
+      components through shared edges; their free area in the SA model (the
+      opening a probe centre passes through) and the length of its rim.
+    * **lining atoms and residues**: atoms with positive SA wall area in the cells.
+    * **persistence**: birth and death of the feature in τ.
+
+    Parameters
+    ----------
+    structure : shapelab.io.PDBStructure or Balls
+        From :func:`shapelab.read_pdb` or :func:`shapelab.datasets.structure`; its
+        balls minus its own ``probe`` are the vdW balls.  Bare 3D :class:`Balls`
+        are taken as vdW balls (no atom or residue names).
+    probe : float, default 1.4
+        Probe radius (Å) added to every vdW radius for the SA model; 1.4 is water.
+    tau : float, default 0.0
+        Growth time of the SA model at which cavities are found and measured (the
+        vdW model is always measured as given).
+    min_persistence : float, default 0.0
+        Keep features with ``death - birth >= min_persistence``.
+    name : str, optional
+        Name shown in the outputs (default ``"structure"``).
+
+    Returns
+    -------
+    CavityReport
+
+    Raises
+    ------
+    TypeError
+        ``probe`` is not a real number, or ``structure`` is neither a
+        PDBStructure nor Balls.
+    ValueError
+        ``probe`` negative or not finite; balls not 3-dimensional.
+
+    Notes
+    -----
+    *Same as CASTp.*  Cavities are regions of empty Delaunay cells of the SA model:
+    CASTp's voids are exactly the bounded components of the complement of the SA
+    union found through the α-shape; SA volumes and areas are of the space a probe
+    centre can reach, measured analytically over those cells (CASTp uses the
+    fractional inclusion–exclusion of Liang et al.; here the exact power-cell
+    decomposition, which agrees for voids and, unlike the fractional sum, is
+    also exact on a pocket's cells, whose mouth is not covered).
+
+    *Different from CASTp.*  (1) Pockets: CASTp finds them by *discrete flow* of
+    empty Delaunay cells towards the hull in the α-shape; here a pocket is the
+    growth-model pocket of Notes §23.1 (a dent that closes into a void later in the
+    filtration), its cells those of the void it becomes.  The two coincide for the
+    clear-cut cases but not in general (nested pockets are all listed here; shallow
+    dents that never close are no pocket here).  (2) The second volume: CASTp reports
+    the *molecular-surface* (Richards/Connolly) volume, bounded by the surface the
+    probe sphere sweeps out; here it is the vdW free space of the same cells, bounded
+    by the bare vdW spheres.  It counts crevices between atoms inside the cells that
+    the probe cannot reach and omits the parts of the probe's sweep beyond the cells,
+    so it is not MS volume and no inequality holds between them in general; both
+    exceed the SA volume.  (3) Mouth area is the free area of the mouth triangles in
+    the SA model, perimeter the length of its rim (CASTp gives SA and MS mouth areas
+    and circumferences).
+    """
+    import math
+
+    import numpy as np
+
+    from .balls import Balls
+    from .cavities import pockets as find_pockets
+    from .cavities import voids as find_voids
+    from .filtration import alpha_filtration
+    from .freespace import free_space
+    from .io import PDBStructure
+
+    if isinstance(probe, (bool, np.bool_)) or not isinstance(probe, (int, float, np.integer, np.floating)):
+        raise TypeError(f"probe must be a real number (Å), got {type(probe).__name__}")
+    probe = float(probe)
+    if not math.isfinite(probe) or probe < 0:
+        raise ValueError(f"probe must be a finite non-negative radius (Å), got {probe!r}")
+    if isinstance(structure, PDBStructure):
+        balls = structure.balls
+        vdw_r = balls.radii - structure.probe
+    elif isinstance(structure, Balls):
+        balls = structure
+        vdw_r = balls.radii
+    else:
+        raise TypeError(f"structure must be a PDBStructure or Balls, got {type(structure).__name__}")
+    if balls.dim != 3:
+        raise ValueError(f"report needs 3D balls (atoms), got dim={balls.dim}")
+    name = "structure" if name is None else str(name)
+    vdw = Balls(balls.centers, np.maximum(vdw_r, 0.0))
+    sa = Balls(balls.centers, vdw.radii + probe)
+    F = alpha_filtration(sa)
+    V = [v for v in find_voids(F, tau) if v.persistence >= min_persistence]
+    P = list(find_pockets(F, tau, min_persistence=min_persistence))
+    feats = [("void", v, v.born, v.dies) for v in V] + [("pocket", p, p.closes_at, p.fills_at) for p in P]
+
+    ids = np.unique(np.concatenate([f.cell_ids for _, f, _, _ in feats])) if feats else np.zeros(0, np.int64)
+    simp = np.asarray(F.simplices(3), dtype=np.int64)
+    fs_sa = free_space(sa, tau, simp[ids])
+    fs_vdw = free_space(vdw, 0.0, simp[ids])
+    row_of = {int(c): k for k, c in enumerate(ids.tolist())}
+
+    labelled = isinstance(structure, PDBStructure)
+    raw = []
+    for kind, f, birth, death in feats:
+        rows = np.array([row_of[int(c)] for c in f.cell_ids.tolist()], dtype=np.int64)
+        sel = np.isin(fs_sa.contact_cell, rows)
+        per_ball = np.bincount(fs_sa.contact_ball[sel], weights=fs_sa.contact_wall[sel], minlength=len(sa))
+        lining = np.flatnonzero(per_ball > LINING_MIN_AREA)
+        n_mouths, m_area, m_rim = 0, 0.0, 0.0
+        if kind == "pocket":
+            n_mouths = len(_components(f.mouth))
+            a, r = _mouth_sections(sa, tau, f.mouth)
+            m_area, m_rim = float(a.sum()), float(r.sum())
+        if labelled:
+            s = structure
+            names = tuple(str(s.atom_names[i]) for i in lining)
+            res = tuple(
+                dict.fromkeys((str(s.chains[i]), str(s.residue_names[i]), int(s.residue_numbers[i])) for i in lining)
+            )
+        else:
+            names = ("",) * len(lining)
+            res = ()
+        raw.append(
+            dict(
+                kind=kind,
+                volume_sa=float(fs_sa.measure[rows].sum()),
+                area_sa=float(fs_sa.wall[rows].sum()),
+                volume_vdw=float(fs_vdw.measure[rows].sum()),
+                area_vdw=float(fs_vdw.wall[rows].sum()),
+                mouths=n_mouths,
+                mouth_area=m_area,
+                mouth_perimeter=m_rim,
+                birth=float(birth),
+                death=float(death),
+                lining_atoms=tuple(int(i) for i in lining),
+                lining_atom_names=names,
+                lining_residues=res,
+            )
+        )
+    raw.sort(key=lambda d: (d["kind"] != "void", -d["volume_sa"]))
+    rows = tuple(CavityRow(id=k + 1, **d) for k, d in enumerate(raw))
+    return CavityReport(rows=rows, probe=probe, name=name, tau=float(tau), structure=structure)
+
+
+# ============================================================================= CLI
+def main(argv=None) -> int:
+    """``python -m shapelab.report FILE.pdb [--probe 1.4] [--out DIR] [--chain A] [--hetatm]``.
+
+    Prints the Markdown table and writes the three files; exit status 2 with a
+    one-line message on stderr, and no files, for an unreadable, malformed or empty
+    PDB file (or a bad option).
+    """
+    ap = argparse.ArgumentParser(
+        prog="python -m shapelab.report",
+        description="CASTp-style report of the voids and pockets of a PDB file (Notes §23.1).",
+    )
+    ap.add_argument("file", help="PDB file (plain or gzip)")
+    ap.add_argument("--probe", type=float, default=1.4, help="probe radius in Å (default 1.4)")
+    ap.add_argument("--out", default=".", help="output directory (default: current directory)")
+    ap.add_argument("--chain", action="append", help="keep only this chain (repeatable)")
+    ap.add_argument("--hetatm", action="store_true", help="keep HETATM records (ligands, ions); water never")
+    args = ap.parse_args(argv)
+
+    from .io import read_pdb
+
+    def fail(msg) -> int:
+        print(f"error: {msg}", file=sys.stderr)
+        return 2
+
+    try:
+        s = read_pdb(args.file, chain=args.chain, hetatm=args.hetatm)
+    except (ValueError, TypeError, OSError) as e:
+        return fail(str(e).splitlines()[0] if str(e) else type(e).__name__)
+    stem = Path(args.file).name
+    for suffix in (".gz", ".pdb", ".ent"):
+        if stem.lower().endswith(suffix):
+            stem = stem[: -len(suffix)]
+    try:
+        rep = report(s, args.probe, name=stem or "structure")
+        rep.write(args.out, stem or "structure")
+    except (ValueError, TypeError, OSError) as e:
+        return fail(str(e).splitlines()[0] if str(e) else type(e).__name__)
+    sys.stdout.write(rep.to_markdown())
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
