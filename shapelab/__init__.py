@@ -55,6 +55,7 @@ _EXPORTS = {
     "voids": "cavities",
     "pockets": "cavities",
     "tunnels": "cavities",
+    "channel_profile": "cavities",
     "Void": "cavities",
     "Pocket": "cavities",
     "Tunnel": "cavities",

@@ -56,6 +56,7 @@ from ._toolkit.unionfind import elder_merges
 from ._toolkit.validate import (
     as_finite_scalar,
     as_tau,
+    check_balls,
     filtration_first,
     readonly,
 )
@@ -63,7 +64,7 @@ from .filtration import as_filtration, derived
 from .freespace import free_measure, vertex_values, void_measure
 from .topology import is_roundoff, reduce_h1, summary
 
-__all__ = ["Void", "Pocket", "Tunnel", "voids", "pockets", "tunnels", "grooves"]
+__all__ = ["Void", "Pocket", "Tunnel", "voids", "pockets", "tunnels", "grooves", "ChannelProfile", "channel_profile"]
 
 
 # ============================================================================ results
@@ -585,3 +586,110 @@ def grooves(F, tau=0.0, *, min_persistence=0.0) -> tuple:
     tau = as_tau(tau)
     mp = as_finite_scalar(min_persistence, "min_persistence", nonnegative=True)
     return _h1_classes(F, tau, lambda b, d: (b > tau) & (d - b >= mp), "grooves")
+
+
+# ===================================================================== channel radius
+@dataclass(frozen=True, eq=False)
+class ChannelProfile:
+    """The free radius along a channel: the result of :func:`channel_profile`.
+
+    Attributes
+    ----------
+    offsets : ndarray, shape (k,)
+        Positions along the axis (length units from ``point``).
+    radius : ndarray, shape (k,)
+        In each cross-section, the radius of the largest sphere centred in it that
+        overlaps no ball (negative where the balls cover the whole neighbourhood).
+    centers : ndarray, shape (k, 3)
+        The centres of those spheres.
+    """
+
+    offsets: np.ndarray
+    radius: np.ndarray
+    centers: np.ndarray
+
+    @property
+    def bottleneck(self) -> float:
+        """The smallest free radius along the channel."""
+        return float(self.radius.min())
+
+
+def channel_profile(balls, point, direction, offsets, *, search: float = 3.0) -> ChannelProfile:
+    """The free radius along a channel, slice by slice (in the manner of the HOLE program).
+
+    In the plane through ``point + s * direction`` perpendicular to ``direction``, for
+    each offset ``s``, find the point ``x`` farthest from the balls, maximising
+    :math:`\\min_i(\\lVert x - c_i\\rVert - r_i)` (Nelder–Mead, started from the previous
+    slice's answer and from the axis, kept within ``search`` of the axis).  That value is
+    the radius of the largest probe sphere centred in the slice; its minimum along the
+    channel is the bottleneck that a tunnel's death time τ measures in the growth model
+    (Notes §23.1, tunnels).
+
+    Parameters
+    ----------
+    balls : Balls
+        3D balls (van der Waals radii for a molecule).
+    point, direction : array_like, shape (3,)
+        A point on the channel's axis and the axis' direction.
+    offsets : array_like, shape (k,)
+        Where to slice, along ``direction`` from ``point``.
+    search : float
+        How far from the axis a slice's centre may move.
+
+    Returns
+    -------
+    ChannelProfile
+    """
+    from scipy.optimize import minimize
+    from scipy.spatial import cKDTree
+
+    from ._toolkit.validate import as_finite_scalar, as_points
+
+    balls = check_balls(balls, "balls", dim=3)
+    point = as_points(np.reshape(point, (1, -1)), "point", dim=3)[0]
+    direction = as_points(np.reshape(direction, (1, -1)), "direction", dim=3)[0]
+    norm = float(np.linalg.norm(direction))
+    if not norm > 0:
+        raise ValueError("direction must be a nonzero vector")
+    u = direction / norm
+    offsets = as_points(np.reshape(offsets, (-1, 1)), "offsets").ravel()
+    search = as_finite_scalar(search, "search", positive=True)
+    if len(balls) == 0:
+        raise ValueError("balls must not be empty")
+    # an orthonormal basis (e1, e2) of the slices
+    e1 = np.cross(u, [1.0, 0.0, 0.0] if abs(u[0]) < 0.9 else [0.0, 1.0, 0.0])
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(u, e1)
+    C, r = balls.centers, balls.radii
+    tree = cKDTree(C)
+    k_near = min(len(C), 32)
+    rmax = float(r.max())
+
+    def clearance(x3):
+        # min_i |x - c_i| - r_i, exactly: the k nearest centres decide unless radii differ a lot
+        d, idx = tree.query(x3, k=k_near)
+        d, idx = np.atleast_1d(d), np.atleast_1d(idx)
+        best = float(np.min(d - r[idx]))
+        if k_near < len(C) and d[-1] - rmax < best:  # a far big ball could be closer: check all
+            best = float(np.min(np.linalg.norm(C - x3, axis=1) - r))
+        return best
+
+    radius, centers, prev = np.empty(len(offsets)), np.empty((len(offsets), 3)), np.zeros(2)
+    for k, s in enumerate(offsets):
+        origin = point + s * u
+
+        def cost(y, origin=origin):
+            y = np.asarray(y)
+            excess = max(0.0, float(np.hypot(*y)) - search)
+            return -clearance(origin + y[0] * e1 + y[1] * e2) + 10.0 * excess
+
+        starts = [prev, np.zeros(2)]
+        runs = [minimize(cost, y0, method="Nelder-Mead", options={"xatol": 1e-4, "fatol": 1e-6}) for y0 in starts]
+        best = min(runs, key=lambda res: res.fun)
+        y = best.x
+        prev = y
+        centers[k] = origin + y[0] * e1 + y[1] * e2
+        radius[k] = clearance(centers[k])
+    for a in (offsets, radius, centers):
+        a.flags.writeable = False
+    return ChannelProfile(offsets, radius, centers)

@@ -544,3 +544,26 @@ def test_the_filtration_keyword_is_gone(fn):
     # the filtration or the balls
     F = sl.alpha_filtration(balls)
     assert len(sl.voids(F, 0.0)) == len(sl.voids(balls, 0.0)) == 1
+
+
+def test_channel_profile_of_stacked_rings_has_the_closed_form_bottleneck():
+    """Rings of n unit balls on circles of radius R about the z axis, at heights z_k: by
+    symmetry the best centre in a slice is on the axis, where the free radius is the closed
+    form min_k sqrt(R_k^2 + (z - z_k)^2) - 1; the narrowest ring is the bottleneck."""
+    import shapelab as sl
+
+    n, rows = 12, []
+    for z, R in ((0.0, 3.0), (1.5, 2.5), (3.0, 3.0)):
+        t = 2 * np.pi * np.arange(n) / n
+        rows.append(np.column_stack([R * np.cos(t), R * np.sin(t), np.full(n, z)]))
+    balls = sl.Balls(np.vstack(rows), 1.0)
+    prof = sl.channel_profile(balls, [0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.5, 3.0])
+    rings = ((0.0, 3.0), (1.5, 2.5), (3.0, 3.0))
+    expected = [min(np.hypot(R, z - zk) - 1.0 for zk, R in rings) for z in (0.0, 1.5, 3.0)]
+    assert prof.radius == pytest.approx(expected, abs=1e-6)
+    assert prof.bottleneck == pytest.approx(1.5, abs=1e-6)
+    assert np.allclose(prof.centers[:, :2], 0.0, atol=1e-3)
+    with pytest.raises(ValueError, match="direction"):
+        sl.channel_profile(balls, [0, 0, 0], [0, 0, 0], [0.0])
+    with pytest.raises(TypeError, match="balls"):
+        sl.channel_profile(np.zeros((3, 3)), [0, 0, 0], [0, 0, 1], [0.0])

@@ -34,6 +34,7 @@ _EXPORTS = {
     "voids": "topology",
     "pockets": "topology",
     "tunnels": "topology",
+    "channel_profile": "topology",
     # matching.py
     "critical_points": "matching",
     "critical_surface": "matching",

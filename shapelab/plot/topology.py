@@ -22,7 +22,7 @@ from matplotlib.ticker import MaxNLocator
 from .._toolkit.validate import as_finite_scalar, as_tau, filtration_first
 from ._style import COLORS, PAGE, PALETTE, new_figure, style
 
-__all__ = ["persistence_diagram", "barcode", "betti_curve", "voids", "pockets", "tunnels"]
+__all__ = ["persistence_diagram", "barcode", "betti_curve", "voids", "pockets", "tunnels", "channel_profile"]
 
 _MARKERS = ("o", "s", "^", "D")
 _SUB = "₀₁₂₃"
@@ -829,3 +829,43 @@ def _tag(ax, balls, cells, text):
         return
     x = _label_point(balls, cells)
     ax.annotate(text, x, ha="center", va="center", fontsize=8, zorder=6, color="white", fontweight="bold")
+
+
+def channel_profile(profile, *, reference: dict | None = None, ax=None, title: str | None = None):
+    """The free radius along a channel (:func:`shapelab.channel_profile`), bottleneck marked.
+
+    Parameters
+    ----------
+    profile : ChannelProfile
+    reference : dict of str → float, optional
+        Radii to draw as horizontal lines (e.g. the bottleneck the tunnel's death gives).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    if not all(hasattr(profile, a) for a in ("offsets", "radius", "bottleneck")):
+        raise TypeError(f"profile must be a ChannelProfile, got {type(profile).__name__}")
+    if ax is None:
+        fig, ax = new_figure()
+    else:
+        fig = ax.get_figure()
+    with style():
+        ax.plot(profile.offsets, profile.radius, color=PALETTE[0], lw=2, label="free radius")
+        k = int(np.argmin(profile.radius))
+        ax.plot(
+            profile.offsets[k],
+            profile.radius[k],
+            "o",
+            color=PALETTE[3],
+            ms=9,
+            label=f"bottleneck {profile.radius[k]:.2f} Å",
+        )
+        for j, (label, value) in enumerate((reference or {}).items()):
+            ax.axhline(float(value), color=PALETTE[(j + 1) % len(PALETTE)], ls="--", lw=1.5, label=label)
+        ax.set_xlabel("position along the axis (Å)")
+        ax.set_ylabel("radius (Å)")
+        ax.set_ylim(bottom=0)
+        ax.legend(loc="upper center", frameon=False)
+        ax.set_title(title or "Free radius along the channel")
+    return fig
