@@ -469,5 +469,7 @@ def test_sample_shape():
     assert np.allclose(np.abs(sample_shape("cube", 20)).max(axis=1), 1.0)
     e = sample_shape("ellipsoid", 20)
     assert np.allclose(((e / [1.0, 0.75, 0.55]) ** 2).sum(1), 1.0)
+    t = sample_shape("torus", 40, seed=2)  # on the torus of radii 1 and 0.4 about z
+    assert np.allclose((np.hypot(t[:, 0], t[:, 1]) - 1.0) ** 2 + t[:, 2] ** 2, 0.4**2)
     with pytest.raises(ValueError, match="kind must be one of"):
-        sample_shape("torus", 10)
+        sample_shape("klein bottle", 10)
