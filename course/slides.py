@@ -106,6 +106,8 @@ def prepare(nb, with_solutions: bool) -> tuple[nbformat.NotebookNode, Counter]:
         t = slide_type(cell)
         if t not in SLIDE_TYPES:
             raise ValueError(f"unknown slide_type {t!r} (use one of {', '.join(SLIDE_TYPES)})")
+        if _drop_inline_libraries(cell):
+            counts["3Dmol.js copies left to vendor/"] += 1
         if cell.cell_type == "code" and t not in ("skip", "notes") and _has_figure(cell):
             # the audience needs the figure, not the code that drew it: the figure gets a
             # slide of its own (a sub-slide where it was a fragment), without the code
@@ -120,6 +122,24 @@ def prepare(nb, with_solutions: bool) -> tuple[nbformat.NotebookNode, Counter]:
         cells.append(cell)
     nb.cells = _split_long_slides(cells, counts)
     return nb, counts
+
+
+def _drop_inline_libraries(cell) -> bool:
+    """Drop the inline copy of 3Dmol.js that a ``view3d`` output carries in JupyterLab:
+    the deck loads it once from ``vendor/3dmol/`` (and the library's own code names
+    remote URLs, for features the course never uses).  True if one was dropped."""
+    from shapelab.plot.viewer3d import without_library
+
+    dropped = False
+    for out in cell.get("outputs", []):
+        html = out.get("data", {}).get("text/html")
+        if html is None:
+            continue
+        text = "".join(html) if isinstance(html, list) else html
+        if "data-shapelab-library" in text:
+            out["data"]["text/html"] = without_library(text)
+            dropped = True
+    return dropped
 
 
 #: the height of a slide's content, in the deck's pixels (1280 x 720, title included),
