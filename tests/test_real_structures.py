@@ -47,3 +47,72 @@ def test_persistence_of_a_real_protein_equals_gudhi_exact(name, probe):
         a, b = rounded(ours.get(k, np.empty((0, 2)))), rounded(theirs[k])
         assert a.shape[0] == b.shape[0], (k, a.shape, b.shape)
         assert bottleneck(a, b) <= 2e-7, k
+
+
+# ------------------------------------------------------- reading, against peers
+def _plain_text(name, tmp_path):
+    import gzip
+
+    path = datasets.structure_path(name)
+    data = gzip.open(path).read() if str(path).endswith(".gz") else path.read_bytes()
+    out = tmp_path / f"{name}.pdb"
+    out.write_bytes(data)
+    return out
+
+
+def _independent_heavy_atoms(path):
+    """ATOM records of the first model, one per (chain, residue, insertion, name) (altlocs
+    collapsed), without hydrogens: element from columns 77-78, else the first letter of
+    the atom name once digits are stripped.  Written without shapelab's reader."""
+    seen = set()
+    for line in path.read_text().splitlines():
+        if line.startswith("ENDMDL"):
+            break
+        if not line.startswith("ATOM"):
+            continue
+        name = line[12:16].strip()
+        element = line[76:78].strip() if len(line) >= 78 else ""
+        element = element or name.lstrip("0123456789")[:1]
+        if element.upper() in ("H", "D"):
+            continue
+        seen.add((line[21], line[22:26], line[26], name))
+    return len(seen)
+
+
+@pytest.mark.parametrize("name", ["1hvr", "4ake", "1ake", "1grm", "t4l-l99a", "1fmo"])
+def test_atom_counts_agree_with_freesasa_and_an_independent_reading(name, tmp_path):
+    freesasa = pytest.importorskip("freesasa")
+    freesasa.setVerbosity(freesasa.silent)
+    path = _plain_text(name, tmp_path)
+    # every atom of the ATOM records, hydrogens included: freesasa's own PDB reader
+    assert (
+        len(sl.read_pdb(path, hetatm=False, hydrogens=True))
+        == freesasa.Structure(str(path), options={"hydrogen": True}).nAtoms()
+    )
+    # heavy atoms: a reading written here from the fixed columns
+    assert len(sl.read_pdb(path, hetatm=False)) == _independent_heavy_atoms(path)
+
+
+def test_adenylate_kinase_superposition_rmsd_equals_scipy():
+    """Horn's quaternion and Kabsch's SVD against scipy's Rotation.align_vectors on the
+    same centred Cα pairs of the open (4AKE) and closed (1AKE) forms."""
+    from scipy.spatial.transform import Rotation
+
+    from shapelab.registration import kabsch
+
+    def c_alpha(name):
+        s = datasets.structure(name)
+        keep = (s.atom_names == "CA") & ~s.hetero
+        return s.balls.centers[keep], s.residue_numbers[keep]
+
+    (o, ro), (c, rc) = c_alpha("4ake"), c_alpha("1ake")
+    assert len(o) == 214 and np.array_equal(ro, rc)
+    O, C = o - o.mean(axis=0), c - c.mean(axis=0)
+    rot, rssd = Rotation.align_vectors(C, O)
+    theirs = rssd / np.sqrt(len(O))
+    q = sl.optimal_rotation(O, C)
+    ours = np.sqrt(np.mean(np.sum((q.rotate(O) - C) ** 2, axis=1)))
+    svd = np.sqrt(np.mean(np.sum((O @ kabsch(O, C).T - C) ** 2, axis=1)))
+    assert ours == pytest.approx(theirs, rel=1e-9)
+    assert svd == pytest.approx(theirs, rel=1e-9)
+    assert np.allclose(q.to_matrix(), rot.as_matrix(), atol=1e-9)
