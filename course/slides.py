@@ -226,9 +226,17 @@ def exporter():
 def render(path: Path, out: Path, ex, with_solutions: bool) -> tuple[Path, Counter]:
     nb = nbformat.read(path, as_version=4)
     deck, counts = prepare(nb, with_solutions)
+    has_view3d = any(
+        "shapelab-view3d" in "".join(out.get("data", {}).get("text/html", ""))
+        for cell in deck.cells
+        for out in cell.get("outputs", [])
+    )
     resources = {
         "metadata": {"name": path.stem, "path": str(path.parent)},
-        "offline": {"vendor": VENDOR},
+        # 3Dmol.js is a UMD bundle that defines anonymous AMD modules: loaded after
+        # require.js it breaks require's other loads (reveal.js, the widget manager), so
+        # decks with a view3d load it first, as a plain script
+        "offline": {"vendor": VENDOR, "view3d": has_view3d},
     }
     body, _ = ex.from_notebook_node(deck, resources=resources)
     target = out / f"{path.stem}.slides.html"

@@ -355,11 +355,18 @@ _SCRIPT = """
   }
   if (!window.shapelab3Dmol) {
     window.shapelab3Dmol = new Promise(function (resolve, reject) {
-      // a UMD bundle: hide require.js, if the page has it, so that it defines window.$3Dmol
-      var saved = window.define, tag = document.createElement("script");
-      window.define = undefined;
-      tag.onload = function () { window.define = saved; resolve(); };
-      tag.onerror = function () { window.define = saved; reject(); };
+      // a UMD bundle: under require.js (the decks) load it as an AMD module, never by
+      // hiding the page's define (other scripts load meanwhile and need it)
+      if (typeof window.define === "function" && window.define.amd && typeof window.require === "function") {
+        window.require([base + %(path)s], function (lib) {
+          window.$3Dmol = window.$3Dmol || lib;
+          resolve();
+        }, reject);
+        return;
+      }
+      var tag = document.createElement("script");
+      tag.onload = function () { resolve(); };
+      tag.onerror = function () { reject(); };
       tag.src = base + %(path)s;
       document.head.appendChild(tag);
     });
