@@ -116,3 +116,51 @@ def test_adenylate_kinase_superposition_rmsd_equals_scipy():
     assert ours == pytest.approx(theirs, rel=1e-9)
     assert svd == pytest.approx(theirs, rel=1e-9)
     assert np.allclose(q.to_matrix(), rot.as_matrix(), atol=1e-9)
+
+
+# ------------------------------------------------- measures, against peers and sampling
+@pytest.mark.parametrize("name", ["1hvr", "4ake", "1grm", "t4l-l99a", "1fmo"])
+def test_solvent_accessible_area_equals_freesasa_at_fine_resolution(name):
+    """The exact area of the union (short inclusion-exclusion) against freesasa's
+    Lee-Richards on the same balls.  Lee-Richards converges as the slices thin: the
+    tolerance is three times the change from 500 to 1000 slices (measured per
+    structure, not assumed), plus 1e-4 relative."""
+    freesasa = pytest.importorskip("freesasa")
+    freesasa.setVerbosity(freesasa.silent)
+    s = datasets.structure(name, probe=1.4)
+    ours = sl.union_measure(s.balls).surface_area
+
+    def lee_richards(slices):
+        params = freesasa.Parameters({"algorithm": freesasa.LeeRichards, "n-slices": slices, "probe-radius": 0.0})
+        return freesasa.calcCoord(s.balls.centers.ravel(), s.balls.radii, params).totalArea()
+
+    fine, finer = lee_richards(500), lee_richards(1000)
+    assert abs(ours - finer) <= 3 * abs(finer - fine) + 1e-4 * finer
+
+
+def test_pocket_volume_of_the_hiv_active_site_against_sampling_its_cells():
+    """The largest pocket of HIV-1 protease without its inhibitor (probe 1.4): its exact
+    free volume against points drawn uniformly in its Delaunay cells (each cell chosen
+    by volume, then a uniform barycentric point) and kept when no ball covers them.
+    Seeded; within 4 standard errors."""
+    s = datasets.structure("1hvr", probe=1.4)
+    protein = s.select(~(s.hetero & (s.residue_names == "XK2")))
+    balls = protein.balls
+    site = max(sl.pockets(sl.alpha_filtration(balls)), key=lambda p: p.volume)
+    X = balls.centers[site.cells]  # (m, 4, 3)
+    vol = np.abs(np.linalg.det(X[:, 1:] - X[:, :1])) / 6
+    rng = np.random.default_rng(12)
+    n = 200_000
+    pick = rng.choice(len(vol), size=n, p=vol / vol.sum())
+    bary = rng.dirichlet(np.ones(4), size=n)
+    pts = np.einsum("nk,nkd->nd", bary, X[pick])
+    from scipy.spatial import cKDTree
+
+    near = cKDTree(balls.centers).query_ball_point(pts, balls.radii.max())
+    free = np.array(
+        [all(np.linalg.norm(balls.centers[j] - p) >= balls.radii[j] for j in js) for p, js in zip(pts, near)]
+    )
+    share = free.mean()
+    estimate = share * vol.sum()
+    se = vol.sum() * np.sqrt(share * (1 - share) / n)
+    assert abs(site.volume - estimate) <= 4 * se + 1e-9, (site.volume, estimate, se)
