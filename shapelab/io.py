@@ -225,6 +225,19 @@ class PDBStructure:
         seen = dict.fromkeys(self.residue_label(i) for i in idx)
         return list(seen)
 
+    def c_alpha(self) -> "PDBStructure":
+        """The α-carbons (atom name ``CA`` in ATOM records): one atom per amino-acid
+        residue, the usual points for superposing protein chains (Notes §23.2).
+
+        Examples
+        --------
+        >>> from shapelab.datasets import structure
+        >>> ca = structure("4ake").c_alpha()
+        >>> len(ca), ca.residue_label(0)
+        (214, ':MET1')
+        """
+        return self.select((self.atom_names == "CA") & ~self.hetero)
+
     def select(self, mask) -> "PDBStructure":
         """The atoms where ``mask`` (booleans, or indices) holds, as a new structure.
 
