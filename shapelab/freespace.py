@@ -29,10 +29,10 @@ import numpy as np
 
 from ._toolkit.geometry import cross_rows
 from ._toolkit.validate import as_tau, check_balls
-from .balls import power_distance
-from .filtration import derived
+from .balls import Balls, power_distance
+from .filtration import as_filtration, derived
 
-__all__ = ["free_measure", "free_space", "FreeSpace", "void_measure", "vertex_values", "free_points"]
+__all__ = ["free_area", "free_measure", "free_space", "FreeSpace", "void_measure", "vertex_values", "free_points"]
 
 
 def vertex_values(F, n_balls: int) -> np.ndarray:
@@ -265,42 +265,6 @@ def void_measure(F, balls, tau: float, cell_ids: np.ndarray) -> np.ndarray:
 
 
 # ================================================================ exact measure
-def _poly_vertices(A, b, eps):
-    """Vertices of the bounded polytope {x : A x <= b} by brute force over d-subsets of
-    its planes (few planes here: a simplex plus the power planes of nearby balls)."""
-    p, d = A.shape
-    idx = _COMBOS[d](p)
-    if idx.shape[0] == 0:
-        return np.empty((0, d))
-    M = A[idx]
-    det = np.linalg.det(M)
-    ok = np.abs(det) > 1e-12 * np.prod(np.linalg.norm(M, axis=2), axis=1)
-    if not np.any(ok):
-        return np.empty((0, d))
-    X = np.linalg.solve(M[ok], b[idx[ok]][..., None])[..., 0]
-    X = X[np.all(X @ A.T <= b + eps, axis=1)]
-    if X.shape[0] <= 1:
-        return X
-    # merge near-duplicates (several plane triples through one vertex)
-    key = np.round(X / (100 * eps)).astype(np.int64)
-    _, first = np.unique(key, axis=0, return_index=True)
-    return X[np.sort(first)]
-
-
-def _combos(d):
-    from functools import lru_cache
-    from itertools import combinations
-
-    @lru_cache(maxsize=64)
-    def f(p):
-        return np.array(list(combinations(range(p), d)), dtype=np.int64).reshape(-1, d)
-
-    return f
-
-
-_COMBOS = {2: _combos(2), 3: _combos(3)}
-
-
 def _segment_integral(kind, h, d, la, lb, r):
     """Vectorised ∫ F(d sec φ) dφ between arclengths la < lb on a line at distance d
     from the foot of the centre; the radial integrals behind disk ∩ polygon (kind 2)
@@ -346,176 +310,353 @@ def _segment_integral(kind, h, d, la, lb, r):
     return out
 
 
-def _ball_clip_measure(A, b, r, eps, keep=0, boundary=False):
-    """Measure of the ball (disk) of radius r at the origin ∩ the bounded polytope
-    {x : A x <= b}: a sum of closed-form radial integrals over the polytope's edges
-    (2D) or its faces' edges (3D), each signed by the side the centre lies on.
-
-    With ``boundary=True`` returns ``(measure, sphere)``, where ``sphere`` is the
-    measure of the sphere (circle) of radius r inside the polytope, from the
-    divergence theorem about the centre: ``d * measure = r * sphere + Σ_f h_f |f ∩ B|``
-    (``h_f`` the signed distance of facet f's plane, ``|f ∩ B|`` the facet's part in the
-    ball), so no further integral is needed."""
-    if A.shape[1] == 3:
-        return _ball_clip_measure3(A, b, r, eps, keep, boundary)
-    nA = np.linalg.norm(A, axis=1)
-    dist = b / nA  # signed distance of the centre to each line
-    if np.any(dist <= -r):
-        return (0.0, 0.0) if boundary else 0.0  # the disk misses a halfplane
-    if np.all(dist >= r):
-        return (np.pi * r * r, 2 * np.pi * r) if boundary else np.pi * r * r
-    V = _poly_vertices(A, b, eps)
-    if V.shape[0] < 3:
-        return (0.0, 0.0) if boundary else 0.0
-    D, LA, LB, S, H = [], [], [], [], []
-    for q in range(A.shape[0]):
-        n = A[q] / nA[q]
-        on = np.abs(V @ n - dist[q]) <= 10 * eps
-        if on.sum() < 2:
-            continue
-        # the edge on this line, oriented counter-clockwise (interior on the left)
-        P = V[on]
-        t = np.array([-n[1], n[0]])
-        P = P[np.argsort(P @ t)]
-        a_, b_ = P[0], P[-1]
-        ab = b_ - a_
-        L = np.linalg.norm(ab)
-        if L <= 0:
-            continue
-        u = ab / L
-        la = a_ @ u
-        D.append(np.linalg.norm(a_ - la * u)), LA.append(la), LB.append(la + L)
-        S.append(np.sign(_cross2(ab, -a_)))
-        H.append(dist[q])
-    if not D:
-        return (0.0, 0.0) if boundary else 0.0
-    D, LA, LB, S, H = (np.asarray(x, dtype=np.float64) for x in (D, LA, LB, S, H))
-    I = _segment_integral(2, np.zeros_like(D), D, LA, LB, np.full(D.shape, r))
-    area = float(np.sum(S * I))
-    if not boundary:
-        return area
-    # chord of each edge inside the disk, weighted by the edge line's signed distance
-    half = np.sqrt(np.maximum(r * r - D * D, 0.0))
-    chord = np.maximum(np.minimum(LB, half) - np.maximum(LA, -half), 0.0)
-    return area, max((2.0 * area - float(np.sum(H * chord))) / r, 0.0)
+@lru_cache(maxsize=128)
+def _subsets(k: int, d: int) -> np.ndarray:
+    """All d-subsets of range(k), as rows."""
+    return np.array(list(combinations(range(k), d)), dtype=np.int64).reshape(-1, d)
 
 
-@lru_cache(maxsize=64)
-def _triples(p):
-    return np.array(list(combinations(range(p), 3)), dtype=np.int64).reshape(-1, 3)
-
-
-def _vertices3(A, b, eps):
-    """Vertices of the bounded polytope {x : A x <= b} (rows of A unit normals):
-    every triple of planes solved by Cramer's rule, kept if feasible."""
-    idx = _triples(A.shape[0])
-    na, nb, nc = A[idx[:, 0]], A[idx[:, 1]], A[idx[:, 2]]
-    bc, ca, ab = cross_rows(nb, nc), cross_rows(nc, na), cross_rows(na, nb)
-    det = (na * bc).sum(1)
-    ok = np.abs(det) > 1e-12
-    X = (b[idx[ok, 0], None] * bc[ok] + b[idx[ok, 1], None] * ca[ok] + b[idx[ok, 2], None] * ab[ok]) / det[ok, None]
-    X = X[np.all(X @ A.T <= b + eps, axis=1)]
-    if X.shape[0] <= 1:
-        return X
-    key = np.round(X / (100 * eps)).astype(np.int64)
-    _, first = np.unique(key, axis=0, return_index=True)
-    return X[np.sort(first)]
-
-
-_BOX = np.vstack([np.eye(3), -np.eye(3)])
 _REF = (np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]))
 
+#: elements of the (pairs, plane subsets, planes) residual array per chunk
+_CHUNK = 1 << 21
 
-def _ball_clip_measure3(A, b, r, eps, keep=0, boundary=False):
-    """Volume of the ball of radius r at the origin ∩ the bounded polytope {x : A x <= b}.
 
-    Planes the ball lies inside are dropped, except the first ``keep`` rows (which
-    must bound the polytope on their own; with ``keep=0`` a box around the ball does
-    that instead); the faces of what is left, with their edges in counter-clockwise order,
-    are found at once from the vertex–plane incidences, and the volume is the sum of
-    closed-form radial integrals over those edges (see :func:`_segment_integral`).
+def _clipped_balls(A, h, r, eps, boundary):
+    """Measure of balls clipped by bounded polytopes, many at once.
+
+    Row p is the ball of radius ``r[p]`` at the origin and the polytope
+    :math:`\\{x : A_p x \\le h_p\\}` (``A`` (P, k, d) unit normals, ``h`` (P, k)),
+    bounded by its planes alone.  Returns the measure of the clipped ball and, with
+    ``boundary``, the measure of its sphere inside the polytope (else zeros).
+
+    The polytope's vertices are every d-subset of its planes, solved and kept if
+    feasible (within ``eps[p]``); its faces (edges in 2D) are the planes with
+    enough incident vertices, their edges ordered by angle about the face's centroid.
+    The ball's part is a sum over the edges of closed-form radial integrals
+    (:func:`_segment_integral`), signed by the side the centre lies on; the sphere's
+    part follows by the divergence theorem about the centre,
+    :math:`d\\,|B \\cap Q| = r\\,|\\partial B \\cap Q| + \\sum_f h_f |f \\cap B|`.
     """
-    nA = np.sqrt((A * A).sum(1))
-    dist = b / nA
-    if np.any(dist <= -r):
-        return (0.0, 0.0) if boundary else 0.0
-    cut = dist < r
-    if not np.any(cut):
-        return (4.0 / 3.0 * np.pi * r**3, 4.0 * np.pi * r * r) if boundary else 4.0 / 3.0 * np.pi * r**3
-    if keep:
-        cut[:keep] = True
-        A2, b2 = A[cut] / nA[cut, None], dist[cut]
+    P, k, d = A.shape
+    meas = np.zeros(P)
+    wall = np.zeros(P)
+    idx = _subsets(k, d)
+    step = max(1, _CHUNK // max(idx.shape[0] * k, 1))
+    for s in range(0, P, step):
+        sl = slice(s, s + step)
+        clip = _clip_chunk3 if d == 3 else _clip_chunk2
+        meas[sl], wall[sl] = clip(A[sl], h[sl], r[sl], eps[sl], idx, boundary)
+    return meas, wall
+
+
+@lru_cache(maxsize=128)
+def _pair_index(k: int) -> np.ndarray:
+    """``pid[a, b]``: the row of (a, b) in ``_subsets(k, 2)``."""
+    pid = np.zeros((k, k), dtype=np.int64)
+    pairs = _subsets(k, 2)
+    pid[pairs[:, 0], pairs[:, 1]] = np.arange(pairs.shape[0])
+    return pid
+
+
+def _vertices(A, h, eps, idx):
+    """Feasible vertices of each polytope of a chunk: coordinates, owner row, and the
+    incidence (within ``10 eps``) of each vertex with the owner's planes.
+
+    Each d-subset of planes is solved by Cramer's rule (in 3D from the planes'
+    pairwise cross products, computed once per pair of planes), tested first against
+    the simplex's facets (the first d + 1 planes), then the survivors against all."""
+    P, k, d = A.shape
+    comp = [A[..., c] for c in range(d)]  # (P, k) each
+    hs = [h[:, idx[:, i]] for i in range(d)]
+    if d == 3:
+        u, v = _subsets(k, 2).T
+        ax, ay, az = comp
+        cx = ay[:, u] * az[:, v] - az[:, u] * ay[:, v]
+        cy = az[:, u] * ax[:, v] - ax[:, u] * az[:, v]
+        cz = ax[:, u] * ay[:, v] - ay[:, u] * ax[:, v]
+        pid = _pair_index(k)
+        ibc, iac, iab = pid[idx[:, 1], idx[:, 2]], pid[idx[:, 0], idx[:, 2]], pid[idx[:, 0], idx[:, 1]]
+        a = idx[:, 0]
+        det = ax[:, a] * cx[:, ibc] + ay[:, a] * cy[:, ibc] + az[:, a] * cz[:, ibc]
+        ok = np.abs(det) > 1e-12
+        inv = 1.0 / np.where(ok, det, 1.0)
+        # x = (h_a (n_b × n_c) + h_b (n_c × n_a) + h_c (n_a × n_b)) / det
+        X = [(hs[0] * cc[:, ibc] - hs[1] * cc[:, iac] + hs[2] * cc[:, iab]) * inv for cc in (cx, cy, cz)]
     else:
-        A2 = np.concatenate([A[cut] / nA[cut, None], _BOX])
-        b2 = np.concatenate([dist[cut], np.full(6, 2.0 * r)])
-    V = _vertices3(A2, b2, eps)
-    if V.shape[0] < 4:
-        return (0.0, 0.0) if boundary else 0.0
-    inc = np.abs(V @ A2.T - b2) <= 10 * eps
-    cnt = inc.sum(axis=0)
-    planes = np.flatnonzero(cnt >= 3)
-    sub = inc[:, planes]
-    vi, qi = np.nonzero(sub)
-    q = planes[qi]
-    n = A2[q]
-    c = ((sub.T @ V) / cnt[planes][:, None])[qi]
+        na, nb = A[:, idx[:, 0]], A[:, idx[:, 1]]
+        det = na[..., 0] * nb[..., 1] - na[..., 1] * nb[..., 0]
+        ok = np.abs(det) > 1e-12
+        inv = 1.0 / np.where(ok, det, 1.0)
+        X = [(hs[0] * nb[..., 1] - hs[1] * na[..., 1]) * inv, (na[..., 0] * hs[1] - nb[..., 0] * hs[0]) * inv]
+    # feasible within eps of every plane; incident within 10 eps.  The simplex's
+    # facets (the first d + 1 planes) prune the most, so they go first and the rest
+    # is tested on their survivors only
+    e = eps[:, None]
+    feas = ok
+    near = []
+    for j in range(d + 1):
+        r = X[0] * comp[0][:, j, None] - h[:, j, None]
+        for c in range(1, d):
+            r += X[c] * comp[c][:, j, None]
+        feas &= r <= e
+        near.append(np.abs(r) <= 10 * e)
+    pv, tv = np.nonzero(feas)
+    V = np.stack([x[pv, tv] for x in X], axis=-1)
+    inc = np.empty((pv.size, k), dtype=bool)
+    for j in range(d + 1):
+        inc[:, j] = near[j][pv, tv]
+    ev = eps[pv]
+    keep = np.ones(pv.size, dtype=bool)
+    for j in range(d + 1, k):
+        r = V[:, 0] * comp[0][pv, j] - h[pv, j]
+        for c in range(1, d):
+            r += V[:, c] * comp[c][pv, j]
+        keep &= r <= ev
+        inc[:, j] = np.abs(r) <= 10 * ev
+    return V[keep], pv[keep], inc[keep]
+
+
+def _clip_chunk3(A, h, r, eps, idx, boundary):
+    P, k, _ = A.shape
+    meas = np.zeros(P)
+    wall = np.zeros(P)
+    V, pv, inc = _vertices(A, h, eps, idx)
+    enough = np.bincount(pv, minlength=P) >= 4  # fewer vertices: a flat polytope, no volume
+    ve, qe = np.nonzero(inc & enough[pv, None])
+    pe = pv[ve]
+    gid = pe * k + qe
+    cnt = np.bincount(gid, minlength=P * k)
+    face = cnt[gid] >= 3
+    ve, qe, pe, gid = ve[face], qe[face], pe[face], gid[face]
+    if ve.size == 0:
+        return meas, wall
+    n = A[pe, qe]
+    c = np.stack([np.bincount(gid, weights=V[ve, i], minlength=P * k) for i in range(3)], axis=-1)
+    c = c[gid] / cnt[gid, None]
     ref = np.where(np.abs(n[:, :1]) < 0.6, _REF[0], _REF[1])
     e1 = cross_rows(n, ref)
     e1 /= np.sqrt((e1 * e1).sum(1))[:, None]
     e2 = cross_rows(n, e1)
-    rel = V[vi] - c
+    rel = V[ve] - c
     ang = np.arctan2((rel * e2).sum(1), (rel * e1).sum(1))
-    o = np.lexsort((ang, q))
-    vi, q = vi[o], q[o]
-    m = q.size
-    first = np.concatenate(([True], q[1:] != q[:-1]))
-    last = np.concatenate((q[1:] != q[:-1], [True]))
+    o = np.argsort(gid * 8.0 + ang)  # by face, then by angle (|ang| <= π < 4)
+    ve, qe, pe, gid, n = ve[o], qe[o], pe[o], gid[o], n[o]
+    m = gid.size
+    first = np.concatenate(([True], gid[1:] != gid[:-1]))
+    last = np.concatenate((gid[1:] != gid[:-1], [True]))
     gs = np.maximum.accumulate(np.where(first, np.arange(m), 0))
     nxt = np.arange(1, m + 1)
     nxt[last] = gs[last]
-    a_ = V[vi]
-    ab = V[vi[nxt]] - a_
-    n = A2[q]
-    h = b2[q]
-    foot = h[:, None] * n
+    a_ = V[ve]
+    ab = V[ve[nxt]] - a_
+    hh = h[pe, qe]
+    rr = r[pe]
     L = np.sqrt((ab * ab).sum(1))
-    ok = (L > 0) & (np.abs(h) > 1e-14 * r)
-    a_, ab, L, n, h, foot = a_[ok], ab[ok], L[ok], n[ok], h[ok], foot[ok]
+    ok = (L > 0) & (np.abs(hh) > 1e-14 * rr)
+    a_, ab, L, n, hh, rr, pe = a_[ok], ab[ok], L[ok], n[ok], hh[ok], rr[ok], pe[ok]
+    foot = hh[:, None] * n
     u = ab / L[:, None]
     rel = a_ - foot
     la = (rel * u).sum(1)
     perp = rel - la[:, None] * u
     dd = np.sqrt((perp * perp).sum(1))
     side = np.sign((cross_rows(ab, foot - a_) * n).sum(1))
-    I = _segment_integral(3, h, dd, la, la + L, np.full(h.shape, r))
-    vol = float(np.sum(h / 3.0 * side * I))
-    if not boundary:
-        return vol
-    # the facets' parts in the ball: disks of radius sqrt(r² - h²) clipped by the facet,
-    # from the same edges (kind 2); then the divergence theorem gives the sphere's part
-    rho = np.sqrt(np.maximum(r * r - h * h, 0.0))
-    I2 = _segment_integral(2, h, dd, la, la + L, rho)
-    return vol, max((3.0 * vol - float(np.sum(h * side * I2))) / r, 0.0)
+    integral = _segment_integral(3, hh, dd, la, la + L, rr)
+    meas = np.bincount(pe, weights=hh / 3.0 * side * integral, minlength=P)
+    if boundary:
+        # the facets' parts in the ball: disks of radius sqrt(r² - h²) clipped by the
+        # facet, from the same edges (kind 2); the divergence theorem gives the sphere's part
+        rho = np.sqrt(np.maximum(rr * rr - hh * hh, 0.0))
+        flat = np.bincount(pe, weights=hh * side * _segment_integral(2, hh, dd, la, la + L, rho), minlength=P)
+        wall = np.maximum((3.0 * meas - flat) / r, 0.0)
+    return meas, wall
 
 
-def _simplex_halfspaces(X):
-    """Halfspaces A x <= b of a simplex with vertices X (d+1, d)."""
-    d = X.shape[1]
-    A, b = [], []
-    for j in range(d + 1):
-        o = [i for i in range(d + 1) if i != j]
-        P = X[o]
+def _clip_chunk2(A, h, r, eps, idx, boundary):
+    P, k, _ = A.shape
+    meas = np.zeros(P)
+    wall = np.zeros(P)
+    V, pv, inc = _vertices(A, h, eps, idx)
+    enough = np.bincount(pv, minlength=P) >= 3  # fewer vertices: a flat polygon, no area
+    ve, qe = np.nonzero(inc & enough[pv, None])
+    pe = pv[ve]
+    gid = pe * k + qe
+    cnt = np.bincount(gid, minlength=P * k)
+    edge = cnt[gid] >= 2
+    ve, qe, pe, gid = ve[edge], qe[edge], pe[edge], gid[edge]
+    if ve.size == 0:
+        return meas, wall
+    n = A[pe, qe]
+    s = V[ve, 1] * n[:, 0] - V[ve, 0] * n[:, 1]  # along the tangent (-n1, n0)
+    o = np.lexsort((s, gid))
+    ve, gid = ve[o], gid[o]
+    first = np.flatnonzero(np.concatenate(([True], gid[1:] != gid[:-1])))
+    last = np.flatnonzero(np.concatenate((gid[1:] != gid[:-1], [True])))
+    g = gid[first]
+    pe, qe = g // k, g % k
+    a_, b_ = V[ve[first]], V[ve[last]]
+    ab = b_ - a_
+    L = np.sqrt((ab * ab).sum(1))
+    ok = L > 0
+    a_, ab, L, pe, qe = a_[ok], ab[ok], L[ok], pe[ok], qe[ok]
+    u = ab / L[:, None]
+    la = (a_ * u).sum(1)
+    perp = a_ - la[:, None] * u
+    D = np.sqrt((perp * perp).sum(1))
+    side = np.sign(_cross2(ab, -a_))
+    rr = r[pe]
+    integral = _segment_integral(2, np.zeros_like(D), D, la, la + L, rr)
+    meas = np.bincount(pe, weights=side * integral, minlength=P)
+    if boundary:
+        # chord of each edge inside the disk, weighted by the edge line's signed distance
+        half = np.sqrt(np.maximum(rr * rr - D * D, 0.0))
+        chord = np.maximum(np.minimum(la + L, half) - np.maximum(la, -half), 0.0)
+        flat = np.bincount(pe, weights=h[pe, qe] * chord, minlength=P)
+        wall = np.maximum((2.0 * meas - flat) / r, 0.0)
+    return meas, wall
+
+
+def _cell_geometry(X):
+    """Outward unit facet normals, offsets and measure of simplices ``X`` (M, d+1, d)
+    (facet j opposite vertex j; coordinates centred on each simplex)."""
+    M, k, d = X.shape
+    As = np.empty((M, k, d))
+    bs = np.empty((M, k))
+    for j in range(k):
+        o = [i for i in range(k) if i != j]
+        P0 = X[:, o[0]]
         if d == 2:
-            t = P[1] - P[0]
-            n = np.array([-t[1], t[0]])
+            t = X[:, o[1]] - P0
+            n = np.stack([-t[:, 1], t[:, 0]], axis=-1)
         else:
-            n = np.cross(P[1] - P[0], P[2] - P[0])
-        n = n / np.linalg.norm(n)
-        if n @ (X[j] - P[0]) > 0:
-            n = -n
-        A.append(n)
-        b.append(n @ P[0])
-    return np.array(A), np.array(b)
+            n = cross_rows(X[:, o[1]] - P0, X[:, o[2]] - P0)
+        nn = np.sqrt((n * n).sum(1))
+        n = n / np.where(nn > 0, nn, 1.0)[:, None]
+        n *= np.where(((X[:, j] - P0) * n).sum(1) > 0, -1.0, 1.0)[:, None]
+        As[:, j] = n
+        bs[:, j] = (n * P0).sum(1)
+    E = X[:, 1:] - X[:, :1]
+    if d == 2:
+        meas = 0.5 * np.abs(_cross2(E[:, 0], E[:, 1]))
+    else:
+        meas = np.abs((E[:, 0] * cross_rows(E[:, 1], E[:, 2])).sum(1)) / 6.0
+    return As, bs, meas
+
+
+def _ragged(starts, lengths):
+    """Concatenation of ``range(s, s + n)`` over the rows, and the row of each entry."""
+    lengths = np.asarray(lengths, dtype=np.int64)
+    row = np.repeat(np.arange(lengths.size), lengths)
+    offset = np.arange(row.size) - np.repeat(np.cumsum(lengths) - lengths, lengths)
+    return np.repeat(np.asarray(starts, dtype=np.int64), lengths) + offset, row
+
+
+def _distinct_planes(row, n, hq, As, hs, eps, P):
+    """The planes of each pair with repeats dropped, sorted by pair.
+
+    A plane given twice -- by two identical balls j, or by a power plane that lies on
+    one of the simplex's facets -- would be counted as two faces of the polytope.
+    Two planes are the same when their normals agree to 1e-12 and their offsets to
+    ``10 eps`` (the incidence tolerance of :func:`_vertices`); the first is kept,
+    and the simplex's facet over any power plane.
+    """
+    o = np.lexsort((hq, row))  # by pair, then by offset
+    row, n, hq = row[o], n[o], hq[o]
+    if row.size == 0:
+        return row, n, hq
+    tol = 10.0 * eps[row]
+    dup = np.zeros(row.size, dtype=bool)
+    for f in range(As.shape[1]):  # the simplex's facets
+        dup |= ((As[row, f] * n).sum(1) > 1.0 - 1e-12) & (np.abs(hs[row, f] - hq) <= tol)
+    # among the power planes: compare each with the next ones of its pair while
+    # their offsets stay within the tolerance
+    q = np.arange(row.size)
+    step = 1
+    while q.size:
+        q = q[q + step < row.size]
+        nxt = q + step
+        q = q[(row[nxt] == row[q]) & (hq[nxt] - hq[q] <= tol[q])]
+        nxt = q + step
+        dup[nxt[(n[nxt] * n[q]).sum(1) > 1.0 - 1e-12]] = True
+        step += 1
+    keep = ~dup
+    return row[keep], n[keep], hq[keep]
+
+
+def _measure_pairs(X, As, bs, scale, pm, Z, R, row, D, Rj, beaten, boundary):
+    """Measure of :math:`B_i \\cap \\Pi_i \\cap t` for (simplex t, ball i) pairs.
+
+    ``X``, ``As``, ``bs``, ``scale``: the simplices (centred vertices, facets, size);
+    pair p is simplex ``pm[p]`` and a ball with centre ``Z[p]`` (in the
+    simplex's frame) and radius ``R[p]``.  The power cell's candidate planes come as
+    rows: row q belongs to pair ``row[q]``, whose ball j has centre ``Z + D[q]`` and
+    radius ``Rj[q]``; ``beaten[q]`` says who keeps a tie of identical balls (True: j).
+    Returns the measure and wall of each pair.
+    """
+    d = X.shape[2]
+    P = pm.size
+    meas = np.zeros(P)
+    wall = np.zeros(P)
+    if P == 0:
+        return meas, wall
+    empty = np.zeros(P, dtype=bool)
+    # power plane of (i, j) about centre i: D.x <= (|D|² + R_i² - R_j²) / 2
+    dn = np.sqrt((D * D).sum(1))
+    same = dn == 0
+    empty[row[same & beaten]] = True  # an identical ball that wins the tie covers B_i
+    ri = R[row]
+    hq = (dn * dn + ri * ri - Rj * Rj) / (2.0 * np.where(same, 1.0, dn))
+    empty[row[(hq <= -ri) & ~same]] = True  # B_i wholly beyond the plane
+    q = np.flatnonzero((hq < ri) & ~same)  # the others leave B_i whole
+    row, D, dn, hq = row[q], D[q], dn[q], hq[q]
+    n = D / dn[:, None]
+    # the simplex lies within ``scale`` of its centroid (the frame's origin, at -Z
+    # from centre i): planes farther from it than that leave t whole or miss it
+    s0 = -(n * Z[row]).sum(1) - hq
+    sc = scale[pm[row]]
+    empty[row[s0 > sc]] = True
+    q = np.flatnonzero(np.abs(s0) <= sc)
+    row, n, hq = row[q], n[q], hq[q]
+    # the rest: the simplex's vertices about centre i, along each plane's normal
+    sv = np.repeat((-hq - (n * Z[row]).sum(1))[:, None], d + 1, axis=1)
+    Xr = X[pm[row]]
+    for c in range(d):
+        sv += Xr[:, :, c] * n[:, c, None]
+    empty[row[sv.min(1) > 0]] = True  # t wholly beyond the plane
+    cut = sv.max(1) > 0  # the others leave t whole
+    row, n, hq = row[cut], n[cut], hq[cut]
+    # simplex facets about centre i
+    hs = bs[pm] - np.einsum("pkd,pd->pk", As[pm], Z)
+    empty |= np.any(hs <= -R[:, None], axis=1)
+    eps = 1e-12 * np.maximum(scale[pm], 1e-300)
+    row, n, hq = _distinct_planes(row, n, hq, As[pm], hs, eps, P)
+    live = ~empty
+    nrow = np.bincount(row, minlength=P)
+    full = live & (nrow == 0) & np.all(hs >= R[:, None], axis=1)
+    if d == 3:
+        meas[full] = 4.0 / 3.0 * np.pi * R[full] ** 3
+        wall[full] = 4.0 * np.pi * R[full] ** 2
+    else:
+        meas[full] = np.pi * R[full] ** 2
+        wall[full] = 2.0 * np.pi * R[full]
+    todo = live & ~full
+    keepq = todo[row]
+    row, n, hq = row[keepq], n[keepq], hq[keepq]
+    rank = np.arange(row.size) - np.searchsorted(row, row)  # position among its pair's rows
+    for k in np.unique(nrow[todo]):
+        ps = np.flatnonzero(todo & (nrow == k))
+        at = np.full(P, -1, dtype=np.int64)
+        at[ps] = np.arange(ps.size)
+        A = np.empty((ps.size, d + 1 + k, d))
+        h = np.empty((ps.size, d + 1 + k))
+        A[:, : d + 1] = As[pm[ps]]
+        h[:, : d + 1] = hs[ps]
+        sel = np.flatnonzero(at[row] >= 0)
+        A[at[row[sel]], d + 1 + rank[sel]] = n[sel]
+        h[at[row[sel]], d + 1 + rank[sel]] = hq[sel]
+        meas[ps], wall[ps] = _clipped_balls(A, h, R[ps], eps[ps], boundary)
+    return meas, wall
 
 
 def free_measure(balls, tau, cells) -> np.ndarray:
@@ -527,12 +668,17 @@ def free_measure(balls, tau, cells) -> np.ndarray:
     decomposition :math:`U \\cap t = \\bigsqcup_i B_i \\cap \\Pi_i \\cap t` (Notes §23.1,
     :math:`U \\cap \\Pi(B_i) = B_i \\cap \\Pi(B_i)`): each piece is a ball clipped by a
     convex polytope, whose volume is a sum over its faces and their edges of
-    closed-form integrals (no sampling).  Costs about a millisecond per simplex and
-    ball meeting it: meant for pockets and checks, not for millions of cells.
+    closed-form integrals (no sampling).  All (simplex, ball) pieces are measured at
+    once, vectorised: about 20 µs per piece (the report of a 2800-atom protein
+    measures some 11,000 of them in its two models).
 
     Parameters
     ----------
-    balls : Balls
+    balls : Balls or Filtration
+        The balls, or their :func:`~shapelab.alpha_filtration`: then only the planes
+        of its edges in :math:`K_\\tau` cut the power cells (by duality those are
+        all the facets of :math:`B_i \\cap \\Pi_i`), which is several times faster
+        on molecules, where many balls overlap each one.  The result is the same.
     tau : float
     cells : array_like, shape (m, d+1), int
         Simplices as ball indices (any simplices, not only Delaunay ones).
@@ -582,7 +728,8 @@ def free_space(balls, tau, cells) -> FreeSpace:
 
     Parameters
     ----------
-    balls : Balls
+    balls : Balls or Filtration
+        As for :func:`free_measure`.
     tau : float
     cells : array_like, shape (m, d+1), int
         Simplices as ball indices (any simplices, not only Delaunay ones).
@@ -594,10 +741,58 @@ def free_space(balls, tau, cells) -> FreeSpace:
     return _free_space(balls, tau, cells, True)
 
 
-def _free_space(balls, tau, cells, boundary):
+def _balls_of(balls, who):
+    """``(balls, F)``: the balls, and the filtration when one was given (else None)."""
+    if isinstance(balls, Balls):
+        return balls, None
+    F = as_filtration(balls, who)
+    return F.balls, F
 
+
+def _neighbours(F, tau, C, R, live, tree, rmax):
+    """Who can cut each restricted power cell :math:`B_i \\cap \\Pi_i`, as a CSR
+    (start, count, other) indexed by ball.
+
+    Without the filtration: every ball overlapping :math:`B_i` (a ball that misses
+    :math:`B_i` cannot cut it).  With it, the edges of :math:`K_\\tau` at i: by
+    duality (Notes §23.1) an edge ij is in :math:`K_\\tau` exactly when
+    :math:`B_i \\cap \\Pi_i` has a facet on the plane :math:`\\Pi_i \\cap \\Pi_j`, so
+    those planes are all it needs.  A ball with no such edge is either inside its
+    power cell or has nothing in it (a facet would make an edge); those few balls,
+    hidden ones included, get every overlapping ball, as without the filtration.
+    """
+
+    def overlapping(a, b):
+        dab = C[a] - C[b]
+        ov = (np.sqrt((dab * dab).sum(1)) < R[a] + R[b]) & (a != b)
+        return a[ov], b[ov]
+
+    if F is None:
+        pairs = tree.query_pairs(2.0 * rmax, output_type="ndarray") if live.size > 1 else np.zeros((0, 2), np.int64)
+        a, b = overlapping(live[pairs[:, 0]], live[pairs[:, 1]])
+        src, dst = np.concatenate([a, b]), np.concatenate([b, a])
+    else:
+        e = np.asarray(F.simplices(1), dtype=np.int64).reshape(-1, 2)
+        e = e[np.asarray(F.values(1)) <= tau]
+        src, dst = np.concatenate([e[:, 0], e[:, 1]]), np.concatenate([e[:, 1], e[:, 0]])
+        lone = live[np.bincount(src, minlength=C.shape[0])[live] == 0]
+        if lone.size:
+            hits = tree.query_ball_point(C[lone], R[lone] + rmax)
+            lens = np.fromiter((len(x) for x in hits), dtype=np.int64, count=lone.size)
+            j = live[np.fromiter((i for x in hits for i in x), dtype=np.int64, count=int(lens.sum()))]
+            a, b = overlapping(np.repeat(lone, lens), j)
+            src, dst = np.concatenate([src, a]), np.concatenate([dst, b])
+    o = np.argsort(src, kind="stable")
+    dst = dst[o]
+    count = np.bincount(src, minlength=C.shape[0])
+    start = np.cumsum(count) - count
+    return start, count, dst
+
+
+def _free_space(balls, tau, cells, boundary):
     from scipy.spatial import cKDTree
 
+    balls, F = _balls_of(balls, "free_space")
     check_balls(balls)
     tau = as_tau(tau)
     d = balls.dim
@@ -606,61 +801,143 @@ def _free_space(balls, tau, cells, boundary):
         raise ValueError(f"cells must be an integer array of shape (m, {d + 1}), got shape {cells.shape}")
     if cells.size and (cells.min() < 0 or cells.max() >= len(balls)):
         raise ValueError(f"cells holds ball indices outside 0..{len(balls) - 1}")
+    M = cells.shape[0]
+    empty = np.zeros(0, dtype=np.int64)
+    if M == 0 or tau == np.inf:  # at τ = inf the balls cover everything
+        return FreeSpace(np.zeros(M), np.zeros(M), empty, empty, np.zeros(0))
     w = balls.weights + tau
-    alive = np.flatnonzero(w >= 0)
-    out = np.zeros(cells.shape[0])
-    wall = np.zeros(cells.shape[0])
-    cc, cb, cw = [], [], []
-
-    def result():
-        ints = lambda x: np.asarray(x, dtype=np.int64)  # noqa: E731
-        return FreeSpace(out, wall, ints(cc), ints(cb), np.asarray(cw, dtype=np.float64))
-
-    if cells.shape[0] == 0 or tau == np.inf:  # at τ = inf the balls cover everything
-        return result()
+    R_all = np.sqrt(np.maximum(w, 0.0))
     C = balls.centers
-    tree = cKDTree(C[alive]) if alive.size else None
-    rmax = float(np.sqrt(w[alive].max())) if alive.size else 0.0
-    for m, cell in enumerate(cells.astype(np.int64)):
-        X0 = C[cell]
-        o = X0.mean(axis=0)
-        X = X0 - o
-        scale = float(np.max(np.linalg.norm(X, axis=1)))
-        if d == 2:
-            meas = 0.5 * abs(float(_cross2(X[1] - X[0], X[2] - X[0])))
-        else:
-            meas = abs(np.dot(X[1] - X[0], np.cross(X[2] - X[0], X[3] - X[0]))) / 6
-        if meas <= 0 or tree is None:
-            out[m] = meas
-            continue
-        As, bs = _simplex_halfspaces(X)
-        cand = alive[tree.query_ball_point(o, scale + rmax)]
-        Z = C[cand] - o
-        R = np.sqrt(w[cand])
-        # a ball misses the simplex if it lies beyond one of its facet planes
-        gap = np.max(Z @ As.T - bs, axis=1)
-        keep = (gap < R) & (R > 0)
-        cand, Z, R = cand[keep], Z[keep], R[keep]
-        eps = 1e-12 * max(scale, 1e-300)
-        covered = 0.0
-        for i in range(cand.shape[0]):
-            # only balls meeting B_i can cut B_i ∩ Π_i (a point of B_i closer in power to
-            # z_j lies in B_j); power halfspaces 2 (z_j - z_i).x <= |z_j|² - |z_i|² - w_j + w_i
-            dz = np.linalg.norm(Z - Z[i], axis=1)
-            js = np.flatnonzero((dz < R + R[i]) & (np.arange(cand.shape[0]) != i))
-            Ap = 2 * (Z[js] - Z[i])
-            bp = (Z[js] ** 2).sum(1) - (Z[i] ** 2).sum() - R[js] ** 2 + R[i] ** 2
-            A = np.vstack([As, Ap])
-            b = np.concatenate([bs, bp])
-            got = _ball_clip_measure(A, b - A @ Z[i], float(R[i]), eps, keep=d + 1, boundary=boundary)
-            if boundary:
-                got, sph = got
-                if sph > 0:
-                    wall[m] += sph
-                    cc.append(m), cb.append(int(cand[i])), cw.append(sph)
-            covered += got
-        out[m] = meas - covered
-    return result()
+    cells = cells.astype(np.int64)
+    X = C[cells]
+    o = X.mean(axis=1)
+    X = X - o[:, None, :]
+    scale = np.sqrt((X * X).sum(2)).max(1)
+    As, bs, out = _cell_geometry(X)
+    live = np.flatnonzero(w > 0)
+    good = np.flatnonzero(out > 0)
+    if live.size == 0 or good.size == 0:
+        return FreeSpace(out, np.zeros(M), empty, empty, np.zeros(0))
+    tree = cKDTree(C[live])
+    rmax = float(R_all[live].max())
+    # (cell, ball) pairs: balls that reach the cell, and not beyond one of its facets
+    hits = tree.query_ball_point(o[good], scale[good] + rmax)
+    lens = np.fromiter((len(x) for x in hits), dtype=np.int64, count=good.size)
+    pm = np.repeat(good, lens)
+    ball = live[np.fromiter((i for x in hits for i in x), dtype=np.int64, count=int(lens.sum()))]
+    Z = C[ball] - o[pm]
+    R = R_all[ball]
+    near = (np.einsum("pd,pkd->pk", Z, As[pm]) - bs[pm]).max(1) < R
+    pm, ball, Z, R = pm[near], ball[near], Z[near], R[near]
+    # power planes: only balls meeting B_i can cut B_i ∩ Π_i (a point of B_i closer
+    # in power to z_j lies in B_j)
+    start, count, other = _neighbours(F, tau, C, R_all, live, tree, rmax)
+    pos, row = _ragged(start[ball], count[ball])
+    j = other[pos]
+    D = C[j] - C[ball[row]]
+    Rj = R_all[j]
+    beaten = (Rj > R[row]) | ((Rj == R[row]) & (j < ball[row]))
+    covered, wall_p = _measure_pairs(X, As, bs, scale, pm, Z, R, row, D, Rj, beaten, boundary)
+    out -= np.bincount(pm, weights=covered, minlength=M)
+    wall = np.bincount(pm, weights=wall_p, minlength=M) if boundary else np.zeros(M)
+    if not boundary:
+        return FreeSpace(out, wall, empty, empty, np.zeros(0))
+    hit = np.flatnonzero(wall_p > 0)
+    order = hit[np.lexsort((ball[hit], pm[hit]))]
+    return FreeSpace(out, wall, pm[order], ball[order], wall_p[order])
+
+
+def free_area(balls, tau, triangles) -> FreeSpace:
+    """Exact free area and rim of triangles in space: a pocket's mouth (Notes §23.1).
+
+    The union cut by a triangle's plane is a union of disks, the sections of the
+    balls (squared radii :math:`w_j + \\tau - h_j^2`, :math:`h_j` the height of
+    centre j over the plane), and the power diagram of the sections is the section
+    of the power diagram.  So the area of the triangle that no ball covers, and the
+    length of the section circles inside it, are :func:`free_space` of the triangle
+    among those disks, in the triangle's plane: exact, no sampling.
+
+    Parameters
+    ----------
+    balls : Balls or Filtration
+        3-dimensional; as for :func:`free_measure`.
+    tau : float
+    triangles : array_like, shape (m, 3), int
+        Triangles as ball indices.
+
+    Returns
+    -------
+    FreeSpace
+        ``measure`` the free area of each triangle, ``wall`` the length of
+        :math:`\\partial U_\\tau` inside it, split by ball in the ``contact_*`` arrays.
+    """
+    from scipy.spatial import cKDTree
+
+    balls, F = _balls_of(balls, "free_area")
+    check_balls(balls)
+    tau = as_tau(tau)
+    if balls.dim != 3:
+        raise ValueError(f"free_area needs 3D balls, got dim={balls.dim}")
+    tri = np.asarray(triangles)
+    if tri.ndim != 2 or tri.shape[1] != 3 or (tri.size and tri.dtype.kind not in "iu"):
+        raise ValueError(f"triangles must be an integer array of shape (m, 3), got shape {tri.shape}")
+    if tri.size and (tri.min() < 0 or tri.max() >= len(balls)):
+        raise ValueError(f"triangles holds ball indices outside 0..{len(balls) - 1}")
+    M = tri.shape[0]
+    empty = np.zeros(0, dtype=np.int64)
+    if M == 0 or tau == np.inf:
+        return FreeSpace(np.zeros(M), np.zeros(M), empty, empty, np.zeros(0))
+    C = balls.centers
+    w = balls.weights + tau
+    T = C[tri.astype(np.int64)]
+    o = T.mean(axis=1)
+    e1 = T[:, 1] - T[:, 0]
+    nrm = cross_rows(e1, T[:, 2] - T[:, 0])
+    nn = np.sqrt((nrm * nrm).sum(1))
+    flat = nn == 0
+    nrm = nrm / np.where(flat, 1.0, nn)[:, None]
+    e1 = e1 / np.maximum(np.sqrt((e1 * e1).sum(1)), 1e-300)[:, None]
+    e2 = cross_rows(nrm, e1)
+    frame = np.stack([e1, e2], axis=-1)  # (m, 3, 2)
+    X = np.einsum("mkd,mde->mke", T - o[:, None, :], frame)
+    scale = np.sqrt((X * X).sum(2)).max(1)
+    As, bs, out = _cell_geometry(X)
+    out[flat] = 0.0
+    live = np.flatnonzero(w > 0)
+    good = np.flatnonzero(out > 0)
+    if live.size == 0 or good.size == 0:
+        return FreeSpace(out, np.zeros(M), empty, empty, np.zeros(0))
+    tree = cKDTree(C[live])
+    rmax = float(np.sqrt(w[live].max()))
+    hits = tree.query_ball_point(o[good], scale[good] + rmax)
+    lens = np.fromiter((len(x) for x in hits), dtype=np.int64, count=good.size)
+    pm = np.repeat(good, lens)
+    ball = live[np.fromiter((i for x in hits for i in x), dtype=np.int64, count=int(lens.sum()))]
+    rel = C[ball] - o[pm]
+    rho2 = w[ball] - np.einsum("pd,pd->p", rel, nrm[pm]) ** 2
+    Z = np.einsum("pd,pde->pe", rel, frame[pm])
+    R = np.sqrt(np.maximum(rho2, 0.0))
+    near = (rho2 > 0) & ((np.einsum("pe,pke->pk", Z, As[pm]) - bs[pm]).max(1) < R)
+    pm, ball, Z, R = pm[near], ball[near], Z[near], R[near]
+    # the sections of the balls that can cut B_i ∩ Π_i (the section of the power
+    # diagram is the power diagram of the sections); a ball whose section is empty
+    # has positive power on the whole plane and cuts nothing there
+    start, count, other = _neighbours(F, tau, C, np.sqrt(np.maximum(w, 0.0)), live, tree, rmax)
+    pos, row = _ragged(start[ball], count[ball])
+    j = other[pos]
+    relj = C[j] - o[pm[row]]
+    rho2j = w[j] - np.einsum("qd,qd->q", relj, nrm[pm[row]]) ** 2
+    keep = rho2j > 0
+    j, row, relj = j[keep], row[keep], relj[keep]
+    D = np.einsum("qd,qde->qe", relj, frame[pm[row]]) - Z[row]
+    Rj = np.sqrt(rho2j[keep])
+    beaten = (Rj > R[row]) | ((Rj == R[row]) & (j < ball[row]))
+    covered, wall_p = _measure_pairs(X, As, bs, scale, pm, Z, R, row, D, Rj, beaten, True)
+    out -= np.bincount(pm, weights=covered, minlength=M)
+    wall = np.bincount(pm, weights=wall_p, minlength=M)
+    hit = np.flatnonzero(wall_p > 0)
+    order = hit[np.lexsort((ball[hit], pm[hit]))]
+    return FreeSpace(out, wall, pm[order], ball[order], wall_p[order])
 
 
 def free_points(balls, tau, cells, n_points, rng) -> np.ndarray:

@@ -288,74 +288,29 @@ class CavityReport:
 
 
 # ========================================================================= compute
-def _mouth_sections(sa, tau, triangles):
-    """Free area and rim length of each mouth triangle in the SA model.
-
-    The union cut by a triangle's plane is a union of disks (the sections of the
-    balls, squared radii :math:`w_j + \\tau - h_j^2`), and the power diagram of the
-    sections is the section of the power diagram; so the free area of the triangle
-    and the length of the section circles inside it are the 2D
-    :func:`~shapelab.freespace.free_space` of the triangle among those disks.
-    """
-    import numpy as np
-    from scipy.spatial import cKDTree
-
-    from .balls import Balls
-    from .freespace import free_space
-
-    C = sa.centers
-    w = sa.weights + tau
-    area = np.zeros(len(triangles))
-    rim = np.zeros(len(triangles))
-    if len(triangles) == 0:
-        return area, rim
-    tree = cKDTree(C)
-    rmax = float(np.sqrt(max(w.max(), 0.0)))
-    for m, tri in enumerate(np.asarray(triangles, dtype=np.int64)):
-        X = C[tri]
-        n = np.cross(X[1] - X[0], X[2] - X[0])
-        nn = np.linalg.norm(n)
-        if nn == 0:
-            continue
-        n /= nn
-        e1 = (X[1] - X[0]) / np.linalg.norm(X[1] - X[0])
-        e2 = np.cross(n, e1)
-        o = X.mean(axis=0)
-        reach = float(np.max(np.linalg.norm(X - o, axis=1))) + rmax
-        cand = np.asarray(tree.query_ball_point(o, reach), dtype=np.int64)
-        cand = cand[~np.isin(cand, tri)]
-        rel = C[cand] - X[0]
-        h = rel @ n
-        rho2 = w[cand] - h * h
-        keep = rho2 > 0
-        cand, rel, rho2 = cand[keep], rel[keep], rho2[keep]
-        P = np.vstack([(X - X[0]) @ np.stack([e1, e2], axis=1), rel @ np.stack([e1, e2], axis=1)])
-        R = np.sqrt(np.r_[np.maximum(w[tri], 0.0), rho2])
-        fs = free_space(Balls(P, R), 0.0, np.array([[0, 1, 2]]))
-        area[m] = fs.measure[0]
-        rim[m] = fs.wall[0]
-    return area, rim
-
-
-def _components(triangles) -> list:
-    """Groups (lists of row indices) of triangles connected through shared edges."""
+def _mouth_counts(mouths) -> list:
+    """Number of mouths of each pocket: its mouth triangles grouped into components
+    through shared edges (one graph for all pockets, whose triangles are kept apart)."""
     import numpy as np
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
 
-    t = np.sort(np.asarray(triangles, dtype=np.int64).reshape(-1, 3), axis=1)
-    q = t.shape[0]
+    tris = [np.sort(np.asarray(m, dtype=np.int64).reshape(-1, 3), axis=1) for m in mouths]
+    sizes = np.array([len(t) for t in tris], dtype=np.int64)
+    q = int(sizes.sum())
     if q == 0:
-        return []
-    edges = np.concatenate([t[:, [0, 1]], t[:, [0, 2]], t[:, [1, 2]]])
+        return [0] * len(tris)
+    t = np.concatenate(tris)
+    owner = np.repeat(np.arange(len(tris)), sizes)
+    # an edge is (pocket, a, b): triangles of two pockets never share one
+    edges = np.concatenate([np.column_stack([owner, t[:, i], t[:, j]]) for i, j in ((0, 1), (0, 2), (1, 2))])
     _, eid = np.unique(edges, axis=0, return_inverse=True)
     eid = eid.ravel()
-    tri_of = np.tile(np.arange(q), 3)
     ne = int(eid.max()) + 1
-    g = coo_matrix((np.ones(3 * q), (tri_of, q + eid)), shape=(q + ne, q + ne))
+    g = coo_matrix((np.ones(3 * q), (np.tile(np.arange(q), 3), q + eid)), shape=(q + ne, q + ne))
     _, lab = connected_components(g, directed=False)
-    lab = lab[:q]
-    return [np.flatnonzero(lab == v).tolist() for v in np.unique(lab)]
+    per = np.unique(np.column_stack([owner, lab[:q]]), axis=0)[:, 0]
+    return np.bincount(per, minlength=len(tris)).tolist()
 
 
 def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> CavityReport:
@@ -443,7 +398,7 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
     from .cavities import pockets as find_pockets
     from .cavities import voids as find_voids
     from .filtration import alpha_filtration
-    from .freespace import free_space
+    from .freespace import free_area, free_space
     from .io import PDBStructure
 
     if isinstance(probe, (bool, np.bool_)) or not isinstance(probe, (int, float, np.integer, np.floating)):
@@ -471,9 +426,17 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
 
     ids = np.unique(np.concatenate([f.cell_ids for _, f, _, _ in feats])) if feats else np.zeros(0, np.int64)
     simp = np.asarray(F.simplices(3), dtype=np.int64)
-    fs_sa = free_space(sa, tau, simp[ids])
+    fs_sa = free_space(F, tau, simp[ids])
     fs_vdw = free_space(vdw, 0.0, simp[ids])
     row_of = {int(c): k for k, c in enumerate(ids.tolist())}
+    # every mouth triangle once: its free area and rim in the SA model
+    mouths = [
+        np.sort(np.asarray(f.mouth, dtype=np.int64).reshape(-1, 3), axis=1) for k, f, _, _ in feats if k == "pocket"
+    ]
+    tris = np.unique(np.concatenate(mouths), axis=0) if mouths else np.zeros((0, 3), np.int64)
+    fa = free_area(F, tau, tris)
+    mouth_count = dict(zip((id(p) for p in P), _mouth_counts([p.mouth for p in P])))
+    tri_row = {tuple(t): k for k, t in enumerate(tris.tolist())}
 
     labelled = isinstance(structure, PDBStructure)
     raw = []
@@ -484,9 +447,11 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
         lining = np.flatnonzero(per_ball > LINING_MIN_AREA)
         n_mouths, m_area, m_rim = 0, 0.0, 0.0
         if kind == "pocket":
-            n_mouths = len(_components(f.mouth))
-            a, r = _mouth_sections(sa, tau, f.mouth)
-            m_area, m_rim = float(a.sum()), float(r.sum())
+            n_mouths = mouth_count[id(f)]
+            mrows = [
+                tri_row[tuple(t)] for t in np.sort(np.asarray(f.mouth, dtype=np.int64).reshape(-1, 3), axis=1).tolist()
+            ]
+            m_area, m_rim = float(fa.measure[mrows].sum()), float(fa.wall[mrows].sum())
         if labelled:
             s = structure
             names = tuple(str(s.atom_names[i]) for i in lining)

@@ -151,21 +151,6 @@ def test_mouth_on_bowl_matches_monte_carlo(bowl_report):
     assert row.mouth_area > 1.0 and row.mouth_perimeter > 0
 
 
-def test_mouth_section_closed_form():
-    # three disjoint balls at the corners of a triangle: free area = T - πr²/2, rim = πr
-    X = np.array([[0.0, 0.0, 0.0], [6.0, 0.0, 0.0], [1.0, 5.0, 0.0]])
-    b = sl.Balls(X, 1.0)
-    area, rim = report_module._mouth_sections(b, 0.0, np.array([[0, 1, 2]]))
-    T = 0.5 * 6.0 * 5.0
-    assert area[0] == pytest.approx(T - math.pi / 2, rel=1e-12)
-    assert rim[0] == pytest.approx(math.pi, rel=1e-12)
-    # a fourth ball cutting the plane at height 0.6 with radius 1: a disk of radius 0.8
-    b4 = sl.Balls(np.vstack([X, [2.5, 1.5, 0.6]]), 1.0)
-    area, rim = report_module._mouth_sections(b4, 0.0, np.array([[0, 1, 2]]))
-    assert area[0] == pytest.approx(T - math.pi / 2 - math.pi * 0.64, rel=1e-12)
-    assert rim[0] == pytest.approx(math.pi + 2 * math.pi * 0.8, rel=1e-12)
-
-
 def test_write_and_read_back(t4l, tmp_path):
     s, rep = t4l
     csv_p, md_p, pdb_p = rep.write(tmp_path, "t4l")
