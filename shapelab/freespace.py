@@ -619,10 +619,15 @@ def _measure_pairs(X, As, bs, scale, pm, Z, R, row, D, Rj, beaten, boundary):
     q = np.flatnonzero(np.abs(s0) <= sc)
     row, n, hq = row[q], n[q], hq[q]
     # the rest: the simplex's vertices about centre i, along each plane's normal
-    sv = np.repeat((-hq - (n * Z[row]).sum(1))[:, None], d + 1, axis=1)
-    Xr = X[pm[row]]
-    for c in range(d):
-        sv += Xr[:, :, c] * n[:, c, None]
+    base = -hq - (n * Z[row]).sum(1)
+    cell = pm[row]
+    sv = np.empty((row.size, d + 1))
+    for v in range(d + 1):
+        acc = base.copy()
+        for c in range(d):
+            acc += X[cell, v, c] * n[:, c]
+        sv[:, v] = acc
+    del base, cell, acc
     empty[row[sv.min(1) > 0]] = True  # t wholly beyond the plane
     cut = sv.max(1) > 0  # the others leave t whole
     row, n, hq = row[cut], n[cut], hq[cut]
