@@ -54,7 +54,6 @@ import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from ._toolkit.validate import (
     as_finite_scalar,
@@ -511,10 +510,14 @@ def closest_points(points, target, *, max_distance=None, tree=None):
     points = as_points(points, "points", dim=3)
     target = as_points(target, "target", dim=3)
     dmax = np.inf if max_distance is None else as_finite_scalar(max_distance, "max_distance", positive=True)
-    return _closest(points, tree if tree is not None else cKDTree(target), target.shape[0], dmax)
+    if tree is None:
+        from scipy.spatial import cKDTree  # imported on first use: optimal_rotation needs no SciPy
+
+        tree = cKDTree(target)
+    return _closest(points, tree, target.shape[0], dmax)
 
 
-def _closest(points: np.ndarray, tree: cKDTree, m: int, dmax: float):
+def _closest(points: np.ndarray, tree, m: int, dmax: float):
     d, idx = tree.query(points, k=1, distance_upper_bound=dmax, workers=-1)
     miss = idx >= m
     if np.any(miss):
@@ -685,6 +688,8 @@ def icp(
     unorder[order] = np.arange(order.size)
     src = np.ascontiguousarray(src[order])
     c = src.mean(axis=0)
+
+    from scipy.spatial import cKDTree
 
     tree = cKDTree(tgt)
     m = tgt.shape[0]

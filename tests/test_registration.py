@@ -473,3 +473,27 @@ def test_sample_shape():
     assert np.allclose((np.hypot(t[:, 0], t[:, 1]) - 1.0) ** 2 + t[:, 2] ** 2, 0.4**2)
     with pytest.raises(ValueError, match="kind must be one of"):
         sample_shape("klein bottle", 10)
+
+
+def test_paired_superposition_does_not_import_scipy():
+    """The first call of optimal_rotation / register pays no ``import scipy`` (cold
+    start: only ICP and closest_points need a k-d tree), and closest_points works."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, numpy as np\n"
+        "from shapelab import optimal_rotation, register, Quaternion\n"
+        "rng = np.random.default_rng(0); R = rng.normal(size=(500, 3))\n"
+        "q = Quaternion.from_axis_angle([1.0, 2.0, 3.0], 0.7); G = q.rotate(R)\n"
+        "print(optimal_rotation(R, G).angle_to(q), register(R, G + 1.0).translation[0],\n"
+        "      any(m == 'scipy' or m.startswith('scipy.') for m in sys.modules))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    angle, shift, imported = out.stdout.split()
+    assert imported == "False"
+    assert float(angle) < 1e-7 and abs(float(shift) - 1.0) < 1e-9
+    from shapelab.registration import closest_points
+
+    idx, d = closest_points(np.array([[0.0, 0, 0], [5.0, 0, 0]]), np.array([[0.1, 0, 0], [4.0, 0, 0]]))
+    assert idx.tolist() == [0, 1] and d == pytest.approx([0.1, 1.0])
