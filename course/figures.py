@@ -484,9 +484,34 @@ def l09_betti_curve():
     needs=("datasets.globule", "plot.pockets", "alpha_filtration"),
 )
 def l10_globule_pockets():
-    fig, ax = _slide(projection="3d")
+    from shapelab.plot import SLIDE, style
+
+    sl = _sl()
+    F = sl.alpha_filtration(_datasets().globule())
     # the four pockets that persist (the others are crevices between atoms, gone at once)
-    _plot().pockets(_sl().alpha_filtration(_datasets().globule()), ax=ax, min_persistence=0.5)
+    P = sl.pockets(F, 0.0, min_persistence=0.5)
+    with style():
+        fig = importlib.import_module("matplotlib.pyplot").figure(figsize=SLIDE, layout="constrained")
+        grid = fig.add_gridspec(2, 4, width_ratios=[1.3, 1.3, 1, 1])
+        overview = fig.add_subplot(grid[:, :2], projection="3d")
+        # the overview names each pocket; a close-up of each, in its colour, beside it
+        view = dict(elev=12, azim=-90)  # along y: the three pockets at the bottom side by side
+        _plot().pockets(F, pockets=P, ax=overview, legend=False, title="4 pockets and 1 void at τ = 0", **view)
+        for k, p in enumerate(P):
+            ax = fig.add_subplot(grid[k // 2, 2 + k % 2], projection="3d")
+            _plot().pockets(
+                F,
+                pockets=[p],
+                numbers=[k + 1],
+                show_voids=False,
+                focus=True,
+                legend=False,
+                ax=ax,
+                title=f"P{k + 1}: {len(p.cells)} cells\nmouth of {len(p.mouth)} triangles",
+                **view,
+            )
+            ax.title.set_fontsize(11)
+            ax.set_axis_off()
     return fig
 
 

@@ -290,3 +290,36 @@ def test_pocket_explorer_widget():
         pocket_explorer(left, tau_range=(1.0, 0.0))
     with pytest.raises(TypeError):
         pocket_explorer(left.centers)
+
+
+def test_pockets_3d_close_up_zooms_on_one_pocket_in_its_overview_colour():
+    F = shapelab.alpha_filtration(D.globule())
+    P = shapelab.pockets(F, 0.0, min_persistence=0.5)
+    assert len(P) >= 3
+    p = P[2]
+    fig = PT.pockets(F, pockets=[p], numbers=[3], focus=True, show_voids=False, legend=False)
+    render(fig)
+    ax = fig.axes[0]
+    # the axes hold the pocket's lining balls, and are smaller than the molecule's
+    lining = F.balls.centers[p.lining]
+    for (lo, hi), x in zip((ax.get_xlim(), ax.get_ylim(), ax.get_zlim()), lining.T):
+        assert lo <= x.min() and x.max() <= hi
+    assert np.ptp(ax.get_xlim()) < 0.8 * np.ptp(F.balls.centers[:, 0])
+    # the free-space points are drawn in the colour of P3 of the overview, not of P1
+    cloud = [c for c in ax.collections if isinstance(c, PathCollection)][-1]
+    assert matplotlib.colors.to_hex(cloud.get_facecolor()[0]) == PT._pocket_color(3).lower()
+    assert PT._pocket_color(3) != PT._pocket_color(1)
+    # the overview names every pocket (and the void) beside it
+    fig = PT.pockets(F, pockets=P, legend=False)
+    render(fig)
+    names = sorted(t.get_text() for t in fig.axes[0].texts)
+    assert names == sorted(
+        [f"P{k}" for k in range(1, len(P) + 1)] + [f"V{k}" for k in range(1, len(shapelab.voids(F, 0.0)) + 1)]
+    )
+    with pytest.raises(ValueError, match="numbers"):
+        PT.pockets(F, pockets=P, numbers=[1])
+
+
+def test_pocket_colours_are_none_of_the_other_roles():
+    for i in range(1, 6):
+        assert PT._pocket_color(i) not in (COLORS["mouth"], COLORS["ball"], COLORS["ball_edge"], COLORS["void"])

@@ -453,8 +453,9 @@ def _label_point(balls, cells):
     return pts[int(np.argmax(size))].mean(0)
 
 
-def _setup_3d(ax, balls, elev, azim):
-    c = balls.centers
+def _setup_3d(ax, balls, elev, azim, around=None):
+    """Equal 3D axes around all balls, or around the balls ``around`` (indices) only."""
+    c = balls.centers if around is None else balls.centers[around]
     lo, hi = c.min(0), c.max(0)
     mid = 0.5 * (lo + hi)
     half = 0.5 * (hi - lo).max() + balls.radii.max()
@@ -469,11 +470,15 @@ def _setup_3d(ax, balls, elev, azim):
     return half
 
 
-def _draw_balls_3d(ax, balls, tau, *, highlight=None, half=1.0):
+def _draw_balls_3d(ax, balls, tau, *, highlight=None, half=1.0, box=None):
     """Balls as depth-shaded discs; lining balls darker and smaller so that the
-    features drawn after them (on top: the axes do not sort by depth) stay visible."""
+    features drawn after them (on top: the axes do not sort by depth) stay visible.
+    With ``box`` (lo, hi), only the balls whose centres lie in it (the axes of a
+    zoomed view do not clip what lies beyond them)."""
     r, ok = _grown_radii(balls, tau)
     c = balls.centers
+    if box is not None:
+        ok = ok & np.all((c >= box[0]) & (c <= box[1]), axis=1)
     fig = ax.get_figure()
     # marker area in points^2 so that a marker's diameter is about the ball's
     width_pt = 72.0 * fig.get_size_inches()[0] * 0.55
@@ -605,6 +610,8 @@ def pockets(
     title=None,
     show_volumes=None,
     legend=True,
+    focus=False,
+    numbers=None,
 ):
     """Draw the pockets of the growth model at τ with their mouths (Notes §23.1, Fig. 23.2).
 
@@ -629,6 +636,14 @@ def pockets(
     min_persistence : float, default 1e-9
         Passed to :func:`shapelab.pockets` when computing (the default leaves out
         pockets that close and fill at the same τ up to round-off).
+    focus : bool, default False
+        3D: zoom on the features drawn (the box of their lining balls) and draw only
+        the balls in it, for a close-up of one pocket; otherwise each pocket is
+        named (P1, P2, ...) beside its free space.
+    numbers : sequence of int, optional
+        The pockets' numbers, which also pick their colours (default 1, 2, ...): a
+        close-up of one pocket passes its number in the overview, so that both
+        name and colour it alike.
 
     Returns
     -------
@@ -658,6 +673,8 @@ def pockets(
         title=title,
         show_volumes=show_volumes,
         legend=legend,
+        focus=focus,
+        numbers=numbers,
     )
 
 
@@ -705,14 +722,18 @@ def _feature_label(kind, i, f, d, show_volumes):
     return f"{kind}{i}: {_measure_word(d)} {vol:.2f}"
 
 
-_POCKET_COLORS = (PALETTE[1], PALETTE[2], PALETTE[6], PALETTE[4], PALETTE[5])
+#: orange, bluish green, indigo, black, yellow: none is the balls' blue, the voids'
+#: vermillion or the mouths' reddish purple
+_POCKET_COLORS = (PALETTE[1], PALETTE[2], "#332288", PALETTE[7], PALETTE[6])
 
 
 def _pocket_color(i: int) -> str:
     return _POCKET_COLORS[(i - 1) % len(_POCKET_COLORS)]
 
 
-def _draw_features(F, tau, V, Pk, T, *, ax, show_complex, elev, azim, title, show_volumes=None, legend=True):
+def _draw_features(
+    F, tau, V, Pk, T, *, ax, show_complex, elev, azim, title, show_volumes=None, legend=True, focus=False, numbers=None
+):
     from ..freespace import free_points
 
     balls = F.balls
@@ -723,6 +744,9 @@ def _draw_features(F, tau, V, Pk, T, *, ax, show_complex, elev, azim, title, sho
     legend = []
     c = balls.centers
     void_word = "hole" if d == 2 else "void"
+    nums = list(range(1, len(Pk) + 1)) if numbers is None else [int(k) for k in numbers]
+    if len(nums) != len(Pk):
+        raise ValueError(f"numbers must give one number per pocket: {len(nums)} for {len(Pk)} pockets")
     lining = [_lining_of(f) for f in list(V) + list(Pk)]
     hl = np.unique(np.concatenate(lining)) if lining else None
     if d == 2:
@@ -740,14 +764,14 @@ def _draw_features(F, tau, V, Pk, T, *, ax, show_complex, elev, azim, title, sho
                 _tag(ax, balls, cells, f"V{i}")
             # larger pockets first, so that nested ones show on top of them
             order = sorted(range(len(Pk)), key=lambda j: -len(_cells_of(Pk[j])))
-            for i, p in enumerate(Pk, 1):
+            for k, (i, p) in enumerate(zip(nums, Pk)):
                 cells = _cells_of(p)
                 ax.add_collection(
                     PolyCollection(
                         c[cells].reshape(-1, 3, 2),
                         facecolors=_pocket_color(i),
                         edgecolors="none",
-                        zorder=1 + 0.01 * order.index(i - 1),
+                        zorder=1 + 0.01 * order.index(k),
                     )
                 )
                 mouth = np.asarray(_field(p, "mouth"), dtype=np.int64).reshape(-1, 2)
@@ -772,17 +796,26 @@ def _draw_features(F, tau, V, Pk, T, *, ax, show_complex, elev, azim, title, sho
         ax.computed_zorder = False  # draw in the order given: features on top of the balls
         rng = np.random.default_rng(0)
         with style():
-            half = _setup_3d(ax, balls, elev, azim)
-            _draw_balls_3d(ax, balls, tau, highlight=hl, half=half)
+            around = hl if focus and hl is not None and len(hl) else None
+            half = _setup_3d(ax, balls, elev, azim, around=around)
+            box = None
+            if around is not None:
+                mid = 0.5 * (c[around].min(0) + c[around].max(0))
+                box = (mid - half, mid + half)
+            _draw_balls_3d(ax, balls, tau, highlight=hl, half=half, box=box)
             for i, v in enumerate(V, 1):
                 pts = free_points(balls, tau, _cells_of(v), 3000, rng)
                 ax.scatter(*pts.T, s=3, color=COLORS["void"], alpha=0.9, depthshade=False, zorder=3)
+                if Pk and not focus and len(pts):  # beside pockets, name the voids too
+                    _tag3d(ax, pts, f"V{i}", COLORS["void"])
                 legend.append(
                     Patch(color=COLORS["void"], label=f"{void_word} " + _feature_label("V", i, v, d, show_volumes))
                 )
-            for i, p in enumerate(Pk, 1):
+            for i, p in zip(nums, Pk):
                 pts = free_points(balls, tau, _cells_of(p), 3000, rng)
                 ax.scatter(*pts.T, s=3, color=_pocket_color(i), alpha=0.9, depthshade=False, zorder=3)
+                if not focus and len(pts):
+                    _tag3d(ax, pts, f"P{i}", _pocket_color(i))
                 mouth = np.asarray(_field(p, "mouth"), dtype=np.int64).reshape(-1, 3)
                 if len(mouth):
                     ax.add_collection3d(
@@ -822,6 +855,27 @@ def _draw_features(F, tau, V, Pk, T, *, ax, show_complex, elev, azim, title, sho
             else:  # drawing into a panel of a bigger figure
                 ax.legend(handles=legend, loc="lower left", fontsize=8, framealpha=0.85, frameon=True)
     return fig
+
+
+def _tag3d(ax, pts, text, color):
+    """Name a 3D feature beside its points, offset outwards so it hides none of them."""
+    centre = ax.get_w_lims()
+    mid = np.array([(centre[0] + centre[1]) / 2, (centre[2] + centre[3]) / 2, (centre[4] + centre[5]) / 2])
+    x = pts.mean(0)
+    out = x - mid
+    n = np.linalg.norm(out)
+    x = x + (out / n if n > 0 else np.array([0.0, 0.0, 1.0])) * (0.5 * np.ptp(pts, axis=0).max() + 1.5)
+    ax.text(
+        *x,
+        text,
+        color="white",
+        fontsize=11,
+        fontweight="bold",
+        ha="center",
+        va="center",
+        zorder=7,
+        bbox=dict(boxstyle="round,pad=0.2", facecolor=color, edgecolor="none", alpha=0.95),
+    )
 
 
 def _tag(ax, balls, cells, text):
