@@ -481,38 +481,13 @@ def l09_betti_curve():
     "void, computed from first principles as CASTp-style tools report them.",
     source="Lesson 10",
     lesson="10_molecule_case_study",
-    needs=("datasets.globule", "plot.pockets", "alpha_filtration"),
+    needs=("datasets.globule", "plot.pocket_gallery", "alpha_filtration"),
 )
 def l10_globule_pockets():
-    from shapelab.plot import SLIDE, style
-
-    sl = _sl()
-    F = sl.alpha_filtration(_datasets().globule())
-    # the four pockets that persist (the others are crevices between atoms, gone at once)
-    P = sl.pockets(F, 0.0, min_persistence=0.5)
-    with style():
-        fig = importlib.import_module("matplotlib.pyplot").figure(figsize=SLIDE, layout="constrained")
-        grid = fig.add_gridspec(2, 4, width_ratios=[1.3, 1.3, 1, 1])
-        overview = fig.add_subplot(grid[:, :2], projection="3d")
-        # the overview names each pocket; a close-up of each, in its colour, beside it
-        view = dict(elev=12, azim=-90)  # along y: the three pockets at the bottom side by side
-        _plot().pockets(F, pockets=P, ax=overview, legend=False, title="4 pockets and 1 void at τ = 0", **view)
-        for k, p in enumerate(P):
-            ax = fig.add_subplot(grid[k // 2, 2 + k % 2], projection="3d")
-            _plot().pockets(
-                F,
-                pockets=[p],
-                numbers=[k + 1],
-                show_voids=False,
-                focus=True,
-                legend=False,
-                ax=ax,
-                title=f"P{k + 1}: {len(p.cells)} cells\nmouth of {len(p.mouth)} triangles",
-                **view,
-            )
-            ax.title.set_fontsize(11)
-            ax.set_axis_off()
-    return fig
+    F = _sl().alpha_filtration(_datasets().globule())
+    # the four pockets that persist (the others are crevices between atoms, gone at once);
+    # seen along y, the three at the bottom stand side by side
+    return _plot().pocket_gallery(F, min_persistence=0.5, elev=12, azim=-90)
 
 
 @register(

@@ -323,3 +323,21 @@ def test_pockets_3d_close_up_zooms_on_one_pocket_in_its_overview_colour():
 def test_pocket_colours_are_none_of_the_other_roles():
     for i in range(1, 6):
         assert PT._pocket_color(i) not in (COLORS["mouth"], COLORS["ball"], COLORS["ball_edge"], COLORS["void"])
+
+
+def test_pocket_gallery_has_an_overview_and_one_close_up_per_pocket():
+    F = shapelab.alpha_filtration(D.globule())
+    P = shapelab.pockets(F, 0.0, min_persistence=0.5)
+    fig = shapelab.plot.pocket_gallery(F, pockets=P, elev=12, azim=-90)
+    render(fig)
+    assert len(fig.axes) == 1 + len(P)
+    overview, *close = fig.axes
+    assert sorted(t.get_text() for t in overview.texts)[: len(P)] == [f"P{k}" for k in range(1, len(P) + 1)]
+    for k, (ax, p) in enumerate(zip(close, P), 1):  # in reading order, named and coloured as in the overview
+        assert ax.get_title().startswith(f"P{k}: {len(p.cells)} cells")
+        cloud = [c for c in ax.collections if isinstance(c, PathCollection)][-1]
+        assert matplotlib.colors.to_hex(cloud.get_facecolor()[0]) == PT._pocket_color(k).lower()
+    with pytest.raises(ValueError, match="3D"):
+        shapelab.plot.pocket_gallery(D.ring(6, radius=2.0, disk_radius=1.2))
+    with pytest.raises(ValueError, match="no pocket"):
+        shapelab.plot.pocket_gallery(shapelab.alpha_filtration(D.fullerene_c60()), pockets=[])

@@ -33,6 +33,7 @@ _EXPORTS = {
     "betti_curve": "topology",
     "voids": "topology",
     "pockets": "topology",
+    "pocket_gallery": "topology",
     "tunnels": "topology",
     "channel_profile": "topology",
     # matching.py

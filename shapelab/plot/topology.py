@@ -20,9 +20,18 @@ from matplotlib.patches import Circle, Patch
 from matplotlib.ticker import MaxNLocator
 
 from .._toolkit.validate import as_finite_scalar, as_tau, filtration_first
-from ._style import COLORS, PAGE, PALETTE, new_figure, style
+from ._style import COLORS, PAGE, PALETTE, SLIDE, new_figure, style
 
-__all__ = ["persistence_diagram", "barcode", "betti_curve", "voids", "pockets", "tunnels", "channel_profile"]
+__all__ = [
+    "persistence_diagram",
+    "barcode",
+    "betti_curve",
+    "voids",
+    "pockets",
+    "pocket_gallery",
+    "tunnels",
+    "channel_profile",
+]
 
 _MARKERS = ("o", "s", "^", "D")
 _SUB = "₀₁₂₃"
@@ -676,6 +685,76 @@ def pockets(
         focus=focus,
         numbers=numbers,
     )
+
+
+@filtration_first(name="plot.pocket_gallery")
+def pocket_gallery(F, tau=0.0, *, pockets=None, voids=None, min_persistence=1e-9, elev=20, azim=35, title=None):
+    """The pockets of a 3D molecule: an overview beside a close-up of each (Notes §23.1).
+
+    Pockets of a protein often sit side by side in one groove, and in one 3D view
+    they hide each other.  The overview (left) draws all of them with the voids,
+    each named P1, P2, ... beside its free space; on the right one panel per pocket
+    zooms on it alone (:func:`pockets` with ``focus=True``), in the same colour and
+    under the same name, with its cell and mouth counts.
+
+    Parameters
+    ----------
+    F : Filtration
+        ``alpha_filtration(balls)`` of 3D balls (or the :class:`~shapelab.Balls`).
+    tau : float
+    pockets, voids : sequence, optional
+        As for :func:`pockets` (computed at τ if not given).
+    min_persistence : float
+        Passed to :func:`shapelab.pockets` when computing.
+    elev, azim : float
+        The view of every panel.
+    title : str, optional
+        The overview's title (default: the counts).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Slide-sized; up to six close-ups (two columns).
+    """
+    import matplotlib.pyplot as plt
+
+    draw = globals()["pockets"]  # the function; the argument of that name holds features
+    F = _filtration_of(F, "plot.pocket_gallery")
+    tau = _check_tau(tau)
+    if F.balls.dim != 3:
+        raise ValueError(f"pocket_gallery draws 3D molecules, got dim={F.balls.dim}; use pockets() in 2D")
+    Pk = _features_or_compute(F, pockets, tau, "pockets", min_persistence=min_persistence)
+    V = _features_or_compute(F, voids, tau, "voids")
+    if not Pk:
+        raise ValueError("pocket_gallery: there is no pocket at this tau to draw")
+    shown = Pk[:6]
+    rows = 2 if len(shown) > 1 else 1
+    cols = (len(shown) + rows - 1) // rows
+    if title is None:
+        title = f"{len(Pk)} pocket{'s' if len(Pk) != 1 else ''} and {len(V)} void{'s' if len(V) != 1 else ''} at τ = {tau:g}"
+    with style():
+        fig = plt.figure(figsize=SLIDE, layout="constrained")
+        grid = fig.add_gridspec(rows, 2 + cols, width_ratios=[1.3, 1.3] + [1] * cols)
+        overview = fig.add_subplot(grid[:, :2], projection="3d")
+        draw(F, tau, pockets=Pk, voids=V, ax=overview, legend=False, title=title, elev=elev, azim=azim)
+        for k, p in enumerate(shown):
+            ax = fig.add_subplot(grid[k // cols, 2 + k % cols], projection="3d")
+            draw(
+                F,
+                tau,
+                pockets=[p],
+                numbers=[k + 1],
+                show_voids=False,
+                focus=True,
+                legend=False,
+                ax=ax,
+                elev=elev,
+                azim=azim,
+                title=f"P{k + 1}: {len(_cells_of(p))} cells\nmouth of {len(_field(p, 'mouth'))} triangles",
+            )
+            ax.title.set_fontsize(11)
+            ax.set_axis_off()
+    return fig
 
 
 @filtration_first(name="plot.tunnels")
