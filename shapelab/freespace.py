@@ -634,6 +634,18 @@ def _measure_pairs(X, As, bs, scale, pm, Z, R, row, D, Rj, beaten, boundary):
     # simplex facets about centre i
     hs = bs[pm] - np.einsum("pkd,pd->pk", As[pm], Z)
     empty |= np.any(hs <= -R[:, None], axis=1)
+    # the plane cuts B_i into a small cap and the rest; the small cap lies in the ball
+    # of radius ρ = sqrt(R² - h²) about the foot h n.  If a facet of t separates that
+    # ball from t, then t ∩ B_i misses the small cap: beyond the plane (h >= 0), the
+    # plane leaves t ∩ B_i whole; on its near side (h < 0), t ∩ B_i is all beyond it
+    rho = np.sqrt(np.maximum(R[row] ** 2 - hq * hq, 0.0))
+    apart = np.zeros(row.size, dtype=bool)
+    for f in range(d + 1):
+        nf = As[pm[row], f]
+        apart |= hq * (nf * n).sum(1) - hs[row, f] > rho
+    empty[row[apart & (hq < 0)]] = True
+    q = ~apart
+    row, n, hq = row[q], n[q], hq[q]
     eps = 1e-12 * np.maximum(scale[pm], 1e-300)
     row, n, hq = _distinct_planes(row, n, hq, As[pm], hs, eps, P)
     live = ~empty
