@@ -417,18 +417,27 @@ def _vertices(A, h, eps, idx):
     return V[keep], pv[keep], inc[keep]
 
 
-def _clip_chunk3(A, h, r, eps, idx, boundary):
-    P, k, _ = A.shape
-    meas = np.zeros(P)
-    wall = np.zeros(P)
+def _faces(A, h, eps, idx):
+    """The polytopes' vertices, and their incidences with the planes that carry a
+    face (an edge in 2D): ``V`` and, per incidence, vertex ``ve``, plane ``qe``, row
+    ``pe``, face id ``gid = pe * k + qe``, and ``cnt[gid]`` vertices on that face.
+    Polytopes with fewer than d + 1 vertices are flat and left out."""
+    P, k, d = A.shape
     V, pv, inc = _vertices(A, h, eps, idx)
-    enough = np.bincount(pv, minlength=P) >= 4  # fewer vertices: a flat polytope, no volume
+    enough = np.bincount(pv, minlength=P) >= d + 1
     ve, qe = np.nonzero(inc & enough[pv, None])
     pe = pv[ve]
     gid = pe * k + qe
     cnt = np.bincount(gid, minlength=P * k)
-    face = cnt[gid] >= 3
-    ve, qe, pe, gid = ve[face], qe[face], pe[face], gid[face]
+    face = cnt[gid] >= d
+    return V, ve[face], qe[face], pe[face], gid[face], cnt
+
+
+def _clip_chunk3(A, h, r, eps, idx, boundary):
+    P, k, _ = A.shape
+    meas = np.zeros(P)
+    wall = np.zeros(P)
+    V, ve, qe, pe, gid, cnt = _faces(A, h, eps, idx)
     if ve.size == 0:
         return meas, wall
     n = A[pe, qe]
@@ -477,14 +486,7 @@ def _clip_chunk2(A, h, r, eps, idx, boundary):
     P, k, _ = A.shape
     meas = np.zeros(P)
     wall = np.zeros(P)
-    V, pv, inc = _vertices(A, h, eps, idx)
-    enough = np.bincount(pv, minlength=P) >= 3  # fewer vertices: a flat polygon, no area
-    ve, qe = np.nonzero(inc & enough[pv, None])
-    pe = pv[ve]
-    gid = pe * k + qe
-    cnt = np.bincount(gid, minlength=P * k)
-    edge = cnt[gid] >= 2
-    ve, qe, pe, gid = ve[edge], qe[edge], pe[edge], gid[edge]
+    V, ve, qe, pe, gid, _ = _faces(A, h, eps, idx)
     if ve.size == 0:
         return meas, wall
     n = A[pe, qe]
