@@ -15,8 +15,17 @@ against an independent exact computation (:func:`free_measure`) and Monte Carlo.
 The same sum is *not* exact for a pocket, whose mouth is not covered by the balls
 (ball caps poke through it), so ``Pocket.volume`` uses :func:`free_measure`, the exact
 power-cell decomposition :math:`U \\cap t = \\bigsqcup_i B_i \\cap \\Pi_i \\cap t`, each
-piece a ball clipped by a convex polytope, integrated in closed form (lens, cap and
-triple-ball volumes).
+piece a ball clipped by a convex polytope, integrated in closed form.
+:func:`free_space` adds the wall (the union's boundary inside each cell) and
+:func:`free_area` the free area of triangles in space (a pocket's mouth).
+
+How the exact measure runs: every (cell, ball) piece at once.  A k-d tree gives the
+balls that reach each cell; the planes that may cut a piece are the power planes of
+the ball's neighbours (given the filtration, only its edges in :math:`K_\\tau`),
+less those that miss the ball, the cell, or the cap the cell could reach, and less
+repeats; the pieces are grouped by plane count and clipped together (vertices by
+Cramer's rule on plane triples, faces ordered by angle, one closed-form integral per
+edge).  On the 1FMO report (2,792 atoms) that is about 11,000 pieces in 0.3 s.
 """
 
 from __future__ import annotations
