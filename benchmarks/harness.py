@@ -391,15 +391,21 @@ def main(argv=None) -> int:
     info = machine()
     print(machine_line(info), file=sys.stderr)
     RESULTS.mkdir(parents=True, exist_ok=True)
+    stamp = time.strftime("%Y%m%d-%H%M%S")
     for i, case in enumerate(cases, 1):
         print(f"[{i}/{len(cases)}] {case.name} vs {case.peer_name}", file=sys.stderr)
-        row = run_case(case, args.repeats)
-        if case.ladder and not args.no_scaling:
-            from benchmarks import scaling
+        try:
+            row = run_case(case, args.repeats)
+            if case.ladder and not args.no_scaling:
+                from benchmarks import scaling
 
-            row["scaling"] = run_ladder(case)
-            row["exponents"], row["figure"] = scaling.draw(case, row["scaling"], RESULTS)
+                row["scaling"] = run_ladder(case)
+                row["exponents"], row["figure"] = scaling.draw(case, row["scaling"], RESULTS)
+        except RuntimeError as err:  # a side that cannot run here (a peer that will not import)
+            row = _failed_row(case, err)
+            print(f"  {case.name}: not run: {row['notes'][0]}", file=sys.stderr)
         rows.append(row)
+        _write(rows, info, stamp, partial=i < len(cases))  # a later failure keeps what was measured
     table = _table(rows)
     fits = [r for r in rows if r.get("exponents")]
     if fits:
@@ -421,12 +427,45 @@ def main(argv=None) -> int:
         f"(other work on the machine hits both alike).\n\n"
     )
     print(header + table)
-    stamp = time.strftime("%Y%m%d-%H%M%S")
+    _write(rows, info, stamp, partial=False, table=table)
+    return 0 if not any(r.get("failed") for r in rows) else 1
+
+
+def _failed_row(case: Case, err: Exception) -> dict:
+    """A case that could not run: its row says why (the last line of the error)."""
+    lines = [ln.strip() for ln in str(err).splitlines() if ln.strip()]
+    why = lines[-1] if lines else type(err).__name__
+    nan = float("nan")
+    return {
+        "case": case.name,
+        "description": case.description,
+        "peer": case.peer_name,
+        "failed": True,
+        "ours_s": nan,
+        "peer_s": nan,
+        "ratio": nan,
+        "ours_cold_s": nan,
+        "peer_cold_s": nan,
+        "cold_ratio": nan,
+        "target": case.target,
+        "ours_peak_mib": nan,
+        "peer_peak_mib": nan,
+        "memory_ratio": None,
+        "memory_target": case.memory_target,
+        "met": False,
+        "notes": [f"NOT RUN: {why[:200]}"],
+    }
+
+
+def _write(rows, info, stamp, *, partial, table=None) -> None:
+    """Per-case JSON and ``latest.md``; after each case while the run goes on, marked
+    as partial, so that an interrupted run keeps what it measured."""
+    header = f"{machine_line(info)}\nMedians of fresh processes, ours and the peer interleaved (other work on the machine hits both alike).\n\n"
     payload = {"machine": info, "results": rows}
     for r in rows:
         (RESULTS / f"{r['case']}.json").write_text(json.dumps(dict(payload, results=[r]), indent=1))
-    (RESULTS / "latest.md").write_text(f"Benchmarks run {stamp}\n\n{header}{table}")
-    return 0
+    what = "partial: the run goes on" if partial else "complete"
+    (RESULTS / "latest.md").write_text(f"Benchmarks run {stamp} ({what})\n\n{header}{table or _table(rows)}")
 
 
 if __name__ == "__main__":

@@ -111,3 +111,23 @@ def check_mismatch(a, b):
 
     diff = float(np.abs(a - b).max())
     return f"{MISMATCH}: max diff {diff:.1e}" if diff > 1e-12 else f"max diff {diff:.0e}"
+
+
+# a peer that cannot be imported here (as open3d without libusb): the run goes on
+CASES.append(
+    Case(
+        name="smoke_unavailable",
+        module="tests.bench_smoke",
+        peer_name="a library that is not installed",
+        target=1.0,
+        params={"n": 10},
+        peer="peer_unavailable",
+        description="harness self-test: a peer that will not import",
+    ),
+)
+
+
+def peer_unavailable(x):
+    import shapelab_no_such_peer  # noqa: F401
+
+    return x

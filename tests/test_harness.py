@@ -92,3 +92,21 @@ def test_machine_report_names_cpu_flags_and_blas():
     assert "BLAS:" in line and "CPU flags:" in line
     pytest.importorskip("threadpoolctl")
     assert "kernel" in info["blas"]
+
+
+def test_a_case_that_cannot_run_is_reported_and_the_run_goes_on(tmp_path, monkeypatch):
+    """A peer that will not import on this machine fails its own case, not the run:
+    its row says NOT RUN and why, the next case is measured, and the results are
+    written (the exit status says that something did not run)."""
+    monkeypatch.setenv("SHAPELAB_BENCH_MODULES", "tests.bench_smoke")
+    monkeypatch.setattr(harness, "RESULTS", tmp_path)
+    status = harness.main(["smoke_unavailable", "smoke_norm", "--no-scaling", "--repeats", "5"])
+    assert status == 1
+    text = (tmp_path / "latest.md").read_text()
+    assert "(complete)" in text
+    bad = next(ln for ln in text.splitlines() if ln.startswith("| smoke_unavailable |"))
+    assert "NOT RUN" in bad and "shapelab_no_such_peer" in bad and "| NO |" in bad
+    good = next(ln for ln in text.splitlines() if ln.startswith("| smoke_norm |"))
+    assert "| yes |" in good
+    rows = json.loads((tmp_path / "smoke_unavailable.json").read_text())["results"]
+    assert rows[0]["failed"] is True and rows[0]["met"] is False
