@@ -327,8 +327,10 @@ def _subsets(k: int, d: int) -> np.ndarray:
 
 _REF = (np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]))
 
-#: elements of the (pairs, plane subsets, planes) residual array per chunk
+#: elements of the (pairs, plane subsets) arrays per chunk of the clipping
 _CHUNK = 1 << 21
+#: (cell, ball) pairs whose candidate planes are held at once
+_PAIRS = 4096
 
 
 def _clipped_balls(A, h, r, eps, boundary):
@@ -860,12 +862,17 @@ def _free_space(balls, tau, cells, boundary):
     # power planes: only balls meeting B_i can cut B_i ∩ Π_i (a point of B_i closer
     # in power to z_j lies in B_j)
     start, count, other = _neighbours(F, tau, C, R_all, live, tree, rmax)
-    pos, row = _ragged(start[ball], count[ball])
-    j = other[pos]
-    D = C[j] - C[ball[row]]
-    Rj = R_all[j]
-    beaten = (Rj > R[row]) | ((Rj == R[row]) & (j < ball[row]))
-    covered, wall_p = _measure_pairs(X, As, bs, scale, pm, Z, R, row, D, Rj, beaten, boundary)
+    covered = np.zeros(pm.size)
+    wall_p = np.zeros(pm.size)
+    for s in range(0, pm.size, _PAIRS):  # the pairs' candidate planes, a slice at a time
+        sl = slice(s, s + _PAIRS)
+        b = ball[sl]
+        pos, row = _ragged(start[b], count[b])
+        j = other[pos]
+        D = C[j] - C[b[row]]
+        Rj = R_all[j]
+        beaten = (Rj > R[sl][row]) | ((Rj == R[sl][row]) & (j < b[row]))
+        covered[sl], wall_p[sl] = _measure_pairs(X, As, bs, scale, pm[sl], Z[sl], R[sl], row, D, Rj, beaten, boundary)
     out -= np.bincount(pm, weights=covered, minlength=M)
     wall = np.bincount(pm, weights=wall_p, minlength=M) if boundary else np.zeros(M)
     if not boundary:
@@ -951,16 +958,21 @@ def free_area(balls, tau, triangles) -> FreeSpace:
     # diagram is the power diagram of the sections); a ball whose section is empty
     # has positive power on the whole plane and cuts nothing there
     start, count, other = _neighbours(F, tau, C, np.sqrt(np.maximum(w, 0.0)), live, tree, rmax)
-    pos, row = _ragged(start[ball], count[ball])
-    j = other[pos]
-    relj = C[j] - o[pm[row]]
-    rho2j = w[j] - np.einsum("qd,qd->q", relj, nrm[pm[row]]) ** 2
-    keep = rho2j > 0
-    j, row, relj = j[keep], row[keep], relj[keep]
-    D = np.einsum("qd,qde->qe", relj, frame[pm[row]]) - Z[row]
-    Rj = np.sqrt(rho2j[keep])
-    beaten = (Rj > R[row]) | ((Rj == R[row]) & (j < ball[row]))
-    covered, wall_p = _measure_pairs(X, As, bs, scale, pm, Z, R, row, D, Rj, beaten, True)
+    covered = np.zeros(pm.size)
+    wall_p = np.zeros(pm.size)
+    for s in range(0, pm.size, _PAIRS):  # the pairs' candidate lines, a slice at a time
+        sl = slice(s, s + _PAIRS)
+        b, cell = ball[sl], pm[sl]
+        pos, row = _ragged(start[b], count[b])
+        j = other[pos]
+        relj = C[j] - o[cell[row]]
+        rho2j = w[j] - np.einsum("qd,qd->q", relj, nrm[cell[row]]) ** 2
+        keep = rho2j > 0
+        j, row, relj = j[keep], row[keep], relj[keep]
+        D = np.einsum("qd,qde->qe", relj, frame[cell[row]]) - Z[sl][row]
+        Rj = np.sqrt(rho2j[keep])
+        beaten = (Rj > R[sl][row]) | ((Rj == R[sl][row]) & (j < b[row]))
+        covered[sl], wall_p[sl] = _measure_pairs(X, As, bs, scale, cell, Z[sl], R[sl], row, D, Rj, beaten, True)
     out -= np.bincount(pm, weights=covered, minlength=M)
     wall = np.bincount(pm, weights=wall_p, minlength=M)
     hit = np.flatnonzero(wall_p > 0)

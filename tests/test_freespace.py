@@ -202,3 +202,17 @@ def test_free_area_bad_input():
         FS.free_space("balls", 0.0, [[0, 1, 2]])
     # a flat triangle has no area
     assert FS.free_area(sl.Balls(np.array([[0.0, 0, 0], [1, 0, 0], [2, 0, 0]]), 0.1), 0.0, [[0, 1, 2]]).measure[0] == 0
+
+
+def test_pairs_held_a_slice_at_a_time_give_the_same_measure(monkeypatch):
+    # the candidate planes are generated for a slice of (cell, ball) pairs at a time
+    rng = np.random.default_rng(11)
+    balls = sl.Balls(rng.uniform(0, 5, (60, 3)), rng.uniform(0.5, 1.4, 60))
+    F = sl.alpha_filtration(balls)
+    cells, tris = np.asarray(F.simplices(3))[:80], np.asarray(F.simplices(2))[:80]
+    whole = FS.free_space(F, 0.1, cells), FS.free_area(F, 0.1, tris), FS.free_space(balls, 0.1, cells)
+    monkeypatch.setattr(FS, "_PAIRS", 7)
+    sliced = FS.free_space(F, 0.1, cells), FS.free_area(F, 0.1, tris), FS.free_space(balls, 0.1, cells)
+    for a, b in zip(whole, sliced):
+        assert np.array_equal(a.measure, b.measure) and np.array_equal(a.wall, b.wall)
+        assert np.array_equal(a.contact_ball, b.contact_ball) and np.array_equal(a.contact_wall, b.contact_wall)
