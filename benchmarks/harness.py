@@ -422,11 +422,7 @@ def main(argv=None) -> int:
                 f"| {r['case']} | {ladder[0]:g}–{ladder[-1]:g} | {fmt(e['ours_time'])} | {fmt(e['peer_time'])} "
                 f"| {fmt(e['ours_memory'])} | {fmt(e['peer_memory'])} | [{r['figure']}]({r['figure']}) |\n"
             )
-    header = (
-        f"{machine_line(info)}\nMedians of fresh processes, ours and the peer interleaved "
-        f"(other work on the machine hits both alike).\n\n"
-    )
-    print(header + table)
+    print(_header(info) + table)
     _write(rows, info, stamp, partial=False, table=table)
     return 0 if not any(r.get("failed") for r in rows) else 1
 
@@ -457,10 +453,17 @@ def _failed_row(case: Case, err: Exception) -> dict:
     }
 
 
+def _header(info) -> str:
+    return (
+        f"{machine_line(info)}\nMedians of fresh processes, ours and the peer interleaved "
+        f"(other work on the machine hits both alike).\n\n"
+    )
+
+
 def _write(rows, info, stamp, *, partial, table=None) -> None:
     """Per-case JSON and ``latest.md``; after each case while the run goes on, marked
     as partial, so that an interrupted run keeps what it measured."""
-    header = f"{machine_line(info)}\nMedians of fresh processes, ours and the peer interleaved (other work on the machine hits both alike).\n\n"
+    header = _header(info)
     payload = {"machine": info, "results": rows}
     for r in rows:
         (RESULTS / f"{r['case']}.json").write_text(json.dumps(dict(payload, results=[r]), indent=1))

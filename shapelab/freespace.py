@@ -779,6 +779,15 @@ def _balls_of(balls, who):
     return F.balls, F
 
 
+def _within(tree, live, points, radius):
+    """Every (point, ball) pair with the ball's centre within ``radius`` of the point:
+    the point's row (repeated) and the ball's index (``tree`` is built on ``live``)."""
+    hits = tree.query_ball_point(points, radius)
+    lens = np.fromiter((len(x) for x in hits), dtype=np.int64, count=len(hits))
+    ball = live[np.fromiter((i for x in hits for i in x), dtype=np.int64, count=int(lens.sum()))]
+    return np.repeat(np.arange(len(hits)), lens), ball
+
+
 def _neighbours(F, tau, C, R, live, tree, rmax):
     """Who can cut each restricted power cell :math:`B_i \\cap \\Pi_i`, as a CSR
     (start, count, other) indexed by ball.
@@ -807,10 +816,8 @@ def _neighbours(F, tau, C, R, live, tree, rmax):
         src, dst = np.concatenate([e[:, 0], e[:, 1]]), np.concatenate([e[:, 1], e[:, 0]])
         lone = live[np.bincount(src, minlength=C.shape[0])[live] == 0]
         if lone.size:
-            hits = tree.query_ball_point(C[lone], R[lone] + rmax)
-            lens = np.fromiter((len(x) for x in hits), dtype=np.int64, count=lone.size)
-            j = live[np.fromiter((i for x in hits for i in x), dtype=np.int64, count=int(lens.sum()))]
-            a, b = overlapping(np.repeat(lone, lens), j)
+            k, j = _within(tree, live, C[lone], R[lone] + rmax)
+            a, b = overlapping(lone[k], j)
             src, dst = np.concatenate([src, a]), np.concatenate([dst, b])
     o = np.argsort(src, kind="stable")
     dst = dst[o]
@@ -851,10 +858,8 @@ def _free_space(balls, tau, cells, boundary):
     tree = cKDTree(C[live])
     rmax = float(R_all[live].max())
     # (cell, ball) pairs: balls that reach the cell, and not beyond one of its facets
-    hits = tree.query_ball_point(o[good], scale[good] + rmax)
-    lens = np.fromiter((len(x) for x in hits), dtype=np.int64, count=good.size)
-    pm = np.repeat(good, lens)
-    ball = live[np.fromiter((i for x in hits for i in x), dtype=np.int64, count=int(lens.sum()))]
+    k, ball = _within(tree, live, o[good], scale[good] + rmax)
+    pm = good[k]
     Z = C[ball] - o[pm]
     R = R_all[ball]
     near = (np.einsum("pd,pkd->pk", Z, As[pm]) - bs[pm]).max(1) < R
@@ -944,10 +949,8 @@ def free_area(balls, tau, triangles) -> FreeSpace:
         return FreeSpace(out, np.zeros(M), empty, empty, np.zeros(0))
     tree = cKDTree(C[live])
     rmax = float(np.sqrt(w[live].max()))
-    hits = tree.query_ball_point(o[good], scale[good] + rmax)
-    lens = np.fromiter((len(x) for x in hits), dtype=np.int64, count=good.size)
-    pm = np.repeat(good, lens)
-    ball = live[np.fromiter((i for x in hits for i in x), dtype=np.int64, count=int(lens.sum()))]
+    k, ball = _within(tree, live, o[good], scale[good] + rmax)
+    pm = good[k]
     rel = C[ball] - o[pm]
     rho2 = w[ball] - np.einsum("pd,pd->p", rel, nrm[pm]) ** 2
     Z = np.einsum("pd,pde->pe", rel, frame[pm])
