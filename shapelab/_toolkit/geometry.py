@@ -22,10 +22,13 @@ def dot(a, b):
 
 
 def cross(a, b):
-    """Cross product of component-first 3-vectors, shape ``(3, ...)``."""
+    """Cross product of component-first 3-vectors, shape ``(3, ...)``, in the
+    inputs' precision (``np.longdouble`` stays long: a float64 result would round
+    away the extra bits that a caller's error bound counts on)."""
     shape = np.broadcast_shapes(np.shape(a[0]), np.shape(b[0]))
-    out = np.empty((3,) + shape)
-    tmp = np.empty(shape)
+    dtype = np.result_type(a[0], b[0], np.float64)
+    out = np.empty((3,) + shape, dtype=dtype)
+    tmp = np.empty(shape, dtype=dtype)
     for i, (j, k) in enumerate(((1, 2), (2, 0), (0, 1))):
         np.multiply(a[j], b[k], out=out[i])
         out[i] -= np.multiply(a[k], b[j], out=tmp)
