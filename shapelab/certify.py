@@ -168,7 +168,7 @@ def _verified_neighbors(simp: np.ndarray, hint: np.ndarray):
     ``None`` if it is not consistent."""
     m, w = simp.shape
     hint = np.asarray(hint)
-    if hint.shape != simp.shape or hint.min(initial=0) < -1 or hint.max(initial=-1) >= m:
+    if m == 0 or hint.shape != simp.shape or hint.min(initial=0) < -1 or hint.max(initial=-1) >= m:
         return None
     if w > 1 and not np.all(simp[:, 1:] > simp[:, :-1]):
         return None
@@ -233,7 +233,7 @@ def certify(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None) -> 
     m, w = simp.shape
     k = w - 1
     n = P.n
-    given = None if neighbors is None or k < 1 else _verified_neighbors(simp, neighbors)
+    given = None if neighbors is None or k < 1 or m == 0 else _verified_neighbors(simp, neighbors)
     nbr, pos = given if given is not None else facet_adjacency(simp)
     if k == 0:
         ok = m == 1

@@ -35,12 +35,18 @@ Implementation notes
   of :math:`x` keeps the lower hull's combinatorics), power distances scale by
   :math:`s^2`, and translation does not change them.  This keeps Qhull's relative
   precision for inputs offset by :math:`10^6` or scaled by :math:`10^{-6}`.
-* **Lower dimension.**  If the centres span an affine subspace of dimension
-  :math:`k < d` (collinear or coplanar input, up to a relative 1e-8 of their
-  extent), they are expressed in an orthonormal basis of that subspace (SVD) and
+* **Lower dimension.**  The affine dimension of the centres is decided exactly
+  (:func:`shapelab.predicates.affine_basis`: orientation minors, filtered, then in
+  Python integers), never by a rank threshold.  If the centres span an affine
+  subspace of dimension :math:`k < d` *exactly* (collinear or coplanar input), they
+  are expressed in an orthonormal basis of that subspace (SVD) for Qhull and
   triangulated there; the triangulation then has :math:`k`-simplices as top
   simplices.  The exact predicates then work on the input coordinates along the k
   axes most parallel to the subspace, with heights from all d coordinates.
+  Centres that are flat only up to round-off (a line or plane rotated in floating
+  point, 1e-12 noise) are full-dimensional, as in GUDHI's exact alpha complex: their
+  triangulation has flat-looking slivers, which Qhull often misses (an empty or
+  rejected candidate); the exact incremental algorithm computes it then.
 * **Qhull options** ``Qt Qbb Q12 Q5 Q8`` (``scipy.spatial.ConvexHull``, which
   always adds ``Qt``): ``Qt`` triangulates merged (non-simplicial) facets, which arise
   for cospherical input such as integer grids (where it can leave flat or
@@ -77,7 +83,7 @@ from ._toolkit.validate import (
 from .balls import Balls
 from .certify import certify, facet_adjacency
 from .incremental import incremental_triangulation
-from .predicates import WeightedPoints, det
+from .predicates import WeightedPoints, affine_basis, det, projection_axes
 
 __all__ = [
     "regular_triangulation",
@@ -146,43 +152,24 @@ def _frame(balls: Balls) -> _Frame:
         c, w = centers[keep], radii[keep] ** 2
     if c.shape[0] == 0:
         return _Frame(keep, np.zeros((0, 0)), w, 1.0, -1)
+    # the affine dimension, exactly (no rank threshold): k+1 affinely independent
+    # centres that span the affine hull of all of them
+    basis = affine_basis(c)
+    k = len(basis) - 1
+    if k == 0:  # a single (distinct) centre
+        return _Frame(keep, np.zeros((c.shape[0], 0)), w, 1.0, 0)
     mean = c.mean(axis=0)
     y = c - mean
-    scale = float(np.max(np.abs(y))) if y.size else 0.0
-    if scale == 0.0:  # a single (distinct) centre
-        return _Frame(keep, np.zeros((c.shape[0], 0)), w, 1.0, 0)
+    scale = float(np.max(np.abs(y)))  # > 0: two distinct centres differ from their mean
     y /= scale
-    # affine dimension: a cheap test on the d x d Gram matrix first, the SVD of the
-    # centred, scaled centres only when it is (nearly) singular
-    ev = np.linalg.eigvalsh(y.T @ y)
-    if ev[0] > 1e-8 * ev[-1]:
-        return _Frame(keep, y, w / scale**2, scale, y.shape[1])
-    _, sv, vt = np.linalg.svd(y, full_matrices=False)
-    tol = max(y.shape) * np.finfo(float).eps * 64 * sv[0]
-    k = int(np.sum(sv > tol))
-    axes = tuple(range(y.shape[1]))
-    if k < y.shape[1]:
-        y = y @ vt[:k].T
-        axes = _projection_axes(vt[:k], k)
-    return _Frame(keep, np.ascontiguousarray(y), w / scale**2, scale, k, axes)
-
-
-def _projection_axes(basis: np.ndarray, k: int) -> tuple:
-    """The k coordinate axes onto which a k-flat (orthonormal ``basis`` rows)
-    projects best: the exact predicates of a line or plane in 3D (or a line in 2D)
-    are evaluated on the input's own coordinates along these axes.  Near ties
-    (within 1e-9) go to the lower axis, so round-off cannot change the choice."""
-    d = basis.shape[1]
-    if k == 0:
-        return ()
-    from itertools import combinations
-
-    best, best_v = None, -1.0
-    for axes in combinations(range(d), k):
-        v = abs(float(np.linalg.det(basis[:, list(axes)])))
-        if v > best_v * (1.0 + 1e-9):
-            best, best_v = axes, v
-    return tuple(best)
+    if k == y.shape[1]:
+        return _Frame(keep, y, w / scale**2, scale, k)
+    # exactly collinear or coplanar: Qhull's candidate in an orthonormal basis of the
+    # flat (SVD); the exact predicates on the input's own coordinates along the k
+    # axes the flat projects to one-to-one (and best)
+    _, _, vt = np.linalg.svd(y, full_matrices=False)
+    y = y @ vt[:k].T
+    return _Frame(keep, np.ascontiguousarray(y), w / scale**2, scale, k, projection_axes(c, basis))
 
 
 # ----------------------------------------------------------------------------------
@@ -247,7 +234,7 @@ def _hull_once(x: np.ndarray, h: np.ndarray, perm: np.ndarray):
     lifted[n, k] = h.max() + 4.0 + 2.0 * (h.max() - h.min())
     try:
         simp, neighbors, equations = _qhull_facets(lifted)
-    except QhullError as exc:  # pragma: no cover - should not happen after conditioning
+    except QhullError as exc:  # nearly flat centres (a flat initial simplex for Qhull)
         raise RuntimeError(f"Qhull failed on the lifted balls: {exc}") from None
     # Lower facets: downward unit normal.  Vertical facets (normal's last component
     # zero up to round-off) project to flat simplices, e.g. over collinear points on
@@ -336,10 +323,15 @@ def _certified(balls: Balls, fr: _Frame):
     reason = "Qhull failed"
     if cand is not None:
         simp, nbr, perm = cand
-        cert = certify(P, simp, nbr, order=perm)
-        if cert.ok:
-            return simp.astype(np.int32), cert.neighbors, TriangulationReport("qhull", "", dict(P.stats))
-        reason = cert.reason
+        if simp.shape[0] == 0:
+            # nearly flat centres: every lower facet of the lifted points looked
+            # vertical to Qhull (the exact dimension is k, so DT is not empty)
+            reason = "Qhull's lower hull is empty"
+        else:
+            cert = certify(P, simp, nbr, order=perm)
+            if cert.ok:
+                return simp.astype(np.int32), cert.neighbors, TriangulationReport("qhull", "", dict(P.stats))
+            reason = cert.reason
     order = np.argsort(fr.x[:, 0], kind="stable") if fr.k == 1 else morton_order(fr.x, min_n=0)
     simp = incremental_triangulation(P, order).astype(np.int32)
     nbr, _ = facet_adjacency(simp)

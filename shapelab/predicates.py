@@ -58,7 +58,7 @@ import math
 
 import numpy as np
 
-__all__ = ["WeightedPoints", "det", "permanent"]
+__all__ = ["WeightedPoints", "affine_basis", "det", "permanent", "projection_axes"]
 
 _U = 2.0**-53
 _TINY = 1e-280  # below this a float bound may be spoilt by underflow: decide exactly
@@ -467,3 +467,164 @@ class WeightedPoints:
             return 1 if D > 0 else -1
         self.stats["power_exact"] += 1
         return self._power_exact(row)
+
+
+# ----------------------------------------------------------------------------------
+# Affine dimension, exactly
+# ----------------------------------------------------------------------------------
+def _exact_ints(values: np.ndarray):
+    """The float64 ``values`` as Python integers at one common scale :math:`2^E`
+    (object array of the same shape, exactly ``values * 2**-E``) and ``E``."""
+    v = np.asarray(values, dtype=np.float64)
+    M, e = _exponent_ints(v)
+    nz = M != 0
+    E = int(e[nz].min()) if nz.any() else 0
+    shift = np.where(nz, e - E, 0)
+    return M.astype(object) << shift.astype(object), E
+
+
+def _minors(rows, r: int, d: int, fn=det):
+    """The ``r x r`` minors (one per set of ``r`` columns, in lexicographic order) of
+    the ``r x d`` matrices whose rows are ``rows`` (entries: scalars or arrays,
+    broadcast); ``fn=permanent`` on absolute values gives their error bounds."""
+    from itertools import combinations
+
+    return [fn([[row[c] for c in cols] for row in rows]) for cols in combinations(range(d), r)]
+
+
+def affine_basis(coords) -> list:
+    """An affinely independent subset of the points that spans their affine hull,
+    decided exactly (Notes §23.1).
+
+    Parameters
+    ----------
+    coords : array_like, shape (n, d), d <= 3
+        The points; their float64 values are the exact input.
+
+    Returns
+    -------
+    list of int
+        ``k + 1`` row indices, ``k`` the exact affine dimension of the points (``[]``
+        for no points).  Every point lies exactly in the affine hull of these rows.
+
+    Notes
+    -----
+    Greedy: starting from row 0, add at each step the point with the largest
+    minor of the difference vectors (farthest from the current flat) among those
+    the floating-point filter certifies to be off the flat (the error bound of
+    :meth:`WeightedPoints.orient`); if the filter certifies none, the undecided
+    points are tested with Python integers, and when every minor of every point is
+    exactly zero the flat is the affine hull.  No rank threshold is involved: a
+    set flat up to a relative 1e-12 but not exactly flat is full-dimensional.
+
+    See Also
+    --------
+    projection_axes : the coordinate axes a lower-dimensional flat projects to.
+
+    References
+    ----------
+    .. [1] J. R. Shewchuk, "Adaptive precision floating-point arithmetic and fast
+       robust geometric predicates", Discrete Comput. Geom. 18 (1997) 305-363.
+
+    Examples
+    --------
+    >>> affine_basis([[0.0, 0.0], [1.0, 0.0], [2.0, 1e-12], [3.0, 0.0]])
+    [0, 3, 2]
+    >>> affine_basis([[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]])
+    [0, 2]
+    """
+    x = np.ascontiguousarray(coords, dtype=np.float64)
+    n, d = x.shape
+    if n == 0:
+        return []
+    if n > 4096:
+        # a full-dimensional sample proves full dimension (its rows are points of x)
+        step = n // 1024
+        sub = affine_basis(x[::step])
+        if len(sub) == d + 1:
+            return [step * i for i in sub]
+    basis = [0]
+    X = np.ascontiguousarray(x.T)
+    exact = None
+    with np.errstate(all="ignore"):
+        for r in range(1, d + 1):
+            b0 = x[basis[0]]
+            rows = [x[b] - b0 for b in basis[1:]] + [[X[c] - b0[c] for c in range(d)]]
+            D = _minors(rows, r, d)
+            P = _minors([[np.abs(e) for e in row] for row in rows], r, d, permanent)
+            score = np.zeros(n)
+            for Dm, Pm in zip(D, P):
+                Dm = np.broadcast_to(Dm, (n,))
+                bound = _C_ORIENT[r] * _U * np.broadcast_to(Pm, (n,))
+                ok = (np.abs(Dm) > bound) & (bound > _TINY) & np.isfinite(Dm) & np.isfinite(bound)
+                score = np.maximum(score, np.where(ok, np.abs(Dm), 0.0))
+            if score.max() > 0:
+                basis.append(int(np.argmax(score)))
+                continue
+            # nothing certified: every point is on the flat up to the filter; decide exactly
+            if exact is None:
+                exact = _exact_ints(x)[0]
+            e0 = exact[basis[0]]
+            erows = [exact[b] - e0 for b in basis[1:]] + [[exact[:, c] - e0[c] for c in range(d)]]
+            off = np.zeros(n, dtype=bool)
+            for Dm in _minors(erows, r, d):
+                off |= np.broadcast_to(np.asarray(Dm != 0, dtype=bool), (n,))
+            if not off.any():
+                break
+            basis.append(int(np.argmax(off)))
+    return basis
+
+
+def projection_axes(coords, basis) -> tuple:
+    """The coordinate axes onto which the affine hull of ``coords[basis]`` projects
+    best (Notes §23.1): the ``k = len(basis) - 1`` axes whose ``k x k`` minor of the
+    difference vectors :math:`z_{b_i} - z_{b_0}` is largest in absolute value,
+    compared exactly (Python integers); ties go to the lexicographically first axes.
+
+    The minor is the volume of the projected simplex, so it is non-zero exactly when
+    the projection is one-to-one on the flat: the exact predicates of a line or
+    plane in 3D (or a line in 2D) are evaluated on these axes
+    (:class:`WeightedPoints` ``axes``).  For an orthonormal basis ``Q`` of the flat
+    the minors are ``det(C) det(Q[:, axes])``: the same choice as the most parallel
+    axes, without a tolerance.
+
+    Parameters
+    ----------
+    coords : array_like, shape (n, d)
+    basis : sequence of int
+        Affinely independent rows (:func:`affine_basis`).
+
+    Returns
+    -------
+    tuple of int
+
+    See Also
+    --------
+    affine_basis : the exact affine dimension and a spanning subset.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner and E. P. Mücke, "Simulation of Simplicity", ACM Trans.
+       Graphics 9 (1990) 66-104.
+
+    Examples
+    --------
+    >>> projection_axes([[0.0, 0.0, 0.0], [1.0, 0.0, 3.0]], [0, 1])
+    (2,)
+    """
+    from itertools import combinations
+
+    x = np.asarray(coords, dtype=np.float64)
+    basis = [int(b) for b in basis]
+    k, d = len(basis) - 1, x.shape[1]
+    if k <= 0:
+        return ()
+    X, _ = _exact_ints(x[basis])
+    V = [X[i] - X[0] for i in range(1, k + 1)]
+    best, best_v = None, -1
+    for axes, m in zip(combinations(range(d), k), _minors(V, k, d)):
+        if abs(m) > best_v:
+            best, best_v = axes, abs(m)
+    if best_v == 0:
+        raise ValueError(f"projection_axes: the rows {basis} are affinely dependent")
+    return tuple(best)

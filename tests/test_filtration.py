@@ -379,8 +379,8 @@ def test_collinear_and_coplanar():
         assert F.dimension == 1
         # the path along the line: consecutive centres
         np.testing.assert_array_equal(np.sort(F.simplices(1), axis=0)[:, 0], np.arange(8))
-    P = rng.uniform(size=(15, 2))
-    coplanar = np.c_[P, P @ [1.0, -2.0] + 3]
+    P = np.round(rng.uniform(size=(15, 2)) * 2**20) / 2**20
+    coplanar = np.c_[P, P @ [1.0, -2.0] + 3]  # exactly (dyadic P): the dimension is exact
     F = assert_topology_matches_gudhi(Balls(coplanar, rng.uniform(0, 0.2, 15)))
     assert F.dimension == 2
     F = assert_topology_matches_gudhi(Balls(np.c_[P * 1e-6, np.full(15, 7.0)], 0.0))

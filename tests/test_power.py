@@ -128,18 +128,23 @@ def test_agrees_with_gudhi_top_simplices():
 
 def test_lower_dimensional_and_tiny_inputs():
     rng = np.random.default_rng(3)
-    t = rng.permutation(np.linspace(0, 1, 7))
-    T = regular_triangulation(Balls(np.c_[t, 1 - t], 0.0))  # collinear in 2D
+    t = rng.permutation(np.arange(7) / 8)  # eighths: 1 - t is exact
+    T = regular_triangulation(Balls(np.c_[t, 1 - t], 0.0))  # collinear in 2D, exactly
     assert T.shape == (6, 2)
     order = np.argsort(t)
     assert as_set(T) == as_set(np.sort(np.c_[order[:-1], order[1:]], axis=1))
     T = regular_triangulation(Balls(np.c_[t, t, t] * 1e-6 + 1e6, 0.0))  # collinear in 3D
     assert T.shape == (6, 2)
-    P = rng.uniform(size=(20, 2))
-    Q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
-    T = regular_triangulation(Balls(np.c_[P, np.zeros(20)] @ Q.T + 5.0, 0.0))  # coplanar in 3D
+    P = np.round(rng.uniform(size=(20, 2)) * 2**20) / 2**20
+    # coplanar in 3D, exactly: P on two orthogonal integer vectors of length 3 (a
+    # similarity, so the Delaunay triangulation is P's), every product exact
+    T = regular_triangulation(Balls(P[:, :1] * [1.0, 2.0, 2.0] + P[:, 1:] * [2.0, 1.0, -2.0] + 5.0, 0.0))
     assert T.shape[1] == 3
     assert as_set(T) == as_set(np.sort(Delaunay(P).simplices, axis=1))
+    # rotated in floating point the plane is flat only up to round-off: the centres
+    # span space (decided exactly), as in GUDHI's exact alpha complex
+    Q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+    assert regular_triangulation(Balls(np.c_[P, np.zeros(20)] @ Q.T + 5.0, 0.0)).shape[1] == 4
     assert regular_triangulation(Balls([[1.0, 2.0]], 1.0)).tolist() == [[0]]
     assert regular_triangulation(Balls([[1.0, 2.0, 3.0]] * 3, [1, 2, 2])).tolist() == [[1]]
     assert regular_triangulation(Balls([[0.0, 0, 0], [1, 0, 0]], 0.1)).tolist() == [[0, 1]]
