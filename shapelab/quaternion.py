@@ -8,7 +8,9 @@ uses the *other* order, ``(x, y, z, w)``; see :func:`to_scipy_order`.)
 Two layers:
 
 * :class:`Quaternion`: one immutable quaternion with the algebra of the notes
-  (Hamilton product, conjugate, norm, inner product), the matrix forms
+  (Hamilton product, conjugate, norm, inner product), inverse and division
+  (:math:`q/r = qr^{-1}`), :meth:`~Quaternion.exp`, :meth:`~Quaternion.log` and powers
+  ``q ** t`` (numpy-quaternion's conventions), the matrix forms
   :math:`Q` (left multiplication) and :math:`\\bar Q` (right multiplication), and the
   conversions to and from axis-angle and rotation matrices.
 * array functions on stacks of quaternions of shape ``(..., 4)``: :func:`qmul`,
@@ -487,12 +489,29 @@ class Quaternion:
         return NotImplemented
 
     def __truediv__(self, other):
+        """``q / r`` is :math:`q\\,r^{-1}` (right division, numpy-quaternion's convention);
+        ``q / s`` divides every component by the real ``s``."""
+        if isinstance(other, Quaternion):
+            return self * other._inverse("divisor")
         if isinstance(other, numbers.Real) and not isinstance(other, bool):
             s = _scalar(other, "divisor")
             if s == 0:
                 raise ZeroDivisionError("division of a quaternion by zero")
             return self * (1.0 / s)
         return NotImplemented
+
+    def __rtruediv__(self, other):
+        """``s / q`` is :math:`s\\,q^{-1}` for a real ``s``."""
+        if isinstance(other, numbers.Real) and not isinstance(other, bool):
+            return self._inverse("divisor") * _scalar(other, "dividend")
+        return NotImplemented
+
+    def __pow__(self, t):
+        """``q ** t``: an integer ``t`` by repeated products, a real ``t`` as
+        :math:`\\exp(t\\log q)`; see :meth:`power`."""
+        if isinstance(t, bool) or not isinstance(t, numbers.Real):
+            return NotImplemented
+        return self.power(t)
 
     def __add__(self, other):
         if isinstance(other, Quaternion):
@@ -524,6 +543,156 @@ class Quaternion:
     def normalized(self) -> "Quaternion":
         """:math:`q/\\lVert q\\rVert`; the zero quaternion raises ValueError."""
         return Quaternion(*unit_quaternions(self.as_array(), "quaternion"))
+
+    def _inverse(self, name: str) -> "Quaternion":
+        a = self.as_array()
+        big = float(np.abs(a).max())
+        if big == 0.0:
+            raise ValueError(f"{name} is the zero quaternion, which has no inverse")
+        s = a / big  # scaled first: |q|^2 neither overflows nor underflows
+        return Quaternion(*(s * np.array([1.0, -1.0, -1.0, -1.0]) / (float(s @ s) * big)))
+
+    def inverse(self) -> "Quaternion":
+        """The multiplicative inverse :math:`q^{-1} = q^*/\\lVert q\\rVert^2` (Notes §23.2).
+
+        :math:`q\\,q^{-1} = q^{-1}q = 1`; for a unit quaternion it is the conjugate, the
+        inverse rotation.  The zero quaternion has none: ValueError.
+
+        See Also
+        --------
+        conjugate, power
+
+        Examples
+        --------
+        >>> q = Quaternion(1, 2, 3, 4)
+        >>> (q * q.inverse()).isclose(Quaternion(1.0), atol=1e-15)
+        True
+        >>> Quaternion(0, 2, 0, 0).inverse()
+        Quaternion(w=0.0, x=-0.5, y=-0.0, z=-0.0)
+        """
+        return self._inverse("quaternion")
+
+    def exp(self) -> "Quaternion":
+        """The exponential :math:`e^q = e^{q_0}(\\cos\\lVert v\\rVert +
+        \\tfrac{\\sin\\lVert v\\rVert}{\\lVert v\\rVert}\\,v)`, :math:`v = (q_1, q_2, q_3)`.
+
+        The power series :math:`\\sum q^k/k!`.  For a pure :math:`q = \\tfrac\\theta2 u`
+        (unit :math:`u`) it is the unit quaternion of the rotation by :math:`\\theta`
+        about :math:`u` (Notes §23.2), so ``Quaternion.pure(v / 2).exp()`` equals
+        ``Quaternion.from_rotation_vector(v)``.  :math:`e^{p+q} = e^pe^q` only when
+        :math:`p` and :math:`q` commute.  OverflowError when :math:`q_0 > 709`.
+
+        See Also
+        --------
+        log, power, from_rotation_vector
+
+        References
+        ----------
+        .. [1] M. Boyle, numpy-quaternion (``np.exp`` on quaternions), same formula.
+        .. [2] Wikipedia, "Quaternion", section "Exponential, logarithm, and power functions".
+
+        Examples
+        --------
+        >>> print(Quaternion(0, np.pi / 2, 0, 0).exp())
+        0 +1i +0j +0k
+        """
+        b = math.hypot(self.x, self.y, self.z)
+        try:
+            e = math.exp(self.w)
+        except OverflowError:
+            raise OverflowError(f"exp of a quaternion with real part {self.w!r} overflows float64") from None
+        k = e * (math.sin(b) / b if b > 0.0 else 1.0)
+        return Quaternion(e * math.cos(b), k * self.x, k * self.y, k * self.z)
+
+    def log(self) -> "Quaternion":
+        """The principal logarithm :math:`\\ln\\lVert q\\rVert + \\operatorname{atan2}(\\lVert
+        v\\rVert, q_0)\\,v/\\lVert v\\rVert`, :math:`v = (q_1, q_2, q_3)`.
+
+        The inverse of :meth:`exp`: ``q.log().exp() == q`` (to rounding) for every
+        non-zero ``q``, and ``p.exp().log() == p`` when the vector part of ``p`` has norm
+        below π.  The vector part of the result has norm in [0, π]: for a unit
+        quaternion the result is pure, half the rotation vector, :math:`\\tfrac\\theta2 u`.
+        On the negative real axis (:math:`v = 0`, :math:`q_0 < 0`) the logarithm is
+        not unique; :math:`\\ln|q_0| + \\pi\\mathbf i` is returned, as numpy-quaternion
+        does.  The zero quaternion has no logarithm: ValueError.
+
+        See Also
+        --------
+        exp, power, to_rotation_vector
+
+        References
+        ----------
+        .. [1] M. Boyle, numpy-quaternion (``np.log`` on quaternions), same conventions.
+
+        Examples
+        --------
+        >>> print(Quaternion.from_axis_angle([0, 0, 1], np.pi / 2).log())
+        0 +0i +0j +0.785398k
+        >>> print(Quaternion(-1.0).log())
+        0 +3.14159i +0j +0k
+        """
+        b = math.hypot(self.x, self.y, self.z)
+        n = math.hypot(self.w, b)
+        if n == 0.0:
+            raise ValueError("quaternion is the zero quaternion, which has no logarithm")
+        if b == 0.0:
+            return Quaternion(math.log(abs(self.w)), math.pi if self.w < 0 else 0.0, 0.0, 0.0)
+        f = math.atan2(b, self.w) / b
+        return Quaternion(math.log(n), f * self.x, f * self.y, f * self.z)
+
+    def power(self, t) -> "Quaternion":
+        """:math:`q^t` (also ``q ** t``).
+
+        * an integer ``t`` (``int`` or a NumPy integer): repeated Hamilton products,
+          by squaring (:math:`O(\\log|t|)` products); a negative ``t`` is the power of
+          :meth:`inverse`; ``q ** 0`` is 1, even for the zero quaternion;
+        * a real ``t`` (``float``): :math:`\\exp(t\\log q)` with the principal
+          :meth:`log`, numpy-quaternion's definition.  For a unit :math:`q` of angle
+          :math:`\\theta \\le \\pi` (:math:`q_0 \\ge 0`) this is the rotation by
+          :math:`t\\theta` about the same axis, and :math:`q^aq^b = q^{a+b}`; slerp is
+          :math:`\\operatorname{slerp}(q_0, q_1; t) = q_0(q_0^{-1}q_1)^t`.  Note that
+          :math:`q` and :math:`-q` have different real powers (:math:`(-1)^{1/2} =
+          \\mathbf i`).  The zero quaternion: :math:`0^t = 0` for :math:`t > 0`, 1 for
+          :math:`t = 0`; a negative power of zero raises ValueError.
+
+        See Also
+        --------
+        exp, log, inverse
+
+        References
+        ----------
+        .. [1] K. Shoemake, "Animating rotation with quaternion curves", SIGGRAPH 1985
+           (slerp as a power).
+        .. [2] M. Boyle, numpy-quaternion (``q ** t``), same definition.
+
+        Examples
+        --------
+        >>> q = Quaternion.from_axis_angle([0, 0, 1], np.pi / 2)
+        >>> (q ** 0.5).same_rotation(Quaternion.from_axis_angle([0, 0, 1], np.pi / 4))
+        True
+        >>> Quaternion(0, 1, 0, 0) ** 2
+        Quaternion(w=-1.0, x=0.0, y=0.0, z=0.0)
+        """
+        if isinstance(t, bool) or not isinstance(t, numbers.Real):
+            raise TypeError(f"exponent must be a real number, got {type(t).__name__}")
+        zero = self.w == 0.0 and self.x == 0.0 and self.y == 0.0 and self.z == 0.0
+        if isinstance(t, numbers.Integral):
+            k = int(t)
+            base = self._inverse("quaternion") if k < 0 else self
+            out, k = Quaternion(1.0), abs(k)
+            while k:
+                if k & 1:
+                    out = out * base
+                k >>= 1
+                if k:
+                    base = base * base
+            return out
+        t = as_finite_scalar(t, "exponent")
+        if zero:
+            if t < 0:
+                raise ValueError(f"quaternion is the zero quaternion: no negative power (exponent {t!r})")
+            return Quaternion(1.0 if t == 0 else 0.0)
+        return (self.log() * t).exp()
 
     def isclose(self, other: "Quaternion", atol: float = 1e-12) -> bool:
         """Componentwise equality within ``atol`` (so :math:`q` and :math:`-q` differ)."""

@@ -407,3 +407,186 @@ def test_zero_quaternion_is_not_a_rotation():
 def test_bad_input_names_the_argument(call, exc, words):
     with pytest.raises(exc, match=words):
         call()
+
+
+# ----------------------------------------------------------------- inverse, division, exp, log, powers
+# Oracles: the 2×2 complex-matrix representation (the inverse, exp and log of a
+# quaternion are those of its matrix: scipy.linalg.inv/expm/logm), SciPy's Slerp, and
+# the values of numpy-quaternion's own tests (tests/test_quaternion.py, moble/quaternion).
+
+Q_NPQ = Quaternion(1.1, 2.2, 3.3, 4.4)  # numpy-quaternion's Q, Qlog, Qexp (15 digits given)
+QLOG_NPQ = Quaternion(1.7959088706354, 0.515190292664085, 0.772785438996128, 1.03038058532817)
+QEXP_NPQ = Quaternion(2.81211398529184, -0.392521193481878, -0.588781790222817, -0.785042386963756)
+nonzero4 = quat4.filter(lambda q: np.linalg.norm(q) > 1e-3)
+
+
+def from_su2(m):
+    """The quaternion of a 2×2 complex matrix of the form su2(q.as_array())."""
+    return Quaternion(m[0, 0].real, m[0, 0].imag, m[0, 1].real, m[0, 1].imag)
+
+
+def close(a: Quaternion, b: Quaternion, rtol=1e-12) -> bool:
+    return bool(np.abs(a.as_array() - b.as_array()).max() <= rtol * max(1.0, b.norm()))
+
+
+def test_su2_oracle_reads_back():
+    q = Quaternion(0.3, -1.2, 2.5, 0.7)
+    assert from_su2(su2(q.as_array())) == q
+
+
+@SET
+@given(nonzero4, nonzero4)
+def test_inverse_and_division(q, r):
+    q, r = Quaternion(*q), Quaternion(*r)
+    assert close(q * q.inverse(), ONE) and close(q.inverse() * q, ONE)
+    assert close(q.inverse(), from_su2(np.linalg.inv(su2(q.as_array()))))
+    assert close(q / r, q * r.inverse())  # right division
+    assert close((q / r) * r, q, 1e-11)
+    assert close(2.5 / q, 2.5 * q.inverse()) and close(q / 4.0, q * 0.25)
+    assert close((q * r).inverse(), r.inverse() * q.inverse())
+
+
+def test_division_table_of_numpy_quaternion():
+    # from numpy-quaternion's test_quaternion_divide: exact on the basis
+    assert I / I == ONE and J / J == ONE and K / K == ONE
+    assert I / J == -K and I / K == J and J / I == K
+    assert J / K == -I and K / I == -J and K / J == I
+    for q in (ONE, I, J, K):
+        assert ONE / q == q.conjugate() and q / ONE == q
+    assert 0.0 / Q_NPQ == Quaternion(0.0) and Q_NPQ / 1 == Q_NPQ
+
+
+def test_inverse_of_tiny_and_huge_quaternions_is_scaled():
+    for s in (1e-160, 1e160):
+        q = Quaternion(s, 2 * s, 0, 0)
+        assert close(q * q.inverse(), ONE, 1e-15)
+
+
+def test_zero_quaternion_has_no_inverse_log_or_negative_power():
+    z = Quaternion(0.0)
+    for call in (z.inverse, z.log, lambda: ONE / z, lambda: 2.0 / z, lambda: z**-1, lambda: z**-0.5):
+        with pytest.raises(ValueError, match="zero quaternion"):
+            call()
+    assert z**0 == ONE and z**0.0 == ONE and z**2 == z and z**0.5 == z
+
+
+def test_log_exp_values_of_numpy_quaternion():
+    tol = 1e-13  # the reference values are printed to 15 significant digits
+    assert close(Q_NPQ.log(), QLOG_NPQ, tol)
+    assert close(Q_NPQ.exp(), QEXP_NPQ, tol)
+    assert close(Q_NPQ.log().exp(), Q_NPQ, tol)
+    assert not close(Q_NPQ.exp().log(), Q_NPQ, tol)  # |v| = 5.9 > π: log is only a left inverse
+    assert ONE.log() == Quaternion(0.0)
+    for u in (I, J, K):
+        assert u.log() == (np.pi / 2) * u
+    assert (-ONE).log() == np.pi * I  # the negative real axis: numpy-quaternion's choice
+    assert close(Quaternion(-3.0).log(), Quaternion(np.log(3.0), np.pi, 0, 0))
+
+
+@SET
+@given(nonzero4)
+def test_exp_and_log_match_the_complex_matrix_functions(q):
+    from scipy.linalg import expm, logm
+
+    q = Quaternion(*q)
+    assert close(q.exp(), from_su2(expm(su2(q.as_array()))), 1e-10)
+    if np.linalg.norm(q.vector) > 1e-6 * q.norm():  # logm is ill-conditioned on the real axis
+        assert close(q.log(), from_su2(logm(su2(q.as_array()))), 1e-8)
+    assert close(q.log().exp(), q, 1e-12)
+
+
+@SET
+@given(unit4, vec3)
+def test_unit_log_is_pure_half_rotation_vector_and_exp_inverts(q, v):
+    q = Quaternion(*q)
+    lg = q.log()
+    assert abs(lg.w) < 1e-15
+    if q.w >= 0:
+        np.testing.assert_allclose(2 * lg.vector, q.to_rotation_vector(), atol=1e-12)
+    v = v * (np.pi / (1e-9 + np.linalg.norm(v))) * 0.99  # |v| < π: exp then log round-trips
+    p = Quaternion.pure(v)
+    assert close(p.exp().log(), p, 1e-12)
+    assert close(Quaternion.pure(v / 2).exp(), Quaternion.from_rotation_vector(v), 1e-14)
+
+
+def test_exp_is_the_power_series():
+    q = Quaternion(0.3, -0.8, 0.5, 1.1)
+    term, total = ONE, ONE
+    for k in range(1, 40):
+        term = term * q / k
+        total = total + term
+    assert close(q.exp(), total, 1e-14)
+    with pytest.raises(OverflowError, match="real part"):
+        Quaternion(800.0).exp()
+
+
+@SET
+@given(nonzero4, st.integers(-7, 7))
+def test_integer_powers_are_repeated_products(q, n):
+    q = Quaternion(*q)
+    ref = ONE
+    for _ in range(abs(n)):
+        ref = ref * (q if n > 0 else q.inverse())
+    assert close(q**n, ref, 1e-12)
+    assert close(q ** np.int64(n), ref, 1e-12)
+    assert close(q ** float(n), ref, 1e-10)  # the real power agrees to rounding
+
+
+def test_integer_powers_of_the_basis_are_exact():
+    assert I**2 == -ONE and I**3 == -I and I**4 == ONE and I**-1 == -I
+    q = Quaternion(1.0, 1.0, 0.0, 0.0)
+    assert q**2 == Quaternion(0.0, 2.0, 0.0, 0.0) and q**4 == Quaternion(-4.0)
+
+
+@SET
+@given(nonzero4, st.floats(-3, 3), st.floats(-3, 3))
+def test_real_powers_add_exponents(q, a, b):
+    # (numpy-quaternion's test_quaternion_power: q**(s+t) = q**s q**t for any non-zero q)
+    q = Quaternion(*q)
+    assert close((q**a) * (q**b), q ** (a + b), 1e-9)
+    assert close((q**a) / (q**b), q ** (a - b), 1e-9)
+    assert close((q**0.5) * (q**0.5), q, 1e-12)
+    assert close(q**-1.0, q.inverse(), 1e-12) and close(q**1.0, q, 1e-12)
+
+
+@SET
+@given(unit4, st.floats(0, 1))
+def test_unit_power_scales_the_angle(q, t):
+    q = Quaternion(*q)
+    if q.w < 0:
+        q = -q
+    axis, angle = q.to_axis_angle()
+    assert (q**t).same_rotation(Quaternion.from_axis_angle(axis, t * angle), 1e-12)
+    assert abs((q**t).norm() - 1.0) < 1e-14
+
+
+@SET
+@given(unit4, unit4, st.floats(0, 1))
+def test_slerp_is_a_power_and_matches_scipy(a, b, t):
+    from scipy.spatial.transform import Slerp
+
+    q0, q1 = Quaternion(*a), Quaternion(*b)
+    if q0.inner(q1) < 0:
+        q1 = -q1  # the shorter arc, as SciPy's Slerp takes it
+    mine = q0 * (q0.inverse() * q1) ** t
+    key = Rotation.from_quat(to_scipy_order(np.stack([q0.as_array(), q1.as_array()])))
+    ref = Slerp([0.0, 1.0], key)([t])
+    assert mine.same_rotation(Quaternion(*from_scipy_order(ref.as_quat()[0])), 1e-9)
+    # the closed form sin((1-t)Ω)/sin Ω q0 + sin(tΩ)/sin Ω q1
+    om = np.arccos(np.clip(q0.inner(q1), -1, 1))
+    if om > 1e-3:
+        ref2 = q0 * (np.sin((1 - t) * om) / np.sin(om)) + q1 * (np.sin(t * om) / np.sin(om))
+        assert close(mine, ref2, 1e-9)
+
+
+def test_power_and_division_refuse_non_numbers():
+    with pytest.raises(TypeError):
+        ONE ** "2"
+    with pytest.raises(TypeError):
+        ONE**True
+    with pytest.raises(TypeError, match="exponent"):
+        ONE.power(1j)
+    with pytest.raises(TypeError):
+        ONE / "a"
+    with pytest.raises(ValueError, match="exponent must be finite"):
+        ONE ** float("nan")
