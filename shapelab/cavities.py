@@ -52,6 +52,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
+from ._toolkit import tolerances as tol
 from ._toolkit.unionfind import elder_merges
 from ._toolkit.validate import (
     as_finite_scalar,
@@ -684,7 +685,10 @@ def channel_profile(balls, point, direction, offsets, *, search: float = 3.0) ->
             return -clearance(origin + y[0] * e1 + y[1] * e2) + 10.0 * excess
 
         starts = [prev, np.zeros(2)]
-        runs = [minimize(cost, y0, method="Nelder-Mead", options={"xatol": 1e-4, "fatol": 1e-6}) for y0 in starts]
+        runs = [
+            minimize(cost, y0, method="Nelder-Mead", options={"xatol": tol.CHANNEL_XATOL, "fatol": tol.CHANNEL_FATOL})
+            for y0 in starts
+        ]
         best = min(runs, key=lambda res: res.fun)
         y = best.x
         prev = y

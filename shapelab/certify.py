@@ -34,6 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._toolkit.tolerances import COVER_PREFILTER
 from .predicates import WeightedPoints, det
 
 __all__ = ["Certificate", "certify", "facet_adjacency"]
@@ -347,7 +348,7 @@ def _count_cover(P: WeightedPoints, simp, s) -> int:
     k = w - 1
     U = P.u
     c = U[simp[0]].mean(axis=0)
-    tol = 1e-6 * (np.abs(U[simp[0]] - c).max() + np.abs(c).max())
+    margin = COVER_PREFILTER * (np.abs(U[simp[0]] - c).max() + np.abs(c).max())
     cand = np.arange(m)
     for a in range(k):
         X = U[simp[cand], a]
@@ -355,7 +356,7 @@ def _count_cover(P: WeightedPoints, simp, s) -> int:
         for j in range(1, w):
             np.minimum(lo, X[:, j], out=lo)
             np.maximum(hi, X[:, j], out=hi)
-        cand = cand[(lo <= c[a] + tol) & (hi >= c[a] - tol)]
+        cand = cand[(lo <= c[a] + margin) & (hi >= c[a] - margin)]
     # exact: points scaled by (k+1), the centroid as the sum of simplex 0's vertices
     ui = [P.exact_u(int(i)) for i in simp[0]]
     cs = tuple(sum(p[a] for p in ui) for a in range(k))

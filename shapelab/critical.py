@@ -43,6 +43,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._toolkit import tolerances as tol
 from ._toolkit.validate import as_finite_scalar, as_point, as_points, as_positive_int
 
 __all__ = [
@@ -290,7 +291,7 @@ def _parametric_critical(fn: Callable, S: np.ndarray, n_samples: int) -> Critica
     # periodicity check: x(2π) must equal x(0)
     end = _evaluate(fn, np.array([_TWO_PI]), dim)[0]
     scale = float(np.abs(X).max()) + 1.0
-    if np.abs(end - X[0]).max() > 1e-9 * scale:
+    if np.abs(end - X[0]).max() > tol.CURVE_CLOSED * scale:
         raise ValueError("curve must be closed: curve(2π) differs from curve(0); parametrise it on [0, 2π)")
 
     def F(s):
@@ -298,10 +299,10 @@ def _parametric_critical(fn: Callable, S: np.ndarray, n_samples: int) -> Critica
 
     Fk = np.sqrt(np.sum((X - S) ** 2, axis=1))
     spread = Fk.max() - Fk.min()
-    if spread <= 1e-12 * max(Fk.max(), 1e-300):
+    if spread <= tol.CURVE_FLAT * max(Fk.max(), tol.UNDERFLOW_FLOOR):
         empty = np.empty((0, dim))
         return _result("parametric", S, empty, [], [], [], [], degenerate=True)
-    h = 1e-3
+    h = tol.CURVE_STEP
 
     def g(s):  # d/dt of F²/2 = (x(t) - S) . x'(t), x' by a 4th-order central difference
         pts = _evaluate(fn, s + h * np.array([-2.0, -1.0, 0.0, 1.0, 2.0]), dim)
@@ -316,29 +317,33 @@ def _parametric_critical(fn: Callable, S: np.ndarray, n_samples: int) -> Critica
             ga, gb = g(a), g(b)
             sign = 1.0 if kind == "min" else -1.0
             if sign * ga < 0 < sign * gb:
-                s = brentq(g, a, b, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
+                s = brentq(g, a, b, xtol=tol.CURVE_ROOT_XTOL, rtol=4 * np.finfo(float).eps, maxiter=200)
             else:
                 res = minimize_scalar(
                     lambda x, sign=sign: sign * F(x),
                     bounds=(a, b),
                     method="bounded",
-                    options={"xatol": 1e-12},
+                    options={"xatol": tol.CURVE_MIN_XATOL},
                 )
                 s = float(res.x)
             if sign * F(s) > sign * Fk[k]:  # never worse than the sample
                 s = float(t[k])
             s = s % _TWO_PI
-            if _TWO_PI - s < 1e-12:  # round-off just below 2π is t = 0
+            if _TWO_PI - s < tol.CURVE_WRAP:  # round-off just below 2π is t = 0
                 s = 0.0
             found.append((s, kind))
     found.sort()
     # merge duplicates (a refined extremum found from two neighbouring samples)
     merged = []
     for s, kind in found:
-        if merged and merged[-1][1] == kind and abs(s - merged[-1][0]) < 1e-9:
+        if merged and merged[-1][1] == kind and abs(s - merged[-1][0]) < tol.CURVE_MERGE:
             continue
         merged.append((s, kind))
-    if len(merged) > 1 and merged[0][1] == merged[-1][1] and abs(merged[0][0] + _TWO_PI - merged[-1][0]) < 1e-9:
+    if (
+        len(merged) > 1
+        and merged[0][1] == merged[-1][1]
+        and abs(merged[0][0] + _TWO_PI - merged[-1][0]) < tol.CURVE_MERGE
+    ):
         merged.pop()
     ts = np.array([s for s, _ in merged])
     pos = _evaluate(fn, ts, dim) if ts.size else np.empty((0, dim))

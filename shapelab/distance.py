@@ -97,6 +97,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ._toolkit import tolerances as tol
 from ._toolkit.validate import as_point_pair, as_positive_int
 
 __all__ = [
@@ -236,7 +237,7 @@ class _Best:
 def _margin(src: _Cloud, dst: _Cloud) -> float:
     """A rigorous bound on the round-off of one entry of ``left @ right.T + sq``."""
     d = src.points.shape[1]
-    return 8.0 * (d + 4) * _EPS * (src.sqmax + dst.sqmax) + 1e-300
+    return 8.0 * (d + 4) * _EPS * (src.sqmax + dst.sqmax) + tol.UNDERFLOW_FLOOR
 
 
 def _upper(raw: np.ndarray, rows_sq: np.ndarray, margin: float, d: int) -> np.ndarray:
@@ -319,7 +320,7 @@ def _refine_tree(
     """
     out_d2, out_nn = d2.copy(), nn.copy()
     for t, (i, v) in enumerate(zip(rows, d2)):
-        r = np.sqrt(v) * (1.0 + 1e-12) + 1e-300
+        r = np.sqrt(v) * (1.0 + tol.DISTANCE_TIE_REL) + tol.UNDERFLOW_FLOOR
         cand = np.asarray(tree.query_ball_point(src.points[i], r), dtype=np.intp)
         if cand.size:
             e = _sqdist(src.points[i], points[cand])
@@ -340,7 +341,7 @@ def _query_exact(
 ) -> None:
     """Exact nearest neighbours of ``src[rows]`` (each within ``sqrt(ub)``) in a
     tree over ``points``; offer the results to ``best``."""
-    bound = float(np.sqrt(ub.max())) * (1.0 + 1e-9) + 1e-300
+    bound = float(np.sqrt(ub.max())) * (1.0 + tol.DISTANCE_REACH_REL) + tol.UNDERFLOW_FLOOR
     dist, j = tree.query(src.points[rows], k=1, workers=_workers(rows.size), distance_upper_bound=bound)
     j = np.asarray(j, dtype=np.intp)
     bad = ~np.isfinite(dist)
@@ -349,7 +350,7 @@ def _query_exact(
         j[bad] = j2
     d2 = _sqdist(src.points[rows], points[j])
     # only the largest value matters: refine the rows that may tie with it
-    hi = d2 >= max(best.d2, float(d2.max())) * (1.0 - 1e-12)
+    hi = d2 >= max(best.d2, float(d2.max())) * (1.0 - tol.DISTANCE_TIE_REL)
     if hi.any():
         d2h, jh = _refine_tree(src, rows[hi], d2[hi], j[hi], points, tree, index)
         best.offer(d2h, rows[hi], jh)
@@ -368,13 +369,13 @@ def _subset_stage(src: _Cloud, alive: np.ndarray, u: np.ndarray, dst: _Cloud, be
     center = 0.5 * (P.min(axis=0) + P.max(axis=0))
     radius = float(np.sqrt(_sqdist(P, center).max()))
     reach = radius + float(np.sqrt(u[alive].max()))
-    reach = reach * (1.0 + 1e-9) + 1e-300
+    reach = reach * (1.0 + tol.DISTANCE_REACH_REL) + tol.UNDERFLOW_FLOOR
     # |b - center|^2 from the prepared columns in one pass: with e = center - c,
     # |b - c|^2 - 2 (b - c).e + |e|^2; the round-off margin keeps it a superset
     e = center - dst.center
     ee = float(e @ e)
     d2c = np.r_[e, 1.0] @ dst.rightT + ee
-    slack = 8.0 * (e.size + 4) * _EPS * (dst.sqmax + ee) + 1e-300
+    slack = 8.0 * (e.size + 4) * _EPS * (dst.sqmax + ee) + tol.UNDERFLOW_FLOOR
     inside = np.flatnonzero(d2c <= reach * reach + slack)
     if inside.size > dst.points.shape[0] // 4 and not force:
         return False
@@ -599,7 +600,7 @@ class _Grid:
         # Rigorous boxes: the cell number of a point is off by at most a few units in
         # the last place of (p - lo) / width, and the corners lo + c * width are
         # rounded too; both are covered by widening with ``slack``.
-        slack = 16.0 * _EPS * (np.abs(lo) + np.abs(hi) + ext) + 1e-300
+        slack = 16.0 * _EPS * (np.abs(lo) + np.abs(hi) + ext) + tol.UNDERFLOW_FLOOR
         lo_box = lo + idx * width
         hi_box = lo + (idx + 1) * width
         self.center = 0.5 * (lo_box + hi_box)
@@ -608,7 +609,7 @@ class _Grid:
 
 
 #: Relative allowance for the round-off of box bounds (far above the few ulps needed).
-_REL = 1e-12
+_REL = tol.DISTANCE_BOX_REL
 #: Representative points of D tried against every point of a live cell of S.
 _PROBES = 3
 
@@ -657,7 +658,7 @@ def _cell_pairs(gS: _Grid, gD: _Grid, rows: np.ndarray | None = None, probes: in
             q = near.shape[1]
             near[s : s + step] = np.argpartition(M, q - 1, axis=1)[:, :q] if q < nY else np.arange(nY)
     if probes:
-        return ub2 * (1.0 + _REL) + 1e-300, near
+        return ub2 * (1.0 + _REL) + tol.UNDERFLOW_FLOOR, near
     out *= 1.0 - _REL
     return out
 
@@ -991,7 +992,7 @@ class Timings:
     def agree(self) -> bool:
         """Whether every algorithm returned the same distance (to 1e-12 relative)."""
         v = np.array(list(self.values.values()))
-        return bool(np.allclose(v, v[0], rtol=1e-12, atol=0.0))
+        return bool(np.allclose(v, v[0], rtol=tol.DISTANCE_AGREE, atol=0.0))
 
 
 def timings(A, B, *, repeat: int = 1, brute: bool = True) -> Timings:

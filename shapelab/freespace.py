@@ -36,6 +36,7 @@ from itertools import combinations
 
 import numpy as np
 
+from ._toolkit import tolerances as tol
 from ._toolkit.geometry import cross_rows
 from ._toolkit.validate import as_tau, check_balls
 from .balls import Balls, power_distance
@@ -96,7 +97,7 @@ def _cap_segment(d, l0, l1, q0, q1, r):
     \\operatorname{atan2}(l, q) - d l q / 2`.
     """
     out = np.zeros_like(d)
-    m = d > 1e-300
+    m = d > tol.UNDERFLOW_FLOOR
     if np.any(m):
         dd, rr = d[m], r[m]
         a2 = np.maximum(rr * rr - dd * dd, 0.0)
@@ -176,7 +177,7 @@ def _triple_volume(c, r):
             # signed ∫ F dθ along the straight segment a -> b (centre at origin)
             ab = b - a
             L = np.linalg.norm(ab, axis=1)
-            ok = L > 1e-300
+            ok = L > tol.UNDERFLOW_FLOOR
             uhat = ab / np.where(ok, L, 1.0)[:, None]
             la = (a * uhat).sum(-1)
             q = a - la[:, None] * uhat  # foot of the centre on the line
@@ -285,7 +286,7 @@ def _segment_integral(kind, h, d, la, lb, r):
     d·Δl/2; outside it is elementary (atan2 / arcsin).
     """
     out = np.zeros_like(d)
-    ok = d > 1e-300
+    ok = d > tol.UNDERFLOW_FLOOR
     if not np.any(ok):
         return out
     h, d, la, lb, r = (x[ok] for x in (h, d, la, lb, r))
@@ -304,10 +305,10 @@ def _segment_integral(kind, h, d, la, lb, r):
         if kind == 2:
             return 0.5 * r * r * (np.arctan2(b, d) - np.arctan2(a, d))
         ah = np.abs(h)
-        C0 = np.where(rho2 > 0, 0.5 * rho2 + r * r, r**3 / np.maximum(ah, 1e-300))
+        C0 = np.where(rho2 > 0, 0.5 * rho2 + r * r, r**3 / np.maximum(ah, tol.UNDERFLOW_FLOOR))
         k = np.sqrt(h * h + d * d)
         sa, sb = a / np.hypot(a, d), b / np.hypot(b, d)
-        return C0 * (np.arctan2(b, d) - np.arctan2(a, d)) - (r**3 / np.maximum(ah, 1e-300)) * (
+        return C0 * (np.arctan2(b, d) - np.arctan2(a, d)) - (r**3 / np.maximum(ah, tol.UNDERFLOW_FLOOR)) * (
             np.arcsin(np.clip(ah * sb / k, -1, 1)) - np.arcsin(np.clip(ah * sa / k, -1, 1))
         )
 
@@ -390,14 +391,14 @@ def _vertices(A, h, eps, idx):
         ibc, iac, iab = pid[idx[:, 1], idx[:, 2]], pid[idx[:, 0], idx[:, 2]], pid[idx[:, 0], idx[:, 1]]
         a = idx[:, 0]
         det = ax[:, a] * cx[:, ibc] + ay[:, a] * cy[:, ibc] + az[:, a] * cz[:, ibc]
-        ok = np.abs(det) > 1e-12
+        ok = np.abs(det) > tol.PLANE_DETERMINANT
         inv = 1.0 / np.where(ok, det, 1.0)
         # x = (h_a (n_b × n_c) + h_b (n_c × n_a) + h_c (n_a × n_b)) / det
         X = [(hs[0] * cc[:, ibc] - hs[1] * cc[:, iac] + hs[2] * cc[:, iab]) * inv for cc in (cx, cy, cz)]
     else:
         na, nb = A[:, idx[:, 0]], A[:, idx[:, 1]]
         det = na[..., 0] * nb[..., 1] - na[..., 1] * nb[..., 0]
-        ok = np.abs(det) > 1e-12
+        ok = np.abs(det) > tol.PLANE_DETERMINANT
         inv = 1.0 / np.where(ok, det, 1.0)
         X = [(hs[0] * nb[..., 1] - hs[1] * na[..., 1]) * inv, (na[..., 0] * hs[1] - nb[..., 0] * hs[0]) * inv]
     # feasible within eps of every plane; incident within 10 eps.  The simplex's
@@ -411,7 +412,7 @@ def _vertices(A, h, eps, idx):
         for c in range(1, d):
             r += X[c] * comp[c][:, j, None]
         feas &= r <= e
-        near.append(np.abs(r) <= 10 * e)
+        near.append(np.abs(r) <= tol.PLANE_INCIDENCE_FACTOR * e)
     pv, tv = np.nonzero(feas)
     V = np.stack([x[pv, tv] for x in X], axis=-1)
     inc = np.empty((pv.size, k), dtype=bool)
@@ -424,7 +425,7 @@ def _vertices(A, h, eps, idx):
         for c in range(1, d):
             r += V[:, c] * comp[c][pv, j]
         keep &= r <= ev
-        inc[:, j] = np.abs(r) <= 10 * ev
+        inc[:, j] = np.abs(r) <= tol.PLANE_INCIDENCE_FACTOR * ev
     return V[keep], pv[keep], inc[keep]
 
 
@@ -473,7 +474,7 @@ def _clip_chunk3(A, h, r, eps, idx, boundary):
     hh = h[pe, qe]
     rr = r[pe]
     L = np.sqrt((ab * ab).sum(1))
-    ok = (L > 0) & (np.abs(hh) > 1e-14 * rr)
+    ok = (L > 0) & (np.abs(hh) > tol.EDGE_HEIGHT * rr)
     a_, ab, L, n, hh, rr, pe = a_[ok], ab[ok], L[ok], n[ok], hh[ok], rr[ok], pe[ok]
     foot = hh[:, None] * n
     u = ab / L[:, None]
@@ -578,10 +579,10 @@ def _distinct_planes(row, n, hq, As, hs, eps, P):
     row, n, hq = row[o], n[o], hq[o]
     if row.size == 0:
         return row, n, hq
-    tol = 10.0 * eps[row]
+    within = tol.PLANE_INCIDENCE_FACTOR * eps[row]
     dup = np.zeros(row.size, dtype=bool)
     for f in range(As.shape[1]):  # the simplex's facets
-        dup |= ((As[row, f] * n).sum(1) > 1.0 - 1e-12) & (np.abs(hs[row, f] - hq) <= tol)
+        dup |= ((As[row, f] * n).sum(1) > 1.0 - tol.PARALLEL_NORMALS) & (np.abs(hs[row, f] - hq) <= within)
     # among the power planes: compare each with the next ones of its pair while
     # their offsets stay within the tolerance
     q = np.arange(row.size)
@@ -589,9 +590,9 @@ def _distinct_planes(row, n, hq, As, hs, eps, P):
     while q.size:
         q = q[q + step < row.size]
         nxt = q + step
-        q = q[(row[nxt] == row[q]) & (hq[nxt] - hq[q] <= tol[q])]
+        q = q[(row[nxt] == row[q]) & (hq[nxt] - hq[q] <= within[q])]
         nxt = q + step
-        dup[nxt[(n[nxt] * n[q]).sum(1) > 1.0 - 1e-12]] = True
+        dup[nxt[(n[nxt] * n[q]).sum(1) > 1.0 - tol.PARALLEL_NORMALS]] = True
         step += 1
     keep = ~dup
     return row[keep], n[keep], hq[keep]
@@ -659,7 +660,7 @@ def _measure_pairs(X, As, bs, scale, pm, Z, R, row, D, Rj, beaten, boundary):
     empty[row[apart & (hq < 0)]] = True
     q = ~apart
     row, n, hq = row[q], n[q], hq[q]
-    eps = 1e-12 * np.maximum(scale[pm], 1e-300)
+    eps = tol.PLANE_FEASIBILITY * np.maximum(scale[pm], tol.UNDERFLOW_FLOOR)
     row, n, hq = _distinct_planes(row, n, hq, As[pm], hs, eps, P)
     live = ~empty
     nrow = np.bincount(row, minlength=P)
@@ -936,7 +937,7 @@ def free_area(balls, tau, triangles) -> FreeSpace:
     nn = np.sqrt((nrm * nrm).sum(1))
     flat = nn == 0
     nrm = nrm / np.where(flat, 1.0, nn)[:, None]
-    e1 = e1 / np.maximum(np.sqrt((e1 * e1).sum(1)), 1e-300)[:, None]
+    e1 = e1 / np.maximum(np.sqrt((e1 * e1).sum(1)), tol.UNDERFLOW_FLOOR)[:, None]
     e2 = cross_rows(nrm, e1)
     frame = np.stack([e1, e2], axis=-1)  # (m, 3, 2)
     X = np.einsum("mkd,mde->mke", T - o[:, None, :], frame)

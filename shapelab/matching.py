@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._toolkit.tolerances import MATCHING_FATOL, MATCHING_GAP_ABS, MATCHING_STEP_REL, MATCHING_XATOL
 from ._toolkit.validate import as_finite_scalar, as_point_pair, as_points, as_positive_int
 from .distance import hausdorff
 
@@ -220,7 +221,7 @@ def hausdorff_under_translation(
     offsets = np.array(np.meshgrid(*[[-0.5, 0.5]] * d, indexing="ij")).reshape(d, -1).T
     while True:
         lb = F - w * sqrt_d
-        keep = lb < best_f - (tol * best_f + 1e-12)
+        keep = lb < best_f - (tol * best_f + MATCHING_GAP_ABS)
         if (~keep).any():
             floor = min(floor, float(lb[~keep].min()))
         C, lb = C[keep], lb[keep]
@@ -245,13 +246,13 @@ def hausdorff_under_translation(
         def fun(t):
             return float(_translated_values(A, B, np.asarray(t, dtype=float)[None, :])[0])
 
-        step = max(w, 1e-9 * (1.0 + float(np.abs(best_t).max())))
+        step = max(w, MATCHING_STEP_REL * (1.0 + float(np.abs(best_t).max())))
         simplex = np.vstack([best_t, best_t + step * np.eye(d)])
         res = minimize(
             fun,
             best_t,
             method="Nelder-Mead",
-            options={"initial_simplex": simplex, "xatol": 1e-12, "fatol": 1e-14, "maxfev": 400 * d},
+            options={"initial_simplex": simplex, "xatol": MATCHING_XATOL, "fatol": MATCHING_FATOL, "maxfev": 400 * d},
         )
         n_eval += int(res.nfev)
         if res.fun < best_f:

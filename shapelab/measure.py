@@ -105,6 +105,7 @@ from itertools import combinations
 
 import numpy as np
 
+from ._toolkit import tolerances as tol
 from ._toolkit.geometry import cross, dot
 from ._toolkit.validate import (
     as_tau,
@@ -242,7 +243,7 @@ def _tangent_angle(um, uk, p):
 #: eps in rho^2 would otherwise become noise of size sqrt(eps) in the angles.
 #: Relative to the pair's own size (its radii and distance, in coordinates relative
 #: to the simplex's first centre): the input's extent and offset do not enter.
-TANGENT_TOL = 1e-13
+TANGENT_TOL = tol.MEASURE_TANGENT
 
 
 class _Pair:
@@ -463,7 +464,7 @@ def _pieces_triangle3d(Z, W, R, geo=None):
 #: as flat: its orthocentre would be determined by rounding noise only.  Relative to
 #: the simplex's own size (scale- and translation-invariant); the pieces of a flat
 #: simplex are the limits of the general formulas (:func:`_pieces_flat`).
-FLAT_TOL = 1e-9
+FLAT_TOL = tol.MEASURE_FLAT
 
 
 def _flatness(Z):
@@ -537,9 +538,10 @@ def _pieces(Z, W, R, d, k):
 #: ``v + TIE_TOL * |v| < tau``: K is taken just before τ, and a simplex entering
 #: within TIE_TOL of τ *relative to its own entry time* counts as entering after τ
 #: (see union_measure).  The entry times are certified to relative accuracy
-#: ``shapelab.filtration._RTOL`` (1e-9; exact zeros are exact), which TIE_TOL must
-#: exceed so that simplices whose exact entry times tie at τ are all left out.
-TIE_TOL = 1e-8
+#: ``ENTRY_TIME_RTOL`` (1e-9; exact zeros are exact), which TIE_TOL must exceed so
+#: that simplices whose exact entry times tie at τ are all left out
+#: (``shapelab/_toolkit/tolerances.py``, ``tests/test_tolerances.py``).
+TIE_TOL = tol.MEASURE_TIE
 
 
 def _before(values: np.ndarray, tau: float) -> np.ndarray:

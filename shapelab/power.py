@@ -72,6 +72,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
+from ._toolkit import tolerances as tol
 from ._toolkit.geometry import morton_order
 from ._toolkit.validate import (
     as_bbox,
@@ -95,7 +96,6 @@ __all__ = [
 ]
 
 _QHULL_OPTIONS = "Qt Qbb Q12 Q5 Q8"
-_VERTICAL_TOL = 1e-10
 
 
 # ----------------------------------------------------------------------------------
@@ -194,7 +194,7 @@ def _flat_rows(x: np.ndarray, simp: np.ndarray) -> np.ndarray:
         det = (
             a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0])
         )
-    return np.abs(det) <= 1e-12 * size
+    return np.abs(det) <= tol.QHULL_FLAT * size
 
 
 def _qhull_facets(points: np.ndarray):
@@ -241,12 +241,12 @@ def _hull_once(x: np.ndarray, h: np.ndarray, perm: np.ndarray):
     # the boundary of the hull, and are not part of DT.  In the conditioned frame a
     # genuine facet this steep would have an orthoradius above ~1e10.
     nz = equations[:, k]
-    lower = ~np.any(simp == n, axis=1) & (nz < -_VERTICAL_TOL)
+    lower = ~np.any(simp == n, axis=1) & (nz < -tol.QHULL_VERTICAL)
     # Qhull's normal of such a vertical facet can be far from horizontal-zero (we saw
     # -2e-6) when it is computed from points whose projections are coplanar only up
     # to round-off: a steep facet (slope above ~1000) that is flat in projection is
     # vertical.  (These are guesses for a candidate; the certificate decides.)
-    steep = np.flatnonzero(lower & (nz > -1e-3))
+    steep = np.flatnonzero(lower & (nz > -tol.QHULL_STEEP))
     if steep.size:
         lower[steep[_flat_rows(x[perm], simp[steep])]] = False
     newid = np.cumsum(lower, dtype=np.int32) - 1
@@ -467,7 +467,7 @@ def _orthocentres(balls: Balls, tri: np.ndarray) -> np.ndarray:
     # condition guard of 1e-8 (error ~1e-8 of the vertex's distance at worst).
     det = np.linalg.det(A)
     scale = np.prod(np.linalg.norm(A, axis=2), axis=1)
-    bad = ~(np.abs(det) > 1e-8 * scale)
+    bad = ~(np.abs(det) > tol.ORTHOCENTRE_CONDITION * scale)
     u = np.empty_like(p0)
     good = ~bad
     if good.any():

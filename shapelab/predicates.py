@@ -58,10 +58,12 @@ import math
 
 import numpy as np
 
+from ._toolkit.tolerances import FILTER_UNDERFLOW
+
 __all__ = ["WeightedPoints", "affine_basis", "det", "permanent", "projection_axes"]
 
 _U = 2.0**-53
-_TINY = 1e-280  # below this a float bound may be spoilt by underflow: decide exactly
+_TINY = FILTER_UNDERFLOW  # below this a float bound may be spoilt by underflow: decide exactly
 
 
 def _expand4(M, plus: bool):

@@ -8,5 +8,6 @@ names carry no underscore because they are meant to be imported across modules.
 ``geometry``    dot and cross products of component-first vectors, Morton order
 ``unionfind``   union–find with the elder rule (persistence, merge trees)
 ``lazy``        lazy re-export of a package's public names
+``tolerances``  every numerical tolerance the library decides with, documented
 ==============  ================================================================
 """

@@ -1,0 +1,130 @@
+"""The library's tolerances (shapelab/_toolkit/tolerances.py): documented, wired,
+and in the relations their guarantees need.
+
+The central relation is between the accuracy to which entry times are certified and
+the rules that treat nearly equal entry times as equal:
+
+* ``shapelab.filtration`` certifies every entry time to ``ENTRY_TIME_RTOL`` (1e-9)
+  relative to the value itself: a float value is accepted only when twice its
+  first-order error bound is at most 1e-9 |v|, otherwise it is recomputed in long
+  double or exact rationals (rounded once).
+* Two simplices whose *exact* entry times are equal (a tie, e.g. on a grid, or a
+  persistence pair born and killed by the same event) can therefore come out as
+  ``v (1 ± ENTRY_TIME_RTOL)``: apart by up to ``2 ENTRY_TIME_RTOL |v| / (1 - RTOL)``.
+* A rule that must recognise every such tie as a tie needs a tolerance *at least*
+  that large.  A larger tolerance can only merge genuinely distinct values closer
+  than itself, which the certified values cannot tell from a tie anyway; a smaller
+  one lets a tie through as a spurious, very short pair (or interval).  So the
+  relation goes ``tolerance >= certified accuracy``, not the other way round.
+"""
+
+from __future__ import annotations
+
+import inspect
+import re
+
+import numpy as np
+import pytest
+
+from shapelab import distance, filtration, measure, predicates, topology
+from shapelab._toolkit import tolerances as T
+
+EPS = float(np.finfo(np.float64).eps)
+RTOL = T.ENTRY_TIME_RTOL
+
+
+def test_every_tolerance_is_documented():
+    """Each public constant has a ``#:`` comment right above it (what it guards,
+    relative to what, why its value)."""
+    lines = inspect.getsource(T).splitlines()
+    for name in T.__all__:
+        at = next(i for i, line in enumerate(lines) if re.match(rf"{name} = ", line))
+        above = lines[at - 1]
+        # a constant sharing the comment of the one above it (xatol/fatol pairs)
+        while not above.startswith("#:") and re.match(r"[A-Z_]+ = ", above):
+            at -= 1
+            above = lines[at - 1]
+        assert above.startswith("#:"), name
+        assert isinstance(getattr(T, name), float), name
+
+
+def test_copies_still_equal_the_modules_that_are_not_wired_yet():
+    """filtration.py and topology.py keep their own constants for now (another
+    engineer is changing them); the copies here must not drift from them."""
+    assert filtration._RTOL == T.ENTRY_TIME_RTOL
+    assert filtration._SAFETY == T.ENTRY_TIME_SAFETY
+    assert topology.ROUNDOFF == T.PERSISTENCE_ROUNDOFF
+
+
+def test_wired_modules_use_the_constants():
+    assert measure.TIE_TOL is T.MEASURE_TIE
+    assert measure.TANGENT_TOL is T.MEASURE_TANGENT
+    assert measure.FLAT_TOL is T.MEASURE_FLAT
+    assert distance._REL is T.DISTANCE_BOX_REL
+    assert predicates._TINY is T.FILTER_UNDERFLOW
+
+
+def test_measure_tie_rule_covers_the_certified_accuracy():
+    """``v + MEASURE_TIE |v| < τ`` must leave out every simplex whose exact entry
+    time is τ.  Its computed value v' is within RTOL of τ: for τ > 0, v' >= τ (1 -
+    RTOL), and v' (1 + TIE) >= τ needs TIE >= RTOL / (1 - RTOL); for τ < 0,
+    v' >= τ (1 + RTOL), and v' (1 - TIE) >= τ needs TIE >= RTOL / (1 + RTOL)."""
+    assert T.MEASURE_TIE >= RTOL / (1.0 - RTOL)
+    # and it does so for the worst rounding, in floating point
+    for tau in (1.0, -1.0, 3.7e5, -2.5e-7):
+        worst = tau * (1.0 - RTOL) if tau > 0 else tau * (1.0 + RTOL)
+        assert not measure._before(np.array([worst]), tau)[0]
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="PERSISTENCE_ROUNDOFF (1e-11) is below twice the certified accuracy of entry "
+    "times (1e-9): a tie is filtered only because the actual errors are ~1e-15, not by "
+    "guarantee.  Raise ROUNDOFF to >= 2e-9 or certify entry times to <= 5e-12, then drop "
+    "this marker.",
+)
+def test_persistence_roundoff_covers_the_certified_accuracy():
+    """A pair ``(b, d)`` whose exact values are equal comes out with ``d - b`` up to
+    ``2 RTOL max(|b|, |d|) / (1 - RTOL)``; the zero-length filter (``d - b <=
+    ROUNDOFF max(|b|, |d|, median |τ|)``) removes it for sure only if ``ROUNDOFF``
+    is at least that (see the module docstring for why the relation goes this way)."""
+    assert T.PERSISTENCE_ROUNDOFF >= 2.0 * RTOL / (1.0 - RTOL)
+
+
+def test_roundoff_margins_exceed_the_rounding_they_absorb():
+    """Margins that absorb a few ulps of rounding are far above them, and far below
+    anything geometric (1e-6 relative)."""
+    for name in (
+        "MEASURE_TANGENT",
+        "PLANE_FEASIBILITY",
+        "EDGE_HEIGHT",
+        "PARALLEL_NORMALS",
+        "DISTANCE_BOX_REL",
+        "DISTANCE_TIE_REL",
+        "DISTANCE_AGREE",
+        "QHULL_FLAT",
+    ):
+        v = getattr(T, name)
+        assert 16 * EPS <= v <= 1e-6, name
+    # the bounding-box prefilter of the cover count is a prefilter: generous
+    assert T.COVER_PREFILTER >= 1e6 * EPS
+
+
+def test_candidate_and_freespace_relations():
+    # the steep band lies beyond the vertical band (both only shape Qhull's candidate)
+    assert T.QHULL_VERTICAL < T.QHULL_STEEP < 1.0
+    # incidence accepts every vertex the feasibility test let through
+    assert T.PLANE_INCIDENCE_FACTOR > 1.0
+    # an error bound just above the filter's floor still has a normal rounding error
+    assert T.FILTER_UNDERFLOW * 2.0**-53 > np.finfo(np.float64).tiny
+    assert T.UNDERFLOW_FLOOR < T.FILTER_UNDERFLOW
+
+
+def test_curve_refinement_relations():
+    """Two refinements of one extremum (from neighbouring samples) land within the
+    refiners' accuracy of each other, which the merge tolerance must exceed; and the
+    central difference's step is far above the root finder's resolution."""
+    assert T.CURVE_MERGE > 10 * max(T.CURVE_MIN_XATOL, T.CURVE_ROOT_XTOL)
+    assert T.CURVE_WRAP <= T.CURVE_MERGE
+    assert T.CURVE_STEP > 1e6 * T.CURVE_MIN_XATOL
+    assert T.CHANNEL_FATOL <= T.CHANNEL_XATOL
