@@ -19,9 +19,12 @@ not list (e.g. Ca, Fe, Mn, Co) raise unless a ``default_radius`` is given.
 
 from __future__ import annotations
 
+import contextlib
 import gzip
 import math
 import os
+import re
+import tempfile
 import zlib
 from dataclasses import dataclass
 from pathlib import Path
@@ -31,7 +34,17 @@ import numpy as np
 from ._toolkit.validate import as_finite_scalar, as_positive_int, check_balls, readonly
 from .balls import Balls
 
-__all__ = ["VDW_RADII", "WATER_RESIDUES", "STANDARD_RESIDUES", "PDBStructure", "read_pdb", "write_pdb", "vdw_radius"]
+__all__ = [
+    "VDW_RADII",
+    "WATER_RESIDUES",
+    "STANDARD_RESIDUES",
+    "MAX_PDB_BYTES",
+    "PDBStructure",
+    "read_pdb",
+    "write_pdb",
+    "write_mmcif",
+    "vdw_radius",
+]
 
 #: van der Waals radii in Å, Bondi (1964), J. Phys. Chem. 68:441, Table I.
 VDW_RADII: dict[str, float] = {
@@ -97,7 +110,8 @@ def vdw_radius(element: str) -> float:
     return VDW_RADII[key]
 
 
-#: Residue names (columns 18–21) that are water in PDB, AMBER, CHARMM and GROMACS files.
+#: Residue names that are water in PDB, AMBER, CHARMM and GROMACS files (``TIP`` is how
+#: CHARMM's ``TIP3`` reads: :func:`read_pdb` takes column 21 as part of the chain).
 WATER_RESIDUES = frozenset(
     {
         "HOH",
@@ -148,7 +162,8 @@ class PDBStructure:
         Centres in Å; radii = van der Waals radius (Bondi 1964, or the ``radii=``
         table of :func:`read_pdb`) + probe.
     atom_names, residue_names, chains, elements : ndarray of str, shape (n,)
-        Columns 13–16, 18–21, 22 and 77–78 (element symbols normalised, e.g. ``"Fe"``).
+        Columns 13–16, 18–20, 21–22 and 77–78 (element symbols normalised, e.g.
+        ``"Fe"``); see :func:`read_pdb` for column 21.
     residue_numbers : ndarray of int64, shape (n,)
         Columns 23–26.
     hetero : ndarray of bool, shape (n,)
@@ -297,6 +312,22 @@ def _element_from_name(name: str, residue: str | None = None) -> str:
     return first.upper() if first.isalpha() else ""
 
 
+_H36_UPPER = frozenset("0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ")
+_H36_LOWER = frozenset("0123456789abcdefghijklmnopqrstuvwxyz")
+
+
+def _residue_number(text: str) -> int:
+    """Columns 23–26: a decimal integer, or hybrid-36 past 9999 (``A000`` = 10000, as
+    gemmi and VMD write and read it; ``a000`` follows ``ZZZZ``).  Anything else raises."""
+    t = text.strip()
+    if len(text) == 4 and text[0].isalpha() and text.isascii():
+        for alphabet, offset in ((_H36_UPPER, 10000), (_H36_LOWER, 10000 + 26 * 36**3)):
+            if set(text) <= alphabet:
+                return int(text, 36) - 10 * 36**3 + offset
+        raise ValueError(text)
+    return int(t)
+
+
 def _field_float(line: str, a: int, b: int, what: str, lineno: int) -> float:
     text = line[a:b]
     try:
@@ -352,16 +383,96 @@ def _names_arg(value, name: str, width: int):
     return frozenset(out)
 
 
-def _read_text(path) -> str:
-    raw = Path(path).read_bytes()
-    if raw[:2] == b"\x1f\x8b":
-        try:
-            raw = gzip.decompress(raw)
-        except (OSError, EOFError, zlib.error) as e:
-            raise ValueError(f"{os.fspath(path)!r} is not a readable gzip file: {e}") from None
-    if not raw.strip():
-        raise ValueError(f"{os.fspath(path)!r} is empty: no ATOM or HETATM records")
-    return raw.decode("latin-1")  # never fails; non-ASCII bytes then fail as bad fields
+#: Default ``max_bytes`` of :func:`read_pdb`: 256 MiB of (decompressed) text, some
+#: 3 million ATOM records -- thirty times the 99,999 atoms a PDB file can number.
+MAX_PDB_BYTES = 256 * 2**20
+_CHUNK = 2**20  # bytes read (or decompressed) at a time
+_MAX_LINE = 2**16  # a PDB record has 80 columns; a longer "line" is not PDB text
+_EOL = re.compile(rb"\r\n|\r|\n")
+_BOM = b"\xef\xbb\xbf"
+
+
+def _pdb_lines(path, max_bytes: int):
+    """Yield ``(line number, text)`` of a plain or gzip file, streamed.
+
+    Lines end with LF, CRLF or CR; a UTF-8 byte-order mark before the first line is
+    dropped; text is decoded as Latin-1 (one character per byte, so that the PDB's
+    columns are byte columns).  At most ``_CHUNK`` bytes (plus one unfinished line of
+    at most ``_MAX_LINE``) are held at a time, and reading stops with a ValueError as
+    soon as more than ``max_bytes`` bytes have come out of the file (after
+    decompression): a gzip bomb is refused after ``max_bytes``, never held whole.
+    """
+    name = os.fspath(path)
+    with open(path, "rb") as raw:
+        gz = raw.read(2) == b"\x1f\x8b"
+        raw.seek(0)
+        fh = gzip.GzipFile(fileobj=raw, mode="rb") if gz else raw
+        total, lineno, pending, skip_lf = 0, 0, b"", False
+        while True:
+            try:
+                chunk = fh.read(min(_CHUNK, max_bytes + 1 - total))
+            except (OSError, EOFError, zlib.error) as e:
+                if not gz:
+                    raise
+                raise ValueError(f"{name!r} is not a readable gzip file: {e}") from None
+            if not chunk:
+                break
+            total += len(chunk)
+            if total > max_bytes:
+                what = "decompresses to" if gz else "holds"
+                raise ValueError(
+                    f"{name!r} {what} more than max_bytes={max_bytes} bytes before its first END "
+                    f"(or the ENDMDL of the model read); pass a larger max_bytes= to read it"
+                )
+            if skip_lf and chunk[:1] == b"\n":  # the LF of a CRLF split between two chunks
+                chunk = chunk[1:]
+            data = pending + chunk
+            skip_lf = data[-1:] == b"\r"
+            parts = _EOL.split(data)
+            pending = parts.pop()
+            if len(pending) > _MAX_LINE:
+                raise ValueError(
+                    f"line {lineno + len(parts) + 1} of {name!r} is longer than {_MAX_LINE} characters: not PDB text"
+                )
+            for part in parts:
+                lineno += 1
+                if lineno == 1 and part.startswith(_BOM):
+                    part = part[len(_BOM) :]
+                yield lineno, part.decode("latin-1")
+        if pending:
+            lineno += 1
+            if lineno == 1 and pending.startswith(_BOM):
+                pending = pending[len(_BOM) :]
+            yield lineno, pending.decode("latin-1")
+
+
+def _check_text(line: str, lineno: int, rec: str, path) -> None:
+    """Refuse a record with a byte no writer can represent: non-ASCII anywhere, or a
+    control character (tab, NUL, ...) in a text field that is kept."""
+    if not line.isascii():
+        col, ch = next((k, c) for k, c in enumerate(line) if not c.isascii())
+        raise ValueError(
+            f"line {lineno}: {rec} record of {os.fspath(path)!r} has the non-ASCII byte "
+            f"0x{ord(ch):02x} in column {col + 1} (PDB records are ASCII; a non-ASCII name "
+            f"could be read but neither written to PDB nor safely to mmCIF)"
+        )
+    for a, b, what in _TEXT_FIELDS:
+        field = line[a:b]
+        if not field.isprintable():
+            raise ValueError(
+                f"line {lineno}: {rec} record of {os.fspath(path)!r} has a control character "
+                f"in the {what} (columns {a + 1}-{b}): {field!r}"
+            )
+
+
+# text fields kept by read_pdb: (start, end, name), 0-based half-open columns
+_TEXT_FIELDS = (
+    (12, 16, "atom name"),
+    (16, 17, "alternate location"),
+    (17, 20, "residue name"),
+    (20, 22, "chain identifier"),
+    (26, 27, "insertion code"),
+)
 
 
 def read_pdb(
@@ -375,13 +486,15 @@ def read_pdb(
     water=False,
     hydrogens=False,
     radii=None,
+    max_bytes=MAX_PDB_BYTES,
 ) -> PDBStructure:
     """Read the atoms of a PDB file as balls (Notes §23.1: a molecule is a union of balls).
 
     Parameters
     ----------
     path : str or os.PathLike
-        The PDB file, plain or gzip-compressed (recognised by its first bytes).
+        The PDB file, plain or gzip-compressed (recognised by its first bytes),
+        streamed: memory grows with the atoms kept, not with the file.
     probe : float, default 0
         Probe radius :math:`p \\ge 0` added to every van der Waals radius; ``probe=1.4``
         (water) gives the solvent-accessible model.
@@ -392,7 +505,8 @@ def read_pdb(
         Serial number of the MODEL to read (columns 11–14 of the MODEL record).
         Default: the first model.  Atoms outside any MODEL block count as model 1.
     chain : str or collection of str, optional
-        Keep only these chain identifiers (column 22; ``""`` is the blank chain).
+        Keep only these chain identifiers (columns 21–22, one or two characters;
+        ``""`` is the blank chain).
     hetatm : bool or collection of str, default True
         Keep HETATM records (ligands, ions, modified residues): all (True), none
         (False), or only those whose residue name is in the collection, e.g.
@@ -410,6 +524,10 @@ def read_pdb(
         Van der Waals radii (Å) that take precedence over Bondi's: keys are element
         symbols (``{"Fe": 2.0}``) or ``(residue name, atom name)`` pairs
         (``{("ALA", "CB"): 1.9}``), the latter winning.  Matching ignores case.
+    max_bytes : int, default :data:`MAX_PDB_BYTES` (256 MiB)
+        Most bytes of text read before the first ``END`` (or the ``ENDMDL`` of the
+        model read), counted after decompression; a file with more is refused as
+        soon as the limit is passed, without being held in memory.
 
     Returns
     -------
@@ -421,8 +539,11 @@ def read_pdb(
     ------
     ValueError
         Empty file or no atoms, or no atoms left by the selection; a truncated or
-        malformed ATOM/HETATM or MODEL record (the message starts with ``"line N:"``);
-        a requested model that is absent; an element without a radius.  Nothing is
+        malformed ATOM/HETATM or MODEL record (the message starts with ``"line N:"``),
+        including one with a non-ASCII byte anywhere or a control character in a
+        text field (what no writer could write back; the message names the file and
+        the column); a requested model that is absent; an element without a radius;
+        an unreadable gzip stream; more than ``max_bytes`` of text.  Nothing is
         returned in part: any error in the model read fails the whole call.
     FileNotFoundError, IsADirectoryError
         If ``path`` cannot be opened.
@@ -430,12 +551,22 @@ def read_pdb(
     Notes
     -----
     * ATOM and HETATM records are read by the PDB's fixed columns: name 13–16,
-      alternate location 17, residue name 18–21 (column 21 holds the fourth letter
-      some programs write), chain 22, residue number 23–26, insertion code 27,
-      x/y/z 31–38/39–46/47–54, occupancy 55–60, B-factor 61–66, element 77–78.
-      A record must reach column 54.  Every record of the model read is parsed
-      before any selection is applied, so a malformed line fails even if it would
-      have been filtered out.
+      alternate location 17, residue name 18–20, chain 21–22, residue number 23–26,
+      insertion code 27, x/y/z 31–38/39–46/47–54, occupancy 55–60, B-factor 61–66,
+      element 77–78.  A record must reach column 54.  Every record of the model read
+      is parsed before any selection is applied, so a malformed line fails even if
+      it would have been filtered out.
+    * **Column 21** belongs to the chain identifier, as in gemmi's PDB reader
+      (``read_string(line + 20, 2)``) and the wwPDB's large-structure files, whose
+      two-character chains (``AA``, ``B1``: the ribosome 4V8R) fill columns 21–22;
+      the residue name is columns 18–20 only.  The wwPDB format leaves column 21
+      blank, so standard files read the same either way.  Programs that write a
+      fourth residue letter there (CHARMM's ``TIP3``) therefore read as residue
+      ``TIP`` of chain ``3``, exactly as gemmi reads them: water is still water
+      (``TIP`` is in :data:`WATER_RESIDUES`), and CHARMM's own chain-like name is
+      the segment identifier of columns 73–76, which is not read.
+    * The file is streamed line by line (LF, CRLF or CR line ends); a UTF-8
+      byte-order mark before the first record is ignored.
     * The element comes from columns 77–78; if blank, from the atom name
       (:func:`_element_from_name`).
     * Reading stops at the first ``END``, or at the ``ENDMDL`` of the model read.
@@ -460,102 +591,109 @@ def read_pdb(
         if isinstance(model, bool):
             raise TypeError("model must be an int, got bool")
         model = as_positive_int(model, "model", minimum=0)
-    chains_wanted = _names_arg(chain, "chain", 1)
+    chains_wanted = _names_arg(chain, "chain", 2)
     if isinstance(hetatm, (bool, np.bool_)):
         het_keep = bool(hetatm)
     else:
-        het_keep = _names_arg(hetatm, "hetatm", 4)
+        het_keep = _names_arg(hetatm, "hetatm", 3)
     for flag, fname in ((water, "water"), (hydrogens, "hydrogens")):
         if not isinstance(flag, (bool, np.bool_)):
             raise TypeError(f"{fname} must be a bool, got {type(flag).__name__}")
     radii_element, radii_atom = _radius_table(radii)
-    text = _read_text(path)
+    max_bytes = as_positive_int(max_bytes, "max_bytes")
 
     recs = []  # one tuple per ATOM/HETATM record of the model read
     target = model  # the MODEL serial wanted (None: the first one met)
     current = None  # serial of the open MODEL block (None: outside any)
     models_seen = []
-    for lineno, line in enumerate(text.splitlines(), start=1):
-        rec = line[:6].rstrip()
-        if rec == "END":
-            break
-        if rec == "MODEL":
-            if current is not None:
-                raise ValueError(f"line {lineno}: MODEL record inside MODEL {current} (missing ENDMDL)")
-            field = line[6:].strip()
-            if field:
-                try:
-                    current = int(field.split()[0])
-                except ValueError:
-                    raise ValueError(
-                        f"line {lineno}: could not read the model serial from the MODEL record: {field!r}"
-                    ) from None
-            else:
-                current = len(models_seen) + 1
-            models_seen.append(current)
-            if target is None:
-                target = current
-            continue
-        if rec == "ENDMDL":
-            if current is None or current == target:
+    blank = True  # no character but whitespace seen so far
+    with contextlib.closing(_pdb_lines(path, max_bytes)) as lines:  # closed at END, on error too
+        for lineno, line in lines:
+            blank = blank and not line.strip()
+            rec = line[:6].rstrip()
+            if rec == "END":
                 break
-            current = None
-            continue
-        if rec not in ("ATOM", "HETATM"):
-            continue
-        here = 1 if current is None else current
-        if (target if target is not None else 1) != here:
-            continue
-        if len(line) < 54:
-            raise ValueError(
-                f"line {lineno}: truncated {rec} record (needs at least 54 columns for "
-                f"the coordinates, got {len(line.rstrip())})"
-            )
-        x = _field_float(line, 30, 38, "x", lineno)
-        y = _field_float(line, 38, 46, "y", lineno)
-        z = _field_float(line, 46, 54, "z", lineno)
-        occ = _optional_float(line, 54, 60, "the occupancy", lineno)
-        bfac = _optional_float(line, 60, 66, "the B-factor", lineno)
-        num_text = line[22:26]
-        try:
-            num = int(num_text)
-        except ValueError:
-            raise ValueError(
-                f"line {lineno}: could not read the residue number from columns 23-26: {num_text.strip()!r}"
-            ) from None
-        name = line[12:16]
-        resname = line[17:21].strip()
-        e = line[76:78].strip() if len(line) >= 77 else ""
-        if e:
-            if not (e.isascii() and e.isalpha()):
-                raise ValueError(f"line {lineno}: element in columns 77-78 is not a symbol: {e!r}")
-            e = e[0].upper() + e[1:].lower()
-        else:
-            e = _element_from_name(name, resname.upper())
-            if not e:
+            if rec == "MODEL":
+                if current is not None:
+                    raise ValueError(f"line {lineno}: MODEL record inside MODEL {current} (missing ENDMDL)")
+                field = line[6:].strip()
+                if field:
+                    try:
+                        current = int(field.split()[0])
+                    except ValueError:
+                        raise ValueError(
+                            f"line {lineno}: could not read the model serial from the MODEL record: {field!r}"
+                        ) from None
+                else:
+                    current = len(models_seen) + 1
+                models_seen.append(current)
+                if target is None:
+                    target = current
+                continue
+            if rec == "ENDMDL":
+                if current is None or current == target:
+                    break
+                current = None
+                continue
+            if rec not in ("ATOM", "HETATM"):
+                continue
+            here = 1 if current is None else current
+            if (target if target is not None else 1) != here:
+                continue
+            _check_text(line, lineno, rec, path)
+            if len(line) < 54:
                 raise ValueError(
-                    f"line {lineno}: no element in columns 77-78 and none can be read from the atom name {name!r}"
+                    f"line {lineno}: truncated {rec} record (needs at least 54 columns for "
+                    f"the coordinates, got {len(line.rstrip())})"
                 )
-        icode = line[26].strip() if len(line) > 26 else ""
-        recs.append(
-            (
-                lineno,
-                rec == "HETATM",
-                line[16].strip(),
-                name.strip(),
-                resname,
-                line[21].strip(),
-                num,
-                icode,
-                x,
-                y,
-                z,
-                occ,
-                bfac,
-                e,
+            x = _field_float(line, 30, 38, "x", lineno)
+            y = _field_float(line, 38, 46, "y", lineno)
+            z = _field_float(line, 46, 54, "z", lineno)
+            occ = _optional_float(line, 54, 60, "the occupancy", lineno)
+            bfac = _optional_float(line, 60, 66, "the B-factor", lineno)
+            num_text = line[22:26]
+            try:
+                num = _residue_number(num_text)
+            except ValueError:
+                raise ValueError(
+                    f"line {lineno}: could not read the residue number from columns 23-26 "
+                    f"(an integer, or hybrid-36 above 9999): {num_text.strip()!r}"
+                ) from None
+            name = line[12:16]
+            resname = line[17:20].strip()
+            e = line[76:78].strip() if len(line) >= 77 else ""
+            if e:
+                if not (e.isascii() and e.isalpha()):
+                    raise ValueError(f"line {lineno}: element in columns 77-78 is not a symbol: {e!r}")
+                e = e[0].upper() + e[1:].lower()
+            else:
+                e = _element_from_name(name, resname.upper())
+                if not e:
+                    raise ValueError(
+                        f"line {lineno}: no element in columns 77-78 and none can be read from the atom name {name!r}"
+                    )
+            icode = line[26].strip() if len(line) > 26 else ""
+            recs.append(
+                (
+                    lineno,
+                    rec == "HETATM",
+                    line[16].strip(),
+                    name.strip(),
+                    resname,
+                    line[20:22].strip(),
+                    num,
+                    icode,
+                    x,
+                    y,
+                    z,
+                    occ,
+                    bfac,
+                    e,
+                )
             )
-        )
 
+    if blank:
+        raise ValueError(f"{os.fspath(path)!r} is empty: no ATOM or HETATM records")
     if model is not None and model not in models_seen and not (model == 1 and recs):
         raise ValueError(f"{os.fspath(path)!r} has no MODEL {model} (models read before END: {models_seen or 'none'})")
     if not recs:
@@ -629,20 +767,86 @@ def read_pdb(
     )
 
 
-def _str_column(values, n: int, name: str, width: int, default):
+def _str_column(values, n: int, name: str, width, default, fmt="PDB"):
     if values is None:
         return [default(i) for i in range(n)]
     if isinstance(values, str):
         values = [values] * n
-    values = list(values)
+    values = [str(v) for v in (values.tolist() if isinstance(values, np.ndarray) else values)]
     if len(values) != n:
         raise ValueError(f"{name} must have one entry per ball ({n}), got {len(values)}")
-    out = []
-    for i, v in enumerate(values):
-        s = str(v)
-        if len(s) > width or not s.isascii() or any(c in s for c in "\r\n"):
-            raise ValueError(f"{name}[{i}] = {s!r} does not fit the PDB's {width}-character ASCII field")
-        out.append(s)
+    bad = {v for v in set(values) if (width is not None and len(v) > width) or not v.isascii() or not v.isprintable()}
+    if bad:
+        i = next(i for i, v in enumerate(values) if v in bad)
+        size = f"{width}-character " if width is not None else ""
+        raise ValueError(f"{name}[{i}] = {values[i]!r} does not fit the {fmt}'s {size}printable ASCII field")
+    return values
+
+
+def _labels(
+    balls,
+    elements,
+    atom_names,
+    residue_names,
+    residue_numbers,
+    chains,
+    hetero,
+    insertion_codes,
+    altlocs,
+    b_factors,
+    *,
+    fmt,
+    widths,
+):
+    """Validate the per-atom columns shared by :func:`write_pdb` and :func:`write_mmcif`."""
+    check_balls(balls)
+    if balls.dim != 3:
+        raise ValueError(f"balls must be 3-dimensional to be written as a {fmt} file, got dim={balls.dim}")
+    n = len(balls)
+    if n == 0:
+        raise ValueError("balls must hold at least one ball")
+    elements = _str_column(elements, n, "elements", 2, None, fmt)
+    for i, e in enumerate(elements):
+        if not (e.isalpha() and 1 <= len(e) <= 2):
+            raise ValueError(f"elements[{i}] = {e!r} is not an element symbol")
+    elements = [e[0].upper() + e[1:].lower() for e in elements]
+    w = widths
+    atom_names = _str_column(atom_names, n, "atom_names", w["atom"], lambda i: elements[i].upper(), fmt)
+    residue_names = _str_column(residue_names, n, "residue_names", w["residue"], lambda i: "UNK", fmt)
+    chains = _str_column(chains, n, "chains", w["chain"], lambda i: "A", fmt)
+    insertion_codes = _str_column(insertion_codes, n, "insertion_codes", 1, lambda i: "", fmt)
+    altlocs = _str_column(altlocs, n, "altlocs", 1, lambda i: "", fmt)
+    if residue_numbers is None:
+        residue_numbers = np.arange(1, n + 1)
+    residue_numbers = np.asarray(residue_numbers)
+    if residue_numbers.shape != (n,) or residue_numbers.dtype.kind not in "iu":
+        raise ValueError(f"residue_numbers must be {n} integers")
+    hetero = np.zeros(n, bool) if hetero is None else np.asarray(hetero, dtype=bool)
+    if hetero.shape != (n,):
+        raise ValueError(f"hetero must have shape ({n},), got {hetero.shape}")
+    if b_factors is None:
+        b_factors = np.zeros(n)
+    b_factors = np.asarray(b_factors, dtype=np.float64)
+    if b_factors.shape != (n,):
+        raise ValueError(f"b_factors must have shape ({n},), got {b_factors.shape}")
+    return elements, atom_names, residue_names, residue_numbers, chains, hetero, insertion_codes, altlocs, b_factors
+
+
+def _write_text(path, text: str):
+    """Write ``text`` to a text stream (anything with ``write``), or to the file ``path``
+    atomically: a temporary file beside it, renamed over it once complete."""
+    if hasattr(path, "write"):
+        path.write(text)
+        return path
+    out = Path(path)
+    fd, tmp = tempfile.mkstemp(dir=out.parent, prefix=f".{out.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w", encoding="ascii", newline="\n") as fh:
+            fh.write(text)
+        os.replace(tmp, out)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
     return out
 
 
@@ -658,22 +862,30 @@ def write_pdb(
     hetero=None,
     title=None,
     b_factors=None,
-) -> Path:
+    insertion_codes=None,
+    altlocs=None,
+):
     """Write 3D balls as ATOM/HETATM records of a PDB file.
 
     The PDB format stores no radii: :func:`read_pdb` recovers them from the elements,
     so a round trip preserves radii exactly when they are Bondi radii (plus one probe).
     Coordinates are written with three decimals (the format's precision, 0.001 Å).
+    The format's fixed columns limit what it holds (at most 99,999 atoms, residue
+    names of three characters, B-factors below 1000); :func:`write_mmcif` holds any
+    number of atoms and names of any length.
 
     Parameters
     ----------
-    path : str or os.PathLike
+    path : str, os.PathLike or text stream
+        A file, written atomically (a temporary file beside it renamed over it once
+        complete, so a failed write leaves no partial file), or an open text stream.
     balls : Balls
         3D balls; every coordinate must lie in (-1000, 10000) to fit columns 31–54.
     elements : sequence of str or str
         Element symbols (one per ball, or one for all).
     atom_names, residue_names, chains : sequence of str, optional
-        Default: the element symbol, ``"UNK"``, ``"A"``.
+        At most 4, 3 and 2 characters (chains fill columns 21–22, as
+        :func:`read_pdb` reads them).  Default: the element symbol, ``"UNK"``, ``"A"``.
     residue_numbers : sequence of int, optional
         Default: 1, 2, ..., n (one residue per atom).
     hetero : sequence of bool, optional
@@ -683,54 +895,60 @@ def write_pdb(
     b_factors : sequence of float, optional
         Values for the B-factor column (61–66), e.g. a label per atom as
         :func:`shapelab.report` writes; each must fit ``%6.2f``.  Default 0.
+    insertion_codes, altlocs : sequence of str, optional
+        Columns 27 and 17 (one character or ``""``).  Default blank.
 
     Returns
     -------
-    pathlib.Path
+    pathlib.Path or the stream
+
+    Raises
+    ------
+    ValueError
+        What the format cannot hold (the message names the argument), before
+        anything is written.
+
+    See Also
+    --------
+    write_mmcif : the same atoms as an mmCIF ``_atom_site`` table, without limits.
+    read_pdb : reads the file back.
+
+    References
+    ----------
+    wwPDB, *Atomic Coordinate Entry Format Description*, v3.3, ATOM record.
     """
-    check_balls(balls)
-    if balls.dim != 3:
-        raise ValueError(f"balls must be 3-dimensional to be written as a PDB file, got dim={balls.dim}")
+    widths = {"atom": 4, "residue": 3, "chain": 2}
+    cols = _labels(
+        balls,
+        elements,
+        atom_names,
+        residue_names,
+        residue_numbers,
+        chains,
+        hetero,
+        insertion_codes,
+        altlocs,
+        b_factors,
+        fmt="PDB",
+        widths=widths,
+    )
+    elements, atom_names, residue_names, residue_numbers, chains, hetero, insertion_codes, altlocs, b_factors = cols
     n = len(balls)
-    if n == 0:
-        raise ValueError("balls must hold at least one ball")
     if n > 99999:
         raise ValueError(f"the PDB format holds at most 99999 atoms, got {n}")
     c = balls.centers
     if np.any(c <= -999.9995) or np.any(c >= 9999.9995):
         raise ValueError("balls.centers must lie in (-1000, 10000) to fit the PDB's coordinate columns")
-    elements = _str_column(elements, n, "elements", 2, None)
-    for i, e in enumerate(elements):
-        if not (e.isalpha() and 1 <= len(e) <= 2):
-            raise ValueError(f"elements[{i}] = {e!r} is not an element symbol")
-    elements = [e[0].upper() + e[1:].lower() for e in elements]
-    atom_names = _str_column(atom_names, n, "atom_names", 4, lambda i: elements[i].upper())
-    residue_names = _str_column(residue_names, n, "residue_names", 3, lambda i: "UNK")
-    chains = _str_column(chains, n, "chains", 1, lambda i: "A")
-    if residue_numbers is None:
-        residue_numbers = np.arange(1, n + 1)
-    residue_numbers = np.asarray(residue_numbers)
-    if residue_numbers.shape != (n,) or residue_numbers.dtype.kind not in "iu":
-        raise ValueError(f"residue_numbers must be {n} integers")
     if np.any(residue_numbers < -999) or np.any(residue_numbers > 9999):
         raise ValueError("residue_numbers must lie in [-999, 9999] to fit columns 23-26")
-    hetero = np.zeros(n, bool) if hetero is None else np.asarray(hetero, dtype=bool)
-    if hetero.shape != (n,):
-        raise ValueError(f"hetero must have shape ({n},), got {hetero.shape}")
-
-    if b_factors is None:
-        b_factors = np.zeros(n)
-    b_factors = np.asarray(b_factors, dtype=np.float64)
-    if b_factors.shape != (n,):
-        raise ValueError(f"b_factors must have shape ({n},), got {b_factors.shape}")
     if not np.all(np.isfinite(b_factors)) or np.any(b_factors <= -99.995) or np.any(b_factors >= 999.995):
         raise ValueError("b_factors must be finite and lie in (-100, 1000) to fit columns 61-66")
 
     lines = []
     if title is not None:
         t = str(title)
-        if len(t) > 70 or not t.isascii() or "\n" in t:
-            raise ValueError("title must be at most 70 ASCII characters on one line")
+        if len(t) > 70 or not t.isascii() or not t.isprintable():
+            raise ValueError("title must be at most 70 printable ASCII characters on one line")
         lines.append(f"TITLE     {t}")
     for i in range(n):
         name = atom_names[i]
@@ -739,11 +957,190 @@ def write_pdb(
             name = " " + name
         rec = "HETATM" if hetero[i] else "ATOM"
         lines.append(
-            f"{rec:<6}{(i + 1) % 100000:>5} {name:<4} {residue_names[i]:>3} {chains[i]:1}"
-            f"{int(residue_numbers[i]):>4}    {c[i, 0]:8.3f}{c[i, 1]:8.3f}{c[i, 2]:8.3f}"
+            f"{rec:<6}{(i + 1) % 100000:>5} {name:<4}{altlocs[i]:1}{residue_names[i]:>3}{chains[i]:>2}"
+            f"{int(residue_numbers[i]):>4}{insertion_codes[i]:1}   {c[i, 0]:8.3f}{c[i, 1]:8.3f}{c[i, 2]:8.3f}"
             f"{1.0:6.2f}{b_factors[i]:6.2f}          {elements[i].upper():>2}"
         )
     lines.append("END")
-    out = Path(path)
-    out.write_text("\n".join(lines) + "\n", encoding="ascii")
-    return out
+    return _write_text(path, "\n".join(lines) + "\n")
+
+
+# ------------------------------------------------------------------------ mmCIF
+_CIF_RESERVED = ("data_", "save_", "loop_", "stop_", "global_")
+
+
+def _cif_token(s: str) -> str:
+    """One printable-ASCII value as a CIF 1.1 token: bare when it can be, else quoted
+    (``""`` is written ``.``, CIF's "inapplicable", which mmCIF readers read as empty)."""
+    if s == "":
+        return "."
+    if (
+        not any(c.isspace() for c in s)
+        and s[0] not in "_#$'\"[];"
+        and s not in (".", "?")
+        and not s.lower().startswith(_CIF_RESERVED)
+    ):
+        return s
+    for q in ("'", '"'):
+        # inside quotes, the quote character may appear unless whitespace follows it
+        if not any(s[k] == q and (k + 1 == len(s) or s[k + 1].isspace()) for k in range(len(s))):
+            return f"{q}{s}{q}"
+    return f"\n;{s}\n;\n"  # a text field holds anything on one line
+
+
+def _cif_floats(a) -> list:
+    """Each value as the shortest text that reads back to the same double; NaN as ``?``."""
+    return [repr(v) if v == v else "?" for v in np.asarray(a, dtype=np.float64).tolist()]
+
+
+def _cif_tokens(values) -> list:
+    tok = {v: _cif_token(v) for v in set(values)}  # few distinct labels: quote each once
+    return [tok[v] for v in values]
+
+
+def write_mmcif(
+    path,
+    balls: Balls,
+    elements,
+    *,
+    atom_names=None,
+    residue_names=None,
+    residue_numbers=None,
+    chains=None,
+    hetero=None,
+    title=None,
+    b_factors=None,
+    insertion_codes=None,
+    altlocs=None,
+    occupancies=None,
+    extra=None,
+    name="shapelab",
+):
+    """Write 3D balls as the ``_atom_site`` table of an mmCIF file.
+
+    mmCIF (PDBx/mmCIF, the wwPDB's archive format since 2014) is a table of
+    whitespace-separated values with no fixed widths: any number of atoms, residue
+    names and chain identifiers of any length, and B-factors of any size fit, which
+    the PDB's fixed columns cannot (see :func:`write_pdb`).  Values are written as
+    CIF 1.1 tokens (quoted where a value has spaces or starts like a CIF keyword),
+    coordinates and B-factors as the shortest decimal that reads back to the same
+    double, so a round trip through a reader such as gemmi is exact.  Radii are not
+    stored (Notes §23.1: they come from the elements).
+
+    Parameters
+    ----------
+    path : str, os.PathLike or text stream
+        A file, written atomically (temporary file renamed once complete), or an
+        open text stream.
+    balls : Balls
+        3D balls: their centres are ``Cartn_x/y/z``.
+    elements : sequence of str or str
+        Element symbols (``type_symbol``), one per ball or one for all.
+    atom_names, residue_names, chains : sequence of str, optional
+        ``label_``/``auth_atom_id``, ``label_``/``auth_comp_id`` and
+        ``label_``/``auth_asym_id``: printable ASCII of any length (``""`` is
+        written ``.``).  Default: the element symbol, ``"UNK"``, ``"A"``.
+    residue_numbers : sequence of int, optional
+        ``auth_seq_id``.  Default 1, 2, ..., n.
+    hetero : sequence of bool, optional
+        ``group_PDB`` HETATM instead of ATOM.
+    title : str, optional
+        ``_struct.title``.
+    b_factors, occupancies : sequence of float, optional
+        ``B_iso_or_equiv`` (default 0) and ``occupancy`` (default 1); NaN is
+        written ``?`` (unknown).
+    insertion_codes, altlocs : sequence of str, optional
+        ``pdbx_PDB_ins_code`` and ``label_alt_id`` (one character or ``""``).
+    extra : mapping of str to sequence of str, optional
+        More ``_atom_site`` items, one value per atom, e.g.
+        ``{"shapelab_feature_ids": [...]}`` (names of letters, digits and ``_``).
+    name : str, default ``"shapelab"``
+        The data block's name (``data_<name>``; characters other than letters,
+        digits, ``-``, ``.`` and ``_`` become ``_``).
+
+    Returns
+    -------
+    pathlib.Path or the stream
+
+    Raises
+    ------
+    ValueError
+        A label that is not printable ASCII, a column of the wrong length, or
+        non-finite coordinates, before anything is written.
+
+    See Also
+    --------
+    write_pdb : the PDB format, for tools that read nothing else.
+
+    References
+    ----------
+    wwPDB, *PDBx/mmCIF dictionary*, category ``atom_site``; S. R. Hall, F. H. Allen
+    and I. D. Brown, "The Crystallographic Information File (CIF)", *Acta Cryst.*
+    A47 (1991) 655–685 (the CIF 1.1 syntax).
+
+    Examples
+    --------
+    >>> import io
+    >>> buf = write_mmcif(io.StringIO(), Balls([[0.0, 1.5, -2.25]], 1.7), "C", residue_names="TIP3")
+    >>> print(buf.getvalue().splitlines()[-2])
+    ATOM 1 C C . TIP3 A . . ? 0.0 1.5 -2.25 1.0 0.0 1 TIP3 A C 1
+    """
+    widths = {"atom": None, "residue": None, "chain": None}
+    cols = _labels(
+        balls,
+        elements,
+        atom_names,
+        residue_names,
+        residue_numbers,
+        chains,
+        hetero,
+        insertion_codes,
+        altlocs,
+        b_factors,
+        fmt="mmCIF",
+        widths=widths,
+    )
+    elements, atom_names, residue_names, residue_numbers, chains, hetero, insertion_codes, altlocs, b_factors = cols
+    n = len(balls)
+    occupancies = np.ones(n) if occupancies is None else np.asarray(occupancies, dtype=np.float64)
+    if occupancies.shape != (n,):
+        raise ValueError(f"occupancies must have shape ({n},), got {occupancies.shape}")
+    if np.any(np.isinf(b_factors)) or np.any(np.isinf(occupancies)):
+        raise ValueError("b_factors and occupancies must be finite (or NaN for unknown)")
+    extra = {} if extra is None else dict(extra)
+    extra_cols = []
+    for key, values in extra.items():
+        if not (isinstance(key, str) and key and key.replace("_", "a").isalnum() and key.isascii()):
+            raise ValueError(f"extra item names must be letters, digits and '_', got {key!r}")
+        extra_cols.append((key, _cif_tokens(_str_column(values, n, f"extra[{key!r}]", None, None, "mmCIF"))))
+    block = re.sub(r"[^A-Za-z0-9_.-]", "_", str(name)) or "shapelab"
+    lines = [f"data_{block}", f"_entry.id {_cif_token(block)}"]
+    if title is not None:
+        t = str(title)
+        if not t.isascii() or not t.isprintable():
+            raise ValueError("title must be printable ASCII on one line")
+        lines.append(f"_struct.entry_id {_cif_token(block)}")
+        lines.append(f"_struct.title {_cif_token(t)}")
+    items = (
+        "group_PDB id type_symbol label_atom_id label_alt_id label_comp_id label_asym_id label_entity_id "
+        "label_seq_id pdbx_PDB_ins_code Cartn_x Cartn_y Cartn_z occupancy B_iso_or_equiv auth_seq_id "
+        "auth_comp_id auth_asym_id auth_atom_id pdbx_PDB_model_num"
+    ).split() + [k for k, _ in extra_cols]
+    lines.append("#")
+    lines.append("loop_")
+    lines.extend(f"_atom_site.{it}" for it in items)
+    names, resn, chain = _cif_tokens(atom_names), _cif_tokens(residue_names), _cif_tokens(chains)
+    alt = _cif_tokens(altlocs)
+    icode = ["?" if t == "." else t for t in _cif_tokens(insertion_codes)]
+    xyz = [_cif_floats(balls.centers[:, k]) for k in range(3)]
+    occ, bf = _cif_floats(occupancies), _cif_floats(b_factors)
+    group = ["HETATM" if h else "ATOM" for h in hetero.tolist()]
+    num = [str(v) for v in residue_numbers.tolist()]
+    extras = [vals for _, vals in extra_cols]
+    for i in range(n):
+        row = [group[i], str(i + 1), elements[i], names[i], alt[i], resn[i], chain[i], ".", ".", icode[i]]
+        row += [xyz[0][i], xyz[1][i], xyz[2][i], occ[i], bf[i], num[i], resn[i], chain[i], names[i], "1"]
+        row += [vals[i] for vals in extras]
+        lines.append(" ".join(row))
+    lines.append("#")
+    return _write_text(path, "\n".join(lines) + "\n")

@@ -1,14 +1,22 @@
-"""Tests of shapelab.io: the PDB reader and writer."""
+"""Tests of shapelab.io: the PDB reader and the PDB and mmCIF writers.
+
+gemmi, an independent PDB and mmCIF reader, is the oracle for what a file says.
+"""
 
 from __future__ import annotations
 
+import gzip
+import io
+import tracemalloc
+
+import gemmi
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from shapelab import Balls
-from shapelab.io import VDW_RADII, read_pdb, vdw_radius, write_pdb
+from shapelab.io import VDW_RADII, read_pdb, vdw_radius, write_mmcif, write_pdb
 
 
 def atom(serial=1, name=" CA ", resn="ALA", chain="A", resi=1, x=0.0, y=0.0, z=0.0, element="C", rec="ATOM", alt=" "):
@@ -239,6 +247,11 @@ def test_writer_rejects_what_does_not_fit(tmp_path):
         write_pdb(tmp_path / "a.pdb", b, "C1")
     with pytest.raises(ValueError, match="residue_names"):
         write_pdb(tmp_path / "a.pdb", b, "C", residue_names=["LONG"])
+    with pytest.raises(ValueError, match="chains"):
+        write_pdb(tmp_path / "a.pdb", b, "C", chains=["ABC"])
+    with pytest.raises(ValueError, match="atom_names"):
+        write_pdb(tmp_path / "a.pdb", b, "C", atom_names=["C\u00e9"])
+    assert list(tmp_path.iterdir()) == []  # refused before anything was written
     with pytest.raises(TypeError):
         write_pdb(tmp_path / "a.pdb", np.zeros((1, 3)), "C")
 
@@ -378,7 +391,7 @@ def test_chain_selection(tmp_path):
     with pytest.raises(ValueError, match=r"none of its 4 atoms.*chains present: \['', 'A', 'B', 'C'\]"):
         read_pdb(p, chain="Z")
     with pytest.raises(ValueError, match="chain"):
-        read_pdb(p, chain="AB")
+        read_pdb(p, chain="ABC")  # chains are columns 21-22
     with pytest.raises(TypeError, match="chain"):
         read_pdb(p, chain=1)
 
@@ -405,7 +418,10 @@ def test_hetatm_and_water_selection(tmp_path):
     assert x(hetatm=False, water=True) == [1.0, 4.0, 5.0]
     assert x(hetatm={"CSO"}) == [1.0, 2.0]
     assert x(hetatm=["CSO", "ZN"]) == [1.0, 2.0, 6.0]
-    assert read_pdb(p, water=True).residue_names.tolist() == ["ALA", "CSO", "LIG", "HOH", "TIP3", "ZN"]
+    s = read_pdb(p, water=True)  # column 21 is the chain's (as gemmi reads it): TIP3 A is TIP of chain 3A
+    assert s.residue_names.tolist() == ["ALA", "CSO", "LIG", "HOH", "TIP", "ZN"]
+    assert s.chains.tolist() == ["A", "A", "A", "A", "3A", "A"]
+    assert ours(s) == gemmi_pdb(p)
     with pytest.raises(TypeError, match="water"):
         read_pdb(p, water="yes")
     with pytest.raises(TypeError, match="hetatm"):
@@ -528,3 +544,176 @@ def test_no_partial_result(tmp_path):
     lines = [atom(i, x=i) for i in range(1, 200)] + [atom(200)[:30] + "   ?????" + atom(200)[38:]]
     with pytest.raises(ValueError, match="^line 200: could not read x"):
         read_pdb(write(tmp_path, lines))
+
+
+# --------------------------------------------------------------- against gemmi
+def gemmi_pdb(path):
+    """(chain, residue name, number, atom name) of every atom of gemmi's first model, in
+    serial order, and gemmi's atom count."""
+    st = gemmi.read_structure(str(path))
+    atoms = sorted((a.serial, ch.name, r.name, r.seqid.num, a.name) for ch in st[0] for r in ch for a in r)
+    return [a[1:] for a in atoms]
+
+
+def ours(s):
+    return list(zip(s.chains.tolist(), s.residue_names.tolist(), s.residue_numbers.tolist(), s.atom_names.tolist()))
+
+
+def test_two_character_chains_and_charmm_names_as_gemmi_reads_them(tmp_path):
+    def rec(serial, name, resn, chain, resi, element=" ", x=0.0):
+        # residue name from column 18, chain right-justified in columns 21-22
+        line = f"ATOM  {serial:>5} {name:<4} {resn:<3}{chain:>2}{resi:>4}    {x:8.3f}{0:8.3f}{0:8.3f}  1.00  0.00"
+        return line + f"          {element:>2}"
+
+    def charmm(serial, name, resn, col22, resi, x):
+        line = f"ATOM  {serial:>5}  {name:<3} {resn:<4}{col22}{resi}    {x:8.3f}{0:8.3f}{0:8.3f}  1.00  0.00      SOLV"
+        assert line[17:21] == f"{resn:<4}" and line[21] == col22 and line[22:26] == resi
+        return line
+
+    lines = [
+        rec(1, " N  ", "PHE", "AA", 5, "N"),  # 4V8R: two-character chains
+        rec(2, " CA ", "PHE", "AA", 5, "C", 1),
+        rec(3, " CA ", "GLY", "B1", 5, "C", 2),
+        rec(4, " CA ", "GLY", "B", 6, "C", 3),
+        charmm(5, "OH2", "TIP3", " ", " 101", 4),  # CHARMM: a fourth letter in column 21
+        charmm(6, "NE2", "HSD", " ", "   7", 5),
+        charmm(7, "CB", "ALA", "A", "A000", 6),  # hybrid-36 residue number
+    ]
+    p = write(tmp_path, lines)
+    s = read_pdb(p, water=True)
+    assert ours(s) == gemmi_pdb(p)
+    assert s.chains.tolist() == ["AA", "AA", "B1", "B", "3", "", "A"]
+    assert s.residue_names.tolist() == ["PHE", "PHE", "GLY", "GLY", "TIP", "HSD", "ALA"]
+    assert s.residue_numbers.tolist()[-1] == 10000
+    assert len(read_pdb(p, chain="AA")) == 2 and len(read_pdb(p, chain=["B", "B1"])) == 2
+    # written back and read by both readers: the same labels
+    q = write_pdb(
+        tmp_path / "back.pdb",
+        s.balls[:6],
+        s.elements[:6],
+        atom_names=s.atom_names[:6],
+        residue_names=s.residue_names[:6],
+        residue_numbers=s.residue_numbers[:6],
+        chains=s.chains[:6],
+    )
+    assert ours(read_pdb(q, water=True)) == gemmi_pdb(q) == ours(s)[:6]
+
+
+def test_byte_order_mark_and_line_ends(tmp_path):
+    lines = [atom(1, " N  ", element="N", x=1), atom(2, x=2), atom(3, " C  ", chain="B", x=3)]
+    text = "\n".join(lines) + "\n"
+    plain = tmp_path / "plain.pdb"
+    plain.write_text(text)
+    assert len(gemmi_pdb(plain)) == 3
+    for name, data in (
+        ("bom.pdb", b"\xef\xbb\xbf" + text.encode()),
+        ("crlf.pdb", text.replace("\n", "\r\n").encode()),
+        ("cr.pdb", text.replace("\n", "\r").encode()),
+        ("bom_crlf.pdb.gz", gzip.compress(b"\xef\xbb\xbf" + text.replace("\n", "\r\n").encode())),
+    ):
+        p = tmp_path / name
+        p.write_bytes(data)
+        s = read_pdb(p)
+        assert ours(s) == gemmi_pdb(plain), name
+        assert s.balls.centers[:, 0].tolist() == [1.0, 2.0, 3.0]
+    # line numbers count CR, LF and CRLF line ends alike
+    bad = tmp_path / "bad.pdb"
+    bad.write_bytes(("HEADER\r\n" + lines[0] + "\r" + lines[1][:40] + "\n").encode())
+    with pytest.raises(ValueError, match="^line 3: truncated"):
+        read_pdb(bad)
+
+
+@pytest.mark.parametrize(
+    "where, raw, what",
+    [
+        (17, "\u00c9".encode(), "non-ASCII byte 0xc3 in column 18"),  # UTF-8 É in the residue name
+        (13, b"\xe9", "non-ASCII byte 0xe9 in column 14"),  # Latin-1 é in the atom name
+        (13, b"\t", "control character in the atom name"),
+    ],
+)
+def test_refuses_what_no_writer_can_write(tmp_path, where, raw, what):
+    line = atom(2).encode()
+    bad = line[:where] + raw + line[where + len(raw) :]
+    p = tmp_path / "names.pdb"
+    p.write_bytes(b"\n".join([b"HEADER", atom(1).encode(), bad, b"END"]) + b"\n")
+    with pytest.raises(ValueError, match=f"^line 3: ATOM record of '{p}' has .*{what}"):
+        read_pdb(p)
+
+
+def test_bounded_decompression(tmp_path):
+    # 32 MiB of blank lines in a gzip of a few kB: refused once more than max_bytes came
+    # out, without ever holding the expanded text (the old reader held all of it, twice)
+    bomb = tmp_path / "bomb.pdb.gz"
+    with gzip.open(bomb, "wb") as fh:
+        block = (b" " * 79 + b"\n") * (2**20 // 80)
+        for _ in range(32):
+            fh.write(block)
+    assert bomb.stat().st_size < 200_000
+    cap = 8 * 2**20
+    tracemalloc.start()
+    try:
+        with pytest.raises(ValueError, match=f"decompresses to more than max_bytes={cap} bytes"):
+            read_pdb(bomb, max_bytes=cap)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < cap
+    # the same cap on a plain file; a file under the cap reads
+    plain = write(tmp_path, [atom(1), atom(2, x=3)])
+    with pytest.raises(ValueError, match="holds more than max_bytes=100 bytes"):
+        read_pdb(plain, max_bytes=100)
+    assert len(read_pdb(plain, max_bytes=200)) == 2
+    with pytest.raises(ValueError, match="max_bytes"):
+        read_pdb(plain, max_bytes=0)
+    long = tmp_path / "long.pdb"
+    long.write_bytes(b"REMARK" + b"x" * 2**17)
+    with pytest.raises(ValueError, match="^line 1 of .* is longer than"):
+        read_pdb(long)
+
+
+def test_write_mmcif_round_trips_through_gemmi(tmp_path):
+    rng = np.random.default_rng(5)
+    n = 9
+    c = rng.uniform(-1e4, 1e5, (n, 3))
+    c[0] = [0.1, -0.0, 1e-7]
+    names = ["O5'", "C 1", "_x", "#h", "'q", 'a"b', "data_x", ".", "N"]
+    resn = ["TIP3", "POPC", "A", "?", "loop_", "HSD", "ALA", "LONGNAME", "HOH"]
+    chains = ["AA", "", "B1", "xyz", "A", "A", "A", "A", "A"]
+    b = rng.uniform(0, 5000, n)
+    p = write_mmcif(
+        tmp_path / "x.cif",
+        Balls(c, 1.7),
+        "C",
+        atom_names=names,
+        residue_names=resn,
+        residue_numbers=[1, 2, 10_000, -5, 3, 4, 5, 6, 123_456],
+        chains=chains,
+        hetero=[True] + [False] * 8,
+        insertion_codes=["", "A", "", "", "", "", "", "", ""],
+        b_factors=b,
+        extra={"my_label": ["a b", "", "1,2", "x", "y", "z", "w", "v", "u"]},
+        title="a title; with 'quotes'",
+    )
+    st = gemmi.read_structure(str(p))
+    atoms = sorted(
+        (a.serial, ch.name, r.name, r.seqid.num, r.seqid.icode, a.name, r.het_flag, a.pos.tolist(), a.b_iso)
+        for ch in st[0]
+        for r in ch
+        for a in r
+    )
+    assert [a[1] for a in atoms] == chains
+    assert [a[2] for a in atoms] == resn and [a[5] for a in atoms] == names
+    assert [a[3] for a in atoms] == [1, 2, 10_000, -5, 3, 4, 5, 6, 123_456]
+    assert [a[4] for a in atoms] == [" ", "A"] + [" "] * 7
+    assert [a[6] for a in atoms] == ["H"] + ["A"] * 8
+    np.testing.assert_array_equal([a[7] for a in atoms], c)  # exact: shortest round-trip decimals
+    np.testing.assert_allclose([a[8] for a in atoms], b, rtol=1e-7)  # gemmi stores B as float32
+    block = gemmi.cif.read(str(p)).sole_block()
+    assert [gemmi.cif.as_string(v) for v in block.find_values("_atom_site.my_label")][:3] == ["a b", "", "1,2"]
+    assert gemmi.cif.as_string(block.find_value("_struct.title")) == "a title; with 'quotes'"
+    # a text stream, and what it refuses
+    assert write_mmcif(io.StringIO(), Balls(c[:1], 1), "C").getvalue().startswith("data_shapelab\n")
+    for kw in ({"atom_names": ["C\u00e9"]}, {"chains": ["A\tB"]}, {"extra": {"bad name": ["x"]}}):
+        with pytest.raises(ValueError):
+            write_mmcif(tmp_path / "no.cif", Balls(c[:1], 1), "C", **kw)
+    assert not (tmp_path / "no.cif").exists()
