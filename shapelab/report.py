@@ -12,11 +12,17 @@ Science* 7 (1998) 1884–1897) serves online, computed here without a server.
 
 Run as a program::
 
-    python -m shapelab.report FILE.pdb [--probe 1.4] [--out DIR] [--chain A] [--hetatm]
+    python -m shapelab.report FILE.pdb [--probe 1.4] [--out DIR] [--chain A] [--model N]
+                                       [--no-hetatm | --hetatm NAME] [--water] [--hydrogens]
+                                       [--default-radius R]
 
-prints the Markdown table and writes ``<stem>_cavities.csv``, ``.md`` and ``.pdb`` to
-``DIR``.  A malformed or empty PDB file exits with status 2 and one line on stderr,
-and writes nothing.
+reads the file with :func:`shapelab.read_pdb`'s defaults (HETATM records kept, water
+and hydrogens dropped; each flag changes one of them), so that it prints exactly the
+table of ``report(read_pdb(FILE), 1.4)``, and writes ``<stem>_cavities.csv``, ``.md``,
+``.cif`` and, when the PDB format can hold the marked structure, ``.pdb`` to ``DIR``
+(:meth:`CavityReport.write`).  An unreadable, malformed or empty file, or an output
+directory that cannot be written, exits with status 2 and one line on stderr before
+any cavity is computed, and writes nothing.
 """
 
 from __future__ import annotations
@@ -30,7 +36,7 @@ import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
-__all__ = ["CavityRow", "CavityReport", "report", "main"]
+__all__ = ["CavityRow", "CavityReport", "report", "check_output", "main"]
 
 #: Wall area (Å²) below which an atom does not count as lining a cavity (round-off).
 LINING_MIN_AREA = 1e-8
@@ -47,7 +53,8 @@ class CavityRow:
         ``"void"`` or ``"pocket"``.
     id : int
         1, 2, ... over the whole report (voids first, each kind by SA volume,
-        largest first); the value written in the B-factor column of the PDB file.
+        largest first); the value that marks the lining atoms in the files of
+        :meth:`CavityReport.write`.
     volume_sa, area_sa : float
         Free volume (Å³) of the cavity's Delaunay cells in the SA model and the area
         (Å²) of the SA surface inside them (the cavity's wall; for a pocket the mouth
@@ -207,62 +214,145 @@ class CavityReport:
             )
         return "\n".join(lines) + "\n"
 
-    def _write_marked_pdb(self, path) -> None:
+    def _marks(self):
+        """Per atom: the smallest id of the features it lines (0 if none), and all of
+        them as ``"1,5"`` (``""`` if none)."""
         import numpy as np
 
-        from .balls import Balls
-        from .io import PDBStructure, write_pdb
+        n = len(_balls_of(self.structure))
+        ids = [[] for _ in range(n)]
+        for r in sorted(self.rows, key=lambda r: r.id):
+            for i in r.lining_atoms:
+                ids[i].append(r.id)
+        smallest = np.array([f[0] if f else 0 for f in ids], dtype=np.float64)
+        return smallest, [",".join(map(str, f)) for f in ids]
+
+    def _labels(self) -> dict:
+        """The structure's columns for :func:`~shapelab.io.write_mmcif` and
+        :func:`~shapelab.io.write_pdb` (bare balls: carbon atoms)."""
+        from .io import PDBStructure
 
         s = self.structure
-        if s is None:
-            raise ValueError("this CavityReport holds no structure to write as PDB")
-        balls = s.balls if isinstance(s, PDBStructure) else s
-        if not isinstance(balls, Balls):
-            raise TypeError(f"cannot write a PDB file of {type(s).__name__}")
-        mark = np.zeros(len(balls))
-        for r in sorted(self.rows, key=lambda r: -r.id):  # the smallest id wins
-            mark[list(r.lining_atoms)] = r.id
+        if not isinstance(s, PDBStructure):
+            return {"elements": "C"}
+        return dict(
+            elements=s.elements,
+            atom_names=s.atom_names,
+            residue_names=s.residue_names,
+            residue_numbers=s.residue_numbers,
+            chains=s.chains,
+            hetero=s.hetero,
+            insertion_codes=s.insertion_codes,
+            altlocs=s.altlocs,
+        )
+
+    def _write_marked_cif(self, path):
+        from .io import PDBStructure, write_mmcif
+
+        smallest, every = self._marks()
+        s = self.structure
+        occ = s.occupancies if isinstance(s, PDBStructure) else None
+        return write_mmcif(
+            path,
+            _balls_of(s),
+            **self._labels(),
+            occupancies=occ,
+            b_factors=smallest,
+            extra={"shapelab_feature_ids": every},
+            title=f"{self.name} cavities, probe {self.probe:g}: B_iso_or_equiv = smallest feature id lined, "
+            f"shapelab_feature_ids = all (0 and empty: none)",
+            name=f"{self.name}_cavities",
+        )
+
+    def _write_marked_pdb(self, path):
+        from .io import write_pdb
+
+        smallest, _ = self._marks()
         title = f"{self.name[:40]} cavities, probe {self.probe:g}: B-factor = feature id"
-        if isinstance(s, PDBStructure):
-            write_pdb(
-                path,
-                balls,
-                s.elements,
-                atom_names=s.atom_names,
-                residue_names=s.residue_names,
-                residue_numbers=s.residue_numbers,
-                chains=s.chains,
-                hetero=s.hetero,
-                title=title,
-                b_factors=mark,
-            )
-        else:
-            write_pdb(path, balls, "C", title=title, b_factors=mark)
+        return write_pdb(path, _balls_of(self.structure), **self._labels(), title=title, b_factors=smallest)
 
-    def write(self, out_dir, stem) -> tuple:
-        """Write ``<stem>_cavities.csv``, ``.md`` and ``.pdb`` into ``out_dir``, atomically.
+    def pdb_problem(self):
+        """Why the marked structure cannot be written as a PDB file, or None if it can.
 
-        The three files are first written to temporary files in ``out_dir`` and only
-        renamed into place once all three are complete; on any error the temporary
-        files are removed and no target file is created.  In the PDB file every atom
-        lining a feature carries the feature's id in the B-factor column (the
-        smallest id if it lines several), the others 0.
+        The PDB's fixed columns hold at most 99,999 atoms, residue names of three
+        characters, chains of two, residue numbers up to 9999, coordinates in
+        (-1000, 10000) and B-factors -- here the feature ids -- below 1000; real
+        proteins of 11,000 atoms already have more than 1000 pockets and voids.
+        The mmCIF file of :meth:`write` has none of these limits.
+
+        Examples
+        --------
+        >>> from shapelab.datasets import bowl
+        >>> rep = report(bowl(), 0.0)
+        >>> rep.pdb_problem() is None
+        True
+        >>> import dataclasses
+        >>> many = dataclasses.replace(rep.rows[0], id=1000)
+        >>> dataclasses.replace(rep, rows=(many,)).pdb_problem()
+        'b_factors must be finite and lie in (-100, 1000) to fit columns 61-66'
+        """
+        try:
+            self._write_marked_pdb(_stdio.StringIO())
+        except ValueError as e:
+            return str(e)
+        return None
+
+    def write(self, out_dir, stem, *, pdb="auto") -> tuple:
+        """Write ``<stem>_cavities.csv``, ``.md``, ``.cif`` (and ``.pdb``) into ``out_dir``, atomically.
+
+        The CSV and Markdown files are the table (:meth:`to_csv`, :meth:`to_markdown`).
+        The **mmCIF file** is the marked structure: its ``_atom_site`` table
+        (:func:`shapelab.io.write_mmcif`) holds every atom, with the smallest id of
+        the features it lines in ``B_iso_or_equiv`` (0 for none) -- the column every
+        viewer colours by -- and all of them in the item
+        ``_atom_site.shapelab_feature_ids`` (``1,5``; ``.`` for none).  Atom ``i`` of
+        the CSV's ``lining_atoms`` is ``_atom_site.id`` ``i + 1``.
+
+        Why mmCIF and not only PDB: the PDB's B-factor column holds numbers below
+        1000, and proteins of 11,000–16,000 atoms have more than 1000 voids and
+        pockets; the format also holds at most 99,999 atoms (not a ribosome) and
+        three-letter residue names.  mmCIF has no fixed widths, so the marked
+        structure of any report can be written, and no limit is found only after
+        the cavities have been computed.  The PDB file is kept as a convenience for
+        tools that read nothing else, with the same marks in its B-factor column,
+        wherever the format can hold them (:meth:`pdb_problem`).
+
+        Parameters
+        ----------
+        out_dir : str or os.PathLike
+            An existing directory.
+        stem : str
+            File name prefix, without directories.
+        pdb : {"auto", True, False}, default "auto"
+            Write the PDB file: when the format can hold it ("auto"), always (True:
+            a ValueError, and nothing written, if it cannot), or never (False).
+            Without a PDB file written, an older ``<stem>_cavities.pdb`` in
+            ``out_dir`` is removed, so that the files on disk are one report.
 
         Returns
         -------
         tuple of pathlib.Path
-            The CSV, Markdown and PDB paths.
+            The CSV, Markdown and mmCIF paths, then the PDB path if it was written.
+
+        Notes
+        -----
+        All files are first written to temporary files in ``out_dir`` and renamed
+        into place only once every one is complete; on any error the temporary files
+        are removed and no target file is created or changed.
         """
-        out_dir = Path(out_dir)
-        stem = str(stem)
-        if not stem or os.sep in stem or (os.altsep and os.altsep in stem):
-            raise ValueError(f"stem must be a non-empty file name without directories, got {stem!r}")
-        if not out_dir.is_dir():
-            raise FileNotFoundError(f"output directory {os.fspath(out_dir)!r} does not exist")
-        targets = [out_dir / f"{stem}_cavities.{ext}" for ext in ("csv", "md", "pdb")]
+        if pdb not in ("auto", True, False):
+            raise ValueError(f"pdb must be 'auto', True or False, got {pdb!r}")
+        out_dir, stem = _check_target(out_dir, stem)
+        problem = None if pdb is False else self.pdb_problem()
+        if pdb is True and problem is not None:
+            raise ValueError(f"the PDB format cannot hold this report: {problem}")
+        with_pdb = pdb is not False and problem is None
+        exts = ("csv", "md", "cif", "pdb") if with_pdb else ("csv", "md", "cif")
+        targets = [out_dir / f"{stem}_cavities.{ext}" for ext in exts]
         writers = [
             self.to_csv,
             lambda p: Path(p).write_text(self.to_markdown(), encoding="utf-8"),
+            self._write_marked_cif,
             self._write_marked_pdb,
         ]
         temps = []
@@ -284,7 +374,60 @@ class CavityReport:
         finally:
             for tmp in temps:
                 tmp.unlink(missing_ok=True)
+        if not with_pdb:
+            (out_dir / f"{stem}_cavities.pdb").unlink(missing_ok=True)  # a stale one from another report
         return tuple(targets)
+
+
+def _balls_of(structure):
+    from .balls import Balls
+    from .io import PDBStructure
+
+    if structure is None:
+        raise ValueError("this CavityReport holds no structure to write")
+    balls = structure.balls if isinstance(structure, PDBStructure) else structure
+    if not isinstance(balls, Balls):
+        raise TypeError(f"cannot write the atoms of {type(structure).__name__}")
+    return balls
+
+
+def _check_target(out_dir, stem):
+    """The output directory (must exist) and a plain file-name stem."""
+    out_dir = Path(out_dir)
+    stem = str(stem)
+    if not stem or os.sep in stem or (os.altsep and os.altsep in stem) or stem in (".", ".."):
+        raise ValueError(f"stem must be a non-empty file name without directories, got {stem!r}")
+    if not out_dir.is_dir():
+        raise FileNotFoundError(f"output directory {os.fspath(out_dir)!r} does not exist")
+    return out_dir, stem
+
+
+def check_output(structure, out_dir, stem) -> None:
+    """Check, before computing a report, that its files can be written.
+
+    Raises what :meth:`CavityReport.write` would raise for reasons known before the
+    cavities are found: an output directory that is missing or not writable (a
+    temporary file is created in it and removed), a bad ``stem``, or atom labels
+    the mmCIF writer refuses (a dry run of :func:`shapelab.io.write_mmcif` on the
+    unmarked structure).  What is left -- the number of features -- can only limit
+    the optional PDB file, never the mmCIF one.  The command line runs this first.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from shapelab.datasets import bowl
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     check_output(bowl(), d, "bowl")
+    >>> check_output(bowl(), "/no/such/dir", "bowl")
+    Traceback (most recent call last):
+    ...
+    FileNotFoundError: output directory '/no/such/dir' does not exist
+    """
+    out_dir, stem = _check_target(out_dir, stem)
+    fd, tmp = tempfile.mkstemp(dir=out_dir, prefix=f".{stem}_cavities.", suffix=".tmp")
+    os.close(fd)
+    os.unlink(tmp)
+    CavityReport(rows=(), probe=0.0, name=stem, structure=structure)._write_marked_cif(_stdio.StringIO())
 
 
 # ========================================================================= compute
@@ -485,43 +628,87 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
 
 # ============================================================================= CLI
 def main(argv=None) -> int:
-    """``python -m shapelab.report FILE.pdb [--probe 1.4] [--out DIR] [--chain A] [--hetatm]``.
+    """``python -m shapelab.report FILE.pdb [--probe 1.4] [--out DIR] [options]``.
 
-    Prints the Markdown table and writes the three files; exit status 2 with a
-    one-line message on stderr, and no files, for an unreadable, malformed or empty
-    PDB file (or a bad option).
+    Reads ``FILE`` with :func:`shapelab.read_pdb` and its defaults (HETATM records
+    kept, water and hydrogens dropped), changed only by the flags ``--chain``,
+    ``--model``, ``--no-hetatm``/``--hetatm NAME``, ``--water``, ``--hydrogens`` and
+    ``--default-radius``; checks the output directory (:func:`check_output`); then
+    computes ``report(structure, probe)``, writes its files
+    (:meth:`CavityReport.write`, the PDB file when the format can hold it) and
+    prints the Markdown table.  Exit status 2 with a one-line message on stderr,
+    and no files, for an unreadable, malformed or empty file, an output directory
+    that cannot be written, or a bad option -- all found before any cavity is
+    computed.  If no PDB file is written, one line on stderr says why.
     """
     ap = argparse.ArgumentParser(
         prog="python -m shapelab.report",
-        description="CASTp-style report of the voids and pockets of a PDB file (Notes §23.1).",
+        description="CASTp-style report of the voids and pockets of a PDB file (Notes §23.1). "
+        "The file is read as shapelab.read_pdb reads it by default: HETATM records (ligands, ions) "
+        "kept, water and hydrogens dropped.",
     )
     ap.add_argument("file", help="PDB file (plain or gzip)")
     ap.add_argument("--probe", type=float, default=1.4, help="probe radius in Å (default 1.4)")
-    ap.add_argument("--out", default=".", help="output directory (default: current directory)")
-    ap.add_argument("--chain", action="append", help="keep only this chain (repeatable)")
-    ap.add_argument("--hetatm", action="store_true", help="keep HETATM records (ligands, ions); water never")
+    ap.add_argument("--out", default=".", help="output directory, which must exist (default: current directory)")
+    ap.add_argument("--chain", action="append", metavar="ID", help="keep only this chain (repeatable)")
+    ap.add_argument("--model", type=int, metavar="N", help="read MODEL N (default: the first)")
+    het = ap.add_mutually_exclusive_group()
+    het.add_argument("--no-hetatm", action="store_true", help="drop every HETATM record")
+    het.add_argument(
+        "--hetatm",
+        action="append",
+        nargs="?",
+        const=True,
+        metavar="NAME",
+        help="keep only the HETATM residues named NAME (repeatable); without NAME, all (the default)",
+    )
+    ap.add_argument("--water", action="store_true", help="keep water molecules")
+    ap.add_argument("--hydrogens", action="store_true", help="keep hydrogen atoms")
+    ap.add_argument(
+        "--default-radius", type=float, metavar="R", help="van der Waals radius (Å) of elements Bondi does not list"
+    )
     args = ap.parse_args(argv)
 
     from .io import read_pdb
 
-    def fail(msg) -> int:
+    def fail(e) -> int:
+        msg = str(e).splitlines()[0] if str(e) else type(e).__name__
+        if "default_radius=" in msg:
+            msg += " (on the command line: --default-radius R)"
         print(f"error: {msg}", file=sys.stderr)
         return 2
 
-    try:
-        s = read_pdb(args.file, chain=args.chain, hetatm=args.hetatm)
-    except (ValueError, TypeError, OSError) as e:
-        return fail(str(e).splitlines()[0] if str(e) else type(e).__name__)
+    names = [h for h in (args.hetatm or []) if h is not True]
+    hetatm = False if args.no_hetatm else (set(names) if names else True)
     stem = Path(args.file).name
     for suffix in (".gz", ".pdb", ".ent"):
         if stem.lower().endswith(suffix):
             stem = stem[: -len(suffix)]
+    stem = stem or "structure"
     try:
-        rep = report(s, args.probe, name=stem or "structure")
-        rep.write(args.out, stem or "structure")
+        s = read_pdb(
+            args.file,
+            chain=args.chain,
+            model=args.model,
+            hetatm=hetatm,
+            water=args.water,
+            hydrogens=args.hydrogens,
+            default_radius=args.default_radius,
+        )
+        check_output(s, args.out, stem)  # before the expensive part
     except (ValueError, TypeError, OSError) as e:
-        return fail(str(e).splitlines()[0] if str(e) else type(e).__name__)
+        return fail(e)
+    try:
+        rep = report(s, args.probe, name=stem)
+        paths = rep.write(args.out, stem)
+    except (ValueError, TypeError, OSError) as e:
+        return fail(e)
     sys.stdout.write(rep.to_markdown())
+    if not any(p.suffix == ".pdb" for p in paths):
+        print(
+            f"note: no {stem}_cavities.pdb ({rep.pdb_problem()}); the marked structure is in {paths[2].name}",
+            file=sys.stderr,
+        )
     return 0
 
 

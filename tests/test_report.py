@@ -3,12 +3,14 @@
 Oracles are independent of the report's own computation: β₂ of the filtration, the
 fractional inclusion–exclusion of ``Void.volume``, a seeded jittered-grid flood fill
 of the free space, brute-force contacts of atoms with the flood-filled void, Monte
-Carlo on the mouth triangles and a closed form for one mouth triangle.
+Carlo on the mouth triangles and a closed form for one mouth triangle.  The files
+written are read back by gemmi, an independent mmCIF and PDB reader.
 """
 
 from __future__ import annotations
 
 import csv
+import dataclasses
 import importlib
 import math
 import os
@@ -16,6 +18,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import gemmi
 import numpy as np
 import pytest
 from scipy import ndimage
@@ -151,10 +154,24 @@ def test_mouth_on_bowl_matches_monte_carlo(bowl_report):
     assert row.mouth_area > 1.0 and row.mouth_perimeter > 0
 
 
+def gemmi_atoms(path):
+    """Atoms of the first model as gemmi reads the file, in _atom_site.id / serial order."""
+    st = gemmi.read_structure(str(path))
+    atoms = [
+        (a.serial, ch.name, r.name, r.seqid.num, a.name, a.b_iso, a.pos.tolist()) for ch in st[0] for r in ch for a in r
+    ]
+    return sorted(atoms)
+
+
 def test_write_and_read_back(t4l, tmp_path):
     s, rep = t4l
-    csv_p, md_p, pdb_p = rep.write(tmp_path, "t4l")
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["t4l_cavities.csv", "t4l_cavities.md", "t4l_cavities.pdb"]
+    csv_p, md_p, cif_p, pdb_p = rep.write(tmp_path, "t4l")
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        "t4l_cavities.cif",
+        "t4l_cavities.csv",
+        "t4l_cavities.md",
+        "t4l_cavities.pdb",
+    ]
     with open(csv_p, newline="") as fh:
         rows = list(csv.DictReader(fh))
     assert len(rows) == len(rep.rows)
@@ -173,6 +190,15 @@ def test_write_and_read_back(t4l, tmp_path):
     expect[list(first)] = list(first.values())
     np.testing.assert_array_equal(marks, expect)
     np.testing.assert_allclose(back.balls.radii, s.balls.radii, atol=0)
+    # the mmCIF file, read by gemmi: the same atoms, labels and marks, coordinates exact
+    g = gemmi_atoms(cif_p)
+    assert [a[0] for a in g] == list(range(1, len(s) + 1))
+    assert [a[2] for a in g] == s.residue_names.tolist() and [a[4] for a in g] == s.atom_names.tolist()
+    assert [a[3] for a in g] == s.residue_numbers.tolist()
+    np.testing.assert_array_equal([a[5] for a in g], expect)
+    np.testing.assert_array_equal([a[6] for a in g], s.balls.centers)
+    # and the PDB file read by gemmi carries the same marks
+    np.testing.assert_array_equal([a[5] for a in gemmi_atoms(pdb_p)], expect)
 
 
 def test_write_is_atomic(bowl_report, tmp_path, monkeypatch):
@@ -181,10 +207,119 @@ def test_write_is_atomic(bowl_report, tmp_path, monkeypatch):
     def boom(*a, **k):
         raise OSError("disk full")
 
-    monkeypatch.setattr(importlib.import_module("shapelab.io"), "write_pdb", boom)
-    with pytest.raises(OSError, match="disk full"):
-        rep.write(tmp_path, "bowl")
-    assert list(tmp_path.iterdir()) == []
+    io_module = importlib.import_module("shapelab.io")
+    for writer in ("write_pdb", "write_mmcif"):
+        with monkeypatch.context() as m:
+            m.setattr(io_module, writer, boom)
+            with pytest.raises(OSError, match="disk full"):
+                rep.write(tmp_path, "bowl")
+        assert list(tmp_path.iterdir()) == []
+    # pdb=False writes no PDB file, and removes one a former report left
+    (tmp_path / "bowl_cavities.pdb").write_text("stale")
+    assert [p.suffix for p in rep.write(tmp_path, "bowl", pdb=False)] == [".csv", ".md", ".cif"]
+    assert sorted(p.suffix for p in tmp_path.iterdir()) == [".cif", ".csv", ".md"]
+    with pytest.raises(ValueError, match="pdb"):
+        rep.write(tmp_path, "bowl", pdb="yes")
+
+
+def _synthetic_report(n_atoms, n_features, seed=0):
+    """A report built by hand (no cavities computed): n_atoms labelled atoms with
+    four-letter residue names, two-character chains and residue numbers past 9999,
+    and n_features rows whose lining atoms overlap."""
+    rng = np.random.default_rng(seed)
+    centers = rng.uniform(-50, 50, (n_atoms, 3))
+    resn = np.array(["TIP3", "HSD", "ALA", "POPC"])[np.arange(n_atoms) % 4]
+    chains = np.array(["AA", "B", "C1", ""])[(np.arange(n_atoms) // 7) % 4]
+    s = sl.io.PDBStructure(
+        balls=sl.Balls(centers, 1.7),
+        atom_names=np.array(["C1", "O5'", "CA", "N"])[np.arange(n_atoms) % 4],
+        residue_names=resn,
+        residue_numbers=np.arange(n_atoms, dtype=np.int64) // 3 + 1,
+        chains=chains,
+        elements=np.full(n_atoms, "C"),
+        hetero=np.arange(n_atoms) % 5 == 0,
+    )
+    rows = []
+    for k in range(n_features):
+        lining = tuple(sorted(set(rng.integers(0, n_atoms, 5).tolist())))
+        rows.append(
+            report_module.CavityRow(
+                kind="void" if k < 10 else "pocket",
+                id=k + 1,
+                volume_sa=1.0,
+                area_sa=1.0,
+                volume_vdw=2.0,
+                area_vdw=2.0,
+                mouths=0 if k < 10 else 1,
+                mouth_area=0.0,
+                mouth_perimeter=0.0,
+                birth=-1.0,
+                death=1.0,
+                lining_atoms=lining,
+                lining_atom_names=tuple(s.atom_names[i] for i in lining),
+                lining_residues=(),
+            )
+        )
+    return s, report_module.CavityReport(rows=tuple(rows), probe=1.4, name="synthetic", structure=s)
+
+
+def test_pdb_problem_names_each_limit():
+    def one(n_atoms, **labels):
+        s = sl.io.PDBStructure(
+            balls=sl.Balls(np.zeros((n_atoms, 3)), 1.7),
+            atom_names=np.full(n_atoms, "CA"),
+            residue_names=np.full(n_atoms, labels.get("resn", "ALA")),
+            residue_numbers=np.full(n_atoms, labels.get("resi", 1)),
+            chains=np.full(n_atoms, labels.get("chain", "A")),
+            elements=np.full(n_atoms, "C"),
+            hetero=np.zeros(n_atoms, bool),
+        )
+        row = _synthetic_report(3, 1)[1].rows[0]
+        row = dataclasses.replace(row, id=labels.get("id", 1), lining_atoms=(0,))
+        return report_module.CavityReport(rows=(row,), probe=1.4, name="x", structure=s).pdb_problem()
+
+    assert one(5) is None and one(5, id=999, chain="AB", resi=9999) is None
+    assert one(5, id=1000) == "b_factors must be finite and lie in (-100, 1000) to fit columns 61-66"
+    assert one(100_000) == "the PDB format holds at most 99999 atoms, got 100000"
+    assert "'TIP3'" in one(5, resn="TIP3") and "'ABC'" in one(5, chain="ABC")
+    assert "[-999, 9999]" in one(5, resi=10_000)
+
+
+def test_report_beyond_the_pdb_format_round_trips_through_gemmi(tmp_path):
+    # > 1000 features, > 99,999 atoms, four-letter residue names, two-letter chains
+    s, rep = _synthetic_report(100_123, 1_205)
+    problem = rep.pdb_problem()
+    assert problem == "residue_names[0] = 'TIP3' does not fit the PDB's 3-character printable ASCII field"
+    with pytest.raises(ValueError, match="PDB format cannot hold"):
+        rep.write(tmp_path, "big", pdb=True)
+    assert list(tmp_path.iterdir()) == []  # refused before anything was written
+    paths = rep.write(tmp_path, "big")
+    assert [p.name for p in paths] == ["big_cavities.csv", "big_cavities.md", "big_cavities.cif"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(p.name for p in paths)
+    # the oracle: every feature an atom lines, from the rows (the smallest is the mark)
+    lines = {}
+    for r in rep.rows:
+        for i in r.lining_atoms:
+            lines.setdefault(i, []).append(r.id)
+    smallest = np.zeros(len(s))
+    for i, ids in lines.items():
+        smallest[i] = min(ids)
+    assert smallest.max() > 1000
+    g = gemmi_atoms(paths[2])
+    assert len(g) == len(s) and [a[0] for a in g] == list(range(1, len(s) + 1))
+    assert [a[1] for a in g] == s.chains.tolist()
+    assert [a[2] for a in g] == s.residue_names.tolist()
+    assert [a[3] for a in g] == s.residue_numbers.tolist()
+    assert [a[4] for a in g] == s.atom_names.tolist()
+    np.testing.assert_array_equal([a[5] for a in g], smallest)
+    np.testing.assert_array_equal([a[6] for a in g], s.balls.centers)
+    block = gemmi.cif.read(str(paths[2])).sole_block()
+    table = block.find("_atom_site.", ["id", "group_PDB", "shapelab_feature_ids"])
+    every = {int(row[0]): row.str(2) for row in table}
+    assert every == {i + 1: ",".join(map(str, sorted(lines.get(i, [])))) for i in range(len(s))}
+    assert [row[1] == "HETATM" for row in table] == s.hetero.tolist()
+    with open(paths[0], newline="") as fh:
+        assert len(list(csv.DictReader(fh))) == 1_205
 
 
 @pytest.mark.parametrize(
@@ -218,9 +353,108 @@ def test_cli_success(tmp_path):
     assert res.returncode == 0, res.stderr
     assert res.stderr == ""
     assert res.stdout.startswith("## Cavities of 1grm")
-    assert sorted(p.name for p in out.iterdir()) == ["1grm_cavities.csv", "1grm_cavities.md", "1grm_cavities.pdb"]
+    assert sorted(p.name for p in out.iterdir()) == [
+        "1grm_cavities.cif",
+        "1grm_cavities.csv",
+        "1grm_cavities.md",
+        "1grm_cavities.pdb",
+    ]
     assert (out / "1grm_cavities.md").read_text() == res.stdout
-    assert len(sl.read_pdb(out / "1grm_cavities.pdb")) == len(sl.read_pdb(src, hetatm=False))
+    assert len(sl.read_pdb(out / "1grm_cavities.pdb")) == len(sl.read_pdb(src))
+    assert gemmi.read_structure(str(out / "1grm_cavities.cif"))[0].count_atom_sites() == len(sl.read_pdb(src))
+
+
+def test_cli_table_equals_the_library(tmp_path):
+    # the CLI reads with read_pdb's defaults: its table is report(read_pdb(path))'s
+    path = structure_path("1grm")
+    with_het, without = sl.read_pdb(path), sl.read_pdb(path, hetatm=False)
+    assert len(with_het) > len(without)  # the file has HETATM atoms, so the defaults matter
+    lib = sl.report(with_het, 1.4, name="1grm_single")
+    lib_no_het = sl.report(without, 1.4, name="1grm_single")
+    assert lib.to_markdown() != lib_no_het.to_markdown()
+    for args, expect in (([], lib), (["--no-hetatm"], lib_no_het)):
+        out = tmp_path / ("a" if not args else "b")
+        out.mkdir()
+        res = _cli([str(path), "--out", str(out), *args], tmp_path)
+        assert res.returncode == 0 and res.stderr == "", res.stderr
+        assert res.stdout == expect.to_markdown()
+        assert (out / "1grm_single_cavities.csv").read_text() == expect._csv_text()
+
+
+def test_cli_flags_map_to_read_pdb(monkeypatch, tmp_path):
+    seen = {}
+
+    def fake_read_pdb(path, **kw):
+        seen.clear()
+        seen.update(kw)
+        raise ValueError("stop here")
+
+    monkeypatch.setattr(importlib.import_module("shapelab.io"), "read_pdb", fake_read_pdb)
+    main = report_module.main
+    defaults = dict(chain=None, model=None, hetatm=True, water=False, hydrogens=False, default_radius=None)
+    assert main(["x.pdb"]) == 2 and seen == defaults
+    assert main(["x.pdb", "--hetatm"]) == 2 and seen == defaults
+    assert main(["x.pdb", "--no-hetatm", "--water", "--hydrogens", "--chain", "AA", "--chain", "B"]) == 2
+    assert seen == dict(defaults, hetatm=False, water=True, hydrogens=True, chain=["AA", "B"])
+    assert main(["x.pdb", "--hetatm", "CSO", "--hetatm", "ZN", "--model", "2", "--default-radius", "2"]) == 2
+    assert seen == dict(defaults, hetatm={"CSO", "ZN"}, model=2, default_radius=2.0)
+    with pytest.raises(SystemExit):
+        main(["x.pdb", "--no-hetatm", "--hetatm", "CSO"])
+
+
+def _cage_pdb(tmp_path, residue_number="   1"):
+    """A small PDB file: an icosahedron of 12 carbons around one calcium ion (HETATM)."""
+    phi = (1 + 5**0.5) / 2
+    ico = [(0.0, a, b * phi) for a in (-1, 1) for b in (-1, 1)]
+    ico = [p for q in ico for p in (q, (q[1], q[2], q[0]), (q[2], q[0], q[1]))]
+    lines = [
+        f"ATOM  {k + 1:>5}  C{k % 10}  CAG A{residue_number}    {2.2 * x:8.3f}{2.2 * y:8.3f}{2.2 * z:8.3f}"
+        f"  1.00  0.00           C"
+        for k, (x, y, z) in enumerate(ico)
+    ]
+    lines.append(f"HETATM   13 CA    CA A 101    {0:8.3f}{0:8.3f}{0:8.3f}  1.00  0.00          CA")
+    p = tmp_path / "cage.pdb"
+    p.write_text("\n".join(lines) + "\nEND\n")
+    return p
+
+
+def test_cli_checks_the_output_before_computing(monkeypatch, tmp_path, capsys):
+    def no_report(*a, **k):
+        raise AssertionError("the report was computed")
+
+    monkeypatch.setattr(report_module, "report", no_report)
+    src = _cage_pdb(tmp_path)
+    assert report_module.main([str(src), "--out", str(tmp_path / "missing"), "--default-radius", "2"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: output directory") and err.count("\n") == 1
+    # an element without a radius is found when reading, and the message names the flag
+    assert report_module.main([str(src), "--out", str(tmp_path)]) == 2
+    assert "--default-radius" in capsys.readouterr().err
+    if os.geteuid() != 0:  # root writes anywhere
+        ro = tmp_path / "ro"
+        ro.mkdir()
+        ro.chmod(0o500)
+        try:
+            assert report_module.main([str(src), "--out", str(ro), "--default-radius", "2"]) == 2
+            assert "Permission denied" in capsys.readouterr().err
+            assert list(ro.iterdir()) == []
+        finally:
+            ro.chmod(0o700)
+
+
+def test_cli_without_a_pdb_file_says_why(tmp_path, capsys):
+    # residue number A000 (hybrid-36: 10000) does not fit the PDB's columns 23-26
+    src = _cage_pdb(tmp_path, residue_number="A000")
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "cage_cavities.pdb").write_text("a stale file of another run")
+    assert report_module.main([str(src), "--out", str(out), "--default-radius", "2"]) == 0
+    cap = capsys.readouterr()
+    assert cap.err.startswith("note: no cage_cavities.pdb (residue_numbers") and cap.err.count("\n") == 1
+    assert sorted(p.name for p in out.iterdir()) == ["cage_cavities.cif", "cage_cavities.csv", "cage_cavities.md"]
+    st = gemmi.read_structure(str(out / "cage_cavities.cif"))
+    assert sorted(r.seqid.num for r in st[0]["A"] for a in r) == [101] + [10000] * 12
+    assert (out / "cage_cavities.md").read_text() == cap.out
 
 
 @pytest.mark.parametrize(
