@@ -45,6 +45,8 @@ _EXPORTS = {
     "most_spread_class": "answers",
     "curve_pairs": "answers",
     "most_exposed_residue": "answers",
+    "pocket_residues": "answers",
+    "void_radii": "answers",
     # quizzes.py: the end-of-part quizzes
     "quiz": "quizzes",
     "show_quiz": "quizzes",

@@ -24,6 +24,8 @@ __all__ = [
     "ring_tunnel",
     "curve_pairs",
     "most_exposed_residue",
+    "pocket_residues",
+    "void_radii",
     "buried_area",
     "most_spread_class",
 ]
@@ -260,6 +262,147 @@ def most_exposed_residue(answer, structure, probe: float = 1.4) -> CheckResult:
     expected = max(totals, key=lambda k: (totals[k], k))
     received = answer.strip().upper() if isinstance(answer, str) else answer
     return value("the most exposed residue", received, expected)
+
+
+def _fail(name: str, hint: str) -> CheckResult:
+    """Print and return a failed check whose ``hint`` says how the answer is off."""
+    msg = f"✗ {name}: not quite: {hint}."
+    print(msg)
+    return CheckResult(name, False, 1, msg)
+
+
+def _label(text) -> str:
+    """A residue label ``"NAME NUMBER"`` in one spelling: upper case, single spaces."""
+    return " ".join(str(text).split()).upper()
+
+
+def pocket_residues(answer, structure, pocket) -> CheckResult:
+    """Lesson 10: the residues lining ``pocket``, as labels ``"NAME NUMBER"``.
+
+    Compared as sets with the residues of the atoms in ``pocket.lining`` (Notes §23.3,
+    a pocket's lining: the atoms whose balls bound it), in any order, case and spacing.
+    A wrong answer is told how many of its labels do not line the pocket (and how many
+    are no residue of the structure at all), how many lining residues it misses and
+    whether it repeats one; never which.
+
+    Parameters
+    ----------
+    answer : list of str
+        The student's labels, e.g. ``["LEU 12", ...]``.
+    structure : PDBStructure
+        The protein (``residue_names``, ``residue_numbers`` per atom).
+    pocket : Pocket
+        The pocket whose ``lining`` holds atom indices into ``structure``.
+
+    Returns
+    -------
+    CheckResult
+        Passed when the two sets of labels are equal and no label repeats.
+
+    See Also
+    --------
+    shapelab.pockets : finds the pockets and their lining atoms.
+
+    References
+    ----------
+    .. [1] Lecture notes, §23.3 (pockets and their mouths).
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> import numpy as np
+    >>> mol = SimpleNamespace(residue_names=np.array(["ALA", "ALA", "GLY"]),
+    ...                       residue_numbers=np.array([1, 1, 2]))
+    >>> ok = pocket_residues(["gly 2", "ALA 1"], mol, SimpleNamespace(lining=np.array([0, 2])))
+    ✓ residues lining the pocket: correct.
+    >>> bad = pocket_residues(["ALA 1", "GLY 3"], mol, SimpleNamespace(lining=np.array([0, 2])))
+    ✗ residues lining the pocket: not quite: 1 of your 2 labels does not line the pocket (1 is no residue of the structure); 1 lining residue is missing.
+    """
+    name = "residues lining the pocket"
+    names = np.asarray(structure.residue_names)
+    numbers = np.asarray(structure.residue_numbers)
+    lining = np.asarray(pocket.lining, dtype=np.int64).reshape(-1)
+    expected = {_label(f"{names[i]} {numbers[i]}") for i in lining}
+    known = {_label(f"{n} {k}") for n, k in zip(names, numbers)}
+    if isinstance(answer, (str, bytes)) or not isinstance(answer, (list, tuple, set, frozenset, np.ndarray)):
+        hint = f"expected a list of labels 'NAME NUMBER', got a {type(answer).__name__}"
+        return _fail(name, hint)
+    items = list(answer)
+    if not all(isinstance(a, (str, np.str_)) for a in items):
+        bad = next(a for a in items if not isinstance(a, (str, np.str_)))
+        hint = f"expected labels 'NAME NUMBER' (strings), got a {type(bad).__name__} among them"
+        return _fail(name, hint)
+    labels = [_label(a) for a in items]
+    received = set(labels)
+    wrong = received - expected
+    unknown = wrong - known
+    missing = expected - received
+    repeated = len(labels) - len(received)
+    if not wrong and not missing and not repeated:
+        msg = f"✓ {name}: correct."
+        print(msg)
+        return CheckResult(name, True, 1, msg)
+    parts = []
+    if wrong:
+        verb = "does" if len(wrong) == 1 else "do"
+        part = f"{len(wrong)} of your {len(received)} labels {verb} not line the pocket"
+        if unknown:
+            part += f" ({len(unknown)} {'is' if len(unknown) == 1 else 'are'} no residue of the structure)"
+        parts.append(part)
+    if missing:
+        parts.append(f"{len(missing)} lining residue{'s are' if len(missing) != 1 else ' is'} missing")
+    if repeated:
+        parts.append(f"{repeated} label{'s are' if repeated != 1 else ' is'} repeated")
+    return _fail(name, "; ".join(parts))
+
+
+def void_radii(r_low, r_high, *, bond_length: float = 1.4, rtol: float = 1e-8) -> CheckResult:
+    """Lesson 06: the carbon radii r with a void inside C60 at τ = 0, as ``[r_low, r_high)``.
+
+    The reference comes from the α-filtration of ``datasets.fullerene_c60(atom_radius=0)``:
+    with equal radii r every value shifts by :math:`-r^2` (Notes §23.1: the power distance
+    is :math:`\\lVert x - z\\rVert^2 - r^2`), so the void of the bare cage, born at b₀ and
+    dead at d₀, exists at τ = 0 exactly for :math:`\\sqrt{b_0} \\le r < \\sqrt{d_0}`.
+    Both ends are lengths of about 1 Å computed in a few floating-point operations, so
+    they compare to ``rtol`` (1e-8) relative: a closed form passes, a value read off a
+    grid of radii does not.
+
+    Parameters
+    ----------
+    r_low, r_high : float
+        The student's ends of the interval.
+    bond_length : float
+        The cage's bond length (Å).
+    rtol : float
+        Relative tolerance on each end.
+
+    Returns
+    -------
+    CheckResult
+        Passed when both ends agree; otherwise says which end is too large or too small.
+
+    See Also
+    --------
+    shapelab.voids : the voids of a union of balls at a growth time.
+
+    References
+    ----------
+    .. [1] Lecture notes, §23.1 (the growth model) and §23.3 (voids).
+    """
+    from ..datasets import fullerene_c60
+    from ..filtration import alpha_filtration
+
+    pairs = np.asarray(
+        alpha_filtration(fullerene_c60(bond_length=bond_length, atom_radius=0.0)).persistence()[2], dtype=float
+    )
+    birth, death = pairs[int(np.argmax(pairs[:, 1] - pairs[:, 0]))]
+    return value(
+        "the radii with a void at τ = 0 (r_low, r_high)",
+        [r_low, r_high],
+        np.sqrt([birth, death]),
+        rtol=rtol,
+        atol=0.0,
+    )
 
 
 def buried_area(answer, receptor, ligand, probe: float = 0.0) -> CheckResult:

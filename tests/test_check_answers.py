@@ -1,0 +1,71 @@
+"""The value checks that compare content: the pocket's residues as a set of labels, and
+the void's radius interval against a closed form (not against the count of labels, or a
+grid of radii)."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from shapelab import check
+
+NAMES = np.array(["THR", "THR", "MET", "TYR", "TYR", "GLY", "ALA"])
+NUMBERS = np.array([11, 11, 14, 25, 25, 30, 31])
+MOL = SimpleNamespace(residue_names=NAMES, residue_numbers=NUMBERS)
+POCKET = SimpleNamespace(lining=np.array([0, 1, 2, 4]))  # THR 11, MET 14, TYR 25
+RIGHT = ["THR 11", "MET 14", "TYR 25"]
+
+
+@pytest.mark.parametrize(
+    "answer",
+    [RIGHT, RIGHT[::-1], ["thr 11", " MET  14", "Tyr 25"], tuple(RIGHT), set(RIGHT), np.array(RIGHT)],
+)
+def test_pocket_residues_right_in_any_order_case_or_spacing(answer, capsys):
+    assert check.pocket_residues(answer, MOL, POCKET)
+    assert "✓" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(
+    ("answer", "hint"),
+    [
+        (["THR 11", "MET 14", "GLY 30"], "1 of your 3 labels does not line the pocket; 1 lining residue is missing"),
+        (["THR 11", "MET 14", "TYR 26"], "(1 is no residue of the structure)"),
+        (["THR 11", "MET 14"], "1 lining residue is missing"),
+        (RIGHT + ["ALA 31"], "1 of your 4 labels does not line the pocket"),
+        (RIGHT + ["THR 11"], "1 label is repeated"),
+        (["ALA 31", "GLY 30", "THR 11"], "2 of your 3 labels do not line"),
+        ("THR 11, MET 14, TYR 25", "expected a list of labels"),
+        ([11, 14, 25], "got a int among them"),
+        (None, "expected a list of labels"),
+    ],
+)
+def test_pocket_residues_wrong_content_fails_without_naming_the_answer(answer, hint, capsys):
+    assert not check.pocket_residues(answer, MOL, POCKET)
+    out = capsys.readouterr().out
+    assert "✗" in out and hint in out, out
+    missing = set(RIGHT) - ({str(a) for a in answer} if isinstance(answer, list) else set())
+    assert not any(label in out for label in missing), out
+
+
+def test_pocket_residues_same_count_is_not_enough(capsys):
+    """The old check compared the number of labels: three random ones passed."""
+    assert not check.pocket_residues(["GLY 30", "ALA 31", "THR 12"], MOL, POCKET)
+
+
+R_HIGH = 1.4 / 2 * np.sqrt(9 * ((1 + 5**0.5) / 2) ** 2 + 1)  # the cage's circumradius (lesson 06)
+
+
+def test_void_radii_closed_form_passes(capsys):
+    assert check.void_radii(1.4, R_HIGH)
+
+
+@pytest.mark.parametrize(
+    "ends",
+    [(1.45, R_HIGH), (1.4, 3.45), (1.4 * (1 + 1e-6), R_HIGH), (R_HIGH, 1.4), (0.7, R_HIGH), (1.4, float("nan"))],
+)
+def test_void_radii_read_off_a_grid_or_swapped_fails(ends, capsys):
+    assert not check.void_radii(*ends)
+    out = capsys.readouterr().out
+    assert "✗" in out and "3.469" not in out and "1.4" not in out.split(":", 1)[1].replace("(r_low, r_high)", "")
