@@ -1,0 +1,258 @@
+"""Wrong answers of the right type and shape, made from a solution's own value.
+
+``tests/test_selfchecks.py`` runs each exercise's solution in a Jupyter kernel, then
+imports this module there and replaces each answer with every one of
+:func:`mutants`'s values in turn before running the cell's self-check again: each must
+fail.  Because the wrong answers are derived from the solution's value (a number off by
+10 %, one entry of an array changed, a label replaced by another residue, a function that
+is wrong on one input), they follow the lessons when the lessons change.
+
+Where a generic change would still be a right answer (any threshold between two
+persistences is right; a viewpoint moved by 10 % sees the same critical points) or the
+answer is an object without a generic change, :data:`OVERRIDES` makes the wrong answers
+from the lesson's own variables instead.
+"""
+
+from __future__ import annotations
+
+import numbers
+
+import numpy as np
+
+__all__ = ["mutants", "perturb", "Unsupported", "OVERRIDES"]
+
+LETTERS = "abcd"
+
+
+class Unsupported(TypeError):
+    """No generic wrong answer exists for a value of this type."""
+
+
+def _rng(seed: int = 2323):
+    return np.random.default_rng(seed)
+
+
+def _off(v: float) -> float:
+    """An amount that is wrong for every check's tolerance (the loosest is 5 % relative or
+    0.05 absolute), and still 'a bit'."""
+    return 0.1 * abs(float(v)) + 0.1
+
+
+def perturb(v):
+    """``v`` changed a little, keeping its type and shape (what a wrong function returns)."""
+    if isinstance(v, (bool, np.bool_)):
+        return type(v)(not v)
+    if isinstance(v, numbers.Integral):
+        return type(v)(v + 1)
+    if isinstance(v, numbers.Real):
+        return type(v)(v + _off(v))
+    if isinstance(v, np.ndarray):
+        w = v.copy()
+        if w.size == 0:  # nothing to change: one row too many
+            return np.ones((1,) + w.shape[1:], dtype=w.dtype)
+        flat = w.reshape(-1)
+        flat[0] = perturb(flat[0].item()) if w.dtype != object else perturb(flat[0])
+        return w
+    if isinstance(v, (list, tuple)) and len(v) > 0:
+        return type(v)([perturb(v[0]), *v[1:]]) if not hasattr(v, "_fields") else type(v)(perturb(v[0]), *v[1:])
+    name = type(v).__name__
+    if name == "Quaternion":
+        return type(v)(*(v.as_array() + np.array([0.0, 0.1, 0.0, 0.0])))
+    if name == "RigidMotion":
+        return type(v)(v.rotation, np.asarray(v.translation, dtype=float) + 0.1)
+    raise Unsupported(f"no generic wrong value for a {name}")
+
+
+def _fingerprint(x):
+    if isinstance(x, np.ndarray):
+        return ("array", x.shape, str(x.dtype), x.tobytes())
+    if isinstance(x, (list, tuple)):
+        return (type(x).__name__, *(_fingerprint(a) for a in x))
+    if isinstance(x, (numbers.Number, str, bytes, type(None))):
+        return x
+    return ("object", id(x))
+
+
+class _WrongFunction:
+    """The solution's function, with its output perturbed on some inputs.
+
+    ``where`` is ``"everywhere"``, ``"first"`` (only on the first input it is called with,
+    the check's first case: an edge case) or ``"rest"`` (right on that first input, wrong
+    on every other).  Which inputs are wrong depends on the inputs, not on the call count,
+    so that calls outside the check agree with the calls inside it."""
+
+    def __init__(self, fn, where: str):
+        self.fn, self.where, self.first = fn, where, None
+        self.unsupported = None
+        self.__name__ = getattr(fn, "__name__", "f")
+
+    def __call__(self, *args, **kwargs):
+        out = self.fn(*args, **kwargs)
+        key = _fingerprint(args)
+        if self.first is None:
+            self.first = key
+        wrong = self.where == "everywhere" or ((key == self.first) == (self.where == "first"))
+        if not wrong:
+            return out
+        try:
+            return perturb(out)
+        except Unsupported as exc:
+            self.unsupported = str(exc)
+            print(f"@@unsupported {exc}")
+            return out
+
+
+def _generic(v):
+    rng = _rng()
+    if callable(v) and not isinstance(v, type):
+        return [
+            ("wrong on every input", _WrongFunction(v, "everywhere")),
+            ("wrong on the check's first input only", _WrongFunction(v, "first")),
+            ("right on the first input only", _WrongFunction(v, "rest")),
+        ]
+    if isinstance(v, (bool, np.bool_)):
+        return [("negated", type(v)(not v))]
+    if isinstance(v, numbers.Integral):
+        return [("one too many", type(v)(v + 1)), ("one too few", type(v)(v - 1))]
+    if isinstance(v, numbers.Real):
+        return [("10 % too large", type(v)(v + _off(v))), ("10 % too small", type(v)(v - _off(v)))]
+    if isinstance(v, dict):
+        if not v or not all(isinstance(a, str) and a in LETTERS for a in v.values()):
+            raise Unsupported("a dict that is not a quiz's answers")
+        keys = sorted(v)
+        out = []
+        for k in (keys[0], keys[-1]):
+            w = dict(v)
+            w[k] = LETTERS[(LETTERS.index(v[k]) + 1) % len(LETTERS)]
+            out.append((f"answer {k} changed", w))
+        return out
+    if isinstance(v, np.ndarray) and v.dtype != object:
+        if v.dtype == bool:
+            rand = rng.random(v.shape) < 0.5
+            if np.array_equal(rand, v):
+                rand.reshape(-1)[0] ^= True
+            return [("one entry flipped", perturb(v)), ("random booleans", rand)]
+        if np.issubdtype(v.dtype, np.integer):
+            return [("one entry off by one", perturb(v)), ("random integers", v + rng.integers(1, 3, v.shape))]
+        scale = float(np.std(v)) if v.size > 1 and np.std(v) > 0 else 1.0
+        rand = (rng.normal(size=v.shape) * scale + float(np.mean(v)) if v.size else v).astype(v.dtype)
+        return [("one entry off by 10 %", perturb(v)), ("random values of the same shape", rand)]
+    if isinstance(v, (list, tuple)) and v:
+        if all(isinstance(a, str) for a in v):
+            if len(v) < 2:
+                raise Unsupported("a single label: no generic replacement")
+            return [
+                ("the last label replaced by a repeat of the first", type(v)([*v[:-1], v[0]])),
+                ("the last label dropped", type(v)(v[:-1])),
+            ]
+        try:
+            a = np.asarray(v)
+        except (TypeError, ValueError) as exc:
+            raise Unsupported(f"a {type(v).__name__} of mixed values") from exc
+        if a.dtype == object:
+            raise Unsupported(f"a {type(v).__name__} of objects")
+        back = (
+            (lambda w: type(v)(w.tolist())) if a.ndim == 1 else (lambda w: type(v)(type(v[0])(r) for r in w.tolist()))
+        )
+        return [(label, back(w)) for label, w in _generic(a)]
+    try:
+        return [("changed a little", perturb(v))]
+    except Unsupported:
+        raise Unsupported(f"no generic wrong answer for a {type(v).__name__}") from None
+
+
+# ---- answers whose generic change may still be right, or that are objects -------------
+
+
+def _eps_one_pocket(v, ns):
+    pers = ns["pers"]
+    return [
+        ("a threshold that keeps two pockets", (pers[1] + pers[2]) / 2 if len(pers) > 2 else pers[1] / 2),
+        ("a threshold that keeps none", pers[0] + 1.0),
+    ]
+
+
+def _residues(v, ns):
+    mol, lining = ns["mol"], set(np.asarray(ns["pockets"][0].lining).tolist())
+    others = sorted(
+        {f"{n} {k}" for i, (n, k) in enumerate(zip(mol.residue_names, mol.residue_numbers)) if i not in lining}
+        - set(v),
+        key=lambda s: int(s.split()[1]),
+    )
+    universe = sorted({f"{n} {k}" for n, k in zip(mol.residue_names, mol.residue_numbers)})
+    rng = _rng()
+    return [
+        ("random residues of the structure, as many", [universe[i] for i in rng.choice(len(universe), len(v), False)]),
+        ("one label replaced by a residue off the pocket", [*v[:-1], others[len(others) // 2]]),
+        ("one lining residue missing", list(v[1:])),
+        ("one residue off the pocket too many", [*v, others[0]]),
+        ("one label replaced by a repeat of another", [*v[:-1], v[0]]),
+        ("the residue numbers off by one", [f"{s.split()[0]} {int(s.split()[1]) + 1}" for s in v]),
+    ]
+
+
+def _most_exposed(v, ns):
+    area = ns["area_by_residue"]
+    ranked = sorted(area, key=lambda k: (area[k], k), reverse=True)
+    return [("the runner-up residue", ranked[1]), ("the least exposed residue", ranked[-1])]
+
+
+def _most_spread(v, ns):
+    spread = ns["spread"]
+    ranked = sorted(spread, key=lambda k: (spread[k], k), reverse=True)
+    return [("the runner-up class", ranked[1]), ("the least spread class", ranked[-1])]
+
+
+def _viewpoints(v, ns):
+    return [
+        ("two viewpoints swapped against their counts", [v[1], v[0], v[2]]),
+        ("three viewpoints far outside", [[5.0, 0.0, 0.0], [0.0, 5.0, 0.0], [0.0, 0.0, 5.0]]),
+    ]
+
+
+def _voids_after(v, ns):
+    sl, back = ns["sl"], ns["back"]
+    grown = sl.voids(sl.Balls(back.balls.centers, back.balls.radii * 0.97))
+    return [("the void of a cage with radii 3 % small", grown), ("the void listed twice", [*v, *v])]
+
+
+def _v_before(v, ns):
+    sl, c60 = ns["sl"], ns["c60"]
+    return [("the void of the cage with radii 3 % small", sl.voids(sl.Balls(c60.centers, c60.radii * 0.97))[0])]
+
+
+def _icp_best(v, ns):
+    return [("ICP from the identity only", ns["icp"](ns["src"], ns["tgt150"], max_iter=200))]
+
+
+def _icp_step(v, ns):
+    register = ns["register"]
+    return [
+        ("registration without closest points (rows paired in order)", lambda moved, target: register(moved, target))
+    ]
+
+
+#: ``"lesson stem:name"`` -> ``f(solution's value, the kernel's globals)`` -> [(label, wrong answer)]
+OVERRIDES = {
+    "09_persistence:eps_one_pocket": _eps_one_pocket,
+    "10_molecule_case_study:pocket_residues": _residues,
+    "10_molecule_case_study:most_exposed": _most_exposed,
+    "10_molecule_case_study:voids_after": _voids_after,
+    "10_molecule_case_study:v_before": _v_before,
+    "11_critical_points:viewpoints": _viewpoints,
+    "13_icp:best": _icp_best,
+    "13_icp:my_icp_step": _icp_step,
+    "17_shape_classification:most_spread": _most_spread,
+}
+
+
+def mutants(value, key: str, ns: dict) -> list:
+    """``[(label, wrong answer), ...]`` for the answer ``value`` of the exercise ``key``
+    (``"lesson stem:name"``); ``ns`` is the kernel's namespace.  Raises
+    :class:`Unsupported` when no wrong answer can be made."""
+    if key in OVERRIDES:
+        return OVERRIDES[key](value, ns)
+    out = _generic(value)
+    if not out:
+        raise Unsupported(f"no wrong answer for {key}")
+    return out
