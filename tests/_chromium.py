@@ -3,33 +3,40 @@ course site, the static explorers).  One place for the flags."""
 
 from __future__ import annotations
 
+import json
+import os
+import queue
 import shutil
 import subprocess
+import threading
+import time
 from pathlib import Path
 
 CHROMIUM = next((shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome") if shutil.which(n)), None)
 SKIP_REASON = "Chromium is not installed (CI installs it: `apt-get install chromium`)"
 
 
+# the flags every run shares: headless, no GPU, no background traffic, the network off
+# (every connection goes to a closed port and no name resolves)
+FLAGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-dev-shm-usage",
+    "--disable-background-networking",
+    "--no-first-run",
+    "--disable-component-update",
+    "--disable-sync",
+    "--disable-extensions",
+    "--proxy-server=127.0.0.1:9",
+    "--host-resolver-rules=MAP * ~NOTFOUND",
+]
+
+
 def dump_dom(url: str, profile: Path, *, budget_ms: int = 8000, window=None, console: bool = False):
     """The page's DOM after load, with the network off: every connection goes to a closed
     port and no name resolves.  With ``console``, also its console messages (a list)."""
-    cmd = [
-        CHROMIUM,
-        "--headless",
-        "--no-sandbox",
-        "--disable-gpu",
-        "--disable-dev-shm-usage",
-        "--disable-background-networking",
-        "--no-first-run",
-        "--disable-component-update",
-        "--disable-sync",
-        "--disable-extensions",
-        f"--user-data-dir={profile}",
-        "--proxy-server=127.0.0.1:9",
-        "--host-resolver-rules=MAP * ~NOTFOUND",
-        f"--virtual-time-budget={budget_ms}",
-    ]
+    cmd = [CHROMIUM, *FLAGS, f"--user-data-dir={profile}", f"--virtual-time-budget={budget_ms}"]
     if window:
         cmd.append(f"--window-size={window[0]},{window[1]}")
     if console:
@@ -40,3 +47,161 @@ def dump_dom(url: str, profile: Path, *, budget_ms: int = 8000, window=None, con
         return run.stdout
     lines = [line[line.index('"') :] if '"' in line else line for line in run.stderr.splitlines() if ":CONSOLE" in line]
     return run.stdout, lines
+
+
+def _above(fd: int, low: int) -> int:
+    """``fd`` moved to a descriptor number of at least ``low``."""
+    import fcntl
+
+    new = fcntl.fcntl(fd, fcntl.F_DUPFD_CLOEXEC, low)
+    os.close(fd)
+    return new
+
+
+class DevTools:
+    """Chromium driven over the DevTools protocol on a pipe (``--remote-debugging-pipe``:
+    the browser reads commands on its fd 3 and writes replies and events on its fd 4,
+    each a JSON text ended by a NUL byte), with the network off."""
+
+    def __init__(self, profile: Path):
+        to_browser_r, self._to_browser = os.pipe()
+        self._from_browser, from_browser_w = os.pipe()
+        # the child's ends moved above 3 and 4, so that putting them there never
+        # overwrites one with the other (and dup2 makes them inheritable)
+        to_browser_r, from_browser_w = (_above(fd, 10) for fd in (to_browser_r, from_browser_w))
+
+        def fds():  # in the child, before exec: the pipes become its fds 3 and 4
+            os.dup2(to_browser_r, 3)
+            os.dup2(from_browser_w, 4)
+
+        # WebGL (the 3Dmol.js views) on SwiftShader through ANGLE, asked for explicitly: the
+        # same software renderer on every machine, and none of the messages a GPU-less
+        # fallback logs ("Automatic fallback to software WebGL has been deprecated", the
+        # host driver's "GPU stall due to ReadPixels"), which are about the test machine,
+        # not about the page
+        flags = [f for f in FLAGS if f != "--disable-gpu"] + ["--use-angle=swiftshader", "--enable-unsafe-swiftshader"]
+        self.proc = subprocess.Popen(
+            [CHROMIUM, *flags, f"--user-data-dir={profile}", "--remote-debugging-pipe", "about:blank"],
+            stdin=subprocess.DEVNULL,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+            preexec_fn=fds,
+            close_fds=False,
+        )
+        os.close(to_browser_r)
+        os.close(from_browser_w)
+        self._id = 0
+        self._replies: dict = {}
+        self.events: queue.Queue = queue.Queue()
+        self._cond = threading.Condition()
+        threading.Thread(target=self._read, daemon=True).start()
+
+    def _read(self):
+        buf = b""
+        while True:
+            chunk = os.read(self._from_browser, 1 << 16)
+            if not chunk:
+                break
+            buf += chunk
+            while b"\0" in buf:
+                raw, buf = buf.split(b"\0", 1)
+                msg = json.loads(raw)
+                if "id" in msg:
+                    with self._cond:
+                        self._replies[msg["id"]] = msg
+                        self._cond.notify_all()
+                else:
+                    self.events.put(msg)
+
+    def send(self, method: str, params: dict | None = None, session: str | None = None, timeout: float = 60.0):
+        """Send a command and wait for its result (raises on a protocol error)."""
+        self._id += 1
+        msg = {"id": self._id, "method": method, "params": params or {}}
+        if session:
+            msg["sessionId"] = session
+        os.write(self._to_browser, json.dumps(msg).encode() + b"\0")
+        with self._cond:
+            if not self._cond.wait_for(lambda: self._id in self._replies, timeout=timeout):
+                raise TimeoutError(f"Chromium did not answer {method} within {timeout} s")
+            reply = self._replies.pop(self._id)
+        if "error" in reply:
+            raise RuntimeError(f"{method}: {reply['error']}")
+        return reply.get("result", {})
+
+    def close(self):
+        try:
+            self.send("Browser.close", timeout=10)
+        except (OSError, RuntimeError, TimeoutError):
+            pass
+        try:
+            self.proc.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            self.proc.wait()
+        os.close(self._to_browser)
+
+
+def _describe(event: dict) -> dict | None:
+    """A console event as ``{"level", "source", "text"}``: every message of level error or
+    warning, from the page's scripts (console.error, console.warn, console.assert), from
+    the browser (failed loads, refused scripts, deprecations) and every uncaught exception
+    or unhandled rejection; None for anything else (console.log, info, debug)."""
+    method, p = event.get("method"), event.get("params", {})
+    if method == "Runtime.consoleAPICalled" and p.get("type") in ("error", "warning", "assert"):
+        text = " ".join(str(a.get("value", a.get("description", a.get("type", "")))) for a in p.get("args", []))
+        frames = (p.get("stackTrace") or {}).get("callFrames") or [{}]
+        return {"level": p["type"], "source": frames[0].get("url", ""), "text": text}
+    if method == "Runtime.exceptionThrown":
+        d = p.get("exceptionDetails", {})
+        text = (d.get("exception") or {}).get("description") or d.get("text", "")
+        return {"level": "exception", "source": d.get("url", ""), "text": text}
+    if method == "Log.entryAdded" and p.get("entry", {}).get("level") in ("error", "warning"):
+        e = p["entry"]
+        return {"level": e["level"], "source": e.get("url", e.get("source", "")), "text": e.get("text", "")}
+    return None
+
+
+def console_messages(urls, profile: Path, *, settle_s: float = 1.5, load_timeout_s: float = 60.0) -> dict:
+    """``{url: [message, ...]}``: each page's console messages of level error or warning
+    and its uncaught exceptions (see :func:`_describe`), from the first script to
+    ``settle_s`` seconds after its load event.
+
+    Each page opens in a fresh browser context (its own storage: what one page keeps in
+    localStorage cannot hide another page's error), with the network off."""
+    browser = DevTools(profile)
+    out = {}
+    try:
+        for url in urls:
+            ctx = browser.send("Target.createBrowserContext")["browserContextId"]
+            target = browser.send("Target.createTarget", {"url": "about:blank", "browserContextId": ctx})["targetId"]
+            session = browser.send("Target.attachToTarget", {"targetId": target, "flatten": True})["sessionId"]
+            for domain in ("Runtime", "Log", "Page"):
+                browser.send(f"{domain}.enable", session=session)
+            while not browser.events.empty():  # what about:blank said is not this page's
+                browser.events.get_nowait()
+            browser.send("Page.navigate", {"url": url}, session=session)
+            messages, loaded_at, start = [], None, time.monotonic()
+            while True:
+                now = time.monotonic()
+                if loaded_at is not None and now - loaded_at >= settle_s:
+                    break
+                if loaded_at is None and now - start > load_timeout_s:
+                    messages.append({"level": "error", "source": url, "text": "the page did not finish loading"})
+                    break
+                try:
+                    event = browser.events.get(timeout=0.1)
+                except queue.Empty:
+                    continue
+                if event.get("sessionId") != session:
+                    continue
+                if event.get("method") == "Page.loadEventFired":
+                    loaded_at = time.monotonic()
+                found = _describe(event)
+                if found:
+                    messages.append(found)
+            out[url] = messages
+            browser.send("Target.closeTarget", {"targetId": target})
+            browser.send("Target.disposeBrowserContext", {"browserContextId": ctx})
+    finally:
+        browser.close()
+    return out
