@@ -832,6 +832,12 @@ def _labels(
     return elements, atom_names, residue_names, residue_numbers, chains, hetero, insertion_codes, altlocs, b_factors
 
 
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
 def _write_text(path, text: str):
     """Write ``text`` to a text stream (anything with ``write``), or to the file ``path``
     atomically: a temporary file beside it, renamed over it once complete."""
@@ -843,6 +849,7 @@ def _write_text(path, text: str):
     try:
         with os.fdopen(fd, "w", encoding="ascii", newline="\n") as fh:
             fh.write(text)
+        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp's files are private; a written file is not
         os.replace(tmp, out)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)

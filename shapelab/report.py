@@ -289,8 +289,11 @@ class CavityReport:
         >>> import dataclasses
         >>> many = dataclasses.replace(rep.rows[0], id=1000)
         >>> dataclasses.replace(rep, rows=(many,)).pdb_problem()
-        'b_factors must be finite and lie in (-100, 1000) to fit columns 61-66'
+        'feature ids up to 1000: the B-factor column (61-66) holds ids up to 999'
         """
+        top = max((r.id for r in self.rows), default=0)
+        if top > 999:
+            return f"feature ids up to {top}: the B-factor column (61-66) holds ids up to 999"
         try:
             self._write_marked_pdb(_stdio.StringIO())
         except ValueError as e:
@@ -355,6 +358,9 @@ class CavityReport:
             self._write_marked_cif,
             self._write_marked_pdb,
         ]
+        mask = os.umask(0)
+        os.umask(mask)
+        mode = 0o666 & ~mask
         temps = []
         try:
             for t, writer in zip(targets, writers):
@@ -362,6 +368,7 @@ class CavityReport:
                 os.close(fd)
                 temps.append(Path(tmp))
                 writer(tmp)
+                os.chmod(tmp, mode)  # mkstemp's files are private; the report is not
             done = []
             try:
                 for tmp, t in zip(temps, targets):

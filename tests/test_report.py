@@ -279,7 +279,7 @@ def test_pdb_problem_names_each_limit():
         return report_module.CavityReport(rows=(row,), probe=1.4, name="x", structure=s).pdb_problem()
 
     assert one(5) is None and one(5, id=999, chain="AB", resi=9999) is None
-    assert one(5, id=1000) == "b_factors must be finite and lie in (-100, 1000) to fit columns 61-66"
+    assert one(5, id=1000) == "feature ids up to 1000: the B-factor column (61-66) holds ids up to 999"
     assert one(100_000) == "the PDB format holds at most 99999 atoms, got 100000"
     assert "'TIP3'" in one(5, resn="TIP3") and "'ABC'" in one(5, chain="ABC")
     assert "[-999, 9999]" in one(5, resi=10_000)
@@ -289,11 +289,14 @@ def test_report_beyond_the_pdb_format_round_trips_through_gemmi(tmp_path):
     # > 1000 features, > 99,999 atoms, four-letter residue names, two-letter chains
     s, rep = _synthetic_report(100_123, 1_205)
     problem = rep.pdb_problem()
-    assert problem == "residue_names[0] = 'TIP3' does not fit the PDB's 3-character printable ASCII field"
+    assert problem == "feature ids up to 1205: the B-factor column (61-66) holds ids up to 999"
     with pytest.raises(ValueError, match="PDB format cannot hold"):
         rep.write(tmp_path, "big", pdb=True)
     assert list(tmp_path.iterdir()) == []  # refused before anything was written
     paths = rep.write(tmp_path, "big")
+    mask = os.umask(0)
+    os.umask(mask)
+    assert {p.stat().st_mode & 0o777 for p in paths} == {0o666 & ~mask}  # not mkstemp's private 0o600
     assert [p.name for p in paths] == ["big_cavities.csv", "big_cavities.md", "big_cavities.cif"]
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted(p.name for p in paths)
     # the oracle: every feature an atom lines, from the rows (the smallest is the mark)
