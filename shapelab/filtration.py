@@ -55,6 +55,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._toolkit.geometry import cross, dot
+from ._toolkit.tolerances import ENTRY_TIME_RTOL, ENTRY_TIME_SAFETY, GRAM_PINV_RCOND
 from ._toolkit.validate import as_bbox, as_tau, check_balls, freeze
 from .balls import Balls
 from .power import clipped_cells, power_diagram, triangulate_local
@@ -177,7 +178,7 @@ def _ortho_generic(x: np.ndarray, w: np.ndarray, S: np.ndarray):
     A = x[S[:, 1:]] - p0[:, None, :]
     b = 0.5 * (np.einsum("mjk,mjk->mj", A, A) - w[S[:, 1:]] + w0[:, None])
     G = np.einsum("mik,mjk->mij", A, A)
-    lam = np.einsum("mij,mj->mi", np.linalg.pinv(G, rcond=1e-10), b)
+    lam = np.einsum("mij,mj->mi", np.linalg.pinv(G, rcond=GRAM_PINV_RCOND), b)
     u = np.einsum("mi,mik->mk", lam, A)
     return u, np.einsum("mk,mk->m", u, u) - w0
 
@@ -186,10 +187,10 @@ def _ortho_generic(x: np.ndarray, w: np.ndarray, S: np.ndarray):
 #: A value computed in floating point is accepted when its first-order error bound,
 #: times _SAFETY, is at most _RTOL times the value itself (relative to the quantity,
 #: whatever the input's extent); otherwise the row is recomputed in higher precision.
-_RTOL = 1e-9
+_RTOL = ENTRY_TIME_RTOL
 #: Factor on the first-order bounds for the neglected second-order terms and the
 #: small constants of the rounding analysis.
-_SAFETY = 2.0
+_SAFETY = ENTRY_TIME_SAFETY
 
 
 def _orthospheres(x: np.ndarray, w: np.ndarray, S: np.ndarray):
@@ -761,11 +762,12 @@ class Filtration(_SimplicialMixin):
 
         return betti_curve(self, taus)
 
-    def persistence(self) -> dict:
-        """Persistence diagrams (see :func:`shapelab.topology.persistence`)."""
+    def persistence(self, *, field=2) -> dict:
+        """Persistence diagrams over :math:`\\mathbb{Z}/p`, ``p = field`` (default 2; see
+        :func:`shapelab.topology.persistence`)."""
         from .topology import persistence
 
-        return persistence(self)
+        return persistence(self, field=field)
 
     def __repr__(self) -> str:
         return f"Filtration(n_balls={len(self.balls)}, dimension={self.dimension}, counts={self.counts()})"

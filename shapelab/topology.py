@@ -57,6 +57,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import minimum_spanning_tree
 
+from ._toolkit.tolerances import PERSISTENCE_ROUNDOFF
 from ._toolkit.unionfind import elder_merges
 from ._toolkit.validate import as_float_array, as_tau
 from .filtration import derived
@@ -402,6 +403,75 @@ def reduce_h1(S: _Summary, F, *, compress: bool = True):
     return final[ok], tri[ok], _ColumnView(owner, rows_l)
 
 
+def _oriented_rows(F, tri: np.ndarray, rows: np.ndarray) -> np.ndarray:
+    """Signs of the edges ``rows`` (shape ``(t, 3)``) in the oriented boundary of the
+    triangles ``tri``: with the triangle's vertices ``a < b < c`` (vertex rows) and every
+    edge oriented from its smaller vertex to its larger, :math:`\\partial[a, b, c] =
+    [b, c] - [a, c] + [a, b]`, so an edge's sign is :math:`(-1)^i` where ``i`` is the
+    position of the vertex it misses."""
+    b1 = np.asarray(F.boundary(1), dtype=np.int64)
+    ends = b1[rows]  # (t, 3, 2)
+    verts = np.sort(ends.reshape(len(rows), -1), axis=1)[:, ::2]  # each vertex twice -> a, b, c
+    # the vertex an edge misses: the triangle's vertex sum minus the edge's two ends
+    missing = verts.sum(axis=1)[:, None] - ends.sum(axis=2)
+    pos = (missing[..., None] == verts[:, None, :]).argmax(axis=2)
+    return np.where(pos % 2 == 0, 1, -1).astype(np.int64)
+
+
+def _reduce_h1_mod_p(S: _Summary, F, p: int):
+    """Pivot pairs ``(edge_rows, triangle_rows)`` of the column reduction of the negative
+    triangles of a 3-dimensional filtration over the field :math:`\\mathbb{Z}/p`, ``p`` an
+    odd prime.
+
+    The same clearing and compression as :func:`reduce_h1` (both hold over any field:
+    which triangles are negative is decided by :math:`\\beta_2`, which is the same over
+    every field for a subcomplex of :math:`\\mathbb{R}^3`, and the rows of negative edges
+    are zero after the change of basis of the :math:`H_0` reduction, which only adds
+    multiples of later rows to rows of negative edges).  Columns are dicts
+    ``{edge row: coefficient mod p}`` of the oriented boundary (:func:`_oriented_rows`).
+    """
+    n2 = S.values[2].shape[0]
+    b2 = np.asarray(F.boundary(2), dtype=np.int64)
+    neg_tri = np.ones(n2, dtype=bool)
+    if S.k == 3:
+        neg_tri[S.pos_facets] = False
+    tri = np.flatnonzero(neg_tri)
+    rows = b2[tri]
+    signs = _oriented_rows(F, tri, rows) % p
+    is_pos = np.ones(S.values[1].shape[0], dtype=bool)
+    is_pos[S.neg_edges] = False
+    keep = is_pos[rows]
+    rows_l = rows.tolist()
+    signs_l = signs.tolist()
+    keep_l = keep.tolist()
+    owner = {}  # pivot edge -> reduced column (dict), whose pivot coefficient is 1
+    piv_e, piv_t = [], []
+    for i in range(tri.shape[0]):
+        col = {}
+        for e, c, k in zip(rows_l[i], signs_l[i], keep_l[i]):
+            if k:
+                col[e] = c
+        while col:
+            q = max(col)
+            other = owner.get(q)
+            if other is None:
+                inv = pow(col[q], p - 2, p)
+                if inv != 1:
+                    col = {e: c * inv % p for e, c in col.items()}
+                owner[q] = col
+                piv_e.append(q)
+                piv_t.append(int(tri[i]))
+                break
+            f = col[q]
+            for e, c in other.items():
+                v = (col.get(e, 0) - f * c) % p
+                if v:
+                    col[e] = v
+                else:
+                    col.pop(e, None)
+    return np.asarray(piv_e, dtype=np.int64), np.asarray(piv_t, dtype=np.int64)
+
+
 class _ColumnView:
     """Reduced columns by pivot edge, materialising unreduced ones on demand."""
 
@@ -417,8 +487,8 @@ class _ColumnView:
         return c
 
 
-#: relative size of round-off in entry times
-ROUNDOFF = 1e-11
+#: relative size of round-off in entry times (:mod:`shapelab._toolkit.tolerances`)
+ROUNDOFF = PERSISTENCE_ROUNDOFF
 
 
 def _value_scale(S: _Summary) -> float:
@@ -433,7 +503,9 @@ def is_roundoff(F, births, deaths) -> np.ndarray:
     out of floating-point arithmetic a few ulps apart, in GUDHI as here, and give
     pairs of length ~1e-15.  A pair counts as zero-length when
     ``death - birth <= ROUNDOFF * max(|birth|, |death|, median |τ|)`` with
-    ``ROUNDOFF = 1e-11``.
+    ``ROUNDOFF = 2.5e-9``, at least twice the relative accuracy to which entry times
+    are certified (:mod:`shapelab._toolkit.tolerances`): two tied entry times may come out
+    that far apart.
     """
     b = np.asarray(births, dtype=np.float64)
     d = np.asarray(deaths, dtype=np.float64)
@@ -441,7 +513,17 @@ def is_roundoff(F, births, deaths) -> np.ndarray:
     return (d - b) <= ROUNDOFF * scale
 
 
-def _build_pairs(F) -> dict:
+def _as_field(field) -> int:
+    """The prime ``p`` of the coefficient field :math:`\\mathbb{Z}/p`, validated."""
+    if isinstance(field, (bool, np.bool_)) or not isinstance(field, (int, np.integer)):
+        raise TypeError(f"field must be a prime number (the coefficient field Z/p), got {field!r}")
+    p = int(field)
+    if p < 2 or p >= 2**31 or any(p % q == 0 for q in range(2, int(p**0.5) + 1)):
+        raise ValueError(f"field must be a prime number below 2**31 (Z/p is a field only for prime p), got {p}")
+    return p
+
+
+def _build_pairs(F, field: int = 2) -> dict:
     S = summary(F)
     out = {j: np.empty((0, 2)) for j in range(S.ambient + 1)}
     if S.k < 0:
@@ -450,7 +532,10 @@ def _build_pairs(F) -> dict:
     if S.k >= 2:
         out[S.k - 1] = _pairs_top(S)
     if S.k == 3:
-        e, t, _ = reduce_h1(S, F)
+        if field == 2:
+            e, t, _ = reduce_h1(S, F)
+        else:
+            e, t = _reduce_h1_mod_p(S, F, field)
         P = np.column_stack((S.values[1][e], S.values[2][t])) if e.size else np.empty((0, 2))
         out[1] = P[P[:, 1] > P[:, 0]]
     for j in out:
@@ -462,8 +547,9 @@ def _build_pairs(F) -> dict:
     return out
 
 
-def persistence(F) -> dict:
-    """Persistence pairs of the α-filtration, per homology dimension.
+def persistence(F, *, field=2) -> dict:
+    """Persistence pairs of the α-filtration, per homology dimension, over the field
+    :math:`\\mathbb{Z}/p` (``field=p``; :math:`\\mathbb{Z}/2` by default).
 
     Notes §23.1: growing the balls "distinguishes big voids or tunnels from smaller
     ones"; a feature's persistence is its death minus its birth, in units of τ.
@@ -471,6 +557,11 @@ def persistence(F) -> dict:
     Parameters
     ----------
     F : Filtration
+    field : int, default 2
+        The prime ``p`` of the coefficient field :math:`\\mathbb{Z}/p` (GUDHI's
+        ``homology_coeff_field``).  The default, :math:`\\mathbb{Z}/2`, is the field of
+        the α-shape and persistence literature (Edelsbrunner, Letscher and Zomorodian
+        2002; Edelsbrunner and Harer 2010); GUDHI's own default is :math:`\\mathbb{Z}/11`.
 
     Returns
     -------
@@ -479,9 +570,54 @@ def persistence(F) -> dict:
         Essential classes (only the components of the whole triangulation) have death
         ``inf``; zero-length pairs are omitted, and so are pairs shorter than the
         round-off of tied entry times (:func:`is_roundoff`: relative length below
-        1e-11).  As multisets the pairs equal GUDHI's
+        2.5e-9, twice the accuracy to which entry times are certified).  As multisets the pairs equal GUDHI's
         ``persistence_intervals_in_dimension(k)`` on the weighted alpha complex of the
-        same balls (up to those round-off pairs, which GUDHI reports too).  Rows are
-        sorted by birth, then death; arrays are read-only.
+        same balls computed *in the same field*
+        (``compute_persistence(homology_coeff_field=p)``), up to those round-off pairs,
+        which GUDHI reports too.  Rows are sorted by birth, then death; arrays are
+        read-only.
+
+    Notes
+    -----
+    **Which diagrams depend on the field.**  Only :math:`H_1` of a 3-dimensional
+    filtration.  :math:`H_0` (components) and :math:`H_{d-1}` (voids in 3D, holes in
+    2D, read off the complement by Alexander duality) are the same over every field,
+    and so are all Betti numbers of a complex in :math:`\\mathbb{R}^3` (its homology has
+    no torsion).  But the *pairing* of :math:`H_1` classes can change: a 2-chain whose
+    boundary is twice a cycle -- a Möbius band, whose rim runs twice around its core
+    circle -- kills the rim in :math:`\\mathbb{Z}/2` (where :math:`2 = 0`) and only
+    ties the rim to twice the core otherwise, so two loops may exchange their deaths.
+    Real proteins contain such bands among their tetrahedra (lesson 09 shows one).
+
+    Tunnels and their representative cycles (:func:`shapelab.tunnels`) are computed in
+    :math:`\\mathbb{Z}/2`.
+
+    See Also
+    --------
+    betti, betti_curve : Betti numbers (field-independent).
+    shapelab.diagrams.bottleneck_distance : compare two diagrams.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner, D. Letscher, A. Zomorodian, "Topological persistence and
+       simplification", Discrete Comput. Geom. 28 (2002) 511-533.
+    .. [2] A. Zomorodian, G. Carlsson, "Computing persistent homology", Discrete Comput.
+       Geom. 33 (2005) 249-274 (persistence over any field).
+    .. [3] U. Bauer, M. Kerber, J. Reininghaus, "Clear and compress: computing persistent
+       homology in chunks", Topological Methods in Data Analysis and Visualization III
+       (2014) 103-117.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> from shapelab.topology import persistence
+    >>> F = sl.alpha_filtration(sl.Balls([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [0.4, 0.4, 0.4]))
+    >>> {k: len(v) for k, v in persistence(F).items()}
+    {0: 3, 1: 0, 2: 0, 3: 0}
+    >>> F.persistence(field=3)[0].shape  # H0: the same in every field
+    (3, 2)
     """
-    return dict(derived(F, "topology.pairs", _build_pairs))
+    p = _as_field(field)
+    if p == 2:
+        return dict(derived(F, "topology.pairs", _build_pairs))
+    return dict(derived(F, f"topology.pairs.Z{p}", lambda G: _build_pairs(G, p)))

@@ -150,14 +150,16 @@ def gudhi_tree(F):
     return st
 
 
-def gudhi_diagrams(F, dims=None) -> dict:
-    """GUDHI's persistence (coefficients in Z/2) of F's own simplices and values.
+def gudhi_diagrams(F, dims=None, *, field: int = 2) -> dict:
+    """GUDHI's persistence of F's own simplices and values, with coefficients in
+    Z/``field`` (Z/2 by default, the field of ``persistence()``'s default; GUDHI's own
+    default is Z/11, in which H1 pairs of real proteins can differ).
 
     Returns ``{k: (p, 2) array}`` with GUDHI's pairs, the round-off pairs (in the sense
     of :func:`shapelab.topology.is_roundoff`) dropped as ``persistence()`` drops them.
     """
     st = gudhi_tree(F)
-    st.compute_persistence(homology_coeff_field=2, min_persistence=0)
+    st.compute_persistence(homology_coeff_field=field, min_persistence=0)
     d = F.balls.dim if dims is None else dims
     out = {}
     for k in range(d + 1):

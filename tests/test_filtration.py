@@ -332,7 +332,7 @@ def test_topology_methods_forward(monkeypatch):
     calls = []
     monkeypatch.setattr(topo, "betti", lambda f, t: calls.append(("b", f, t)) or (1, 0, 0))
     monkeypatch.setattr(topo, "betti_curve", lambda f, ts: calls.append(("c", f, ts)) or "curve")
-    monkeypatch.setattr(topo, "persistence", lambda f: calls.append(("p", f)) or {})
+    monkeypatch.setattr(topo, "persistence", lambda f, field=2: calls.append(("p", f)) or {})
     assert F.betti(0.5) == (1, 0, 0)
     assert F.betti_curve([0, 1]) == "curve"
     assert F.persistence() == {}

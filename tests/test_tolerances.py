@@ -24,7 +24,6 @@ import inspect
 import re
 
 import numpy as np
-import pytest
 
 from shapelab import distance, filtration, measure, predicates, topology
 from shapelab._toolkit import tolerances as T
@@ -76,13 +75,6 @@ def test_measure_tie_rule_covers_the_certified_accuracy():
         assert not measure._before(np.array([worst]), tau)[0]
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="PERSISTENCE_ROUNDOFF (1e-11) is below twice the certified accuracy of entry "
-    "times (1e-9): a tie is filtered only because the actual errors are ~1e-15, not by "
-    "guarantee.  Raise ROUNDOFF to >= 2e-9 or certify entry times to <= 5e-12, then drop "
-    "this marker.",
-)
 def test_persistence_roundoff_covers_the_certified_accuracy():
     """A pair ``(b, d)`` whose exact values are equal comes out with ``d - b`` up to
     ``2 RTOL max(|b|, |d|) / (1 - RTOL)``; the zero-length filter (``d - b <=

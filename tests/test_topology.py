@@ -351,3 +351,46 @@ def test_bad_input_errors():
     # infinite times are fine: everything or nothing
     assert T.betti(F, np.inf) == (1, 0, 0)
     assert T.betti(F, -np.inf) == (0, 0, 0)
+
+
+# ------------------------------------------------------------ the coefficient field
+@pytest.mark.parametrize("seed", range(4))
+@pytest.mark.parametrize("field", [3, 5, 11])
+def test_persistence_over_odd_fields_equals_gudhi_in_the_same_field(seed, field):
+    """Z/p persistence against GUDHI's reduction of the same simplices and values with
+    homology_coeff_field=p: an independent column reduction (GUDHI's, signed, with
+    its own orientation), exact equality of the pairs as multisets."""
+    gudhi = pytest.importorskip("gudhi")  # noqa: F841
+    from ._oracles import bottleneck, gudhi_diagrams, random_balls
+
+    F = sl.alpha_filtration(random_balls(120, 3, seed=seed))
+    ours = F.persistence(field=field)
+    ref = gudhi_diagrams(F, field=field)
+    for k in range(4):
+        assert bottleneck(ours[k], ref[k]) == 0.0, (k, field)
+
+
+def test_field_changes_nothing_but_h1_and_betti_numbers_never():
+    """H0 and H2 are the same in every field (components; voids by Alexander duality)."""
+    from ._oracles import random_balls
+
+    F = sl.alpha_filtration(random_balls(150, 3, seed=7))
+    P2, P3 = F.persistence(), F.persistence(field=3)
+    for k in (0, 2, 3):
+        np.testing.assert_array_equal(P2[k], P3[k])
+    # the default is Z/2, and one field's pairs are kept apart from another's
+    assert F.persistence(field=2) is not P3 and np.array_equal(F.persistence(field=2)[1], P2[1])
+
+
+@pytest.mark.parametrize("bad", [4, 1, 0, -3, 2**31 + 11])
+def test_field_must_be_a_prime(bad):
+    F = sl.alpha_filtration(sl.Balls([[0.0, 0, 0], [1, 0, 0]], 0.5))
+    with pytest.raises(ValueError, match="field must be a prime"):
+        F.persistence(field=bad)
+
+
+@pytest.mark.parametrize("bad", [2.0, True, "2", None])
+def test_field_must_be_an_integer(bad):
+    F = sl.alpha_filtration(sl.Balls([[0.0, 0, 0], [1, 0, 0]], 0.5))
+    with pytest.raises(TypeError, match="field must be a prime"):
+        T.persistence(F, field=bad)
