@@ -99,8 +99,11 @@ def read_variants(path) -> dict:
     with tempfile.TemporaryDirectory() as tmp:
         p = Path(tmp) / "structure.pdb"
         p.write_text(text, encoding="latin-1")
-        kept = sl.read_pdb(p, water=True)
-        dropped = sl.read_pdb(p, water=False)
+        try:
+            kept = sl.read_pdb(p, water=True)
+            dropped = sl.read_pdb(p, water=False)
+        except ValueError as e:  # name the file, not the temporary copy
+            raise ValueError(str(e).replace(repr(str(p)), "the file")) from None
     return {"kept": kept, "dropped": dropped, "virtual_sites": n_virtual}
 
 
@@ -280,8 +283,10 @@ def _pad(b, n):
 
 
 def field_effect(result: dict, p: int = 11) -> tuple[int, float]:
-    """(pairs differing, largest bottleneck) between GUDHI's Z/2 and Z/p diagrams, over dimensions."""
-    per = result["field_effect_gudhi"].get(p, [])
+    """(pairs differing, largest bottleneck) between GUDHI's Z/2 and Z/p diagrams, over
+    dimensions; ``p=None``: over every field compared."""
+    ps = list(result["field_effect_gudhi"]) if p is None else [p]
+    per = [d for q in ps for d in result["field_effect_gudhi"].get(q, [])]
     return sum(d["unmatched"] for d in per if differs(d)), max((d["bottleneck"] for d in per), default=0.0)
 
 
@@ -408,7 +413,8 @@ def table(rows: list[dict], fields=FIELDS) -> str:
     head = (
         "| structure | atoms | waters | probe | simplices (V/E/T/Tet) | "
         + " | ".join(f"Z/{p}: diff (max bottleneck)" for p in fields)
-        + " | GUDHI Z/2 vs Z/11: pairs (bottleneck) | ours Z/2 vs Z/11 | β(0) | voids | tunnels | Betti curve | "
+        + " | GUDHI Z/2 vs Z/3: pairs (bottleneck) | GUDHI Z/2 vs Z/11 | ours Z/2 vs Z/3 | ours Z/2 vs Z/11 "
+        "| β(0) | voids | tunnels | Betti curve | "
         "time ours / GUDHI (s) |"
     )
     sep = "|" + "---|" * head.count(" | ") + "---|"
@@ -435,14 +441,16 @@ def table(rows: list[dict], fields=FIELDS) -> str:
             else:
                 n = sum(1 for d in per if differs(d))
                 cells.append(f"{n} ({_fmt(max(d['bottleneck'] for d in per))})")
-        n, b = field_effect(r)
-        cells.append(f"{n} ({_fmt(b)})" if n else "same")
-        eo = r["field_effect_ours"].get(11)
-        if eo is None:
-            cells.append("n/a")
-        else:
-            no = sum(d["unmatched"] for d in eo if differs(d))
-            cells.append(f"{no} ({_fmt(max(d['bottleneck'] for d in eo))})" if no else "same")
+        for q in (3, 11):
+            n, b = field_effect(r, q)
+            cells.append(f"{n} ({_fmt(b)})" if n else "same")
+        for q in (3, 11):
+            eo = r["field_effect_ours"].get(q)
+            if eo is None:
+                cells.append("n/a")
+            else:
+                no = sum(d["unmatched"] for d in eo if differs(d))
+                cells.append(f"{no} ({_fmt(max(d['bottleneck'] for d in eo))})" if no else "same")
         ob, gb = r["betti"]
         cells.append("(" + ",".join(map(str, ob)) + ")" + ("" if ob == gb else " ≠ (" + ",".join(map(str, gb)) + ")"))
         cells.append(str(r["voids"]))
@@ -470,12 +478,21 @@ def summary(rows: list[dict], fields=FIELDS) -> str:
     probes = sorted({r["probe"] for r in done})
     bad = [r for r in done if r["differences"]]
     errors = [r for r in rows if "error" in r]
-    dep = sorted({r["name"] for r in done if field_effect(r)[0]})
-    worst = {}
+    dep = sorted({r["name"] for r in done if field_effect(r, None)[0]})
+    worst: dict = {}
     for r in done:
-        n, b = field_effect(r)
-        if n:
-            worst[r["name"]] = max(worst.get(r["name"], 0.0), b)
+        for q in r["field_effect_gudhi"]:
+            n, b = field_effect(r, q)
+            if n:
+                worst.setdefault(r["name"], {})
+                worst[r["name"]][q] = max(worst[r["name"]].get(q, 0.0), b)
+    ours_dep = sorted(
+        {
+            r["name"]
+            for r in done
+            if r["field_effect_ours"] and any(differs(d) for per in r["field_effect_ours"].values() for d in per)
+        }
+    )
     compared = [p for p in fields if any(r["fields"].get(p) is not None for r in done)]
     lines = [
         f"- **{len(structures)} structures** compared in **{len(done)} rows** (waters kept and dropped where the "
@@ -496,8 +513,22 @@ def summary(rows: list[dict], fields=FIELDS) -> str:
         )
         + (f"; {len(errors)} rows raised" if errors else "")
         + ".",
-        f"- **Diagrams that depend on the field** (GUDHI's Z/2 and Z/11 differ): {len(dep)} of {len(structures)} "
-        "structures" + (": " + ", ".join(f"{n} (up to {_fmt(worst[n])})" for n in dep) if dep else "") + ".",
+        f"- **Diagrams that depend on the field** (GUDHI's Z/2 diagrams differ from its Z/3 or Z/11 ones): "
+        f"{len(dep)} of {len(structures)} structures"
+        + (
+            ": "
+            + ", ".join(
+                f"{n} (" + ", ".join(f"Z/{q} up to {_fmt(b)}" for q, b in sorted(worst[n].items())) + ")" for n in dep
+            )
+            if dep
+            else ""
+        )
+        + f"; ours depend on it in the same {len(ours_dep)} structures"
+        + ("" if ours_dep == dep else f" (ours: {', '.join(ours_dep)})")
+        + (", with the same diagrams as GUDHI in each field (columns Z/p above)." if not bad else "."),
+        "- Virtual sites of four-point water models removed before reading (not atoms): "
+        + (", ".join(sorted({f"{r['name']} ({r['note'].split()[0]})" for r in rows if r.get("note")})) or "none")
+        + ".",
         f"- Skipped: {len({r['name'] for r in rows if 'skip' in r and r['name'] not in structures})} files "
         "(table below).",
     ]
