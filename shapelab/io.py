@@ -572,7 +572,13 @@ def read_pdb(
     * Reading stops at the first ``END``, or at the ``ENDMDL`` of the model read.
     * Alternate locations: for each atom (chain, residue number, insertion code,
       atom name) with labelled alternatives, the one of highest occupancy is kept;
-      ties go to the label seen first.  Unlabelled records are always kept.
+      ties go to the label seen first.  Unlabelled records are always kept.  Where
+      the alternatives are different residues (a point mutation modelled as
+      alternate locations, e.g. PRO or SER 22 of 1EJG), the residue name of the
+      labelled record of highest occupancy is chosen first (ties: the first seen)
+      and the labelled records of the other names are dropped, so that one residue
+      is kept whole and never mixed with the extra atoms of the other, as gemmi's
+      ``remove_alternative_conformations`` keeps one.
     * Other records (HEADER, REMARK, ANISOU, TER, CONECT, ...) are ignored.
 
     Examples
@@ -699,10 +705,20 @@ def read_pdb(
     if not recs:
         raise ValueError(f"{os.fspath(path)!r} holds no ATOM or HETATM records (before END/ENDMDL)")
 
+    # alternate residues (a point mutation, 1EJG's PRO/SER 22): per residue, the name
+    # of the labelled record of highest occupancy (ties: the first seen); the labelled
+    # records of its other names are dropped, so that no residue mixes two
+    resname_of = {}
+    for r in recs:
+        if r[2]:
+            key = (r[5], r[6], r[7])
+            occ = -math.inf if math.isnan(r[11]) else r[11]
+            if key not in resname_of or occ > resname_of[key][1]:
+                resname_of[key] = (r[4], occ)
     # alternate locations: per atom, the highest occupancy (ties: the first label seen)
     best = {}
     for k, r in enumerate(recs):
-        if r[2]:
+        if r[2] and r[4] == resname_of[(r[5], r[6], r[7])][0]:
             key = (r[5], r[6], r[7], r[3])
             occ = -math.inf if math.isnan(r[11]) else r[11]
             if key not in best or occ > best[key][1]:

