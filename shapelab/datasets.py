@@ -22,7 +22,7 @@ in arbitrary units for the 2D figure inputs.
 
 Real structures
 ---------------
-Eight PDB files are shipped in ``shapelab/data/`` (gzip-compressed), copied once from
+Nine PDB files are shipped in ``shapelab/data/`` (gzip-compressed), copied once from
 PyPI packages by ``course/fetch_structures.py``; :data:`STRUCTURES` records each one's
 PDB id, title, what it teaches and its provenance, and :func:`structure` reads it:
 
@@ -34,6 +34,7 @@ PDB id, title, what it teaches and its provenance, and :func:`structure` reads i
 ``"t4l-l99a-ligand"``  p-xylene, the ligand that fills that cavity
 ``"1fmo"``           protein kinase A: pockets, to compare with a peer
 ``"1fmo-kvfinder"``  pyKVFinder's cavities of 1fmo (grid points, not atoms)
+``"3mht"``           a methyltransferase on DNA: persistence that depends on the field
 ===================  ======================================================
 
 The carbon radius used throughout is Bondi's van der Waals radius of carbon, 1.70 Å
@@ -909,7 +910,7 @@ def structure(name: str, **kwargs):
     ----------
     name : str
         A key of :data:`STRUCTURES`: ``"1hvr"``, ``"4ake"``, ``"1ake"``, ``"1grm"``,
-        ``"t4l-l99a"``, ``"t4l-l99a-ligand"``, ``"1fmo"``, ``"1fmo-kvfinder"``.
+        ``"t4l-l99a"``, ``"t4l-l99a-ligand"``, ``"1fmo"``, ``"1fmo-kvfinder"``, ``"3mht"``.
     **kwargs
         Passed to :func:`shapelab.io.read_pdb` (``probe``, ``chain``, ``hetatm``,
         ``water``, ``hydrogens``, ``radii``, ...), over the entry's own defaults
