@@ -104,7 +104,8 @@ class Void:
 
     @property
     def persistence(self) -> float:
-        """``dies - born``."""
+        """``dies - born``: the void's pair in :math:`H_2`, the same over every
+        coefficient field (Alexander duality; :func:`shapelab.topology.persistence`)."""
         return self.dies - self.born
 
     def __repr__(self) -> str:
@@ -202,7 +203,9 @@ class Tunnel:
 
     @property
     def persistence(self) -> float:
-        """``death - birth``."""
+        """``death - birth``: the tunnel's :math:`H_1` pair over :math:`\\mathbb{Z}/2`
+        (its representative cycle is a :math:`\\mathbb{Z}/2` cycle too); over another
+        field a tunnel's death can differ (:func:`shapelab.topology.persistence`)."""
         return self.death - self.birth
 
     def __repr__(self) -> str:

@@ -47,6 +47,13 @@ The filtration order is (value, dimension, row): within a dimension the rows of 
 pairs (as values) do not depend on how ties are broken, so they equal GUDHI's, which
 break ties differently; zero-length pairs, which do depend on it, are omitted as GUDHI
 does by default.
+
+**Coefficients.**  Homology and persistence are computed over the field
+:math:`\\mathbb{Z}/2` unless ``persistence(F, field=p)`` names another prime.  Only the
+:math:`H_1` pairs of a 3-dimensional filtration can depend on the field (a Möbius band
+among the tetrahedra: :func:`persistence`, Notes); Betti numbers, :math:`H_0` and the
+voids never do.  Compare with GUDHI in the same field
+(``compute_persistence(homology_coeff_field=p)``; GUDHI's default is 11).
 """
 
 from __future__ import annotations

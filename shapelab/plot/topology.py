@@ -140,8 +140,9 @@ def persistence_diagram(
     Parameters
     ----------
     pairs_or_filtration : Filtration or dict
-        A :class:`~shapelab.Filtration` (its :meth:`persistence` is called) or the
-        dict ``{k: (p, 2) array}`` it returns.  Deaths may be ``inf`` (drawn on a
+        A :class:`~shapelab.Filtration` (its :meth:`persistence` is called: pairs
+        over :math:`\\mathbb{Z}/2`) or the dict ``{k: (p, 2) array}`` it returns (over
+        any field, ``F.persistence(field=p)``).  Deaths may be ``inf`` (drawn on a
         dashed "∞" line at the top).
     dims : int or sequence of int, optional
         Homology dimensions to draw (default: all).

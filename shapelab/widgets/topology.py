@@ -152,7 +152,8 @@ def persistence_explorer(filtration, *, threshold=0.0, threshold_range=None, ste
     Parameters
     ----------
     filtration : Filtration
-        An α-filtration (:func:`shapelab.alpha_filtration`).
+        An α-filtration (:func:`shapelab.alpha_filtration`); its pairs over
+        :math:`\\mathbb{Z}/2` (:meth:`~shapelab.Filtration.persistence`).
     threshold : float
         Initial persistence threshold, >= 0.
     threshold_range : (float, float), optional
