@@ -10,9 +10,20 @@ diagonal* (a feature of persistence 0), and take
   :math:`(\\sum \\text{cost}^p)^{1/p}`,
 
 where a point moves to another at the L∞ distance :math:`\\max(|b - b'|, |d - d'|)` and to
-the diagonal at half its persistence :math:`(d - b)/2` (GUDHI's defaults).  Points that
-never die (death ``+inf``) can only be matched to each other, by birth; when the two
-diagrams have different numbers of them the distance is ``inf``.
+the diagonal at half its persistence :math:`(d - b)/2` (GUDHI's defaults;
+:func:`wasserstein_distance` takes any :math:`L_q` ground metric, ``internal_p``).
+
+Points at infinity (essential points), as GUDHI treats them: a point that never dies,
+:math:`(b, +\\infty)`, can only be matched to another such point, at cost
+:math:`|b - b'|`; a point born at :math:`-\\infty`, :math:`(-\\infty, d)` (as in a
+sublevel-set filtration that starts with something already there, or an extended
+diagram), only to another such point, at cost :math:`|d - d'|`; and
+:math:`(-\\infty, +\\infty)` only to another :math:`(-\\infty, +\\infty)`, at cost 0.
+Each family is matched in sorted order, which is optimal on a line.  When the two
+diagrams have different numbers of points in one family the distance is ``inf``.
+:math:`(-\\infty, -\\infty)` and :math:`(+\\infty, +\\infty)` lie on the diagonal: they
+cost nothing and are matched to it (GUDHI's ``wasserstein_distance`` and
+``bottleneck_distance`` do the same).
 
 Stability (Cohen-Steiner, Edelsbrunner and Harer 2007): moving every ball's filtration
 value by at most ε moves the diagram by at most ε in the bottleneck distance.  For the
@@ -68,8 +79,6 @@ def _diagram(D, name: str) -> np.ndarray:
         raise ValueError(f"{name} must have shape (n, 2): (birth, death) pairs, got shape {A.shape}")
     if np.isnan(A).any():
         raise ValueError(f"{name} contains NaN")
-    if np.isinf(A[:, 0]).any():
-        raise ValueError(f"{name} has an infinite birth; only deaths may be +inf")
     if np.any(A[:, 1] < A[:, 0]):
         i = int(np.argmax(A[:, 1] < A[:, 0]))
         raise ValueError(f"{name}[{i}] dies before it is born: {A[i].tolist()}")
@@ -77,26 +86,66 @@ def _diagram(D, name: str) -> np.ndarray:
 
 
 def _split(A):
-    ess = np.isinf(A[:, 1])
-    return np.flatnonzero(~ess), np.flatnonzero(ess)
+    """The finite points, and the families of points at infinity (see the module docstring).
+
+    Returns ``finite, families, diagonal``: ``families`` lists the indices of the points
+    ``(b, +inf)``, ``(-inf, d)`` and ``(-inf, +inf)`` with the coordinate that prices a
+    match in each (0, 1, or None: all cost 0); ``diagonal`` the points
+    ``(-inf, -inf)`` and ``(+inf, +inf)``, which lie on the diagonal.
+    """
+    fin_b, fin_d = np.isfinite(A[:, 0]), np.isfinite(A[:, 1])
+    finite = np.flatnonzero(fin_b & fin_d)
+    families = [
+        (np.flatnonzero(fin_b & ~fin_d), 0),  # (b, +inf): dies never, priced by birth
+        (np.flatnonzero(~fin_b & fin_d), 1),  # (-inf, d): born at -inf, priced by death
+        (np.flatnonzero(~fin_b & (A[:, 1] == np.inf) & (A[:, 0] == -np.inf)), None),
+    ]
+    diagonal = np.flatnonzero(~fin_b & ~fin_d & (A[:, 0] == A[:, 1]))
+    return finite, families, diagonal
 
 
-def _essential(A, B, ia, ib):
-    """Essential points matched by birth order; returns (pairs, costs) or None if unequal."""
-    if len(ia) != len(ib):
-        return None
-    oa = ia[np.argsort(A[ia, 0], kind="stable")]
-    ob = ib[np.argsort(B[ib, 0], kind="stable")]
-    return np.column_stack([oa, ob]), np.abs(A[oa, 0] - B[ob, 0])
+def _essential(A, B, sa, sb):
+    """Points at infinity, each family matched in sorted order (optimal on a line for every
+    order p); returns (pairs, costs), or None when a family has unequal sizes."""
+    (_, fam_a, diag_a), (_, fam_b, diag_b) = sa, sb
+    pairs, costs = [], []
+    for (ia, col), (ib, _) in zip(fam_a, fam_b):
+        if len(ia) != len(ib):
+            return None
+        if col is None:
+            pairs.append(np.column_stack([ia, ib]))
+            costs.append(np.zeros(len(ia)))
+            continue
+        oa = ia[np.argsort(A[ia, col], kind="stable")]
+        ob = ib[np.argsort(B[ib, col], kind="stable")]
+        pairs.append(np.column_stack([oa, ob]))
+        costs.append(np.abs(A[oa, col] - B[ob, col]))
+    minus = np.full(len(diag_a), -1), np.full(len(diag_b), -1)
+    pairs += [np.column_stack([diag_a, minus[0]]), np.column_stack([minus[1], diag_b])]
+    return np.concatenate(pairs).astype(np.int64).reshape(-1, 2), np.concatenate(costs)
 
 
-def _costs(P, Q):
-    """The point-to-point L∞ costs (n, m) and the costs to the diagonal of P and Q."""
+def _costs(P, Q, q=np.inf):
+    """The point-to-point L_q costs (n, m) and the costs to the diagonal of P and Q.
+
+    The L_q distance of (b, d) to the diagonal is reached at its orthogonal projection
+    ((b+d)/2, (b+d)/2) (the norm is symmetric and convex): :math:`2^{1/q}(d - b)/2`.
+    """
     n, m = len(P), len(Q)
     PQ = np.zeros((n, m))
     if n and m:
-        PQ = np.maximum(np.abs(P[:, None, 0] - Q[None, :, 0]), np.abs(P[:, None, 1] - Q[None, :, 1]))
-    return PQ, (P[:, 1] - P[:, 0]) / 2, (Q[:, 1] - Q[:, 0]) / 2
+        db, dd = np.abs(P[:, None, 0] - Q[None, :, 0]), np.abs(P[:, None, 1] - Q[None, :, 1])
+        PQ = np.maximum(db, dd)
+        if q == 1:
+            PQ = db + dd
+        elif q == 2:
+            PQ = np.hypot(db, dd)
+        elif q != np.inf:  # scaled by the larger difference: no overflow or underflow
+            with np.errstate(invalid="ignore", divide="ignore"):
+                r = np.where(PQ > 0, np.minimum(db, dd) / np.where(PQ > 0, PQ, 1.0), 0.0)
+            PQ = PQ * (1.0 + r**q) ** (1.0 / q)
+    k = 1.0 if q == np.inf else 2.0 ** (1.0 / q)
+    return PQ, (P[:, 1] - P[:, 0]) / 2 * k, (Q[:, 1] - Q[:, 0]) / 2 * k
 
 
 def _graph(n, m, ii, jj, keep_p, keep_q, weights=None):
@@ -267,14 +316,26 @@ def bottleneck_distance(D1, D2, *, matching: bool = False):
     Parameters
     ----------
     D1, D2 : array_like, shape (n, 2) and (m, 2)
-        ``(birth, death)`` pairs; deaths may be ``+inf``; either may be empty.
+        ``(birth, death)`` pairs; births may be ``-inf`` and deaths ``+inf`` (see the
+        module docstring); either may be empty.
     matching : bool
         Also return an optimal matching.
 
     Returns
     -------
     float, or DiagramMatching if ``matching``
-        ``inf`` when the diagrams have different numbers of infinite points.
+        ``inf`` when the diagrams have different numbers of points at infinity of
+        one kind (:math:`(b, \\infty)`, :math:`(-\\infty, d)` or
+        :math:`(-\\infty, \\infty)`); the matching is then empty.
+
+    See Also
+    --------
+    wasserstein_distance, distance_matrix
+
+    References
+    ----------
+    .. [1] GUDHI, ``gudhi.bottleneck_distance`` (the same conventions for points at
+       infinity); Notes §23.2 (shape classification).
 
     Examples
     --------
@@ -282,11 +343,13 @@ def bottleneck_distance(D1, D2, *, matching: bool = False):
     0.5
     >>> bottleneck_distance([[0.0, 2.0]], [])      # to the diagonal: half the persistence
     1.0
+    >>> bottleneck_distance([[-np.inf, 1.0], [0.0, np.inf]], [[-np.inf, 1.5], [0.2, np.inf]])
+    0.5
     """
     A, B = _diagram(D1, "D1"), _diagram(D2, "D2")
-    fa, ea = _split(A)
-    fb, eb = _split(B)
-    ess = _essential(A, B, ea, eb)
+    sa, sb = _split(A), _split(B)
+    fa, fb = sa[0], sb[0]
+    ess = _essential(A, B, sa, sb)
     if ess is None:
         return DiagramMatching(np.inf, np.zeros((0, 2), dtype=np.int64)) if matching else float("inf")
     ess_pairs, ess_cost = ess
@@ -336,36 +399,68 @@ def bottleneck_distance(D1, D2, *, matching: bool = False):
     return DiagramMatching(dist, np.array(pairs, dtype=np.int64).reshape(-1, 2))
 
 
-def wasserstein_distance(D1, D2, p=2, *, matching: bool = False):
+def wasserstein_distance(D1, D2, p=2, *, internal_p=np.inf, matching: bool = False):
     """The p-Wasserstein distance between two persistence diagrams, exact.
+
+    :math:`W_p = \\min_\\pi (\\sum \\lVert x - \\pi(x)\\rVert_q^p)^{1/p}` over the
+    matchings :math:`\\pi` of the points of both diagrams to each other or to the
+    diagonal, with the :math:`L_q` norm of the plane, :math:`q` = ``internal_p``, as the
+    ground metric (Notes §23.2, shape classification).
 
     Parameters
     ----------
     D1, D2 : array_like, shape (n, 2) and (m, 2)
-        ``(birth, death)`` pairs; deaths may be ``+inf``; either may be empty.
+        ``(birth, death)`` pairs; births may be ``-inf`` and deaths ``+inf`` (see the
+        module docstring); either may be empty.
     p : int or float
         The order, ``1 <= p < inf`` (the bottleneck distance is ``p = inf``).
+        Default 2 (GUDHI's default order is 1).
+    internal_p : float
+        The ground metric on the plane, the :math:`L_q` norm with ``q = internal_p``,
+        ``1 <= q <= inf``.  Default ``inf`` (:math:`\\max(|b-b'|, |d-d'|)`), as GUDHI.
+        A point goes to the diagonal at :math:`2^{1/q}\\,(d - b)/2`, its
+        :math:`L_q` distance to its orthogonal projection.  Points at infinity are
+        priced by their finite coordinate alone, whatever ``internal_p``.
     matching : bool
         Also return an optimal matching.
 
     Returns
     -------
     float, or DiagramMatching if ``matching``
+        ``inf`` when the diagrams have different numbers of points at infinity of one
+        kind; the matching is then empty.
+
+    See Also
+    --------
+    bottleneck_distance, distance_matrix
+
+    References
+    ----------
+    .. [1] GUDHI, ``gudhi.wasserstein.wasserstein_distance`` and
+       ``gudhi.hera.wasserstein_distance`` (``order``, ``internal_p``, points at
+       infinity), which the tests use as oracles.
 
     Examples
     --------
     >>> wasserstein_distance([[0.0, 2.0], [1.0, 3.0]], [[0.0, 2.0]], p=1)
     1.0
+    >>> wasserstein_distance([[0.0, 3.0], [4.0, 8.0]], [], p=2, internal_p=1)  # GUDHI's test
+    5.0
     """
     if isinstance(p, bool) or not isinstance(p, (int, float, np.integer, np.floating)):
         raise TypeError(f"p must be a number >= 1, got {type(p).__name__}")
     p = float(p)
     if not (p >= 1) or not np.isfinite(p):
         raise ValueError(f"p must be finite and >= 1 (use bottleneck_distance for p = inf), got {p}")
+    if isinstance(internal_p, bool) or not isinstance(internal_p, (int, float, np.integer, np.floating)):
+        raise TypeError(f"internal_p must be a number >= 1 or inf, got {type(internal_p).__name__}")
+    q = float(internal_p)
+    if not (q >= 1):
+        raise ValueError(f"internal_p must be >= 1 (inf allowed), got {q}")
     A, B = _diagram(D1, "D1"), _diagram(D2, "D2")
-    fa, ea = _split(A)
-    fb, eb = _split(B)
-    ess = _essential(A, B, ea, eb)
+    sa, sb = _split(A), _split(B)
+    fa, fb = sa[0], sb[0]
+    ess = _essential(A, B, sa, sb)
     if ess is None:
         return DiagramMatching(np.inf, np.zeros((0, 2), dtype=np.int64)) if matching else float("inf")
     ess_pairs, ess_cost = ess
@@ -374,13 +469,13 @@ def wasserstein_distance(D1, D2, p=2, *, matching: bool = False):
     total = float(np.sum(ess_cost**p))
     rows, cols = np.zeros(0, int), np.zeros(0, int)
     if n + m:
-        PQ, hp, hq = _costs(P, Q)
+        PQ, hp, hq = _costs(P, Q, q)
         rows, cols = _min_cost_matching(PQ, hp, hq, p)
         total += float(np.sum(_matched_costs((rows, cols), PQ, hp, hq) ** p))
     dist = total ** (1.0 / p)
     if not matching:
         return dist
-    pairs = _pairs_from(rows, cols, fa, fb, n, m) + [tuple(map(int, q)) for q in ess_pairs]
+    pairs = _pairs_from(rows, cols, fa, fb, n, m) + [tuple(map(int, e)) for e in ess_pairs]
     return DiagramMatching(dist, np.array(pairs, dtype=np.int64).reshape(-1, 2))
 
 
