@@ -325,12 +325,16 @@ def _residue_number(text: str) -> int:
             if set(text) <= alphabet:
                 return int(text, 36) - 10 * 36**3 + offset
         raise ValueError(text)
+    if not re.fullmatch(r"[+-]?[0-9]+", t):  # not int()'s "1_00" (100) nor its spaces
+        raise ValueError(text)
     return int(t)
 
 
 def _field_float(line: str, a: int, b: int, what: str, lineno: int) -> float:
     text = line[a:b]
     try:
+        if "_" in text:  # float() reads "1_000" as 1000.0; no PDB number has one
+            raise ValueError(text)
         v = float(text)
     except ValueError:
         raise ValueError(f"line {lineno}: could not read {what} from columns {a + 1}-{b}: {text.strip()!r}") from None
@@ -340,9 +344,14 @@ def _field_float(line: str, a: int, b: int, what: str, lineno: int) -> float:
 
 
 def _optional_float(line: str, a: int, b: int, what: str, lineno: int) -> float:
-    """A float from columns a+1..b, NaN if they are blank or absent."""
+    """A float from columns a+1..b, NaN if they are blank or absent; refused if the
+    line ends inside them (a right-justified number cut short: ``"  0.50"`` -> ``"  0"``)."""
     if not line[a:b].strip():
         return math.nan
+    if len(line) < b:
+        raise ValueError(
+            f"line {lineno}: {what} in columns {a + 1}-{b} is cut short by the end of the line: {line[a:b]!r}"
+        )
     return _field_float(line, a, b, what, lineno)
 
 
@@ -418,12 +427,9 @@ def _pdb_lines(path, max_bytes: int):
             if not chunk:
                 break
             total += len(chunk)
-            if total > max_bytes:
-                what = "decompresses to" if gz else "holds"
-                raise ValueError(
-                    f"{name!r} {what} more than max_bytes={max_bytes} bytes before its first END "
-                    f"(or the ENDMDL of the model read); pass a larger max_bytes= to read it"
-                )
+            over = total > max_bytes
+            if over:  # the lines that end within the limit are still read: END may be one
+                chunk = chunk[: len(chunk) - (total - max_bytes)]
             if skip_lf and chunk[:1] == b"\n":  # the LF of a CRLF split between two chunks
                 chunk = chunk[1:]
             data = pending + chunk
@@ -439,6 +445,12 @@ def _pdb_lines(path, max_bytes: int):
                 if lineno == 1 and part.startswith(_BOM):
                     part = part[len(_BOM) :]
                 yield lineno, part.decode("latin-1")
+            if over:
+                what = "decompresses to" if gz else "holds"
+                raise ValueError(
+                    f"{name!r} {what} more than max_bytes={max_bytes} bytes before its first END "
+                    f"(or the ENDMDL of the model read); pass a larger max_bytes= to read it"
+                )
         if pending:
             lineno += 1
             if lineno == 1 and pending.startswith(_BOM):
@@ -447,8 +459,10 @@ def _pdb_lines(path, max_bytes: int):
 
 
 def _check_text(line: str, lineno: int, rec: str, path) -> None:
-    """Refuse a record with a byte no writer can represent: non-ASCII anywhere, or a
-    control character (tab, NUL, ...) in a text field that is kept."""
+    """Refuse a record with a byte no writer can represent, non-ASCII anywhere, or a
+    control character (tab, NUL, ...) before its trailing whitespace: the record is
+    read by fixed columns, and a tab shifts every column after it (``"ATOM\t"`` for
+    ``"ATOM  "`` moves the sign of x out of columns 31-38)."""
     if not line.isascii():
         col, ch = next((k, c) for k, c in enumerate(line) if not c.isascii())
         raise ValueError(
@@ -463,6 +477,13 @@ def _check_text(line: str, lineno: int, rec: str, path) -> None:
                 f"line {lineno}: {rec} record of {os.fspath(path)!r} has a control character "
                 f"in the {what} (columns {a + 1}-{b}): {field!r}"
             )
+    body = line.rstrip()
+    if not body.isprintable():
+        col, ch = next((k, c) for k, c in enumerate(body) if not c.isprintable())
+        raise ValueError(
+            f"line {lineno}: {rec} record of {os.fspath(path)!r} has a control character "
+            f"{ch!r} in column {col + 1} (PDB records are fixed columns, which a tab shifts)"
+        )
 
 
 # text fields kept by read_pdb: (start, end, name), 0-based half-open columns
@@ -503,7 +524,9 @@ def read_pdb(
         ``radii``).  Without it, such an element raises.
     model : int, optional
         Serial number of the MODEL to read (columns 11–14 of the MODEL record).
-        Default: the first model.  Atoms outside any MODEL block count as model 1.
+        Default: the first model.  A file without MODEL records is model 1; ATOM or
+        HETATM records outside any MODEL block followed by a MODEL record are
+        refused (which model they belong to is not said; gemmi refuses them too).
     chain : str or collection of str, optional
         Keep only these chain identifiers (columns 21–22, one or two characters;
         ``""`` is the blank chain).
@@ -526,8 +549,9 @@ def read_pdb(
         (``{("ALA", "CB"): 1.9}``), the latter winning.  Matching ignores case.
     max_bytes : int, default :data:`MAX_PDB_BYTES` (256 MiB)
         Most bytes of text read before the first ``END`` (or the ``ENDMDL`` of the
-        model read), counted after decompression; a file with more is refused as
-        soon as the limit is passed, without being held in memory.
+        model read), that line included, counted after decompression; a file with
+        more is refused as soon as the limit is passed, without being held in
+        memory.  What follows the ``END`` is never read.
 
     Returns
     -------
@@ -540,9 +564,11 @@ def read_pdb(
     ValueError
         Empty file or no atoms, or no atoms left by the selection; a truncated or
         malformed ATOM/HETATM or MODEL record (the message starts with ``"line N:"``),
-        including one with a non-ASCII byte anywhere or a control character in a
-        text field (what no writer could write back; the message names the file and
-        the column); a requested model that is absent; an element without a radius;
+        including one with a non-ASCII byte anywhere (what no writer could write
+        back), a control character such as a tab before its trailing whitespace
+        (which shifts the fixed columns), a number cut short by the end of the line
+        or written with ``_`` (the message names the file and the column); atoms
+        outside any MODEL block before a MODEL record; a requested model that is absent; an element without a radius;
         an unreadable gzip stream; more than ``max_bytes`` of text.  Nothing is
         returned in part: any error in the model read fails the whole call.
     FileNotFoundError, IsADirectoryError
@@ -612,6 +638,7 @@ def read_pdb(
     target = model  # the MODEL serial wanted (None: the first one met)
     current = None  # serial of the open MODEL block (None: outside any)
     models_seen = []
+    loose = None  # line of the first ATOM/HETATM record outside any MODEL block
     blank = True  # no character but whitespace seen so far
     with contextlib.closing(_pdb_lines(path, max_bytes)) as lines:  # closed at END, on error too
         for lineno, line in lines:
@@ -622,6 +649,11 @@ def read_pdb(
             if rec == "MODEL":
                 if current is not None:
                     raise ValueError(f"line {lineno}: MODEL record inside MODEL {current} (missing ENDMDL)")
+                if loose is not None:
+                    raise ValueError(
+                        f"line {lineno}: MODEL record after ATOM/HETATM records outside any MODEL "
+                        f"(from line {loose}): which model they belong to is not said"
+                    )
                 field = line[6:].strip()
                 if field:
                     try:
@@ -643,6 +675,8 @@ def read_pdb(
                 continue
             if rec not in ("ATOM", "HETATM"):
                 continue
+            if current is None and loose is None:
+                loose = lineno
             here = 1 if current is None else current
             if (target if target is not None else 1) != here:
                 continue

@@ -781,3 +781,76 @@ def test_alternate_residues_are_not_mixed(tmp_path):
     res22 = [r for r, k in zip(res22, t.residue_numbers.tolist()) if k == 22]
     assert res22 == [("PRO", "N", ""), ("SER", "CA", "B"), ("SER", "C", "B"), ("SER", "O", "B"),
                      ("SER", "CB", "B"), ("SER", "OG", "C")]  # fmt: skip
+
+
+def test_max_bytes_counts_only_the_text_before_end(tmp_path):
+    # the limit is on what is read before the first END, as documented: a file whose
+    # END comes early reads under a small max_bytes whatever follows it (the reader
+    # used to refuse it because the first chunk read past the limit)
+    text = "\n".join([atom(1), atom(2, x=3), "END"] + ["REMARK " + "x" * 70] * 200) + "\n"
+    head = len("\n".join([atom(1), atom(2, x=3), "END"])) + 1
+    plain = tmp_path / "early_end.pdb"
+    plain.write_text(text)
+    packed = tmp_path / "early_end.pdb.gz"
+    packed.write_bytes(gzip.compress(text.encode()))
+    for p in (plain, packed):
+        assert len(read_pdb(p, max_bytes=head)) == 2
+        with pytest.raises(ValueError, match="more than max_bytes="):
+            read_pdb(p, max_bytes=head - 5)  # END itself is past the limit
+
+
+def test_atoms_before_the_first_model_are_refused(tmp_path):
+    # atoms outside any MODEL, then MODEL 2: the reader used to return both the loose
+    # atoms and model 2's as one structure; gemmi refuses such a file too
+    lines = [atom(1, x=1), "MODEL        2", atom(2, x=2), "ENDMDL", "MODEL        3", atom(3, x=3), "ENDMDL"]
+    p = write(tmp_path, lines)
+    with pytest.raises(RuntimeError):
+        gemmi.read_structure(str(p))
+    for model in (None, 2, 3):
+        with pytest.raises(ValueError, match="^line 2: MODEL record after ATOM/HETATM records outside any MODEL"):
+            read_pdb(p, model=model)
+    # atoms after the model read are never reached
+    q = write(tmp_path, ["MODEL        1", atom(1, x=1), "ENDMDL", atom(2, x=2)], "q.pdb")
+    assert read_pdb(q).balls.centers[:, 0].tolist() == [1.0]
+
+
+def test_a_tab_anywhere_in_a_record_is_refused(tmp_path):
+    # "ATOM\t" for "ATOM  " shifts every column left by one: x = -123.456 would read
+    # as 123.456 (the sign falls out of columns 31-38), silently
+    line = atom(1, x=-123.456, y=12.345, z=1.0)
+    shifted = line.replace("ATOM  ", "ATOM\t", 1)
+    assert float(shifted[30:38]) == 123.456
+    for bad in (shifted, line[:30] + "\t" + line[31:], line[:70] + "\t" + line[71:]):
+        p = write(tmp_path, [atom(2), bad])
+        with pytest.raises(ValueError, match="^line 2: ATOM record of .* has a control character"):
+            read_pdb(p)
+    # trailing whitespace, tabs included, is not part of the record
+    assert len(read_pdb(write(tmp_path, [line + " \t "]))) == 1
+
+
+@pytest.mark.parametrize(
+    "cols, text, what",
+    [
+        ((30, 38), "   1_000", "x"),  # float() reads "1_000" as 1000.0
+        ((22, 26), "1_00", "residue number"),  # int() reads "1_00" as 100
+        ((54, 60), "  1_00", "occupancy"),
+    ],
+)
+def test_numbers_with_underscores_are_refused(tmp_path, cols, text, what):
+    line = atom(1)
+    a, b = cols
+    p = write(tmp_path, [line[:a] + text + line[b:]])
+    with pytest.raises(ValueError, match=f"^line 1: could not read .*{what}"):
+        read_pdb(p)
+
+
+def test_a_number_cut_by_the_end_of_the_line_is_refused(tmp_path):
+    # occupancy 0.50 in columns 55-60 cut after column 57 would read as 0.0
+    line = atom_occ(1, " CB ", " ", 0.5, x=1)
+    for end, what in ((57, "occupancy"), (63, "B-factor")):
+        p = write(tmp_path, [line[:end]])
+        with pytest.raises(ValueError, match=f"^line 1: the {what} in columns .* is cut short"):
+            read_pdb(p)
+    # a line that ends between fields is complete
+    assert read_pdb(write(tmp_path, [line[:60]])).occupancies.tolist() == [0.5]
+    assert np.isnan(read_pdb(write(tmp_path, [line[:54]])).occupancies[0])
