@@ -259,7 +259,7 @@ class CavityReport:
             occupancies=occ,
             b_factors=smallest,
             extra={"shapelab_feature_ids": every},
-            title=f"{self.name} cavities, probe {self.probe:g}: B_iso_or_equiv = smallest feature id lined, "
+            title=f"{_printable(self.name)} cavities, probe {self.probe:g}: B_iso_or_equiv = smallest feature id lined, "
             f"shapelab_feature_ids = all (0 and empty: none)",
             name=f"{self.name}_cavities",
         )
@@ -268,7 +268,8 @@ class CavityReport:
         from .io import write_pdb
 
         smallest, _ = self._marks()
-        title = f"{self.name[:40]} cavities, probe {self.probe:g}: B-factor = feature id"
+        what = f" cavities, probe {self.probe:g}: B-factor = feature id"
+        title = _printable(self.name)[: max(0, 70 - len(what))] + what  # TITLE holds 70 characters
         return write_pdb(path, _balls_of(self.structure), **self._labels(), title=title, b_factors=smallest)
 
     def pdb_problem(self):
@@ -384,6 +385,13 @@ class CavityReport:
         if not with_pdb:
             (out_dir / f"{stem}_cavities.pdb").unlink(missing_ok=True)  # a stale one from another report
         return tuple(targets)
+
+
+def _printable(name: str) -> str:
+    """``name`` in printable ASCII for a file's title: other characters escaped as
+    Python writes them (``protéine`` -> ``prot\\xe9ine``, a tab -> ``\\t``), so that
+    any name -- a file stem is whatever the file system allows -- can be written."""
+    return "".join(c if c.isascii() and c.isprintable() else ascii(c)[1:-1] for c in str(name))
 
 
 def _balls_of(structure):
@@ -691,7 +699,8 @@ def main(argv=None) -> int:
     for suffix in (".gz", ".pdb", ".ent"):
         if stem.lower().endswith(suffix):
             stem = stem[: -len(suffix)]
-    stem = stem or "structure"
+    if stem in ("", ".", ".."):  # "..pdb": no name a file could be written under
+        stem = "structure"
     try:
         s = read_pdb(
             args.file,

@@ -480,3 +480,33 @@ def test_cli_bad_file_exits_2_and_writes_nothing(tmp_path, text, words):
     assert len(lines) == 1 and lines[0].startswith("error:") and words in lines[0]
     assert list(out.iterdir()) == []
     assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.pdb", "out"]
+
+
+@pytest.mark.parametrize("name", ["protéine", "a\tb", "x" * 60, "it's #1 ;x", 'say "hi"\n'])
+def test_any_name_writes_every_file(bowl_report, tmp_path, name):
+    # the name goes into the files' titles: a non-ASCII, control or long one used to
+    # make the mmCIF writer refuse the report and pdb_problem refuse the PDB file
+    _, rep = bowl_report
+    rep = dataclasses.replace(rep, name=name)
+    assert rep.pdb_problem() is None
+    paths = rep.write(tmp_path, "s")
+    assert [p.suffix for p in paths] == [".csv", ".md", ".cif", ".pdb"]
+    block = gemmi.cif.read(str(paths[2])).sole_block()
+    title = gemmi.cif.as_string(block.find_value("_struct.title"))
+    shown = name.encode("ascii", "backslashreplace").decode().replace("\t", "\\t").replace("\n", "\\n")
+    assert title.startswith(f"{shown} cavities, probe 0:")
+    assert gemmi.read_structure(str(paths[2]))[0].count_atom_sites() == len(bowl_report[0])
+    head = paths[3].read_text().splitlines()[0]
+    assert head.startswith("TITLE     ") and len(head) <= 80 and head.endswith("B-factor = feature id")
+    assert len(sl.read_pdb(paths[3])) == len(bowl_report[0])
+
+
+def test_cli_any_file_name(tmp_path):
+    src = _cage_pdb(tmp_path)
+    for name, stem in (("protéine.pdb", "protéine"), ("..pdb", "structure"), ("a\tb.ent", "a\tb")):
+        out = tmp_path / f"out{len(stem)}"
+        out.mkdir()
+        p = src.rename(tmp_path / name)
+        assert report_module.main([str(p), "--out", str(out), "--default-radius", "2"]) == 0
+        assert sorted(f.name for f in out.iterdir()) == [f"{stem}_cavities.{e}" for e in ("cif", "csv", "md", "pdb")]
+        src = p
