@@ -161,10 +161,35 @@ def _describe(event: dict) -> dict | None:
     return None
 
 
-def console_messages(urls, profile: Path, *, settle_s: float = 1.5, load_timeout_s: float = 60.0) -> dict:
-    """``{url: [message, ...]}``: each page's console messages of level error or warning
-    and its uncaught exceptions (see :func:`_describe`), from the first script to
-    ``settle_s`` seconds after its load event.
+def _failed_load(params: dict, urls: dict) -> dict | None:
+    """A ``Network.loadingFailed`` event as a message: a request that never got its file,
+    including those the console does not report (a frame whose document is missing or
+    remote: Chromium shows its error page and logs nothing).  A load the page itself
+    cancelled (``canceled``: an image removed before it arrived) is no failure."""
+    if params.get("canceled"):
+        return None
+    url = urls.get(params.get("requestId"), "")
+    return {
+        "level": "error",
+        "source": url,
+        "text": f"failed to load ({params.get('type', '?')}): {params.get('errorText', '')}",
+    }
+
+
+def console_messages(urls, profile: Path, *, late_ms: int = 10_000, load_timeout_s: float = 60.0) -> dict:
+    """``{url: [message, ...]}``: each page's console messages of level error or warning,
+    its uncaught exceptions (see :func:`_describe`) and its failed loads, from the first
+    script to ``late_ms`` milliseconds after its load event, in every frame.
+
+    - Late: after the load event the page runs on virtual time
+      (``Emulation.setVirtualTimePolicy``, paused while a fetch is pending) for a budget
+      of ``late_ms``; its timers fire as they would in ``late_ms`` of a reader's time,
+      in a fraction of it, so an error a ``setTimeout`` logs seconds after the load is
+      seen.
+    - Frames: a same-process frame's console reaches the page's session; a frame in
+      another process (a cross-site iframe) is attached automatically and read too.
+    - Failed loads: every ``Network.loadingFailed`` of the page's requests (a missing
+      iframe document or a remote one, with the network off, logs nothing otherwise).
 
     Each page opens in a fresh browser context (its own storage: what one page keeps in
     localStorage cannot hide another page's error), with the network off."""
@@ -175,27 +200,46 @@ def console_messages(urls, profile: Path, *, settle_s: float = 1.5, load_timeout
             ctx = browser.send("Target.createBrowserContext")["browserContextId"]
             target = browser.send("Target.createTarget", {"url": "about:blank", "browserContextId": ctx})["targetId"]
             session = browser.send("Target.attachToTarget", {"targetId": target, "flatten": True})["sessionId"]
-            for domain in ("Runtime", "Log", "Page"):
+            for domain in ("Runtime", "Log", "Page", "Network"):
                 browser.send(f"{domain}.enable", session=session)
+            auto = {"autoAttach": True, "waitForDebuggerOnStart": False, "flatten": True}
+            browser.send("Target.setAutoAttach", auto, session=session)
             while not browser.events.empty():  # what about:blank said is not this page's
                 browser.events.get_nowait()
             browser.send("Page.navigate", {"url": url}, session=session)
-            messages, loaded_at, start = [], None, time.monotonic()
-            while True:
-                now = time.monotonic()
-                if loaded_at is not None and now - loaded_at >= settle_s:
-                    break
-                if loaded_at is None and now - start > load_timeout_s:
-                    messages.append({"level": "error", "source": url, "text": "the page did not finish loading"})
+            sessions, requests = {session}, {}
+            messages, loaded, settled, start = [], False, False, time.monotonic()
+            while not settled:
+                if time.monotonic() - start > load_timeout_s:
+                    what = "finish loading" if not loaded else f"run {late_ms} ms past its load event"
+                    messages.append({"level": "error", "source": url, "text": f"the page did not {what}"})
                     break
                 try:
                     event = browser.events.get(timeout=0.1)
                 except queue.Empty:
                     continue
-                if event.get("sessionId") != session:
+                method, params = event.get("method"), event.get("params", {})
+                if event.get("sessionId") not in sessions:
                     continue
-                if event.get("method") == "Page.loadEventFired":
-                    loaded_at = time.monotonic()
+                if method == "Target.attachedToTarget":  # a frame in another process
+                    child = params["sessionId"]
+                    sessions.add(child)
+                    for domain in ("Runtime", "Log", "Network"):
+                        browser.send(f"{domain}.enable", session=child)
+                    browser.send("Target.setAutoAttach", auto, session=child)
+                    browser.send("Runtime.runIfWaitingForDebugger", session=child)
+                elif method == "Page.loadEventFired" and event["sessionId"] == session and not loaded:
+                    loaded = True
+                    policy = {"policy": "pauseIfNetworkFetchesPending", "budget": late_ms}
+                    browser.send("Emulation.setVirtualTimePolicy", policy, session=session)
+                elif method == "Emulation.virtualTimeBudgetExpired" and event["sessionId"] == session:
+                    settled = True
+                elif method == "Network.requestWillBeSent":
+                    requests[params["requestId"]] = params.get("request", {}).get("url", "")
+                elif method == "Network.loadingFailed":
+                    failed = _failed_load(params, requests)
+                    if failed:
+                        messages.append(failed)
                 found = _describe(event)
                 if found:
                     messages.append(found)

@@ -31,8 +31,8 @@ pytestmark = pytest.mark.book
 
 EXPLORER_LESSON = "03_alpha_filtration"
 REMOTE = re.compile(r"^(https?:)?//", re.I)
-TAG = re.compile(r"<(script|link|img|source)\b[^>]*>", re.I)
-ATTR = re.compile(r"\b(src|href)\s*=\s*[\"']([^\"']+)[\"']", re.I)
+TAG = re.compile(r"<(script|link|img|source|iframe|embed|video|audio|track)\b[^>]*>", re.I)
+ATTR = re.compile(r"\b(src|href|poster)\s*=\s*[\"']([^\"']+)[\"']", re.I)
 CSS_URL = re.compile(r"(?:url\(\s*[\"']?|@import\s+[\"'])([^\"')\s]+)", re.I)
 
 
@@ -157,8 +157,9 @@ def test_no_page_logs_an_error_or_a_warning_to_the_console(site, tmp_path):
     """Every page, opened as a reader opens it (a fresh profile, the network off), logs
     no console message of level error or warning and throws no uncaught exception: the
     page's and the theme's scripts (console.error/warn/assert), the browser's own
-    messages (a failed load, a refused script, a deprecation) and unhandled rejections
-    (tests/_chromium.py, over the DevTools protocol)."""
+    messages (a failed load, a refused script, a deprecation), unhandled rejections and
+    loads that fail without a console message (a frame's document), in every frame, up to
+    10 s after the load event (tests/_chromium.py, over the DevTools protocol)."""
     pages = _pages(site)
     found = console_messages([p.as_uri() for p in pages], tmp_path / "profile")
     bad = {}
@@ -177,13 +178,23 @@ console.log("a log line"); console.info("an info line");</script>
 <img src="missing.png">
 <script>setTimeout(function () { Promise.reject(new Error("a rejection")); }, 10);</script>
 <script>window.addEventListener("load", function () { undefinedFunction(); });</script>
-</head><body>text</body></html>"""
+<script>window.addEventListener("load", function () {
+  setTimeout(function () { console.error("a late error"); }, 5000); });</script>
+</head><body>text
+<iframe src="missing-frame.html"></iframe>
+<iframe src="https://example.invalid/embed"></iframe>
+<iframe srcdoc="<script>console.warn('a warning in a frame')</script>"></iframe>
+</body></html>"""
 
 
 @NEEDS_CHROMIUM
 def test_the_console_check_sees_errors_warnings_and_exceptions(tmp_path):
     """The check itself can fail: on a page that logs each kind of problem once, it
-    finds every one and nothing that is only a log or info line; a quiet page gives none."""
+    finds every one and nothing that is only a log or info line; a quiet page gives none.
+    Among them, what a check that stops soon after the load event or reads only the
+    console misses: an error logged 5 s after the load event, a warning from a frame, a
+    frame whose document is missing and one whose document is remote (neither logs
+    anything to the console)."""
     bad, quiet = tmp_path / "bad.html", tmp_path / "quiet.html"
     bad.write_text(PROBLEMS_PAGE, encoding="utf-8")
     quiet.write_text(
@@ -198,9 +209,14 @@ def test_the_console_check_sees_errors_warnings_and_exceptions(tmp_path):
         "Failed to load resource",
         "a rejection",
         "undefinedFunction is not defined",
+        "a late error",  # 5 s after the load event
+        "a warning in a frame",
+        "failed to load (Document)",  # the missing frame, and the remote one
     ):
         assert expected in text, f"{expected!r} not seen in:\n{text}"
     assert "a log line" not in text and "an info line" not in text
+    frames = [m["source"] for m in found[bad.as_uri()] if "failed to load (Document)" in m["text"]]
+    assert any(u.endswith("missing-frame.html") for u in frames) and "https://example.invalid/embed" in frames, frames
     assert found[quiet.as_uri()] == []
 
 
