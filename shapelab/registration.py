@@ -11,6 +11,9 @@ Three layers, each built on the one before:
 * :func:`icp` — the Iterative Closest Point algorithm of the notes (four steps, cost
   :math:`\\mu(\\pi, i)`), whose step 2 is :func:`register`.
 
+The first two take optional ``weights`` (one per pair; Horn 1987, §2.C) and can
+return SciPy's sensitivity matrix of the rotation (``return_sensitivity=True``).
+
 Conventions
 -----------
 Everything rotates/moves the **first** set onto the **second**: ``optimal_rotation(R,
@@ -36,7 +39,9 @@ Where the notes are wrong or imprecise
   \\alpha_l^2\\lambda_l` need the eigenvectors to be chosen **orthonormal** (possible
   as :math:`A` is symmetric); and :math:`q = X_1` is the unique answer (up to sign)
   only if :math:`\\lambda_1 > \\lambda_2`.  When :math:`\\lambda_1 = \\lambda_2` (e.g.
-  collinear points) a whole circle of quaternions is optimal.
+  collinear points) a whole circle of quaternions is optimal; :func:`optimal_rotation`
+  and :func:`register` then return the one of smallest rotation angle (the identity
+  for ``register(X, X)``), and warn.
 * **ICP: which set moves.** The cost :math:`\\mu(\\pi, i) = \\sum d^2(r_j,
   i(\\pi(r_j)))` applies :math:`i` to :math:`G`, but step 3 updates :math:`R \\leftarrow
   i(R)`.  Minimising the cost and then moving :math:`R` by that :math:`i` moves it the
@@ -84,8 +89,8 @@ __all__ = [
 class DegenerateRotationWarning(UserWarning):
     """The optimal rotation is not unique (collinear points, a single point, all zero).
 
-    The returned rotation is one of the optimal ones; the rotation about the common
-    line of the points is undetermined.
+    The returned rotation is the optimal one of smallest angle; the rotation about the
+    common line of the points is undetermined by the data.
     """
 
 
@@ -183,50 +188,125 @@ def _covariance(R: np.ndarray, G: np.ndarray) -> np.ndarray:
     return m
 
 
-def _rotation_from_m(m: np.ndarray, *, caller: str) -> Quaternion:
+def _weights(weights, n: int) -> np.ndarray | None:
+    """``weights`` as n finite non-negative float64 numbers, not all zero (None stays None)."""
+    if weights is None:
+        return None
+    w = _as_float_array(weights, "weights")
+    if w.ndim != 1:
+        raise ValueError(f"weights must be a 1-D array (one weight per point pair), got shape {w.shape}")
+    if w.shape[0] != n:
+        raise ValueError(f"weights must have one value per point pair ({n}), got {w.shape[0]}")
+    _check_finite(w, "weights")
+    if np.any(w < 0):
+        i = int(np.argmax(w < 0))
+        raise ValueError(f"weights must be non-negative, got weights[{i}] = {float(w[i])!r}")
+    if not np.any(w > 0):
+        raise ValueError("weights must not all be zero (no point pair would count)")
+    return w
+
+
+def _sensitivity(m: np.ndarray, w_mean: float) -> np.ndarray:
+    """SciPy's sensitivity matrix of the rotation estimated from M = Σ w r gᵀ.
+
+    With the singular values s₁ ≥ s₂ ≥ s₃ of M (s₃ negated when the best orthogonal
+    matrix is a reflection, as in Kabsch), ζ = (s₁+s₂)(s₂+s₃)(s₃+s₁) and
+    κ = s₁s₂ + s₂s₃ + s₃s₁: S = mean(w)/ζ · (κI + MᵀM), in the frame of G (SciPy's frame
+    A, with B = Σ w a bᵀ = Mᵀ for a = g, b = r).
+    """
+    u, sv, vt = np.linalg.svd(m)
+    if np.linalg.det(u @ vt) < 0:
+        sv = sv * np.array([1.0, 1.0, -1.0])
+    zeta = (sv[0] + sv[1]) * (sv[1] + sv[2]) * (sv[2] + sv[0])
+    kappa = sv[0] * sv[1] + sv[1] * sv[2] + sv[2] * sv[0]
+    return w_mean / zeta * (kappa * np.eye(3) + m.T @ m)
+
+
+def _rotation_from_m(m: np.ndarray, *, caller: str, sensitivity: float | None = None):
     """Top eigenvector of Horn's matrix built from M; warn when it is not unique.
 
-    Not unique means λ₁ − λ₂ ≤ 1e-9 · max|λ| (a numerically repeated top eigenvalue);
-    A = 0 gives the identity.
+    Not unique means λ₁ − λ₂ ≤ 1e-9 · max|λ| (a numerically repeated top eigenvalue).
+    Then every unit quaternion of the top eigenspace E (the eigenvalues within that
+    tolerance of λ₁) is optimal, and the one of smallest rotation angle is the one of
+    largest :math:`|q_0|`: the projection of 1 = (1, 0, 0, 0) on E, normalised.  A = 0
+    gives the identity.  If the projection is zero, every optimal rotation is a half turn
+    and the top eigenvector is returned.
+
+    ``sensitivity`` (the mean weight) also returns SciPy's sensitivity matrix; a
+    degenerate optimum has none (ValueError).
     """
     a = _horn_from_m(m)
     lam, vec = np.linalg.eigh(a)  # ascending
     q = vec[:, 3]
     scale = float(np.abs(lam).max())
-    if scale == 0.0 or lam[3] - lam[2] <= 1e-9 * scale:
+    degenerate = scale == 0.0 or lam[3] - lam[2] <= 1e-9 * scale
+    if degenerate:
+        if sensitivity is not None:
+            raise ValueError(
+                f"{caller}: the sensitivity matrix is undefined when the optimal rotation is not unique "
+                "(collinear points or a single pair: the spin about their line is not determined)"
+            )
         warnings.warn(
             f"{caller}: the optimal rotation is not unique (the points are collinear with the "
             "origin/centroid, or fewer than two independent directions); the rotation about "
-            "their common line is undetermined and one optimal rotation is returned",
+            "their common line is undetermined and the optimal rotation of smallest angle is returned",
             DegenerateRotationWarning,
             stacklevel=3,
         )
+        top = vec[:, lam >= lam[3] - 1e-9 * scale]
+        proj = top @ top[0]  # the projection of (1, 0, 0, 0) on the top eigenspace
         if scale == 0.0:
             q = np.array([1.0, 0.0, 0.0, 0.0])
+        elif np.any(proj != 0.0):
+            q = proj
     if q[0] < 0 or (q[0] == 0 and q[np.flatnonzero(q)[0]] < 0):
         q = -q
-    return Quaternion(*(q / np.linalg.norm(q)))
+    rot = Quaternion(*(q / np.linalg.norm(q)))
+    if sensitivity is None:
+        return rot
+    return rot, _sensitivity(m, sensitivity)
 
 
-def optimal_rotation(R, G) -> Quaternion:
+def optimal_rotation(R, G, weights=None, *, return_sensitivity: bool = False):
     """Horn's closed-form optimal rotation of paired point sets (Notes §23.2).
 
     Returns the unit quaternion :math:`q` maximising :math:`q^TAq` with
-    :math:`A = \\sum_j\\bar R_j^TG_j` (:func:`horn_matrix`): the eigenvector of the
-    largest eigenvalue :math:`\\lambda_1` of :math:`A`.  It minimises
-    :math:`f(q) = \\sum_j\\lVert q r_j q^* - g_j\\rVert^2`, i.e. it rotates ``R`` onto
-    ``G`` **about the origin**.
+    :math:`A = \\sum_j w_j\\bar R_j^TG_j` (:func:`horn_matrix`, weighted): the
+    eigenvector of the largest eigenvalue :math:`\\lambda_1` of :math:`A`.  It
+    minimises :math:`f(q) = \\sum_j w_j\\lVert q r_j q^* - g_j\\rVert^2`, i.e. it
+    rotates ``R`` onto ``G`` **about the origin**.
 
     Parameters
     ----------
     R, G : array_like, shape (n, 3)
         Paired points: :math:`r_j` goes to :math:`g_j`.  Not centred here (this is
         the notes' formula); for a rigid motion use :func:`register`, which centres.
+    weights : array_like, shape (n,), optional
+        :math:`w_j \\ge 0`, finite, not all zero: the weight of pair :math:`j` in the
+        cost (the inverse of its variance, for the sensitivity).  Default: all 1 (the
+        notes' cost).  Only their ratios change the rotation.
+    return_sensitivity : bool
+        Also return SciPy's sensitivity matrix (below).
 
     Returns
     -------
     Quaternion
         Unit, with :math:`q_0 \\ge 0` (``q`` and ``-q`` are the same rotation).
+    sensitivity : ndarray, shape (3, 3)
+        Only with ``return_sensitivity=True``: the sensitivity matrix of SciPy's
+        ``Rotation.align_vectors(G, R, weights, return_sensitivity=True)`` (note the
+        order: SciPy rotates its second argument onto the first).  The error of the
+        estimate, as the rotation vector :math:`\\delta` of :math:`q_{\\rm true}q^{-1}`
+        (a small rotation after :math:`q`, in the frame of ``G``), has covariance
+        :math:`hS` when :math:`g_j` is measured with variance :math:`v_j` per axis,
+        small against its length, with weights :math:`w_j \\propto 1/v_j` and
+        :math:`h = n/\\sum_j v_j^{-1}` their harmonic mean (SciPy's rule; equal
+        variances :math:`\\sigma^2` and weights give :math:`\\sigma^2S`).  With the singular
+        values :math:`s_1 \\ge s_2 \\ge s_3` of :math:`M = \\sum_j w_jr_jg_j^T` (the last
+        negated when :math:`\\det M < 0`), :math:`S = \\bar w\\,(\\kappa I + M^TM)/\\zeta`,
+        :math:`\\kappa = s_1s_2 + s_2s_3 + s_3s_1`, :math:`\\zeta = (s_1+s_2)(s_2+s_3)
+        (s_3+s_1)`, :math:`\\bar w` the mean weight (Markley 1988).  Undefined when the
+        optimum is not unique: then ValueError, as SciPy raises for a single pair.
 
     Warns
     -----
@@ -234,8 +314,14 @@ def optimal_rotation(R, G) -> Quaternion:
         When :math:`\\lambda_1 = \\lambda_2` (relative gap below 1e-9): all
         :math:`r_j` (or all :math:`g_j`) lie on one line through the origin, a single
         pair, or all points at the origin.  Then every rotation that aligns the lines
-        and spins arbitrarily about them is optimal; one of them is returned
-        (the identity when :math:`A = 0`).
+        and spins arbitrarily about them is optimal, and the one of **smallest angle**
+        is returned: the identity for equal directions (and when :math:`A = 0`), the
+        turn about :math:`r \\times g` for different ones, as SciPy's ``align_vectors``
+        does for one pair; a half turn when the directions are opposite (then all
+        optimal rotations are half turns).  The optimal quaternions are the unit
+        vectors of the top eigenspace :math:`E` of :math:`A`, the angle is
+        :math:`2\\arccos|q_0|`, so the answer is the projection of :math:`1` on
+        :math:`E`, normalised.
 
     Notes
     -----
@@ -248,15 +334,46 @@ def optimal_rotation(R, G) -> Quaternion:
     * Cost: one pass over the data for :math:`M` (blocked 3×3 products, O(n)) and a
       4×4 symmetric eigenproblem; input finiteness is read off :math:`M`.
 
+    See Also
+    --------
+    register : the rigid motion (weighted centroids, then this rotation).
+    kabsch : the SVD route.
+
+    References
+    ----------
+    .. [1] B. K. P. Horn, "Closed-form solution of absolute orientation using unit
+       quaternions", J. Opt. Soc. Am. A 4 (1987) 629–642 (weights: §2.C).
+    .. [2] F. L. Markley, "Attitude determination using vector observations and the
+       singular value decomposition", J. Astronaut. Sci. 36 (1988) 245–258 (the
+       sensitivity); SciPy, ``scipy.spatial.transform.Rotation.align_vectors``.
+
     Examples
     --------
     >>> q = Quaternion.from_axis_angle([0, 0, 1], np.pi / 2)
     >>> R = np.eye(3)
     >>> optimal_rotation(R, q.rotate(R)).isclose(q)
     True
+    >>> q, S = optimal_rotation(R, q.rotate(R), [1.0, 1.0, 2.0], return_sensitivity=True)
+    >>> S.shape
+    (3, 3)
+
+    One pair has a circle of optimal rotations; the smallest is returned:
+
+    >>> import warnings
+    >>> with warnings.catch_warnings():
+    ...     warnings.simplefilter("ignore", DegenerateRotationWarning)
+    ...     print(optimal_rotation([[1, 0, 0]], [[1, 0, 0]]), "|", optimal_rotation([[1, 0, 0]], [[0, 1, 0]]))
+    1 +0i +0j +0k | 0.707107 +0i +0j +0.707107k
     """
     R, G = _paired(R, G)
-    return _rotation_from_m(_covariance(R, G), caller="optimal_rotation")
+    w = _weights(weights, R.shape[0])
+    if w is not None:
+        R = R * w[:, None]
+    return _rotation_from_m(
+        _covariance(R, G),
+        caller="optimal_rotation",
+        sensitivity=(1.0 if w is None else float(w.mean())) if return_sensitivity else None,
+    )
 
 
 def kabsch(R, G, *, proper: bool = True) -> np.ndarray:
@@ -400,50 +517,93 @@ class RigidMotion:
         return f"RigidMotion(angle={np.degrees(ang):.6g}°, axis=({ax}), translation=({t}))"
 
 
-def _register(R: np.ndarray, G: np.ndarray, *, caller: str) -> RigidMotion:
+def _register(R: np.ndarray, G: np.ndarray, *, caller: str, weights=None, sensitivity: bool = False):
     with np.errstate(over="ignore", invalid="ignore"):
-        cr = R.mean(axis=0)
-        cg = G.mean(axis=0)
+        if weights is None:
+            cr = R.mean(axis=0)
+            cg = G.mean(axis=0)
+        else:
+            total = weights.sum()
+            cr = (weights @ R) / total
+            cg = (weights @ G) / total
     if not (np.all(np.isfinite(cr)) and np.all(np.isfinite(cg))):
         raise ValueError("R and G are too large: their centroids overflow float64")
-    q = _rotation_from_m(_covariance(R - cr, G - cg), caller=caller)
-    return RigidMotion(q, cg - q.rotate(cr))
+    Rc = R - cr if weights is None else (R - cr) * weights[:, None]
+    out = _rotation_from_m(
+        _covariance(Rc, G - cg),
+        caller=caller,
+        sensitivity=(1.0 if weights is None else float(weights.mean())) if sensitivity else None,
+    )
+    q = out[0] if sensitivity else out
+    motion = RigidMotion(q, cg - q.rotate(cr))
+    return (motion, out[1]) if sensitivity else motion
 
 
-def register(R, G) -> RigidMotion:
+def register(R, G, weights=None, *, return_sensitivity: bool = False):
     """The least-squares rigid motion taking paired points ``R`` onto ``G``.
 
-    Minimises :math:`\\sum_j\\lVert R(q)\\,r_j + t - g_j\\rVert^2`.  The optimal
-    translation maps centroid to centroid, :math:`t = \\bar g - R(q)\\bar r`, and the
-    rotation is :func:`optimal_rotation` of the **centred** sets — the assumption the
-    notes leave implicit (Notes §23.2, optimal rotation; Horn 1987, §2).
+    Minimises :math:`\\sum_j w_j\\lVert R(q)\\,r_j + t - g_j\\rVert^2`.  The optimal
+    translation maps the (weighted) centroid to the (weighted) centroid,
+    :math:`t = \\bar g - R(q)\\bar r` with :math:`\\bar r = \\sum w_jr_j/\\sum w_j`, and the
+    rotation is :func:`optimal_rotation` of the **centred** sets with the same weights —
+    the assumption the notes leave implicit (Notes §23.2, optimal rotation; Horn 1987,
+    §2).
 
     Parameters
     ----------
     R, G : array_like, shape (n, 3)
         Paired points, :math:`r_j \\leftrightarrow g_j`.
+    weights : array_like, shape (n,), optional
+        :math:`w_j \\ge 0`, finite, not all zero (see :func:`optimal_rotation`).
+        Default: all 1.  A pair of weight 0 is ignored.
+    return_sensitivity : bool
+        Also return the sensitivity matrix of the rotation (that of
+        :func:`optimal_rotation` on the centred sets: SciPy's ``align_vectors(G - ḡ,
+        R - r̄, weights, return_sensitivity=True)``); the centroids are taken as exact.
 
     Returns
     -------
     RigidMotion
         ``register(R, G).apply(R)`` is as close to ``G`` as a rigid motion allows.
+    sensitivity : ndarray, shape (3, 3)
+        Only with ``return_sensitivity=True``.
 
     Warns
     -----
     DegenerateRotationWarning
         With one or two points, or all points on one line, the rotation about that
-        line is undetermined (see :func:`optimal_rotation`); the translation is still
-        optimal.
+        line is undetermined; the one of smallest angle is returned (so
+        ``register(X, X)`` is the identity for every ``X``; see
+        :func:`optimal_rotation`).  The translation is still optimal.
+
+    See Also
+    --------
+    optimal_rotation, icp
+
+    References
+    ----------
+    .. [1] B. K. P. Horn, "Closed-form solution of absolute orientation using unit
+       quaternions", J. Opt. Soc. Am. A 4 (1987) 629–642.
 
     Notes
     -----
     Centring also makes the computation robust to huge offsets (e.g. coordinates
     around 1e6): the rotation is computed from centred coordinates only.
+
+    Examples
+    --------
+    >>> X = np.array([[0.0, 0, 0], [1, 1, 1], [2, 2, 2]])  # collinear: not unique
+    >>> import warnings
+    >>> with warnings.catch_warnings():
+    ...     warnings.simplefilter("ignore", DegenerateRotationWarning)
+    ...     register(X, X + 1.0)
+    RigidMotion(angle=0°, axis=(1, 0, 0), translation=(1, 1, 1))
     """
     R = as_points(R, "R", dim=3)
     G = as_points(G, "G", dim=3)
     check_same_shape(R, G, "R", "G")
-    return _register(R, G, caller="register")
+    w = _weights(weights, R.shape[0])
+    return _register(R, G, caller="register", weights=w, sensitivity=bool(return_sensitivity))
 
 
 # --------------------------------------------------------------------------- ICP

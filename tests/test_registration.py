@@ -497,3 +497,253 @@ def test_paired_superposition_does_not_import_scipy():
 
     idx, d = closest_points(np.array([[0.0, 0, 0], [5.0, 0, 0]]), np.array([[0.1, 0, 0], [4.0, 0, 0]]))
     assert idx.tolist() == [0, 1] and d == pytest.approx([0.1, 1.0])
+
+
+# ----------------------------------------------------------------- weights and the sensitivity matrix
+# Oracles: SciPy's Rotation.align_vectors(a, b, weights, return_sensitivity=True), which
+# rotates b onto a (so ours (R, G) is SciPy's (G, R)); its own test cases
+# (scipy/spatial/transform/tests/test_rotation.py); integer weights as repeated points;
+# a weighted SVD written here.
+
+
+def weighted_svd_motion(R, G, w):
+    """argmin Σ w |X r + t - g|² over rigid motions, by weighted centroids and Kabsch."""
+    cr, cg = w @ R / w.sum(), w @ G / w.sum()
+    X = svd_rotation((R - cr) * w[:, None], G - cg)
+    return X, cg - X @ cr
+
+
+@SET
+@given(seeds)
+def test_weighted_rotation_and_sensitivity_equal_scipy(seed):
+    rng = np.random.default_rng(seed)
+    R, G, _ = noisy_pair(rng, n=int(rng.integers(3, 40)), noise=0.3, centred=False)
+    w = rng.uniform(0, 3, len(R))
+    q, S = optimal_rotation(R, G, w, return_sensitivity=True)
+    rot, _, S_ref = Rotation.align_vectors(G, R, w, return_sensitivity=True)
+    np.testing.assert_allclose(q.to_matrix(), rot.as_matrix(), atol=1e-9)
+    np.testing.assert_allclose(S, S_ref, rtol=1e-8, atol=1e-12 * np.abs(S_ref).max())
+    np.testing.assert_allclose(S, S.T, atol=1e-14 * np.abs(S).max())
+    assert np.all(np.linalg.eigvalsh(S) > 0)
+    q1, S1 = optimal_rotation(R, G, return_sensitivity=True)  # unweighted: all ones
+    rot1, _, S1_ref = Rotation.align_vectors(G, R, return_sensitivity=True)
+    np.testing.assert_allclose(S1, S1_ref, rtol=1e-8, atol=1e-12 * np.abs(S1_ref).max())
+    assert q1 == optimal_rotation(R, G)
+
+
+@SET
+@given(seeds)
+def test_weighted_register_equals_weighted_svd_and_scipy(seed):
+    rng = np.random.default_rng(seed)
+    R, G, _ = noisy_pair(rng, n=25, noise=0.5, centred=False)
+    G = G + rng.normal(size=3) * 10
+    w = rng.uniform(0, 2, len(R))
+    m, S = register(R, G, w, return_sensitivity=True)
+    X, t = weighted_svd_motion(R, G, w)
+    np.testing.assert_allclose(m.rotation_matrix, X, atol=1e-9)
+    np.testing.assert_allclose(m.translation, t, atol=1e-9)
+    cr, cg = w @ R / w.sum(), w @ G / w.sum()
+    rot, _, S_ref = Rotation.align_vectors(G - cg, R - cr, w, return_sensitivity=True)
+    np.testing.assert_allclose(m.rotation_matrix, rot.as_matrix(), atol=1e-9)
+    np.testing.assert_allclose(S, S_ref, rtol=1e-8)
+    # the weighted cost is minimal: no other motion does better
+    best = np.sum(w * np.sum((m.apply(R) - G) ** 2, axis=1))
+    for _ in range(10):
+        other = RigidMotion(random_rotation(rng), rng.normal(size=3)) @ m
+        assert best <= np.sum(w * np.sum((other.apply(R) - G) ** 2, axis=1)) + 1e-9
+
+
+def test_integer_weights_repeat_points_and_zero_weights_drop_them():
+    rng = np.random.default_rng(21)
+    R, G, _ = noisy_pair(rng, n=9, noise=0.4, centred=False)
+    k = np.array([1, 3, 0, 2, 1, 0, 4, 1, 2])
+    rep = np.repeat(np.arange(9), k)
+    assert optimal_rotation(R, G, k).same_rotation(optimal_rotation(R[rep], G[rep]), 1e-12)
+    assert register(R, G, k).isclose(register(R[rep], G[rep]), atol=1e-12)
+    keep = k > 0
+    assert register(R, G, keep.astype(float)).isclose(register(R[keep], G[keep]), atol=1e-12)
+    assert register(R, G, 7.5 * np.ones(9)).isclose(register(R, G), atol=1e-12)  # only ratios count
+
+
+def test_scipy_rssd_sensitivity_case():
+    """scipy's test_align_vectors_rssd_sensitivity, with the arguments swapped."""
+    a = np.array([[0, 1, 0], [0, 1, 1], [0, 1, 1]], float)
+    b = np.array([[1, 0, 0], [1, 1.1, 0], [1, 0.9, 0]])
+    q, S = optimal_rotation(b, a, return_sensitivity=True)
+    np.testing.assert_allclose(S, [[0.2, 0, 0], [0, 1.5, 1], [0, 1, 1]], atol=1e-6)
+    rssd = np.sqrt(np.sum((q.rotate(b) - a) ** 2))
+    assert np.isclose(rssd, 0.141421356237308, atol=1e-6)
+
+
+def test_scipy_scaled_weights_case():
+    """scipy's test_align_vectors_scaled_weights: scaling all weights changes neither the
+    rotation nor the sensitivity."""
+    n = 10
+    a = Rotation.random(n, rng=0).apply([1, 0, 0])
+    b = Rotation.random(n, rng=1).apply([1, 0, 0])
+    q1, S1 = optimal_rotation(b, a, np.ones(n), return_sensitivity=True)
+    q2, S2 = optimal_rotation(b, a, 2 * np.ones(n), return_sensitivity=True)
+    assert q1.same_rotation(q2, 1e-12)
+    np.testing.assert_allclose(S1, S2, rtol=1e-12)
+
+
+def test_scipy_noise_case_and_the_sensitivity_is_the_covariance():
+    """scipy's test_align_vectors_noise, then a Monte Carlo check of what the matrix means:
+    the covariance of the error's rotation vector is σ² S (in the frame of G)."""
+    rng = np.random.default_rng(146972845698875399755764481408308808739)
+    n = 100
+    rot = Rotation.random(rng=rng)
+    vectors = rng.normal(size=(n, 3))
+    result = rot.apply(vectors)
+    sigma = np.deg2rad(1)
+    noisy = Rotation.from_rotvec(rng.normal(size=(n, 3), scale=sigma)).apply(result)
+    q, S = optimal_rotation(vectors, noisy, return_sensitivity=True)
+    est = Rotation.from_quat(q.as_array()[[1, 2, 3, 0]])
+    assert np.all(np.abs((rot * est.inv()).as_rotvec()) < 1.5 * sigma)
+    assert np.all(np.abs(np.diag(S) * sigma) < 1.5 * sigma)
+    # Monte Carlo: isotropic noise of std s on G, weights w_j ∝ 1/var_j
+    rng = np.random.default_rng(4)
+    R = rng.normal(size=(30, 3)) * [3, 2, 1]
+    w = rng.uniform(0.5, 2, 30)
+    q_true = random_rotation(rng)
+    s = 1e-3
+    errs = []
+    for _ in range(2000):
+        G = q_true.rotate(R) + rng.normal(size=R.shape) * (s / np.sqrt(w))[:, None]
+        q = optimal_rotation(R, G, w)
+        errs.append((q_true * q.conjugate()).to_rotation_vector())
+    cov = np.cov(np.array(errs).T)
+    _, S = optimal_rotation(R, q_true.rotate(R), w, return_sensitivity=True)
+    # SciPy: covariance = S times the harmonic mean of the variances s²/w_j, i.e. s²/mean(w)
+    # (the radial part of isotropic noise does not move the rotation)
+    h = len(w) / np.sum(w / s**2)
+    np.testing.assert_allclose(cov, h * S, atol=0.1 * h * np.abs(S).max())
+    assert not np.allclose(cov, s**2 * S, atol=0.1 * h * np.abs(S).max())  # the mean weight matters
+
+
+def test_scipy_no_rotation_no_noise_and_improper_cases():
+    x = np.array([[1.0, 2, 3], [4, 5, 6]])
+    assert optimal_rotation(x, x.copy()).isclose(Quaternion(1.0), 1e-12)
+    rng = np.random.default_rng(14697284569885399755764481408308808739)
+    c = Rotation.random(rng=rng)
+    b = rng.normal(size=(5, 3))
+    q = optimal_rotation(b, c.apply(b))
+    np.testing.assert_allclose(q.to_matrix(), c.as_matrix(), atol=1e-12)
+    x = np.array([[0.89299824, -0.44372674, 0.0752378], [0.60221789, -0.47564102, -0.6411702]])
+    y = np.array([[0.02386536, -0.82176463, 0.5693271], [-0.27654929, -0.95191427, -0.1318321]])
+    np.testing.assert_allclose(optimal_rotation(y, x).rotate(y), x, atol=1e-6)  # issue #10444
+
+
+@pytest.mark.parametrize(
+    "weights, exc, words",
+    [
+        ([1.0, -1.0, 1.0], ValueError, r"weights must be non-negative, got weights\[1\] = -1.0"),
+        ([1.0, 1.0], ValueError, r"weights must have one value per point pair \(3\), got 2"),
+        ([[1.0, 1.0, 1.0]], ValueError, "weights must be a 1-D array"),
+        ([0.0, 0.0, 0.0], ValueError, "weights must not all be zero"),
+        ([1.0, np.nan, 1.0], ValueError, "weights must be finite"),
+        ([1.0, np.inf, 1.0], ValueError, "weights must be finite"),
+        ("abc", TypeError, "weights"),
+    ],
+)
+def test_bad_weights_name_the_argument(weights, exc, words):
+    R = np.eye(3)
+    for f in (optimal_rotation, register):
+        with pytest.raises(exc, match=words):
+            f(R, R, weights)
+
+
+def test_sensitivity_of_a_degenerate_optimum_is_refused():
+    # scipy: "Cannot return sensitivity matrix with an infinite weight or one vector pair"
+    with pytest.raises(ValueError, match="sensitivity matrix is undefined"):
+        optimal_rotation([[1.0, 2, 3]], [[1.0, 2, 3]], return_sensitivity=True)
+    with pytest.raises(ValueError, match="sensitivity matrix is undefined"):
+        register(np.outer([1.0, 2, 3], [1, 1, 0]), np.outer([1.0, 2, 3], [0, 1, 1]), return_sensitivity=True)
+
+
+# ----------------------------------------------------------------- the smallest optimal rotation
+
+
+def smallest_turn(u, v):
+    """The rotation of smallest angle taking direction u to direction v, written out:
+    about u × v by the angle between them (None when opposite: not unique)."""
+    u, v = u / np.linalg.norm(u), v / np.linalg.norm(v)
+    axis = np.cross(u, v)
+    angle = np.arctan2(np.linalg.norm(axis), u @ v)
+    if np.linalg.norm(axis) < 1e-15:
+        return Quaternion(1.0) if u @ v > 0 else None
+    return Quaternion.from_axis_angle(axis, angle)
+
+
+@SET
+@given(seeds, st.integers(1, 7))
+def test_degenerate_input_gives_the_smallest_optimal_rotation(seed, n):
+    rng = np.random.default_rng(seed)
+    u, v = rng.normal(size=3), rng.normal(size=3)
+    R = np.outer(rng.uniform(0.5, 3, n), u)  # on a line through the origin
+    G = np.outer(rng.uniform(0.5, 3, n), v)
+    with pytest.warns(DegenerateRotationWarning, match="smallest angle"):
+        q = optimal_rotation(R, G)
+    assert q.same_rotation(smallest_turn(u, v), 1e-9)
+    # every rotation spun about the target line is optimal too, and none is smaller
+    for phi in np.linspace(-np.pi, np.pi, 13):
+        other = Quaternion.from_axis_angle(v, phi) * q
+        assert np.isclose(cost(other, R, G), cost(q, R, G), rtol=1e-9, atol=1e-9)
+        assert other.angle_to(Quaternion(1.0)) >= q.angle_to(Quaternion(1.0)) - 1e-12
+    if n == 1:  # SciPy's align_vectors on one pair is the same smallest turn
+        scipy_rot, _ = Rotation.align_vectors(G, R)
+        np.testing.assert_allclose(q.to_matrix(), scipy_rot.as_matrix(), atol=1e-9)
+
+
+def test_scipy_parallel_and_primary_only_cases():
+    """scipy's test_align_vectors_parallel and _primary_only (one pair), swapped."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DegenerateRotationWarning)
+        q = optimal_rotation([[0.0, 1, 0]], [[1.0, 0, 0]])
+        np.testing.assert_allclose(q.to_matrix(), [[0, 1, 0], [-1, 0, 0], [0, 0, 1]], atol=1e-12)
+        assert optimal_rotation([[1.0, 0, 0]], [[1.0, 0, 0]]) == Quaternion(1.0)
+        mats_a = Rotation.random(100, rng=0).as_matrix()
+        mats_b = Rotation.random(100, rng=1).as_matrix()
+        for ma, mb in zip(mats_a, mats_b):
+            a, b = ma[0], mb[0]
+            q = optimal_rotation([b], [a])
+            np.testing.assert_allclose(q.rotate(b), a, atol=1e-12)
+            np.testing.assert_allclose(q.to_matrix(), Rotation.align_vectors(a, b)[0].as_matrix(), atol=1e-12)
+
+
+def test_opposite_directions_give_a_half_turn():
+    with pytest.warns(DegenerateRotationWarning):
+        q = optimal_rotation([[1.0, 2, 3]], [[-2.0, -4, -6]])
+    assert np.isclose(q.angle_to(Quaternion(1.0)), np.pi)
+    np.testing.assert_allclose(q.rotate([1.0, 2, 3]), [-1.0, -2, -3], atol=1e-12)
+
+
+@pytest.mark.parametrize("n", [1, 2, 5])
+def test_register_of_a_set_onto_itself_is_the_identity(n):
+    rng = np.random.default_rng(n)
+    X = np.outer(rng.normal(size=n), [1.0, -2.0, 0.5]) + [3.0, 1.0, -2.0]  # collinear
+    with pytest.warns(DegenerateRotationWarning):
+        m = register(X, X)
+    assert m.rotation == Quaternion(1.0)
+    np.testing.assert_allclose(m.translation, 0.0, atol=1e-14)
+    with pytest.warns(DegenerateRotationWarning):
+        m = register(X, X + [1.0, 2.0, 3.0])  # a pure translation stays one
+    assert m.rotation == Quaternion(1.0)
+    np.testing.assert_allclose(m.translation, [1.0, 2.0, 3.0], atol=1e-13)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DegenerateRotationWarning)
+        assert optimal_rotation([[1.0, 0, 0]], [[1.0, 0, 0]]) == Quaternion(1.0)
+
+
+def test_coplanar_and_unique_optima_are_unchanged():
+    """Where λ1 > λ2 the answer is the top eigenvector of A exactly as before (bit for bit)."""
+    rng = np.random.default_rng(31)
+    for P in (rng.normal(size=(10, 3)) * [1, 1, 0], rng.normal(size=(20, 3))):
+        G = random_rotation(rng).rotate(P) + 0.01 * rng.normal(size=P.shape)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            q = optimal_rotation(P, G)
+        lam, vec = np.linalg.eigh(horn_matrix(P, G))
+        top = vec[:, 3] if vec[0, 3] >= 0 else -vec[:, 3]
+        assert np.array_equal(q.as_array(), top / np.linalg.norm(top))
+        np.testing.assert_allclose(q.to_matrix(), Rotation.align_vectors(G, P)[0].as_matrix(), atol=1e-9)
