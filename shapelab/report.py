@@ -76,8 +76,13 @@ class CavityRow:
     lining_atom_names : tuple of str
         Their atom names (``""`` for bare balls).
     lining_residues : tuple of (str, str, int)
-        Distinct ``(chain, residue name, residue number)`` of the lining atoms, in
-        atom order (empty for bare balls).  Insertion codes are not told apart.
+        ``(chain, residue name, residue number)`` of the distinct residues of the
+        lining atoms, in atom order (empty for bare balls).  A residue is told apart
+        by its insertion code too, so 52 and 52A are two entries (Kabat numbering);
+        ``lining_insertion_codes`` holds their codes.
+    lining_insertion_codes : tuple of str
+        The insertion code of each entry of ``lining_residues`` (``""`` for none);
+        empty when built without them, which :meth:`residue_labels` reads as none.
     """
 
     kind: str
@@ -94,6 +99,7 @@ class CavityRow:
     lining_atoms: tuple
     lining_atom_names: tuple
     lining_residues: tuple
+    lining_insertion_codes: tuple = ()
 
     @property
     def persistence(self) -> float:
@@ -101,8 +107,10 @@ class CavityRow:
         return self.death - self.birth
 
     def residue_labels(self) -> list[str]:
-        """Lining residues as labels, e.g. ``['A:LEU99', ...]`` (``':LEU99'`` without chain)."""
-        return [f"{c}:{n}{s}" for c, n, s in self.lining_residues]
+        """Lining residues as labels, e.g. ``['A:LEU99', 'H:GLY52A']`` (``':LEU99'``
+        without chain), as :meth:`shapelab.io.PDBStructure.residue_label` writes them."""
+        codes = self.lining_insertion_codes or ("",) * len(self.lining_residues)
+        return [f"{c}:{n}{s}{i}" for (c, n, s), i in zip(self.lining_residues, codes)]
 
 
 _COLUMNS = (
@@ -613,12 +621,14 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
         if labelled:
             s = structure
             names = tuple(str(s.atom_names[i]) for i in lining)
-            res = tuple(
-                dict.fromkeys((str(s.chains[i]), str(s.residue_names[i]), int(s.residue_numbers[i])) for i in lining)
+            keys = dict.fromkeys(
+                (str(s.chains[i]), str(s.residue_names[i]), int(s.residue_numbers[i]), str(s.insertion_codes[i]))
+                for i in lining
             )
+            res, codes = tuple(k[:3] for k in keys), tuple(k[3] for k in keys)
         else:
             names = ("",) * len(lining)
-            res = ()
+            res, codes = (), ()
         raw.append(
             dict(
                 kind=kind,
@@ -634,6 +644,7 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
                 lining_atoms=tuple(int(i) for i in lining),
                 lining_atom_names=names,
                 lining_residues=res,
+                lining_insertion_codes=codes,
             )
         )
     raw.sort(key=lambda d: (d["kind"] != "void", -d["volume_sa"]))

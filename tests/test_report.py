@@ -510,3 +510,24 @@ def test_cli_any_file_name(tmp_path):
         assert report_module.main([str(p), "--out", str(out), "--default-radius", "2"]) == 0
         assert sorted(f.name for f in out.iterdir()) == [f"{stem}_cavities.{e}" for e in ("cif", "csv", "md", "pdb")]
         src = p
+
+
+def test_lining_residues_tell_insertion_codes_apart(tmp_path):
+    # residues 52 and 52A (Kabat numbering; 1OSM has 163A-163I) are two residues: the
+    # report used to list one, its labels dropping the insertion code
+    src = _cage_pdb(tmp_path, residue_number="  52")
+    lines = src.read_text().splitlines()
+    lines = [ln[:26] + "A" + ln[27:] if ln.startswith("ATOM") and k % 2 else ln for k, ln in enumerate(lines)]
+    src.write_text("\n".join(lines) + "\n")
+    s = sl.read_pdb(src, default_radius=2.0)
+    assert sorted(set(s.insertion_codes.tolist())) == ["", "A"]
+    rep = sl.report(s, 0.5)  # 20 pockets, one per face: three carbons and the ion
+    both = 0
+    for row in rep.rows:
+        expect = list(dict.fromkeys(s.residue_label(i) for i in row.lining_atoms))
+        assert row.residue_labels() == expect
+        assert len(row.lining_residues) == len(row.lining_insertion_codes) == len(expect)
+        assert all(len(t) == 3 for t in row.lining_residues)  # (chain, name, number) as before
+        assert f"| {' '.join(expect)} |" in rep.to_markdown()
+        both += {"A:CAG52", "A:CAG52A"} <= set(expect)
+    assert both > 0
