@@ -350,7 +350,10 @@ class CavityReport:
         -----
         All files are first written to temporary files in ``out_dir`` and renamed
         into place only once every one is complete; on any error the temporary files
-        are removed and no target file is created or changed.
+        are removed and no target file is created or changed.  A target name taken
+        by a directory (or anything but a file) is refused before anything is
+        written.  Should a rename itself fail (the file system fails), the files
+        already renamed are removed, so that no mixture of two reports is left.
         """
         if pdb not in ("auto", True, False):
             raise ValueError(f"pdb must be 'auto', True or False, got {pdb!r}")
@@ -422,6 +425,10 @@ def _check_target(out_dir, stem):
         raise ValueError(f"stem must be a non-empty file name without directories, got {stem!r}")
     if not out_dir.is_dir():
         raise FileNotFoundError(f"output directory {os.fspath(out_dir)!r} does not exist")
+    for ext in ("csv", "md", "cif", "pdb"):  # a rename onto a directory fails half-way
+        t = out_dir / f"{stem}_cavities.{ext}"
+        if t.is_dir() or (t.exists() and not t.is_file()):
+            raise IsADirectoryError(f"{os.fspath(t)!r} is in the way: it is not a file the report could replace")
     return out_dir, stem
 
 
@@ -430,7 +437,8 @@ def check_output(structure, out_dir, stem) -> None:
 
     Raises what :meth:`CavityReport.write` would raise for reasons known before the
     cavities are found: an output directory that is missing or not writable (a
-    temporary file is created in it and removed), a bad ``stem``, or atom labels
+    temporary file is created in it and removed), a bad ``stem``, a file name
+    of the report taken by a directory, or atom labels
     the mmCIF writer refuses (a dry run of :func:`shapelab.io.write_mmcif` on the
     unmarked structure).  What is left -- the number of features -- can only limit
     the optional PDB file, never the mmCIF one.  The command line runs this first.

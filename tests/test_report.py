@@ -531,3 +531,21 @@ def test_lining_residues_tell_insertion_codes_apart(tmp_path):
         assert f"| {' '.join(expect)} |" in rep.to_markdown()
         both += {"A:CAG52", "A:CAG52A"} <= set(expect)
     assert both > 0
+
+
+@pytest.mark.parametrize("ext", ["csv", "md", "cif", "pdb"])
+def test_a_target_that_is_a_directory_is_found_before_writing(bowl_report, tmp_path, ext):
+    # a directory in the way of one file made the renames fail half-way, and undoing
+    # them deleted the earlier report's files; check_output passed, so the CLI computed
+    _, rep = bowl_report
+    old = {e: f"old {e}" for e in ("csv", "md", "cif", "pdb") if e != ext}
+    for e, text in old.items():
+        (tmp_path / f"bowl_cavities.{e}").write_text(text)
+    (tmp_path / f"bowl_cavities.{ext}").mkdir()
+    for call in (lambda: rep.write(tmp_path, "bowl"), lambda: report_module.check_output(bowl(), tmp_path, "bowl")):
+        with pytest.raises(IsADirectoryError, match=f"bowl_cavities.{ext}"):
+            call()
+        assert {e: (tmp_path / f"bowl_cavities.{e}").read_text() for e in old} == old
+        assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
+            f"bowl_cavities.{e}" for e in ("csv", "md", "cif", "pdb")
+        )
