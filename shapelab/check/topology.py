@@ -116,6 +116,19 @@ def _as_int(x):
         return None
 
 
+def _closed_surface(edges, triangles) -> bool:
+    """True when every edge bounds exactly two triangles (a closed surface, such as the
+    tetrahedron's boundary): no such complex lies in the plane, and β₁ = β₀ − χ, which
+    holds only where β₂ = 0, would be negative for it (−1 for the sphere)."""
+    T = np.sort(np.asarray(triangles, dtype=np.int64).reshape(-1, 3), axis=1)
+    if len(T) == 0:
+        return False
+    sides = np.concatenate([T[:, [0, 1]], T[:, [0, 2]], T[:, [1, 2]]])
+    _, per_side = np.unique(sides, axis=0, return_counts=True)
+    E = np.unique(np.sort(np.asarray(edges, dtype=np.int64).reshape(-1, 2), axis=1), axis=0)
+    return len(per_side) == len(E) and bool(np.all(per_side == 2))
+
+
 def _betti_planar(n_vertices, edges, triangles):
     """(β0, β1) of a 2-complex embedded in the plane: β0 by connected components,
     β1 = β0 − χ because β2 = 0 in the plane."""
@@ -144,7 +157,7 @@ def betti_numbers(student_fn, *, quiet: bool = False) -> CheckResult:
         V = len(c[0])
         E = c[1] if len(c) > 1 else np.zeros((0, 2), np.int64)
         T = c[2] if len(c) > 2 else np.zeros((0, 3), np.int64)
-        if len(c) > 3:  # the tetrahedron boundary is not planar
+        if _closed_surface(E, T):  # the tetrahedron boundary: a sphere, not in the plane
             continue
         cases.append((V, E, T))
     cases.append((6, np.array([[0, 1], [1, 2], [0, 2], [3, 4], [4, 5], [3, 5]]), np.zeros((0, 3), np.int64)))
