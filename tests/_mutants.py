@@ -232,8 +232,62 @@ def _icp_step(v, ns):
     ]
 
 
+# ---- students' mistakes that a generic change does not make ---------------------------
+
+
+def _edge(v, ns):
+    def strict(c1, r1, c2, r2):  # the circles cross: touching disks (closed cells meet) left out
+        d = np.linalg.norm(np.subtract(c2, c1))
+        return bool(abs(r1 - r2) < d < r1 + r2)
+
+    return [*_generic(v), ("strict inequalities (touching disks have no edge)", strict)]
+
+
+def _closes_at(v, ns):
+    def equal_radii(pocket, balls):  # (d/2)² − r²: right only where the two radii are equal
+        i, j = np.asarray(pocket.mouth).T
+        d = np.linalg.norm(balls.centers[j] - balls.centers[i], axis=1)
+        return float(np.max((d / 2) ** 2 - balls.radii[i] ** 2))
+
+    return [*_generic(v), ("the equal-radii formula (d/2)² − r²", equal_radii)]
+
+
+def _r_closed(v, ns):
+    return [*_generic(v), ("read off a grid of step 0.05, one step low", v - 0.05)]
+
+
+def _closed_chain(v, ns):
+    def degree_two(edges):  # a simple cycle's test: a figure eight has a vertex of degree 4
+        e = np.asarray(edges).reshape(-1, 2)
+        return bool(len(e) == 0 or np.all(np.unique(e, return_counts=True)[1] == 2))
+
+    def as_many_edges_as_vertices(edges):  # a loop with a dangling edge has as many
+        e = np.asarray(edges).reshape(-1, 2)
+        return bool(len(e) == len(np.unique(e)))
+
+    return [
+        *_generic(v),
+        ("every vertex of degree 2", degree_two),
+        ("as many edges as vertices", as_many_edges_as_vertices),
+    ]
+
+
+def _betti_from_pairs(v, ns):
+    def half_open_left(pairs, tau):  # (birth, death]: wrong exactly at births and deaths
+        return tuple(
+            int(np.sum((np.asarray(pairs[k])[:, 0] < tau) & (tau <= np.asarray(pairs[k])[:, 1]))) for k in sorted(pairs)
+        )
+
+    return [*_generic(v), ("alive on (birth, death]", half_open_left)]
+
+
 #: ``"lesson stem:name"`` -> ``f(solution's value, the kernel's globals)`` -> [(label, wrong answer)]
 OVERRIDES = {
+    "02_dual_complex:my_edge": _edge,
+    "07_pockets:my_closes_at": _closes_at,
+    "07_pockets:r_closed": _r_closed,
+    "08_tunnels:is_closed_chain": _closed_chain,
+    "09_persistence:betti_from_pairs": _betti_from_pairs,
     "09_persistence:eps_one_pocket": _eps_one_pocket,
     "10_molecule_case_study:pocket_residues": _residues,
     "10_molecule_case_study:most_exposed": _most_exposed,

@@ -69,3 +69,22 @@ def test_void_radii_read_off_a_grid_or_swapped_fails(ends, capsys):
     assert not check.void_radii(*ends)
     out = capsys.readouterr().out
     assert "✗" in out and "3.469" not in out and "1.4" not in out.split(":", 1)[1].replace("(r_low, r_high)", "")
+
+
+def _mouth_time(equal_radii: bool):
+    def closes_at(pocket, balls):
+        i, j = np.asarray(pocket.mouth).T
+        z, r = balls.centers, balls.radii
+        d = np.linalg.norm(z[j] - z[i], axis=1)
+        t = d / 2 if equal_radii else (d**2 + r[i] ** 2 - r[j] ** 2) / (2 * d)
+        return float(np.max(t**2 - r[i] ** 2))
+
+    return closes_at
+
+
+def test_mouth_closing_refuses_the_equal_radii_formula(capsys):
+    # every disk of the data sets has one radius, on which (d/2)² − r² is right; the
+    # check once passed it on all its cases
+    assert check.mouth_closing(_mouth_time(equal_radii=False))
+    assert not check.mouth_closing(_mouth_time(equal_radii=True))
+    assert "✗" in capsys.readouterr().out

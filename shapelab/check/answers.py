@@ -126,14 +126,20 @@ def torus_viewpoints(
 def mouth_closing(student) -> CheckResult:
     """Lesson 07: ``student(pocket, balls)`` returns the time at which the pocket's mouth
     closes, from its mouth edges; checked against ``pocket.closes_at`` on the pockets of
-    Figure 23.2's flask and of the two-chamber flask."""
+    Figure 23.2's flask and of the two-chamber flask, then of Figure 23.2's flask with
+    radii from 0.9 to 1.1 times its own (seeded): the data sets' disks all have one
+    radius, on which :math:`(d/2)^2 - r^2` is right, and the lesson's formula is for two
+    radii (Notes §23.1, the edge's entry time on the radical axis)."""
+    from ..balls import Balls
     from ..cavities import pockets
     from ..datasets import figure_23_2, nested_pockets
     from ..filtration import alpha_filtration
     from ._runner import run_check
 
+    flask = figure_23_2()[0]
+    uneven = Balls(flask.centers, flask.radii * np.random.default_rng(0).uniform(0.9, 1.1, len(flask)))
     cases = []
-    for balls in (figure_23_2()[0], nested_pockets(), figure_23_2(disk_radius=0.6)[0]):
+    for balls in (flask, nested_pockets(), figure_23_2(disk_radius=0.6)[0], uneven):
         for p in pockets(alpha_filtration(balls), 0.0, min_persistence=1e-9):
             cases.append((p, balls))
     return run_check(
