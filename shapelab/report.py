@@ -103,7 +103,9 @@ class CavityRow:
 
     @property
     def persistence(self) -> float:
-        """``death - birth``."""
+        """``death - birth``, in τ.  Voids and pockets are classes of :math:`H_2` (and of
+        the complement), so their pairs are the same over every coefficient field; the
+        library computes over :math:`\\mathbb{Z}/2` (:func:`shapelab.topology.persistence`)."""
         return self.death - self.birth
 
     def residue_labels(self) -> list[str]:
@@ -208,7 +210,8 @@ class CavityReport:
             f"## Cavities of {self.name} (probe {self.probe:g} Å, τ = {self.tau:g})",
             "",
             f"{len(self.voids)} voids, {len(self.pockets)} pockets.  Volumes in Å³, areas in Å², "
-            "lengths in Å; SA = solvent-accessible model, vdW = van der Waals model.",
+            "lengths in Å; SA = solvent-accessible model, vdW = van der Waals model; birth and death in τ (Å²), "
+            "homology over Z/2 (the same for voids and pockets over every field).",
             "",
             "| kind | id | V SA | A SA | V vdW | A vdW | mouths | mouth area | mouth perimeter "
             "| birth | death | lining atoms | lining residues |",
@@ -509,7 +512,9 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
       components through shared edges; their free area in the SA model (the
       opening a probe centre passes through) and the length of its rim.
     * **lining atoms and residues**: atoms with positive SA wall area in the cells.
-    * **persistence**: birth and death of the feature in τ.
+    * **persistence**: birth and death of the feature in τ (a void's or pocket's pair:
+      the same over every coefficient field, :math:`\\mathbb{Z}/2` as everywhere in
+      shapelab; :func:`shapelab.topology.persistence`).
 
     Parameters
     ----------
