@@ -87,10 +87,11 @@ __all__ = [
 
 
 class DegenerateRotationWarning(UserWarning):
-    """The optimal rotation is not unique (collinear points, a single point, all zero).
+    """The optimal rotation is not unique (collinear points, a single point, all zero, or
+    a mirror image with two equal singular values).
 
     The returned rotation is the optimal one of smallest angle; the rotation about the
-    common line of the points is undetermined by the data.
+    common line of the points (or the mirror's axis) is undetermined by the data.
     """
 
 
@@ -203,7 +204,10 @@ def _weights(weights, n: int) -> np.ndarray | None:
         raise ValueError(f"weights must be non-negative, got weights[{i}] = {float(w[i])!r}")
     if not np.any(w > 0):
         raise ValueError("weights must not all be zero (no point pair would count)")
-    return w
+    # Only the ratios matter (the rotation, the centroids and the sensitivity are all
+    # invariant under w -> c w): dividing by the largest keeps r_j w_j from overflowing
+    # (w = 1e300) or underflowing to zero (w = 5e-324), either of which changed the answer.
+    return w / w.max()
 
 
 def _sensitivity(m: np.ndarray, w_mean: float) -> np.ndarray:
@@ -217,9 +221,14 @@ def _sensitivity(m: np.ndarray, w_mean: float) -> np.ndarray:
     u, sv, vt = np.linalg.svd(m)
     if np.linalg.det(u @ vt) < 0:
         sv = sv * np.array([1.0, 1.0, -1.0])
+    # S is homogeneous of degree -1 in M: computed from M / s1 and divided by s1 at the
+    # end, so that zeta ~ s1^3 neither overflows (coordinates ~1e100) nor underflows.
+    s1 = sv[0]
+    sv = sv / s1
+    mn = m / s1
     zeta = (sv[0] + sv[1]) * (sv[1] + sv[2]) * (sv[2] + sv[0])
     kappa = sv[0] * sv[1] + sv[1] * sv[2] + sv[2] * sv[0]
-    return w_mean / zeta * (kappa * np.eye(3) + m.T @ m)
+    return (kappa * np.eye(3) + mn.T @ mn) * (w_mean / zeta / s1)
 
 
 def _rotation_from_m(m: np.ndarray, *, caller: str, sensitivity: float | None = None):
@@ -248,8 +257,9 @@ def _rotation_from_m(m: np.ndarray, *, caller: str, sensitivity: float | None = 
             )
         warnings.warn(
             f"{caller}: the optimal rotation is not unique (the points are collinear with the "
-            "origin/centroid, or fewer than two independent directions); the rotation about "
-            "their common line is undetermined and the optimal rotation of smallest angle is returned",
+            "origin/centroid, or fewer than two independent directions, or G mirrors R with two "
+            "equal singular values); the rotation about their common line is undetermined and "
+            "the optimal rotation of smallest angle is returned",
             DegenerateRotationWarning,
             stacklevel=3,
         )
@@ -313,15 +323,23 @@ def optimal_rotation(R, G, weights=None, *, return_sensitivity: bool = False):
     DegenerateRotationWarning
         When :math:`\\lambda_1 = \\lambda_2` (relative gap below 1e-9): all
         :math:`r_j` (or all :math:`g_j`) lie on one line through the origin, a single
-        pair, or all points at the origin.  Then every rotation that aligns the lines
-        and spins arbitrarily about them is optimal, and the one of **smallest angle**
+        pair, or all points at the origin (or, without collinearity, ``G`` is a mirror
+        image of ``R`` and the two smaller singular values of :math:`M` are equal: then
+        the spins about the remaining axis are all optimal, e.g. the identity and every
+        rotation about x for :math:`M = \\mathrm{diag}(4, 1, -1)`).  Then every
+        rotation that aligns the lines and spins arbitrarily about them is optimal, and the one of **smallest angle**
         is returned: the identity for equal directions (and when :math:`A = 0`), the
         turn about :math:`r \\times g` for different ones, as SciPy's ``align_vectors``
         does for one pair; a half turn when the directions are opposite (then all
         optimal rotations are half turns).  The optimal quaternions are the unit
         vectors of the top eigenspace :math:`E` of :math:`A`, the angle is
         :math:`2\\arccos|q_0|`, so the answer is the projection of :math:`1` on
-        :math:`E`, normalised.
+        :math:`E`, normalised.  The threshold is on :math:`\\lambda_1 - \\lambda_2 =
+        2(s_2 + s_3)`, quadratic in the spread across the line: points whose spread
+        across their line is below about :math:`\\sqrt{10^{-9}} \\approx 3\\cdot10^{-5}`
+        of their length count as collinear, and the rotation returned then fits only to
+        about that spread (SVD-based ``align_vectors`` still finds the exact spin), a
+        jump of up to a half turn about the line across the threshold.
 
     Notes
     -----

@@ -587,6 +587,38 @@ def test_scipy_scaled_weights_case():
     np.testing.assert_allclose(S1, S2, rtol=1e-12)
 
 
+@pytest.mark.parametrize("c", [1e300, 1e154, 1e-160, 1e-300, 5e-324])
+def test_extreme_weight_scales_change_nothing(c):
+    """Only the weights' ratios count: constant weights of any finite positive size give
+    the unweighted rotation, translation and sensitivity.  (r_j w_j overflowed for 1e300,
+    zeta ~ w^3 for 1e154 gave a NaN sensitivity, 1e-160 an infinite one, and 5e-324
+    rounded the weighted points to a different rotation.)"""
+    rng = np.random.default_rng(11)
+    R = rng.normal(size=(7, 3))
+    G = Rotation.random(rng=3).apply(R) + 0.01 * rng.normal(size=(7, 3))
+    w = np.full(7, c)
+    q0, S0 = optimal_rotation(R, G, return_sensitivity=True)
+    q1, S1 = optimal_rotation(R, G, w, return_sensitivity=True)
+    assert q1.same_rotation(q0, 1e-12)
+    np.testing.assert_allclose(S1, S0, rtol=1e-12, atol=0)
+    m0, T0 = register(R, G, return_sensitivity=True)
+    m1, T1 = register(R, G, w, return_sensitivity=True)
+    assert m1.isclose(m0, 1e-12)
+    np.testing.assert_allclose(T1, T0, rtol=1e-12, atol=0)
+
+
+@pytest.mark.parametrize("c", [1e100, 1e150, 1e-100, 1e-150])
+def test_sensitivity_of_huge_and_tiny_coordinates(c):
+    """S is homogeneous of degree -1 in M = Σ r gᵀ, so scaling both sets by c divides it
+    by c²; it was NaN (zeta ~ s³ overflowed) or infinite (underflowed)."""
+    rng = np.random.default_rng(12)
+    R = rng.normal(size=(6, 3))
+    G = Rotation.random(rng=4).apply(R) + 0.01 * rng.normal(size=(6, 3))
+    _, S0 = optimal_rotation(R, G, return_sensitivity=True)
+    q, S = optimal_rotation(R * c, G * c, return_sensitivity=True)
+    np.testing.assert_allclose(S * c * c, S0, rtol=1e-12, atol=0)
+
+
 def test_scipy_noise_case_and_the_sensitivity_is_the_covariance():
     """scipy's test_align_vectors_noise, then a Monte Carlo check of what the matrix means:
     the covariance of the error's rotation vector is σ² S (in the frame of G)."""
@@ -733,6 +765,27 @@ def test_register_of_a_set_onto_itself_is_the_identity(n):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DegenerateRotationWarning)
         assert optimal_rotation([[1.0, 0, 0]], [[1.0, 0, 0]]) == Quaternion(1.0)
+
+
+def test_mirror_image_with_equal_singular_values_gives_the_smallest_optimal_rotation():
+    """Not collinear, yet not unique: G = R mirrored in z with R's spread equal in y and z
+    gives M = diag(4, 1, -1), for which tr(X M) = 4 for every rotation X about x, so the
+    identity is optimal and the smallest.  Moved by P and followed by Q, the optimal set
+    is Q·(rotations about P x): brute force over that circle."""
+    R = np.array([[2.0, 0, 0], [0, 1, 0], [0, 0, 1]])
+    G = R * [1, 1, -1]
+    with pytest.warns(DegenerateRotationWarning, match="mirrors"):
+        q = optimal_rotation(R, G)
+    assert q.same_rotation(Quaternion.identity(), 1e-12)
+    P = Rotation.random(rng=3).as_matrix()
+    Q = Rotation.from_rotvec([0.3, 0.2, -0.1]).as_matrix()
+    with pytest.warns(DegenerateRotationWarning):
+        q = optimal_rotation(R @ P.T, G @ P.T @ Q.T)
+    phi = np.linspace(-np.pi, np.pi, 200_001)
+    circle = Rotation.from_matrix(Q @ Rotation.from_rotvec(np.outer(phi, P[:, 0])).as_matrix())
+    assert q.to_axis_angle()[1] <= circle.magnitude().min() + 1e-9
+    cost = np.sum((R @ P.T @ q.to_matrix().T - G @ P.T @ Q.T) ** 2)
+    assert cost == pytest.approx(np.sum((R @ P.T @ Q.T - G @ P.T @ Q.T) ** 2), abs=1e-12)
 
 
 def test_coplanar_and_unique_optima_are_unchanged():
