@@ -498,9 +498,39 @@ class _ColumnView:
 ROUNDOFF = PERSISTENCE_ROUNDOFF
 
 
-def _value_scale(S: _Summary) -> float:
+def _all_values_scale(S: _Summary) -> float:
     vals = np.concatenate([v[np.isfinite(v)] for v in S.values]) if S.values else np.empty(0)
     return float(np.median(np.abs(vals))) if vals.size else 0.0
+
+
+def _build_scale(F) -> float:
+    """The size of the input in units of τ, for :func:`is_roundoff`: the larger of the
+    median :math:`r_i^2` of the vertices and the median :math:`|z_i - z_j|^2 / 4` of
+    the edges of the :math:`H_0` spanning forest (the joins of nearest neighbours).
+
+    Geometric, not a median of entry times: nearly flat centres (collinear or
+    coplanar up to round-off) have flat slivers whose entry times reach 1e30 on an
+    input of unit size, vertices among them, and a median of the values then made
+    every finite pair "round-off".  An object without ``balls`` falls back to the
+    median :math:`|\\tau|` of all its simplices."""
+    S = summary(F)
+    balls = getattr(F, "balls", None)
+    if S.k < 0:
+        return 0.0
+    if balls is None or not hasattr(balls, "centers") or not hasattr(balls, "radii"):
+        return _all_values_scale(S)
+    v = np.asarray(F.simplices(0), dtype=np.int64).ravel()
+    out = float(np.median(np.asarray(balls.radii, dtype=np.float64)[v] ** 2))
+    if S.k >= 1 and S.neg_edges.size:
+        e = np.asarray(F.simplices(1), dtype=np.int64)[S.neg_edges]
+        c = np.asarray(balls.centers, dtype=np.float64)
+        dz = c[e[:, 0]] - c[e[:, 1]]
+        out = max(out, float(np.median(np.einsum("ij,ij->i", dz, dz))) / 4.0)
+    return out
+
+
+def _value_scale(F) -> float:
+    return derived(F, "topology.scale", _build_scale)
 
 
 def is_roundoff(F, births, deaths) -> np.ndarray:
@@ -509,14 +539,19 @@ def is_roundoff(F, births, deaths) -> np.ndarray:
     Tied entry times (co-circular or co-spherical balls: grids, symmetric cages) come
     out of floating-point arithmetic a few ulps apart, in GUDHI as here, and give
     pairs of length ~1e-15.  A pair counts as zero-length when
-    ``death - birth <= ROUNDOFF * max(|birth|, |death|, median |τ|)`` with
+    ``death - birth <= ROUNDOFF * max(|birth|, |death|, scale)`` with
     ``ROUNDOFF = 2.5e-9``, at least twice the relative accuracy to which entry times
     are certified (:mod:`shapelab._toolkit.tolerances`): two tied entry times may come out
-    that far apart.
+    that far apart.  ``scale`` is the size of the input in units of τ, the larger of
+    the median :math:`r_i^2` and the median :math:`|z_i - z_j|^2 / 4` over the edges
+    that join components (the :math:`H_0` forest), so that ties near τ = 0 (tangent
+    balls of decimal input) count as round-off too.  It is geometric: a median of
+    entry times would be dominated by the slivers of nearly flat centres (entry times
+    up to ~1e30) and drop every finite pair.
     """
     b = np.asarray(births, dtype=np.float64)
     d = np.asarray(deaths, dtype=np.float64)
-    scale = np.maximum(np.maximum(np.abs(b), np.where(np.isfinite(d), np.abs(d), 0.0)), _value_scale(summary(F)))
+    scale = np.maximum(np.maximum(np.abs(b), np.where(np.isfinite(d), np.abs(d), 0.0)), _value_scale(F))
     return (d - b) <= ROUNDOFF * scale
 
 

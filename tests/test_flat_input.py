@@ -195,3 +195,50 @@ def test_voids_pockets_report_on_nearly_coplanar_balls(seed):
     rep = sl.report(balls, probe=0.0)
     assert len(rep.voids) == 0
     assert len(rep.rows) == len(pockets)
+
+
+# ------------------------------------------------------------------ persistence
+def test_nearly_collinear_balls_keep_their_persistence_pairs():
+    """Four balls of radius 0.7 at unit spacing on a line, two of them 1e-15 off it:
+    closed form, each vertex enters at -0.49 and each neighbouring edge at 0.25 - 0.49,
+    so H0 has three finite pairs (-0.49, -0.24) and one essential class, as GUDHI's
+    exact alpha complex says.  The slivers of the nearly flat triangulation enter at
+    ~1e30; a round-off scale taken as the median entry time of all simplices dropped
+    every finite pair."""
+    c = [[0.0, 0.0, 0.0], [1.0, 1e-15, 0.0], [2.0, 0.0, 1e-15], [3.0, 0.0, 0.0]]
+    balls = sl.Balls(c, 0.7)
+    F = assert_same_as_gudhi_exact(balls)
+    assert max(F.values(3)) > 1e29  # the slivers
+    H0 = F.persistence()[0]
+    np.testing.assert_allclose(H0[:3], [[-0.49, -0.24]] * 3, rtol=1e-12)
+    assert H0.shape == (4, 2) and H0[3, 0] == pytest.approx(-0.49) and np.isinf(H0[3, 1])
+    for p in (3, 7):
+        np.testing.assert_array_equal(F.persistence(field=p)[0], H0)
+
+
+@settings(max_examples=30, deadline=None)
+@given(
+    family=st.sampled_from(["line2", "line3", "plane3"]),
+    n=st.integers(4, 20),
+    exponent=st.integers(9, 15),
+    style=st.sampled_from(["unit", "offset"]),
+    seed=st.integers(0, 2**16),
+)
+def test_nearly_flat_persistence_equals_gudhi(family, n, exponent, style, seed):
+    """GUDHI's reduction of the same simplices and values, its pairs filtered only by
+    their length relative to their own ends (the certified accuracy of entry times),
+    not by :func:`shapelab.topology.is_roundoff`: the same diagrams."""
+    from ._oracles import gudhi_tree
+
+    balls = nearly_flat(family, n, exponent, style, True, False, seed)
+    balls = sl.Balls(balls.centers, balls.radii + 0.2 * float(np.ptp(balls.centers, axis=0).max()) / n)
+    F = sl.alpha_filtration(balls)
+    tree = gudhi_tree(F)
+    tree.compute_persistence(homology_coeff_field=2, min_persistence=0)
+    ours = F.persistence()
+    for k in range(F.dimension):
+        P = np.asarray(tree.persistence_intervals_in_dimension(k), dtype=float).reshape(-1, 2)
+        size = np.maximum(np.abs(P[:, 0]), np.where(np.isfinite(P[:, 1]), np.abs(P[:, 1]), 0.0))
+        P = P[P[:, 1] - P[:, 0] > 2.5e-9 * size]
+        P = P[np.lexsort((P[:, 1], P[:, 0]))]
+        np.testing.assert_array_equal(ours[k], P, err_msg=f"H{k}")

@@ -121,8 +121,11 @@ GRAM_PINV_RCOND = 1e-10
 
 # ------------------------------------------------------------------ topology
 #: A persistence pair counts as zero-length when ``death - birth <=
-#: PERSISTENCE_ROUNDOFF * max(|birth|, |death|, median |τ|)``: relative to the
-#: values.  Two entry times whose exact values tie may differ by up to
+#: PERSISTENCE_ROUNDOFF * max(|birth|, |death|, scale)``: relative to the values,
+#: or to the input's size in units of τ near τ = 0 (``scale``: the larger of the
+#: median r² and the median squared half-length of the edges that join components,
+#: :func:`shapelab.topology.is_roundoff`; geometric, since the entry times of the
+#: slivers of nearly flat input reach 1e30).  Two entry times whose exact values tie may differ by up to
 #: ``2 ENTRY_TIME_RTOL / (1 - ENTRY_TIME_RTOL)`` relative, so a guaranteed filter
 #: needs ``PERSISTENCE_ROUNDOFF >= 2 ENTRY_TIME_RTOL / (1 - ENTRY_TIME_RTOL)``
 #: (``tests/test_tolerances.py``); 2.5e-9 meets it with a margin.  A pair shorter
