@@ -61,8 +61,10 @@ Implementation notes
   points are coplanar (e.g. four cocircular points).
 * **Duplicates.**  Of several balls with the same centre only the one with the
   largest radius can have a non-empty cell; among equal radii the lowest index is
-  kept (this is also what GUDHI does, and what Simulation of Simplicity decides).
-  The others are reported as hidden.
+  kept (what Simulation of Simplicity decides: earlier balls are slightly larger).
+  The others are reported as hidden.  GUDHI's alpha complex also keeps the largest
+  ball, but of equal ones whichever its spatial sort inserts first (of three equal
+  balls at indices 1, 2, 4 it keeps 2), so its complex is ours up to that choice.
 """
 
 from __future__ import annotations

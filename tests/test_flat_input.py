@@ -242,3 +242,24 @@ def test_nearly_flat_persistence_equals_gudhi(family, n, exponent, style, seed):
         P = P[P[:, 1] - P[:, 0] > 2.5e-9 * size]
         P = P[np.lexsort((P[:, 1], P[:, 0]))]
         np.testing.assert_array_equal(ours[k], P, err_msg=f"H{k}")
+
+
+def test_duplicated_centres_in_nearly_flat_input():
+    """Duplicates of nearly collinear centres, at a 1e8 offset: the largest ball of a
+    centre is kept, the lowest index among equal ones (Simulation of Simplicity);
+    GUDHI's exact alpha complex is the same up to which equal duplicate stands for
+    its centre, so the two are compared on the centres' coordinates."""
+    rng = np.random.default_rng(8)
+    t = rng.random(9)
+    c = np.c_[t, 2.0 * t, -t] + 1e-13 * rng.normal(size=(9, 3)) + 1e8 * np.array([1.0, 0.0, 0.0])
+    c = np.r_[c, c[[1, 1, 4, 7]]]
+    r = np.r_[np.full(9, 0.1), [0.1, 0.3, 0.1, 0.05]]
+    balls = sl.Balls(c, r)
+    F = sl.alpha_filtration(balls)
+    verts = set(F.simplices(0).ravel().tolist())
+    assert {4, 7, 10} <= verts and not {1, 9, 11, 12} & verts  # 10: the largest at centre 1
+    key = lambda D: {tuple(sorted(tuple(c[i]) for i in s)): v for s, v in D.items()}  # noqa: E731
+    ours, theirs = key(ours_dict(F)), key(gudhi_dict(balls))
+    assert set(ours) == set(theirs)
+    for s, v in theirs.items():
+        assert abs(ours[s] - v) <= 1e-9 * abs(v), (s, ours[s], v)
