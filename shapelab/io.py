@@ -13,8 +13,15 @@ evaluated or executed.
 Radii
 -----
 :data:`VDW_RADII` is the table of A. Bondi, "van der Waals Volumes and Radii",
-*J. Phys. Chem.* **68**, 441–451 (1964), Table I (values in Å).  Elements Bondi does
-not list (e.g. Ca, Fe, Mn, Co) raise unless a ``default_radius`` is given.
+*J. Phys. Chem.* **68**, 441–451 (1964), Table I (values in Å), completed for the
+main-group elements Bondi does not list (Be, B, Al, Ca, Ge, Rb, Sr, Sb, Cs, Ba, Bi,
+Po, At, Rn, Fr, Ra) by M. Mantina, A. C. Chamberlin, R. Valero, C. J. Cramer and
+D. G. Truhlar, "Consistent van der Waals Radii for the Whole Main Group",
+*J. Phys. Chem. A* **113**, 5806–5812 (2009), Table 12.  Where Bondi has a value it is
+kept (Mantina et al. give H 1.10, Li 1.81 and Br 1.83 instead of Bondi's 1.20, 1.82
+and 1.85; the rest of their Table 12 is Bondi's).  Most transition metals (Fe, Mn,
+Co, Mo, ...) have no consistent van der Waals radius in either table: an atom of
+such an element raises unless a ``default_radius`` (or ``radii=``) is given.
 """
 
 from __future__ import annotations
@@ -46,11 +53,15 @@ __all__ = [
     "vdw_radius",
 ]
 
-#: van der Waals radii in Å, Bondi (1964), J. Phys. Chem. 68:441, Table I.
+#: van der Waals radii in Å: Bondi (1964), J. Phys. Chem. 68:441, Table I, and for the
+#: main-group elements Bondi does not list (marked M), Mantina et al. (2009),
+#: J. Phys. Chem. A 113:5806, Table 12.
 VDW_RADII: dict[str, float] = {
     "H": 1.20,
     "He": 1.40,
     "Li": 1.82,
+    "Be": 1.53,  # M
+    "B": 1.92,  # M
     "C": 1.70,
     "N": 1.55,
     "O": 1.52,
@@ -58,33 +69,47 @@ VDW_RADII: dict[str, float] = {
     "Ne": 1.54,
     "Na": 2.27,
     "Mg": 1.73,
+    "Al": 1.84,  # M
     "Si": 2.10,
     "P": 1.80,
     "S": 1.80,
     "Cl": 1.75,
     "Ar": 1.88,
     "K": 2.75,
+    "Ca": 2.31,  # M
     "Ni": 1.63,
     "Cu": 1.40,
     "Zn": 1.39,
     "Ga": 1.87,
+    "Ge": 2.11,  # M
     "As": 1.85,
     "Se": 1.90,
     "Br": 1.85,
     "Kr": 2.02,
+    "Rb": 3.03,  # M
+    "Sr": 2.49,  # M
     "Pd": 1.63,
     "Ag": 1.72,
     "Cd": 1.58,
     "In": 1.93,
     "Sn": 2.17,
+    "Sb": 2.06,  # M
     "Te": 2.06,
     "I": 1.98,
     "Xe": 2.16,
+    "Cs": 3.43,  # M
+    "Ba": 2.68,  # M
     "Pt": 1.72,
     "Au": 1.66,
     "Hg": 1.55,
     "Tl": 1.96,
     "Pb": 2.02,
+    "Bi": 2.07,  # M
+    "Po": 1.97,  # M
+    "At": 2.02,  # M
+    "Rn": 2.20,  # M
+    "Fr": 3.48,  # M
+    "Ra": 2.83,  # M
     "U": 1.86,
 }
 _UPPER = {k.upper(): k for k in VDW_RADII}
@@ -101,12 +126,39 @@ _SYMBOLS = {
 
 
 def vdw_radius(element: str) -> float:
-    """Bondi's van der Waals radius of ``element`` in Å (case-insensitive symbol)."""
+    """The van der Waals radius of ``element`` in Å (case-insensitive symbol), from :data:`VDW_RADII`.
+
+    Bondi's (1964) value, or for a main-group element Bondi does not list, that of
+    Mantina et al. (2009); Notes §23.1 (one ball per atom, of its van der Waals radius).
+
+    Raises
+    ------
+    ValueError
+        For an element in neither table (most transition metals: Fe, Mn, Co, Mo, ...).
+
+    See Also
+    --------
+    read_pdb : reads these radii; ``default_radius=`` or ``radii=`` for other elements.
+
+    References
+    ----------
+    A. Bondi, "van der Waals Volumes and Radii", *J. Phys. Chem.* **68**, 441–451 (1964).
+    M. Mantina, A. C. Chamberlin, R. Valero, C. J. Cramer, D. G. Truhlar, "Consistent
+    van der Waals Radii for the Whole Main Group", *J. Phys. Chem. A* **113**, 5806–5812
+    (2009), Table 12.
+
+    Examples
+    --------
+    >>> vdw_radius("C"), vdw_radius("ca"), vdw_radius("Be")
+    (1.7, 2.31, 1.53)
+    """
     if not isinstance(element, str):
         raise TypeError(f"element must be a str, got {type(element).__name__}")
     key = _UPPER.get(element.strip().upper())
     if key is None:
-        raise ValueError(f"element {element!r} is not in Bondi's (1964) table of van der Waals radii")
+        raise ValueError(
+            f"element {element!r} is in neither Bondi's (1964) nor Mantina et al.'s (2009) table of van der Waals radii"
+        )
     return VDW_RADII[key]
 
 
@@ -159,8 +211,8 @@ class PDBStructure:
     Attributes
     ----------
     balls : Balls
-        Centres in Å; radii = van der Waals radius (Bondi 1964, or the ``radii=``
-        table of :func:`read_pdb`) + probe.
+        Centres in Å; radii = van der Waals radius (:data:`VDW_RADII`: Bondi 1964 and
+        Mantina et al. 2009, or the ``radii=`` table of :func:`read_pdb`) + probe.
     atom_names, residue_names, chains, elements : ndarray of str, shape (n,)
         Columns 13–16, 18–20, 21–22 and 77–78 (element symbols normalised, e.g.
         ``"Fe"``); see :func:`read_pdb` for column 21.
@@ -520,8 +572,9 @@ def read_pdb(
         Probe radius :math:`p \\ge 0` added to every van der Waals radius; ``probe=1.4``
         (water) gives the solvent-accessible model.
     default_radius : float, optional
-        Van der Waals radius for elements missing from Bondi's table (and from
-        ``radii``).  Without it, such an element raises.
+        Van der Waals radius for elements missing from :data:`VDW_RADII` (Bondi 1964
+        and Mantina et al. 2009: most transition metals, e.g. Fe, Mn, Co, Mo) and from
+        ``radii``.  Without it, such an element raises.
     model : int, optional
         Serial number of the MODEL to read (columns 11–14 of the MODEL record).
         Default: the first model.  A file without MODEL records is model 1; ATOM or
@@ -544,7 +597,7 @@ def read_pdb(
         uses heavy atoms with united-atom-like radii, and X-ray entries mostly have
         no hydrogens, so they are dropped by default.
     radii : mapping, optional
-        Van der Waals radii (Å) that take precedence over Bondi's: keys are element
+        Van der Waals radii (Å) that take precedence over :data:`VDW_RADII`: keys are element
         symbols (``{"Fe": 2.0}``) or ``(residue name, atom name)`` pairs
         (``{("ALA", "CB"): 1.9}``), the latter winning.  Matching ignores case.
     max_bytes : int, default :data:`MAX_PDB_BYTES` (256 MiB)
@@ -794,8 +847,8 @@ def read_pdb(
         if ra is None:
             raise ValueError(
                 f"line {lineno}: element {e!r} (atom {name!r}, residue {resn} {r[6]}) has no van "
-                f"der Waals radius in Bondi's (1964) table; pass default_radius= (or radii=) "
-                f"to use one"
+                f"der Waals radius in Bondi's (1964) or Mantina et al.'s (2009) table; pass "
+                f"default_radius= (or radii=) to use one"
             )
         rad[i] = ra
     col = list(zip(*kept))
@@ -925,7 +978,7 @@ def write_pdb(
     """Write 3D balls as ATOM/HETATM records of a PDB file.
 
     The PDB format stores no radii: :func:`read_pdb` recovers them from the elements,
-    so a round trip preserves radii exactly when they are Bondi radii (plus one probe).
+    so a round trip preserves radii exactly when they are the radii of :data:`VDW_RADII` (plus one probe).
     Coordinates are written with three decimals (the format's precision, 0.001 Å).
     The format's fixed columns limit what it holds (at most 99,999 atoms, residue
     names of three characters, B-factors below 1000); :func:`write_mmcif` holds any

@@ -704,7 +704,11 @@ def main(argv=None) -> int:
     ap.add_argument("--water", action="store_true", help="keep water molecules")
     ap.add_argument("--hydrogens", action="store_true", help="keep hydrogen atoms")
     ap.add_argument(
-        "--default-radius", type=float, metavar="R", help="van der Waals radius (Å) of elements Bondi does not list"
+        "--default-radius",
+        type=float,
+        metavar="R",
+        help="van der Waals radius (Å) of elements shapelab.io.VDW_RADII lacks "
+        "(Bondi 1964 and Mantina et al. 2009 list none for most transition metals)",
     )
     args = ap.parse_args(argv)
 

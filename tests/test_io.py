@@ -89,6 +89,45 @@ def test_bondi_table_values():
         vdw_radius("Fe")
 
 
+# Table 12 of Mantina, Chamberlin, Valero, Cramer & Truhlar, J. Phys. Chem. A 113 (2009)
+# 5806, as transcribed independently by QCElemental (MolSSI/QCElemental,
+# qcelemental/data/mantina_2009_vanderwaals_radii.py, context "MANTINA2009"), in Å.
+MANTINA_2009_QCELEMENTAL = {
+    "H": 1.10, "He": 1.40, "Li": 1.81, "Be": 1.53, "B": 1.92, "C": 1.70, "N": 1.55, "O": 1.52,
+    "F": 1.47, "Ne": 1.54, "Na": 2.27, "Mg": 1.73, "Al": 1.84, "Si": 2.10, "P": 1.80, "S": 1.80,
+    "Cl": 1.75, "Ar": 1.88, "K": 2.75, "Ca": 2.31, "Ga": 1.87, "Ge": 2.11, "As": 1.85, "Se": 1.90,
+    "Br": 1.83, "Kr": 2.02, "Rb": 3.03, "Sr": 2.49, "In": 1.93, "Sn": 2.17, "Sb": 2.06, "Te": 2.06,
+    "I": 1.98, "Xe": 2.16, "Cs": 3.43, "Ba": 2.68, "Tl": 1.96, "Pb": 2.02, "Bi": 2.07, "Po": 1.97,
+    "At": 2.02, "Rn": 2.20, "Fr": 3.48, "Ra": 2.83,
+}  # fmt: skip
+# the elements their Table 12 marks as new (the paper's text, quoted by QCElemental)
+MANTINA_NEW = {"Be", "B", "Al", "Ca", "Ge", "Rb", "Sr", "Sb", "Cs", "Ba", "Bi", "Po", "At", "Rn", "Fr", "Ra"}
+
+
+def test_mantina_radii_complete_bondi_for_the_main_group():
+    # every main-group element of Table 12 has a radius: the new ones are Mantina's ...
+    for e in MANTINA_NEW:
+        assert VDW_RADII[e] == MANTINA_2009_QCELEMENTAL[e], e
+        assert vdw_radius(e.lower()) == MANTINA_2009_QCELEMENTAL[e]
+    # ... the others stay Bondi's, which Mantina et al. changed only for H, Li and Br
+    changed = {e for e in MANTINA_2009_QCELEMENTAL if VDW_RADII[e] != MANTINA_2009_QCELEMENTAL[e]}
+    assert changed == {"H", "Li", "Br"}
+    assert (VDW_RADII["H"], VDW_RADII["Li"], VDW_RADII["Br"]) == (1.20, 1.82, 1.85)
+    # nothing else was added: every entry is in Table 12 or a Bondi transition metal/actinide
+    bondi_only = {"Ni", "Cu", "Zn", "Pd", "Ag", "Cd", "Pt", "Au", "Hg", "U"}
+    assert set(VDW_RADII) == set(MANTINA_2009_QCELEMENTAL) | bondi_only
+
+
+@pytest.mark.parametrize("element", ["Fe", "Mn", "Co", "Mo", "Cr", "W", "Sc", "La"])
+def test_transition_metals_have_no_radius(element, tmp_path):
+    with pytest.raises(ValueError, match="neither Bondi's.*nor Mantina"):
+        vdw_radius(element)
+    p = write(tmp_path, [atom(1, f"{element.upper():<4}", resn="MET", element=element.upper(), rec="HETATM")])
+    with pytest.raises(ValueError, match=rf"element '{element}'.*Mantina.*default_radius"):
+        read_pdb(p)
+    assert read_pdb(p, default_radius=2.0).balls.radii.tolist() == [2.0]
+
+
 def test_endmdl_reads_only_the_first_model(tmp_path):
     p = write(
         tmp_path,
@@ -136,9 +175,13 @@ def test_element_from_atom_name_when_columns_blank(tmp_path):
     for name, want in cases.items():
         p = write(tmp_path, [bare(name)])
         assert read_pdb(p, hydrogens=True).elements[0] == want, name
-    # "CA  " left-justified is calcium, which Bondi does not list
+    # "CA  " left-justified is calcium (Mantina et al. 2009: 2.31 Å, Bondi has none)
     p = write(tmp_path, [bare("CA  ", "CA")])
-    with pytest.raises(ValueError, match="'Ca'"):
+    assert read_pdb(p).elements[0] == "Ca"
+    assert read_pdb(p).balls.radii[0] == 2.31
+    # "FE  " left-justified is iron, in neither table
+    p = write(tmp_path, [bare("FE  ", "HEM")])
+    with pytest.raises(ValueError, match="'Fe'"):
         read_pdb(p)
     assert read_pdb(p, default_radius=2.0).balls.radii[0] == 2.0
 

@@ -406,7 +406,8 @@ def test_cli_flags_map_to_read_pdb(monkeypatch, tmp_path):
 
 
 def _cage_pdb(tmp_path, residue_number="   1"):
-    """A small PDB file: an icosahedron of 12 carbons around one calcium ion (HETATM)."""
+    """A small PDB file: an icosahedron of 12 carbons around one iron ion (HETATM; iron has no
+    van der Waals radius in shapelab.io.VDW_RADII: the CLI needs --default-radius)."""
     phi = (1 + 5**0.5) / 2
     ico = [(0.0, a, b * phi) for a in (-1, 1) for b in (-1, 1)]
     ico = [p for q in ico for p in (q, (q[1], q[2], q[0]), (q[2], q[0], q[1]))]
@@ -415,7 +416,7 @@ def _cage_pdb(tmp_path, residue_number="   1"):
         f"  1.00  0.00           C"
         for k, (x, y, z) in enumerate(ico)
     ]
-    lines.append(f"HETATM   13 CA    CA A 101    {0:8.3f}{0:8.3f}{0:8.3f}  1.00  0.00          CA")
+    lines.append(f"HETATM   13 FE    FE A 101    {0:8.3f}{0:8.3f}{0:8.3f}  1.00  0.00          FE")
     p = tmp_path / "cage.pdb"
     p.write_text("\n".join(lines) + "\nEND\n")
     return p
