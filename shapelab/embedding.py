@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._toolkit.tolerances import DISTANCE_MATRIX_SYMMETRY
 from ._toolkit.validate import as_float_array, as_positive_int
 
 __all__ = ["Embedding", "classical_mds"]
@@ -80,10 +81,10 @@ def classical_mds(D, dim: int = 2) -> Embedding:
         raise ValueError(f"D must be a square matrix, got shape {D.shape}")
     if not np.all(np.isfinite(D)):
         raise ValueError("D must be finite (an infinite distance cannot be embedded)")
-    scale = max(float(np.abs(D).max()), 1.0)
-    if np.any(D < 0) or not np.allclose(D, D.T, rtol=0, atol=1e-12 * scale):
+    scale = float(np.abs(D).max()) if D.size else 0.0
+    if np.any(D < 0) or not np.allclose(D, D.T, rtol=0, atol=DISTANCE_MATRIX_SYMMETRY * scale):
         raise ValueError("D must be symmetric with non-negative entries")
-    if np.any(np.abs(np.diag(D)) > 1e-12 * scale):
+    if np.any(np.abs(np.diag(D)) > DISTANCE_MATRIX_SYMMETRY * scale):
         raise ValueError("D must be zero on the diagonal")
     dim = as_positive_int(dim, "dim")
     k = D.shape[0]

@@ -36,10 +36,9 @@ import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
-__all__ = ["CavityRow", "CavityReport", "report", "check_output", "main"]
+from ._toolkit.tolerances import LINING_AREA_RTOL
 
-#: Wall area (Å²) below which an atom does not count as lining a cavity (round-off).
-LINING_MIN_AREA = 1e-8
+__all__ = ["CavityRow", "CavityReport", "report", "check_output", "main"]
 
 
 # ============================================================================ results
@@ -623,7 +622,7 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
         rows = np.array([row_of[int(c)] for c in f.cell_ids.tolist()], dtype=np.int64)
         sel = np.isin(fs_sa.contact_cell, rows)
         per_ball = np.bincount(fs_sa.contact_ball[sel], weights=fs_sa.contact_wall[sel], minlength=len(sa))
-        lining = np.flatnonzero(per_ball > LINING_MIN_AREA)
+        lining = np.flatnonzero(per_ball > LINING_AREA_RTOL * 4.0 * np.pi * sa.radii**2)
         n_mouths, m_area, m_rim = 0, 0.0, 0.0
         if kind == "pocket":
             n_mouths = mouth_count[id(f)]

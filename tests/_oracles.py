@@ -159,7 +159,7 @@ def gudhi_diagrams(F, dims=None, *, field: int = 2) -> dict:
     of :func:`shapelab.topology.is_roundoff`) dropped as ``persistence()`` drops them.
     """
     st = gudhi_tree(F)
-    st.compute_persistence(homology_coeff_field=field, min_persistence=0)
+    st.compute_persistence(homology_coeff_field=field, min_persistence=0, persistence_dim_max=True)
     d = F.balls.dim if dims is None else dims
     out = {}
     for k in range(d + 1):

@@ -20,6 +20,8 @@ from __future__ import annotations
 
 __all__ = [
     "UNDERFLOW_FLOOR",
+    "LINING_AREA_RTOL",
+    "DISTANCE_MATRIX_SYMMETRY",
     "FILTER_UNDERFLOW",
     "QHULL_VERTICAL",
     "QHULL_STEEP",
@@ -63,6 +65,20 @@ __all__ = [
 #: smallest normal float64 is 2.2e-308, so 1e-300 is "zero" at every scale an input
 #: of physical size reaches, and never rounds a real quantity of any input away.
 UNDERFLOW_FLOOR = 1e-300
+
+# ------------------------------------------------------------------ report
+#: An atom lines a cavity when its wall area in the cavity's cells exceeds this
+#: fraction of its own sphere's area, 4π r² (relative to the atom's solvent-accessible
+#: sphere, so the rule does not depend on the length unit).  The wall areas are exact
+#: up to round-off (~1e-15 relative to the sphere); 1e-10 keeps round-off slivers out
+#: and every real contact in (a protein atom's 1e-10 of ~110 Å² is ~1e-8 Å²).
+LINING_AREA_RTOL = 1e-10
+
+# ------------------------------------------------------------------ embedding
+#: ``classical_mds`` accepts a distance matrix as symmetric with a zero diagonal when
+#: its asymmetry and diagonal are at most this, relative to its largest entry: the
+#: round-off of distances computed in float64 (a few ulps), never a real asymmetry.
+DISTANCE_MATRIX_SYMMETRY = 1e-12
 
 # ------------------------------------------------------------------ predicates
 #: The floating-point filter of :mod:`shapelab.predicates` trusts a sign only when
