@@ -5,7 +5,7 @@
 #   make course   execute every lesson, build the book, slides, figures, student edition
 #   make lab      JupyterLab on 127.0.0.1 with a printed token
 #   make bench    benchmarks against the peer libraries (CASE=name for one)
-#   make verify   persistence of real structures against GUDHI in Z/2, Z/3, Z/11 (fetches the corpus first)
+#   make verify   persistence of real structures against GUDHI in Z/2, Z/3, Z/11, then the report CLI on every file
 
 PYTHON ?= python3
 VENV   := .venv
@@ -15,7 +15,7 @@ CONSTRAINTS := requirements/constraints.txt
 JOBS   ?= 2
 CASE   ?=
 
-.PHONY: test test-lib lint course lab bench verify lessons book slides figures student env clean help
+.PHONY: test test-lib lint course lab bench verify verify-cli lessons book slides figures student env clean help
 
 help:
 	@sed -n '2,9p' Makefile | sed 's/^# //'
@@ -85,6 +85,13 @@ bench: $(VENV)/.installed-bench
 verify: $(VENV)/.installed-verify
 	$(PY) -m course.fetch_corpus
 	$(PY) -m benchmarks.verify $(if $(ONLY),--only $(ONLY))
+	$(PY) -m benchmarks.cli_corpus $(if $(ONLY),--only $(ONLY))
+
+# the report CLI (python -m shapelab.report) on every file of the corpus, one process each:
+# exit status, time, peak memory, voids and pockets, files written -> benchmarks/results/cli_corpus.md
+verify-cli: $(VENV)/.installed-verify
+	$(PY) -m course.fetch_corpus
+	$(PY) -m benchmarks.cli_corpus $(if $(ONLY),--only $(ONLY))
 
 clean:
 	rm -rf book/_build book/lessons book/_extra book/_gallery dist .pytest_cache
