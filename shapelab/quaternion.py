@@ -550,13 +550,18 @@ class Quaternion:
         if big == 0.0:
             raise ValueError(f"{name} is the zero quaternion, which has no inverse")
         s = a / big  # scaled first: |q|^2 neither overflows nor underflows
-        return Quaternion(*(s * np.array([1.0, -1.0, -1.0, -1.0]) / (float(s @ s) * big)))
+        with np.errstate(over="ignore"):
+            inv = s * np.array([1.0, -1.0, -1.0, -1.0]) / (float(s @ s) * big)
+        if not np.all(np.isfinite(inv)):  # |q| below 1/1.8e308 (subnormal components)
+            raise OverflowError(f"the inverse of {name} {self!r} overflows float64")
+        return Quaternion(*inv)
 
     def inverse(self) -> "Quaternion":
         """The multiplicative inverse :math:`q^{-1} = q^*/\\lVert q\\rVert^2` (Notes §23.2).
 
         :math:`q\\,q^{-1} = q^{-1}q = 1`; for a unit quaternion it is the conjugate, the
-        inverse rotation.  The zero quaternion has none: ValueError.
+        inverse rotation.  The zero quaternion has none: ValueError; one whose inverse
+        exceeds float64 (components below about 5e-309): OverflowError.
 
         See Also
         --------
@@ -580,7 +585,9 @@ class Quaternion:
         (unit :math:`u`) it is the unit quaternion of the rotation by :math:`\\theta`
         about :math:`u` (Notes §23.2), so ``Quaternion.pure(v / 2).exp()`` equals
         ``Quaternion.from_rotation_vector(v)``.  :math:`e^{p+q} = e^pe^q` only when
-        :math:`p` and :math:`q` commute.  OverflowError when :math:`q_0 > 709`.
+        :math:`p` and :math:`q` commute.  OverflowError when a component of the result
+        exceeds float64 (:math:`e^{q_0}` alone may: ``q.log().exp()`` is ``q`` up to
+        :math:`\\lVert q\\rVert \\approx 2\\cdot10^{308}`).
 
         See Also
         --------
@@ -597,12 +604,22 @@ class Quaternion:
         0 +1i +0j +0k
         """
         b = math.hypot(self.x, self.y, self.z)
+        c = math.cos(b)
+        s = [math.sin(b) * (v / b) if b > 0.0 else v for v in (self.x, self.y, self.z)]
         try:
             e = math.exp(self.w)
+            out = [e * c] + [e * v for v in s]
         except OverflowError:
-            raise OverflowError(f"exp of a quaternion with real part {self.w!r} overflows float64") from None
-        k = e * (math.sin(b) / b if b > 0.0 else 1.0)
-        return Quaternion(e * math.cos(b), k * self.x, k * self.y, k * self.z)
+            # e^w overflows for w > 709.78 while e^w cos|v| may not (the exp of the log of
+            # a quaternion of norm above 1.8e308): e^(w/2) times e^(w/2) cos|v|.
+            try:
+                h = math.exp(self.w / 2)
+            except OverflowError:
+                h = math.inf
+            out = [h * (h * c)] + [h * (h * v) for v in s]
+        if not all(math.isfinite(v) for v in out):
+            raise OverflowError(f"exp of a quaternion with real part {self.w!r} overflows float64")
+        return Quaternion(*out)
 
     def log(self) -> "Quaternion":
         """The principal logarithm :math:`\\ln\\lVert q\\rVert + \\operatorname{atan2}(\\lVert
@@ -631,14 +648,17 @@ class Quaternion:
         >>> print(Quaternion(-1.0).log())
         0 +3.14159i +0j +0k
         """
-        b = math.hypot(self.x, self.y, self.z)
-        n = math.hypot(self.w, b)
-        if n == 0.0:
+        big = max(abs(self.w), abs(self.x), abs(self.y), abs(self.z))
+        if big == 0.0:
             raise ValueError("quaternion is the zero quaternion, which has no logarithm")
+        b = math.hypot(self.x, self.y, self.z)
+        # ln|q| from the scaled components: |q| overflows for components near 1e308
+        log_n = math.log(big) + math.log(math.hypot(self.w / big, self.x / big, self.y / big, self.z / big))
         if b == 0.0:
-            return Quaternion(math.log(abs(self.w)), math.pi if self.w < 0 else 0.0, 0.0, 0.0)
-        f = math.atan2(b, self.w) / b
-        return Quaternion(math.log(n), f * self.x, f * self.y, f * self.z)
+            return Quaternion(log_n, math.pi if self.w < 0 else 0.0, 0.0, 0.0)
+        # angle times the unit direction v/b: atan2(b, w)/b overflows for a subnormal b
+        f = math.atan2(b, self.w)
+        return Quaternion(log_n, f * (self.x / b), f * (self.y / b), f * (self.z / b))
 
     def power(self, t) -> "Quaternion":
         """:math:`q^t` (also ``q ** t``).
@@ -653,7 +673,8 @@ class Quaternion:
           :math:`\\operatorname{slerp}(q_0, q_1; t) = q_0(q_0^{-1}q_1)^t`.  Note that
           :math:`q` and :math:`-q` have different real powers (:math:`(-1)^{1/2} =
           \\mathbf i`).  The zero quaternion: :math:`0^t = 0` for :math:`t > 0`, 1 for
-          :math:`t = 0`; a negative power of zero raises ValueError.
+          :math:`t = 0`; a negative power of zero raises ValueError.  A power that leaves
+          float64 raises OverflowError, for integer and real ``t`` alike.
 
         See Also
         --------
@@ -680,12 +701,16 @@ class Quaternion:
             k = int(t)
             base = self._inverse("quaternion") if k < 0 else self
             out, k = Quaternion(1.0), abs(k)
-            while k:
-                if k & 1:
-                    out = out * base
-                k >>= 1
-                if k:
-                    base = base * base
+            try:
+                with np.errstate(over="ignore", invalid="ignore"):
+                    while k:
+                        if k & 1:
+                            out = out * base
+                        k >>= 1
+                        if k:
+                            base = base * base
+            except ValueError:  # a product left float64 (the constructor refuses inf/NaN)
+                raise OverflowError(f"quaternion ** {int(t)} overflows float64") from None
             return out
         t = as_finite_scalar(t, "exponent")
         if zero:

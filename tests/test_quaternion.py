@@ -470,6 +470,50 @@ def test_zero_quaternion_has_no_inverse_log_or_negative_power():
     assert z**0 == ONE and z**0.0 == ONE and z**2 == z and z**0.5 == z
 
 
+def test_log_of_a_subnormal_vector_part_and_of_huge_norms():
+    """log = ln|q| + atan2(|v|, q0) v/|v|: with |v| subnormal, atan2/|v| overflowed (a
+    ValueError 'x must be finite, got inf' for (-1, 5e-324, 0, 0), whose log is pi i to
+    rounding), and |q| overflowed for components near 1e308 (so log().exp() failed)."""
+    for w in (-1.0, 1.0, 5e-324, -3.0):
+        for v in (5e-324, 1e-310, -2e-308):
+            q = Quaternion(w, 0.0, v, 0.0)
+            ref = Quaternion(
+                # ln sqrt(w² + v²) = ln max + ln(1 + (min/max)²)/2 (w² + v² underflows)
+                np.log(max(abs(w), abs(v))) + np.log1p((min(abs(w), abs(v)) / max(abs(w), abs(v))) ** 2) / 2,
+                0.0,
+                np.arctan2(abs(v), w) * np.sign(v),
+                0.0,
+            )
+            assert close(q.log(), ref, 1e-15), (w, v)
+    for q in (Quaternion(1e308, 1e308, 1e308, 1e308), Quaternion(-1.5e308, 1e308, 0, -1e308)):
+        L = q.log()
+        a = np.array([q.w, q.x, q.y, q.z]) / 1e308
+        assert L.w == pytest.approx(308 * np.log(10) + np.log(np.linalg.norm(a)), rel=1e-15)
+        back = L.exp()
+        np.testing.assert_allclose(back.as_array(), q.as_array(), rtol=1e-13)
+    with pytest.raises(OverflowError, match="overflows"):
+        Quaternion(710.0, 0.0, 0.0, 0.0).exp()
+
+
+def test_overflowing_inverse_and_powers_raise_overflow_error():
+    """They raised ValueError('w must be finite, got inf') (and RuntimeWarnings), unlike
+    the real powers' OverflowError; the inverse of a subnormal quaternion is not a float."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for call in (
+            lambda: Quaternion(5e-324).inverse(),
+            lambda: 1.0 / Quaternion(0, 1e-310, 0, 0),
+            lambda: Quaternion(2.0) ** 2000,
+            lambda: Quaternion(1e200, 1e200, 0, 0) ** 2,
+            lambda: Quaternion(2.0) ** 2000.0,
+        ):
+            with pytest.raises(OverflowError, match="overflows float64"):
+                call()
+        assert Quaternion(0.5) ** 2000 == Quaternion(0.0)
+
+
 def test_log_exp_values_of_numpy_quaternion():
     tol = 1e-13  # the reference values are printed to 15 significant digits
     assert close(Q_NPQ.log(), QLOG_NPQ, tol)
