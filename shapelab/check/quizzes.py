@@ -132,7 +132,7 @@ QUIZZES: dict[str, tuple[Question, ...]] = {
             "The persistence of a feature in the growth model measures",
             [
                 "its volume",
-                "how long it lives as the balls grow: its thickness, not its size",
+                "how long it lives as the balls grow (death minus birth), not its size",
                 "its surface area",
                 "the number of balls that line it",
             ],
