@@ -60,7 +60,7 @@ def standard_error_factor(shrink, balls, *, seed: int = 0) -> CheckResult:
     ratio = (
         monte_carlo_union_measure(balls, 10**4, seed=seed)[1] / monte_carlo_union_measure(balls, 10**6, seed=seed)[1]
     )
-    return value("the factor per 100 times more samples", shrink, ratio, rtol=0.05)
+    return value("the standard error's factor per 100 times more samples", shrink, ratio, rtol=0.05)
 
 
 def neck_closing(neck_closes, F) -> CheckResult:
