@@ -788,7 +788,8 @@ def mixed_dent(*, small_radius=0.3, big_radius=3.0, bowl_radius=3.0, gap=3.6):
     (radius 3) sit at (±(gap/2 + 3), 1) over its rim, leaving a mouth ``gap`` = 3.6
     wide between them.
 
-    * **Probe growth** (every radius :math:`r_i + p`, as a solvent probe or CASTp):
+    * **Probe growth** (every radius :math:`r_i + p`, as a family of solvent probes;
+      CASTp itself uses one probe, 1.4 Å, and the discrete flow):
       all disks grow at the same speed, the mouth between the big disks closes at
       p = gap/2 = 1.8 while the bowl is still free: a pocket.
     * **The notes' growth** (radius :math:`\\sqrt{r_i^2 + \\tau}`): small disks grow much

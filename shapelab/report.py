@@ -553,8 +553,10 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
     decomposition, which agrees for voids and, unlike the fractional sum, is
     also exact on a pocket's cells, whose mouth is not covered).
 
-    *Different from CASTp.*  (1) Pockets: CASTp finds them by *discrete flow* of
-    empty Delaunay cells towards the hull in the α-shape; here a pocket is the
+    *Different from CASTp.*  (1) Pockets: CASTp finds them by the *discrete flow*
+    of Edelsbrunner, Facello and Liang (1998) on the empty Delaunay cells of the
+    α-shape (each cell flows to the neighbour across its largest obtuse facet, and a
+    pocket is a group of cells whose flow does not reach the outside); here a pocket is the
     growth-model pocket of Notes §23.1 (a dent that closes into a void later in the
     filtration), its cells those of the void it becomes.  The two coincide for the
     clear-cut cases but not in general (nested pockets are all listed here; shallow

@@ -775,8 +775,10 @@ def lifting(balls, *, ax=None, elev=18.0, azim=-60.0, title=None):
     otherwise.  The lower convex hull of the lifted points projects to the regular
     triangulation (drawn both on the hull and in the plane below); hidden disks are
     the lifted points strictly above the hull.  The power distance is the vertical
-    distance from the paraboloid point above x down to the tangent plane of the
-    lifted disk: :math:`\\pi_i(x) = \\lVert x \\rVert^2 - (2 z_i \\cdot x - \\lVert z_i
+    distance from the paraboloid point above x down to the *polar plane*
+    :math:`h_i` of the lifted point (not a plane through it: :math:`h_i` lies
+    :math:`r_i^2` above the paraboloid at :math:`z_i`, the lifted point :math:`r_i^2`
+    below): :math:`\\pi_i(x) = \\lVert x \\rVert^2 - (2 z_i \\cdot x - \\lVert z_i
     \\rVert^2 + r_i^2)`.
 
     Parameters
