@@ -555,8 +555,9 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
 
     *Different from CASTp.*  (1) Pockets: CASTp finds them by the *discrete flow*
     of Edelsbrunner, Facello and Liang (1998) on the empty Delaunay cells of the
-    α-shape (each cell flows to the neighbour across its largest obtuse facet, and a
-    pocket is a group of cells whose flow does not reach the outside); here a pocket is the
+    α-shape (a cell flows into the neighbour across a facet that separates it from its
+    own orthocentre, and a pocket is a group of cells whose flow does not reach the
+    outside); here a pocket is the
     growth-model pocket of Notes §23.1 (a dent that closes into a void later in the
     filtration), its cells those of the void it becomes.  The two coincide for the
     clear-cut cases but not in general (nested pockets are all listed here; shallow
