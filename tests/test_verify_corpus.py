@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import gzip
 import hashlib
+import io
 import json
 from pathlib import Path
 
@@ -139,3 +140,112 @@ def test_3ny7_depends_on_z3_only_and_equals_gudhi():
     assert_agrees(res)
     assert field_effect(res, 3)[0] > 0 and field_effect(res, 11)[0] == 0
     assert differs(res["field_effect_ours"][3][1]) and not differs(res["field_effect_ours"][11][1])
+
+
+# ------------------------------------------------------------ the comparison can fail
+def _1grm():
+    return datasets.structure("1grm").balls
+
+
+def test_a_roundoff_rule_that_drops_real_pairs_is_a_difference(monkeypatch):
+    """The round-off rule is the library's own and filters GUDHI's pairs too: a rule that
+    drops real pairs on both sides must not make the diagrams look equal."""
+    from shapelab import topology
+
+    real = topology.is_roundoff
+
+    def broken(F, births, deaths):  # the library under test calls pairs up to 0.01 long round-off
+        b, d = np.asarray(births, dtype=np.float64), np.asarray(deaths, dtype=np.float64)
+        return real(F, b, d) | (d - b <= 1e-2)
+
+    monkeypatch.setattr(topology, "is_roundoff", broken)
+    res = compare_balls(_1grm(), fields=(2,))
+    assert any("dropped as round-off" in d for d in res["differences"]), res["differences"]
+    assert any(differs(d) and d["hidden"][1] > 0 for d in res["fields"][2])
+
+
+@pytest.mark.parametrize("bad", [[np.nan, 1.0], [3.0, 2.0], [np.inf, np.inf]], ids=["nan", "inverted", "inf-birth"])
+def test_a_malformed_pair_of_ours_is_a_difference(monkeypatch, bad):
+    """Rows the comparison would drop (NaN, death <= birth) are counted, not hidden."""
+    from benchmarks import verify
+
+    real = verify.our_diagrams
+
+    def spoiled(F, p):
+        out = dict(real(F, p))
+        out[1] = np.vstack([out[1], bad])
+        return out
+
+    monkeypatch.setattr(verify, "our_diagrams", spoiled)
+    res = compare_balls(_1grm(), fields=(2,))
+    assert res["fields"][2][1]["malformed"] == 1
+    assert any("NaN or death <= birth" in d for d in res["differences"]), res["differences"]
+
+
+def test_a_field_ours_cannot_compute_is_a_difference(monkeypatch):
+    from benchmarks import verify
+
+    monkeypatch.setattr(verify, "ours_supports_fields", lambda: False)
+    res = compare_balls(_1grm(), fields=(2, 3))
+    assert res["fields"][3] is None
+    assert any("Z/3 not compared" in d for d in res["differences"]), res["differences"]
+
+
+# ------------------------------------------------------------------ the corpus runner
+def _water_box(path, n=120):
+    """A PDB file of ``n`` water oxygens on a jittered 3.1 Å grid (seeded)."""
+    rng = np.random.default_rng(5)
+    k = int(np.ceil(n ** (1 / 3)))
+    grid = np.stack(np.meshgrid(*[np.arange(k)] * 3, indexing="ij"), -1).reshape(-1, 3)[:n] * 3.1
+    xyz = grid + rng.uniform(-0.3, 0.3, grid.shape)
+    lines = [
+        f"HETATM{i + 1:5d}  O   HOH W{i + 1:4d}    {x:8.3f}{y:8.3f}{z:8.3f}  1.00  0.00           O"
+        for i, (x, y, z) in enumerate(xyz)
+    ]
+    path.write_text("\n".join(lines) + "\nEND\n")
+    return path
+
+
+def test_a_file_of_waters_only_is_compared_with_its_waters(tmp_path):
+    """The reader refuses only the empty waters-dropped selection: the file is read, its
+    waters-kept variant compared, and the dropped one skipped for the right reason."""
+    from benchmarks.verify import run
+
+    path = _water_box(tmp_path / "water.pdb")
+    v = read_variants(path)
+    assert len(v["kept"]) == 120 and v["dropped"] is None
+    item = {"name": "water", "source": "test", "path": path, "read": {}}
+    rows = run([item], probes=(0.0,), fields=(2,), log=io.StringIO())
+    done = [r for r in rows if "simplices" in r]
+    assert len(done) == 1 and done[0]["water_label"] == "kept" and done[0]["differences"] == []
+    (skip,) = [r for r in rows if "skip" in r]
+    assert skip["water_label"] == "dropped" and "every atom is a water" in skip["skip"]
+
+
+@pytest.mark.parametrize("case", ["altered", "missing"])
+def test_a_corpus_file_missing_or_altered_fails_the_run(tmp_path, case):
+    """A file whose bytes differ from the manifest's sha256, or that is not there, is an
+    error (``make verify`` exits 1), not a skipped row."""
+    from benchmarks.verify import run
+
+    path = _water_box(tmp_path / "water.pdb")
+    digest = hashlib.sha256(path.read_bytes()).hexdigest()
+    if case == "altered":
+        path.write_text(path.read_text().replace("1.00  0.00", "1.00  0.01", 1))
+    else:
+        path.unlink()
+    item = {"name": "water", "source": "test", "path": path, "read": {}, "sha256": digest}
+    (row,) = run([item], probes=(0.0,), fields=(2,), log=io.StringIO())
+    assert "error" in row and "skip" not in row, row
+
+
+def test_test_data_is_the_manifests_file():
+    """Each file of tests/data is, uncompressed, the corpus file of benchmarks/corpus.json
+    (same package, version, path and sha256): the slice tests what ``make verify`` tests."""
+    manifest = json.loads((Path(__file__).parents[1] / "benchmarks" / "corpus.json").read_text())
+    by_path = {(e["package"], e["version"], e["path"]): e for e in manifest["files"]}
+    archives = {(a["package"], a["version"]): a["sha256"] for a in manifest["archives"]}
+    for e in SOURCES.values():
+        m = by_path[(e["package"], e["version"], e["path"])]
+        assert m["sha256"] == e["sha256_original"], e["file"]
+        assert archives[(e["package"], e["version"])] == e["archive_sha256"], e["file"]
