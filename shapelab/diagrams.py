@@ -85,6 +85,18 @@ def _diagram(D, name: str) -> np.ndarray:
     return A
 
 
+def _rescale(A, B):
+    """A and B divided by a power of two near their largest finite coordinate, and that
+    power: both distances are homogeneous of degree 1, and scaling by 2^k is exact, so
+    persistences and differences such as 1e308 - (-1e308) no longer overflow."""
+    fin = np.concatenate([A[np.isfinite(A)], B[np.isfinite(B)]])
+    big = float(np.abs(fin).max()) if fin.size else 0.0
+    if big == 0.0:
+        return A, B, 1.0
+    s = float(np.ldexp(1.0, np.frexp(big)[1] - 1))  # a power of two <= big: finite
+    return A / s, B / s, s
+
+
 def _split(A):
     """The finite points, and the families of points at infinity (see the module docstring).
 
@@ -347,6 +359,7 @@ def bottleneck_distance(D1, D2, *, matching: bool = False):
     0.5
     """
     A, B = _diagram(D1, "D1"), _diagram(D2, "D2")
+    A, B, scale = _rescale(A, B)
     sa, sb = _split(A), _split(B)
     fa, fb = sa[0], sb[0]
     ess = _essential(A, B, sa, sb)
@@ -392,7 +405,7 @@ def bottleneck_distance(D1, D2, *, matching: bool = False):
             pairs = [(int(fa[i]), int(fb[j])) for i, j in matched]
             pairs += [(int(fa[i]), -1) for i in range(n) if i not in in_p]
             pairs += [(-1, int(fb[j])) for j in range(m) if j not in in_q]
-    dist = max(best, float(ess_cost.max()) if len(ess_cost) else 0.0)
+    dist = max(best, float(ess_cost.max()) if len(ess_cost) else 0.0) * scale
     if not matching:
         return dist
     pairs += [tuple(map(int, p)) for p in ess_pairs]
@@ -458,6 +471,7 @@ def wasserstein_distance(D1, D2, p=2, *, internal_p=np.inf, matching: bool = Fal
     if not (q >= 1):
         raise ValueError(f"internal_p must be >= 1 (inf allowed), got {q}")
     A, B = _diagram(D1, "D1"), _diagram(D2, "D2")
+    A, B, scale = _rescale(A, B)
     sa, sb = _split(A), _split(B)
     fa, fb = sa[0], sb[0]
     ess = _essential(A, B, sa, sb)
@@ -466,13 +480,21 @@ def wasserstein_distance(D1, D2, p=2, *, internal_p=np.inf, matching: bool = Fal
     ess_pairs, ess_cost = ess
     P, Q = A[fa], B[fb]
     n, m = len(P), len(Q)
-    total = float(np.sum(ess_cost**p))
+    PQ, hp, hq = _costs(P, Q, q) if n + m else (np.zeros((0, 0)), np.zeros(0), np.zeros(0))
+    # costs divided by the largest one before the p-th power: c^p neither overflows
+    # (1e200^2, or 3^1000) nor underflows to a zero distance (1e-200^2)
+    top = max((float(c.max()) for c in (PQ, hp, hq, ess_cost) if c.size), default=0.0)
+    if top > 0.0:
+        PQ, hp, hq, ess_cost = PQ / top, hp / top, hq / top, ess_cost / top
     rows, cols = np.zeros(0, int), np.zeros(0, int)
+    used = ess_cost
     if n + m:
-        PQ, hp, hq = _costs(P, Q, q)
         rows, cols = _min_cost_matching(PQ, hp, hq, p)
-        total += float(np.sum(_matched_costs((rows, cols), PQ, hp, hq) ** p))
-    dist = total ** (1.0 / p)
+        used = np.concatenate([ess_cost, _matched_costs((rows, cols), PQ, hp, hq)])
+    # the matching's cost, again scaled by its own largest term (for a huge p the
+    # matching problem's c^p may underflow; its value is still computed in full)
+    cm = float(used.max()) if used.size else 0.0
+    dist = cm * float(np.sum((used / cm) ** p)) ** (1.0 / p) * top * scale if cm > 0 else 0.0
     if not matching:
         return dist
     pairs = _pairs_from(rows, cols, fa, fb, n, m) + [tuple(map(int, e)) for e in ess_pairs]

@@ -479,3 +479,25 @@ def test_points_at_infinity_simple_cases():
     for D in ([[-inf, -inf]], [[inf, inf]]):  # on the diagonal
         assert bottleneck_distance(D, []) == 0.0 == wasserstein_distance(D, [])
         assert bottleneck_distance(D + [[0.0, 2.0]], [[0.0, 2.5]]) == 0.5
+
+
+@pytest.mark.parametrize("c", [1e200, 1e-200, 2.0**-1070])
+def test_distances_scale_with_the_diagrams(c):
+    """Both distances are homogeneous of degree 1: W(cA, cB) = c W(A, B).  Costs to the
+    power p overflowed (1e200: SciPy's 'cost matrix is infeasible') or underflowed to a
+    zero distance (1e-200)."""
+    A = np.array([[0.0, 4.0], [0.0, 1.0], [1.0, 3.0], [2.0, np.inf]])
+    B = np.array([[0.0, 3.0], [0.5, 2.5], [1.0, np.inf]])
+    for p, q in ((1, np.inf), (2, np.inf), (2, 1), (3.5, 2)):
+        ref = wasserstein_distance(A, B, p, internal_p=q)
+        assert wasserstein_distance(A * c, B * c, p, internal_p=q) == pytest.approx(ref * c, rel=1e-12, abs=0)
+    assert bottleneck_distance(A * c, B * c) == pytest.approx(bottleneck_distance(A, B) * c, rel=1e-12, abs=0)
+
+
+def test_huge_persistence_and_huge_orders():
+    """(d - b)/2 overflowed for (-1e308, 1e308) (bottleneck inf, Wasserstein a SciPy error);
+    cost**p overflowed for p = 1e6 (closed form: the pair costs hypot(1, 0.5) < sqrt 2)."""
+    assert bottleneck_distance([[-1e308, 1e308]], []) == 1e308
+    assert wasserstein_distance([[-1e308, 1e308]], [], 1) == 1e308
+    assert wasserstein_distance([[0, 2]], [[1, 2.5]], 1e6, internal_p=2) == pytest.approx(np.hypot(1, 0.5), rel=1e-12)
+    assert wasserstein_distance([[0, 3], [1, 2]], [[0, 2]], 1000) == pytest.approx(1.0, rel=1e-12)
