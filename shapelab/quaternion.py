@@ -64,6 +64,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._toolkit.tolerances import QLOG_SMALL_VECTOR, ROTVEC_SERIES_ANGLE
 from ._toolkit.validate import as_finite_scalar, as_point, as_vector
 from ._toolkit.validate import as_float_array as _as_float_array
 from ._toolkit.validate import check_finite as _check_finite
@@ -296,7 +297,7 @@ def _qexp(v: np.ndarray) -> np.ndarray:
     half = 0.5 * theta
     # sin(θ/2)/θ, with its Taylor series near 0
     with np.errstate(invalid="ignore", divide="ignore"):
-        k = np.where(theta > 1e-4, np.sin(half) / np.where(theta > 0, theta, 1.0), 0.5 - theta**2 / 48.0)
+        k = np.where(theta > ROTVEC_SERIES_ANGLE, np.sin(half) / np.where(theta > 0, theta, 1.0), 0.5 - theta**2 / 48.0)
     return np.concatenate([np.cos(half), k * v], axis=-1)
 
 
@@ -306,7 +307,7 @@ def _qlog(q: np.ndarray) -> np.ndarray:
     s = np.linalg.norm(q[..., 1:], axis=-1, keepdims=True)
     angle = 2.0 * np.arctan2(s, q[..., :1])
     with np.errstate(invalid="ignore", divide="ignore"):
-        k = np.where(s > 1e-12, angle / np.where(s > 0, s, 1.0), 2.0)
+        k = np.where(s > QLOG_SMALL_VECTOR, angle / np.where(s > 0, s, 1.0), 2.0)
     return k * q[..., 1:]
 
 

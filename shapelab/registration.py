@@ -60,6 +60,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ._toolkit.tolerances import ANDERSON_RCOND, ROTATION_EIGEN_GAP
 from ._toolkit.validate import (
     as_finite_scalar,
     as_point,
@@ -248,7 +249,7 @@ def _rotation_from_m(m: np.ndarray, *, caller: str, sensitivity: float | None = 
     lam, vec = np.linalg.eigh(a)  # ascending
     q = vec[:, 3]
     scale = float(np.abs(lam).max())
-    degenerate = scale == 0.0 or lam[3] - lam[2] <= 1e-9 * scale
+    degenerate = scale == 0.0 or lam[3] - lam[2] <= ROTATION_EIGEN_GAP * scale
     if degenerate:
         if sensitivity is not None:
             raise ValueError(
@@ -263,7 +264,7 @@ def _rotation_from_m(m: np.ndarray, *, caller: str, sensitivity: float | None = 
             DegenerateRotationWarning,
             stacklevel=3,
         )
-        top = vec[:, lam >= lam[3] - 1e-9 * scale]
+        top = vec[:, lam >= lam[3] - ROTATION_EIGEN_GAP * scale]
         proj = top @ top[0]  # the projection of (1, 0, 0, 0) on the top eigenspace
         if scale == 0.0:
             q = np.array([1.0, 0.0, 0.0, 0.0])
@@ -748,7 +749,7 @@ class _Anderson:
         Gm = np.array(self.g)
         dF = np.diff(F, axis=0).T  # (6, k)
         dG = np.diff(Gm, axis=0).T
-        gamma, *_ = np.linalg.lstsq(dF, F[-1], rcond=1e-10)
+        gamma, *_ = np.linalg.lstsq(dF, F[-1], rcond=ANDERSON_RCOND)
         out = Gm[-1] - dG @ gamma
         return out if np.all(np.isfinite(out)) else None
 

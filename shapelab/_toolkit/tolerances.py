@@ -22,6 +22,10 @@ __all__ = [
     "UNDERFLOW_FLOOR",
     "LINING_AREA_RTOL",
     "DISTANCE_MATRIX_SYMMETRY",
+    "ROTATION_EIGEN_GAP",
+    "ANDERSON_RCOND",
+    "ROTVEC_SERIES_ANGLE",
+    "QLOG_SMALL_VECTOR",
     "FILTER_UNDERFLOW",
     "QHULL_VERTICAL",
     "QHULL_STEEP",
@@ -73,6 +77,31 @@ UNDERFLOW_FLOOR = 1e-300
 #: up to round-off (~1e-15 relative to the sphere); 1e-10 keeps round-off slivers out
 #: and every real contact in (a protein atom's 1e-10 of ~110 Å² is ~1e-8 Å²).
 LINING_AREA_RTOL = 1e-10
+
+# ------------------------------------------------------------------ registration
+#: ``optimal_rotation`` calls the optimum *not unique* when the gap between the two
+#: largest eigenvalues of Horn's matrix is at most this, relative to the largest
+#: |eigenvalue|, and then returns the optimal rotation of smallest angle.  A float
+#: decision, not an exact one: the gap of a set of spread s across its line grows as
+#: s², so sets with s below ~3e-5 of their length count as collinear, and exactly
+#: collinear sets far from the origin (offset/spread ~1e9) can exceed it (documented
+#: in ``optimal_rotation``'s Warns section).
+ROTATION_EIGEN_GAP = 1e-9
+#: Cut-off of the least-squares solve of ICP's Anderson acceleration, relative to the
+#: largest singular value of the difference matrix: a nearly dependent history of
+#: steps is dropped rather than amplified (an accelerated step is only a candidate:
+#: ICP keeps it only if it does not increase the cost).
+ANDERSON_RCOND = 1e-10
+
+# ------------------------------------------------------------------ quaternion
+#: ``sin(θ/2)/θ`` switches to its Taylor series ``1/2 - θ²/48`` below this angle (in
+#: radians, absolute): the series' first omitted term, θ⁴/3840, is below 1e-19 there,
+#: under the rounding of the direct formula.
+ROTVEC_SERIES_ANGLE = 1e-4
+#: The log of a unit quaternion divides by the norm s of its vector part; at or below
+#: this (absolute, for unit quaternions) it uses the limit angle/s -> 2, exact to
+#: O(s²) = 1e-24.
+QLOG_SMALL_VECTOR = 1e-12
 
 # ------------------------------------------------------------------ embedding
 #: ``classical_mds`` accepts a distance matrix as symmetric with a zero diagonal when
