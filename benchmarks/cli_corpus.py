@@ -90,6 +90,15 @@ REFUSALS: dict[str, tuple[str, str]] = {
 }
 
 
+#: Manifest entries the fetcher cannot extract, and why they are not missing structures.
+NOT_RUN: dict[str, str] = {
+    f"mdanalysistests/{stem}.pdb.{ext}": f"an uncompressed tar archive named .{ext}, holding {stem}.pdb with the "
+    f"bytes of mdanalysistests/{stem}.pdb (same sha256), which is run above"
+    for stem in ("cryst_then_model", "model_then_cryst")
+    for ext in ("gz", "bz2")
+}
+
+
 def flags(read: dict) -> list[str]:
     """The CLI flags that read a file as ``read_pdb(path, **read)`` does."""
     out: list[str] = []
@@ -224,7 +233,8 @@ def table(rows: list[dict]) -> str:
     ]
     for r in rows:
         if "skip" in r:
-            lines.append(f"| {r['name']} | {r['source']} |  |  | not run |  |  |  |  |  | {r['skip']} |")
+            why = r["skip"] + (f": {NOT_RUN[r['name']]}" if r["name"] in NOT_RUN else "")
+            lines.append(f"| {r['name']} | {r['source']} |  |  | not run |  |  |  |  |  | {why} |")
             continue
         why = r["why"].replace("|", "\\|")
         lines.append(
@@ -250,7 +260,13 @@ def summary(rows: list[dict]) -> str:
         f"(not a structure the CLI can report on: see *note*), **{len(fail)} failures**"
         + (": " + ", ".join(r["name"] for r in fail) if fail else "")
         + ".",
-        f"- Not run: {len(skipped)} manifest entries the fetcher could not extract (see *note*).",
+        f"- Not run: {len(skipped)} manifest entries the fetcher could not extract"
+        + (
+            f" ({sum(r['name'] in NOT_RUN for r in skipped)} of them copies of files run above in another wrapper: "
+            "see *note*)."
+            if skipped
+            else "."
+        ),
         f"- Voids and pockets found: {sum(r.get('voids', 0) for r in ok)} voids and "
         f"{sum(r.get('pockets', 0) for r in ok)} pockets over the {len(ok)} reports; "
         f"{sum(1 for r in ok if '.pdb' not in r['written'])} reports have no PDB file (the CLI says why; "
@@ -316,7 +332,8 @@ def write(rows, info, path: Path, *, partial: bool, started: str, argv) -> None:
     )
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(text)
-    path.with_suffix(".json").write_text(json.dumps({"machine": info, "rows": rows}, indent=1, default=str))
+    record = {"machine": info, "started": started, "argv": list(argv), "partial": partial, "rows": rows}
+    path.with_suffix(".json").write_text(json.dumps(record, indent=1, default=str))
 
 
 def main(argv=None) -> int:
