@@ -50,9 +50,9 @@ does by default.
 
 **Coefficients.**  Homology and persistence are computed over the field
 :math:`\\mathbb{Z}/2` unless ``persistence(F, field=p)`` names another prime.  Only the
-:math:`H_1` pairs of a 3-dimensional filtration can depend on the field (a Möbius band
-among the tetrahedra: :func:`persistence`, Notes); Betti numbers, :math:`H_0` and the
-voids never do.  Compare with GUDHI in the same field
+:math:`H_1` pairs of a 3-dimensional filtration can depend on the field (where a
+2-chain's boundary is a multiple of a cycle, as a Möbius band's is: :func:`persistence`,
+Notes); Betti numbers, :math:`H_0` and the voids never do.  Compare with GUDHI in the same field
 (``compute_persistence(homology_coeff_field=p)``; GUDHI's default is 11).
 """
 
@@ -629,7 +629,9 @@ def persistence(F, *, field=2) -> dict:
     boundary is twice a cycle -- a Möbius band, whose rim runs twice around its core
     circle -- kills the rim in :math:`\\mathbb{Z}/2` (where :math:`2 = 0`) and only
     ties the rim to twice the core otherwise, so two loops may exchange their deaths.
-    Real proteins contain such bands among their tetrahedra (lesson 09 shows one).
+    The pairs of two fields differ only where some 2-chain's boundary is a multiple of a
+    cycle (relative to an earlier complex), as the band's is; real structures have such
+    chains (lesson 09: 3MHT).
 
     Tunnels and their representative cycles (:func:`shapelab.tunnels`) are computed in
     :math:`\\mathbb{Z}/2`.
