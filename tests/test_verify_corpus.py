@@ -72,25 +72,18 @@ def test_cobrotoxin_is_read_as_the_issue_reads_it(cobrotoxin):
 
 
 @pytest.mark.parametrize("probe", [0.0, 1.4])
-def test_cobrotoxin_with_waters_equals_gudhi_in_every_field(cobrotoxin, probe):
-    s = cobrotoxin["kept"]
+@pytest.mark.parametrize("structure, waters", [("cobrotoxin", "kept"), ("mht", "dropped")])
+def test_field_dependent_structures_equal_gudhi_in_every_field(request, structure, waters, probe):
+    """Cobrotoxin with its waters and 3MHT without them: equal to GUDHI in Z/2, Z/3 and
+    Z/11, and the field matters (GUDHI's Z/2 and Z/11 H1 diagrams differ, and so do ours,
+    alike)."""
+    s = request.getfixturevalue(structure)[waters]
     res = compare_balls(sl.Balls(s.balls.centers, s.balls.radii + probe), fields=FIELDS)
     assert_agrees(res)
-    # the field matters here: GUDHI's Z/2 and Z/11 H1 diagrams differ, and so do ours, alike
     n, b = field_effect(res, 11)
     assert n > 0 and b > 1e-3, (n, b)
     assert differs(res["field_effect_ours"][11][1])
     assert res["field_effect_ours"][11][1]["bottleneck"] == pytest.approx(b, abs=1e-9)
-
-
-@pytest.mark.parametrize("probe", [0.0, 1.4])
-def test_3mht_without_waters_equals_gudhi_in_every_field(mht, probe):
-    s = mht["dropped"]
-    res = compare_balls(sl.Balls(s.balls.centers, s.balls.radii + probe), fields=FIELDS)
-    assert_agrees(res)
-    n, b = field_effect(res, 11)
-    assert n > 0 and b > 1e-3, (n, b)
-    assert differs(res["field_effect_ours"][11][1])
 
 
 def test_3mht_with_waters_equals_gudhi_in_every_field(mht):
