@@ -51,6 +51,13 @@ class Balls:
     centers : ndarray, shape (n, d), read-only
     radii : ndarray, shape (n,), read-only
 
+    See Also
+    --------
+    power_distance
+        The distance of a point to the balls.
+    alpha_filtration
+        The growth model of the balls.
+
     Notes
     -----
     Notes §23.1 write :math:`\\mathbb{P} = \\{B_1, \\dots, B_n\\}`.  A ball of radius
@@ -164,12 +171,24 @@ def power_distance(x, balls: Balls) -> np.ndarray:
     ndarray
         Shape (n,) for a single point, (m, n) for m points.
 
+    See Also
+    --------
+    power_diagram
+        The cells of least power distance.
+    Balls.grow
+        Grown balls, whose power distances shift by τ.
+
     Notes
     -----
     Outside :math:`B_i`, :math:`\\pi_i(x)` is the squared length of a tangent from
     :math:`x` to the sphere of :math:`B_i`; it is negative inside.  Computed as
     ``sum((x - z)**2) - r**2`` (not by expanding the square, which would lose
     precision for coordinates far from the origin).
+
+    References
+    ----------
+    .. [1] F. Aurenhammer, "Power diagrams: properties, algorithms and applications",
+           *SIAM J. Comput.* 16(1):78-96, 1987. doi:10.1137/0216006
 
     Examples
     --------

@@ -56,6 +56,11 @@ class Certificate:
     counts : dict
         How many tests were decided by the floating-point filter and how many
         exactly (see :attr:`shapelab.predicates.WeightedPoints.stats`).
+
+    See Also
+    --------
+    certify
+        Produces it.
     """
 
     ok: bool
@@ -98,6 +103,11 @@ def facet_adjacency(simp: np.ndarray):
         than two simplices.
     pos : (m, k+1) int32
         For an interior facet, its column in the neighbour's row (else -1).
+
+    See Also
+    --------
+    certify
+        Uses it to test local regularity.
     """
     m, w = simp.shape
     nbr = np.full((m, w), -1, dtype=np.int32)
@@ -229,6 +239,25 @@ def certify(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None) -> 
     Returns
     -------
     Certificate
+
+    See Also
+    --------
+    regular_triangulation
+        Certifies Qhull's candidate with this.
+    shapelab.incremental.incremental_triangulation
+        The exact fallback when it fails.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner and N. R. Shah, "Incremental topological flipping works for
+           regular triangulations", *Algorithmica* 15:223-241, 1996.
+           doi:10.1007/BF01975867
+    .. [2] H. Edelsbrunner and E. P. Mücke, "Simulation of Simplicity: a technique to
+           cope with degenerate cases in geometric algorithms", *ACM Trans. Graph.*
+           9(1):66-104, 1990. doi:10.1145/77635.77639
+    .. [3] J. R. Shewchuk, "Adaptive precision floating-point arithmetic and fast robust
+           geometric predicates", *Discrete Comput. Geom.* 18:305-363, 1997.
+           doi:10.1007/PL00009321
     """
     simp = np.asarray(simp, dtype=np.int64)
     m, w = simp.shape

@@ -92,6 +92,11 @@ class CriticalPoints:
     degenerate : bool
         F is constant (a circle centred at S): every point is an extremum and
         none is reported.
+
+    See Also
+    --------
+    critical_points
+        Produces it.
     """
 
     source: str
@@ -439,6 +444,16 @@ def euler_characteristic(vertices, faces) -> int:
     """χ = V - E + F of a closed triangulated surface (2 for a sphere, 0 for a torus).
 
     An independent check of the critical-point count of :func:`critical_points`.
+
+    See Also
+    --------
+    critical_points
+        Minima minus saddles plus maxima equal χ (Morse).
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner and J. L. Harer, *Computational Topology: An Introduction*,
+           American Mathematical Society, 2010. doi:10.1090/mbk/069
     """
     V = as_points(vertices, "vertices", dim=3, min_points=4)
     Fc = _as_faces(faces, V.shape[0])
@@ -510,6 +525,20 @@ def critical_points(curve, viewpoint, *, faces=None, close: bool = False, n_samp
     -------
     CriticalPoints
 
+    Raises
+    ------
+    ValueError
+        A polyline that is not closed, fewer than 3 distinct vertices, a
+        non-finite coordinate, a viewpoint of the wrong dimension, or faces that
+        do not form a closed surface (the message names the argument).
+
+    See Also
+    --------
+    signature
+        A scale-invariant summary of the critical values.
+    euler_characteristic
+        The alternating count the critical points obey.
+
     Notes
     -----
     *Polylines.*  ``F²`` restricted to a segment is a strictly convex quadratic,
@@ -532,12 +561,12 @@ def critical_points(curve, viewpoint, *, faces=None, close: bool = False, n_samp
     arcs (Banchoff).  Then ``#min - #saddles + #max = χ`` (2 for a sphere, 0 for a
     torus), checked by :attr:`CriticalPoints.euler_characteristic`.
 
-    Raises
-    ------
-    ValueError
-        A polyline that is not closed, fewer than 3 distinct vertices, a
-        non-finite coordinate, a viewpoint of the wrong dimension, or faces that
-        do not form a closed surface (the message names the argument).
+    References
+    ----------
+    .. [1] J. Milnor, *Morse Theory*, Annals of Mathematics Studies 51, Princeton
+           University Press, 1963.
+    .. [2] H. Edelsbrunner and J. L. Harer, *Computational Topology: An Introduction*,
+           American Mathematical Society, 2010. doi:10.1090/mbk/069
     """
     if faces is not None:
         S = as_point(viewpoint, "viewpoint")
@@ -556,6 +585,11 @@ def distance_along(curve, viewpoint, *, n: int = 1000, close: bool = False):
     Returns ``(parameters, values)``: for a polyline, arc-length fractions in
     [0, 1] (n points, uniformly in arc length, plus every vertex); for a
     parametric curve, t in [0, 2π] (n + 1 points).
+
+    See Also
+    --------
+    critical_points
+        The extrema of this function.
     """
     n = as_positive_int(n, "n", minimum=2)
     if callable(curve):
@@ -589,6 +623,11 @@ class Signature:
         The values F divided by the global maximum, in the same order.
     cyclic : bool
         True for curves (the sequence is cyclic and may be read backwards).
+
+    See Also
+    --------
+    signature
+        Produces it.
     """
 
     kinds: tuple
@@ -635,6 +674,18 @@ def signature(result: CriticalPoints, *, tolerance: float = 0.0) -> Signature:
         starting at the global maximum: invariant under rotating or scaling the
         (shape, viewpoint) pair and under the choice of starting point.  For a
         surface, the values sorted.
+
+    See Also
+    --------
+    compare
+        Compares two signatures.
+    critical_points
+        The critical points summarised.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner and J. L. Harer, *Computational Topology: An Introduction*,
+           American Mathematical Society, 2010. doi:10.1090/mbk/069
     """
     if not isinstance(result, CriticalPoints):
         raise TypeError(f"result must be a CriticalPoints, got {type(result).__name__}")
@@ -667,6 +718,13 @@ def compare(a, b) -> float:
         and the direction of travel), the largest difference of the normalised
         values under the best alignment; ``inf`` if the numbers of minima,
         maxima or saddles differ (the shapes are then told apart combinatorially).
+
+    See Also
+    --------
+    signature
+        What is compared.
+    shapelab.diagrams.bottleneck_distance
+        A stable comparison of persistence diagrams instead.
     """
     sa = a if isinstance(a, Signature) else signature(a)
     sb = b if isinstance(b, Signature) else signature(b)
@@ -699,7 +757,13 @@ def compare(a, b) -> float:
 # --------------------------------------------------------------------------- #
 def polyline(fn: Callable, n: int = 200) -> np.ndarray:
     """Sample a parametric closed curve at n points of [0, 2π): a closed polyline
-    of shape (n + 1, d), the first point repeated at the end."""
+    of shape (n + 1, d), the first point repeated at the end.
+
+    See Also
+    --------
+    critical_points
+        Takes the polyline.
+    """
     n = as_positive_int(n, "n", minimum=3)
     t = np.arange(n) * (_TWO_PI / n)
     X = _evaluate(fn, t)

@@ -143,6 +143,11 @@ class DirectedHausdorff(NamedTuple):
         Index of a point of A realising the maximum.
     j : int
         Index of the nearest point of B to ``A[i]``; ``|A[i] - B[j]| == distance``.
+
+    See Also
+    --------
+    directed_hausdorff
+        Computes it.
     """
 
     distance: float
@@ -875,6 +880,13 @@ def directed_hausdorff(A, B, *, method: str = "auto") -> DirectedHausdorff:
     ValueError
         If A or B is empty, not 2-D, not finite, or their dimensions differ.
 
+    See Also
+    --------
+    hausdorff
+        The symmetric distance, the larger of both directions.
+    scipy.spatial.distance.directed_hausdorff
+        SciPy's early-break algorithm.
+
     Notes
     -----
     Exact: equal to ``max_i min_j sqrt(sum((A[i] - B[j])**2))`` computed by brute
@@ -884,6 +896,15 @@ def directed_hausdorff(A, B, *, method: str = "auto") -> DirectedHausdorff:
     :class:`scipy.spatial.cKDTree` query, whether the sets overlap or are far
     apart (``benchmarks/cases/matching.py``); on small sets the classical
     algorithm suited to the regime can be a little faster.
+
+    References
+    ----------
+    .. [1] D. P. Huttenlocher, G. A. Klanderman and W. J. Rucklidge, "Comparing images
+           using the Hausdorff distance", *IEEE Trans. Pattern Anal. Mach. Intell.*
+           15(9):850-863, 1993. doi:10.1109/34.232073
+    .. [2] A. A. Taha and A. Hanbury, "An efficient algorithm for calculating the exact
+           Hausdorff distance", *IEEE Trans. Pattern Anal. Mach. Intell.*
+           37(11):2153-2163, 2015. doi:10.1109/TPAMI.2015.2408351
 
     Examples
     --------
@@ -917,6 +938,19 @@ def hausdorff(A, B, *, method: str = "auto") -> float:
     float
         Equal bit for bit to brute force.
 
+    See Also
+    --------
+    directed_hausdorff
+        One direction, with its witness.
+    hausdorff_under_translation
+        Minimised over translations.
+
+    References
+    ----------
+    .. [1] D. P. Huttenlocher, G. A. Klanderman and W. J. Rucklidge, "Comparing images
+           using the Hausdorff distance", *IEEE Trans. Pattern Anal. Mach. Intell.*
+           15(9):850-863, 1993. doi:10.1109/34.232073
+
     Examples
     --------
     >>> hausdorff([[0.0], [1.0]], [[0.0], [3.0]])
@@ -936,6 +970,19 @@ def hausdorff_pair(A, B, *, method: str = "auto") -> tuple[DirectedHausdorff, Di
     Used by :func:`shapelab.plot.matching.hausdorff` to draw the two witness
     segments; slower than :func:`hausdorff`, which prunes the second direction
     with the first.
+
+    See Also
+    --------
+    hausdorff
+        The larger of the two.
+    directed_hausdorff
+        One direction.
+
+    References
+    ----------
+    .. [1] D. P. Huttenlocher, G. A. Klanderman and W. J. Rucklidge, "Comparing images
+           using the Hausdorff distance", *IEEE Trans. Pattern Anal. Mach. Intell.*
+           15(9):850-863, 1993. doi:10.1109/34.232073
     """
     method = _check_method(method)
     A, B = _validate_pair(A, B)
@@ -955,6 +1002,19 @@ def hausdorff_kdtree(A, B) -> float:
 
     The reference "k-d tree" algorithm of the benchmarks: fast when the sets
     overlap, slow when they are far apart.
+
+    See Also
+    --------
+    hausdorff
+        The library's default.
+    hausdorff_early_break
+        SciPy's early break.
+
+    References
+    ----------
+    .. [1] D. P. Huttenlocher, G. A. Klanderman and W. J. Rucklidge, "Comparing images
+           using the Hausdorff distance", *IEEE Trans. Pattern Anal. Mach. Intell.*
+           15(9):850-863, 1993. doi:10.1109/34.232073
     """
     A, B = _validate_pair(A, B)
     hab = cKDTree(B).query(A, k=1, workers=-1)[0].max()
@@ -966,6 +1026,19 @@ def hausdorff_early_break(A, B, seed: int = 0) -> float:
     """H(A, B) by scipy's early-break algorithm (Taha & Hanbury), both directions.
 
     Fast when the sets are far apart, slow when they overlap.
+
+    See Also
+    --------
+    hausdorff
+        The library's default.
+    hausdorff_kdtree
+        Two k-d tree queries.
+
+    References
+    ----------
+    .. [1] A. A. Taha and A. Hanbury, "An efficient algorithm for calculating the exact
+           Hausdorff distance", *IEEE Trans. Pattern Anal. Mach. Intell.*
+           37(11):2153-2163, 2015. doi:10.1109/TPAMI.2015.2408351
     """
     from scipy.spatial.distance import directed_hausdorff as _scipy_dh
 
@@ -983,6 +1056,11 @@ class Timings:
         ``{name: seconds}``.
     values : dict
         ``{name: H(A, B)}``; all equal when the algorithms are exact.
+
+    See Also
+    --------
+    timings
+        Produces it.
     """
 
     seconds: dict
@@ -1009,6 +1087,17 @@ def timings(A, B, *, repeat: int = 1, brute: bool = True) -> Timings:
     Returns
     -------
     Timings
+
+    See Also
+    --------
+    hausdorff
+        The library's default algorithm.
+
+    References
+    ----------
+    .. [1] A. A. Taha and A. Hanbury, "An efficient algorithm for calculating the exact
+           Hausdorff distance", *IEEE Trans. Pattern Anal. Mach. Intell.*
+           37(11):2153-2163, 2015. doi:10.1109/TPAMI.2015.2408351
     """
     import time
 

@@ -46,6 +46,11 @@ class DockingScore:
         Surface area of ``A`` and ``B`` hidden in their union (Å² for molecules).
     clash : float
         Summed overlap depth of ball pairs across the two molecules, beyond the tolerance.
+
+    See Also
+    --------
+    docking_score
+        Produces it.
     """
 
     score: float
@@ -77,6 +82,22 @@ def docking_score(
     Returns
     -------
     DockingScore
+
+    See Also
+    --------
+    Docking
+        Scores many poses of one pair fast.
+    union_measure
+        The exact areas it is built from.
+
+    References
+    ----------
+    .. [1] I. Halperin, B. Ma, H. Wolfson and R. Nussinov, "Principles of docking: an
+           overview of search algorithms and a guide to scoring functions", *Proteins*
+           47(4):409-443, 2002. doi:10.1002/prot.10115
+    .. [2] J. Liang, H. Edelsbrunner, P. Fu, P. V. Sudhakar and S. Subramaniam,
+           "Analytical shape computation of macromolecules: I. Molecular area and volume
+           through alpha shape", *Proteins* 33(1):1-17, 1998.
 
     Examples
     --------
@@ -131,6 +152,11 @@ class DockedPose:
         (``"axes"``, ``"critical"``) or ``"given"``.
     evaluations : int
         Number of poses scored by the local improvement.
+
+    See Also
+    --------
+    Docking.search
+        Produces poses.
     """
 
     motion: object
@@ -152,6 +178,15 @@ class Docking:
         As in :func:`docking_score`: the buried area is that of the balls grown by
         ``probe``, the clashes are those of the balls as given.
 
+    See Also
+    --------
+    docking_score
+        One pose, from scratch.
+    coarse_align
+        The first of the two stages.
+    icp
+        Local improvement of a shape match.
+
     Notes
     -----
     :meth:`score` equals ``docking_score(receptor, ligand, motion)`` (the tests check it)
@@ -160,6 +195,12 @@ class Docking:
     :math:`a` changes its exposed area only if it meets a ligand ball (it lies within
     :math:`r_{\\max}^A + r_{\\max}^B` of one), and all the balls that meet such an
     :math:`a` are in that neighbourhood, so its per-ball area there is exact.
+
+    References
+    ----------
+    .. [1] I. Halperin, B. Ma, H. Wolfson and R. Nussinov, "Principles of docking: an
+           overview of search algorithms and a guide to scoring functions", *Proteins*
+           47(4):409-443, 2002. doi:10.1002/prot.10115
 
     Examples
     --------

@@ -37,6 +37,11 @@ class Embedding:
         All eigenvalues of the double-centred matrix :math:`B`, largest first; the
         first ``dim`` give the embedding, negative ones say the distance is not
         Euclidean.
+
+    See Also
+    --------
+    classical_mds
+        Produces it.
     """
 
     points: np.ndarray
@@ -67,6 +72,19 @@ def classical_mds(D, dim: int = 2) -> Embedding:
         is positive) and the spectrum.  Where two kept eigenvalues are equal, the
         axes within their eigenspace are not unique: any rotation of them is as good,
         and which one is returned may depend on the LAPACK in use.
+
+    See Also
+    --------
+    shapelab.diagrams.distance_matrix
+        Distances between persistence diagrams to embed.
+
+    References
+    ----------
+    .. [1] W. S. Torgerson, "Multidimensional scaling: I. Theory and method",
+           *Psychometrika* 17:401-419, 1952. doi:10.1007/BF02288916
+    .. [2] J. C. Gower, "Some distance properties of latent root and vector methods used
+           in multivariate analysis", *Biometrika* 53(3-4):325-338, 1966.
+           doi:10.1093/biomet/53.3-4.325
 
     Examples
     --------

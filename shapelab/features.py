@@ -35,7 +35,13 @@ _FEATURES = ("axes", "critical")
 
 @dataclass(frozen=True)
 class Candidate:
-    """A proposed motion and its score (mean nearest-neighbour distance, lower is better)."""
+    """A proposed motion and its score (mean nearest-neighbour distance, lower is better).
+
+    See Also
+    --------
+    coarse_align
+        Produces candidates.
+    """
 
     motion: object
     score: float
@@ -65,11 +71,28 @@ def coarse_align(R, G, *, features=("axes", "critical")) -> list:
     list of Candidate
         Best first (lowest mean nearest-neighbour distance after the motion).
 
+    See Also
+    --------
+    icp
+        Local improvement from each candidate.
+    critical_points
+        The critical points used as features.
+    optimal_rotation
+        Horn's rotation of matched features.
+
     Notes
     -----
     When two principal variances are equal (a shape with a symmetry axis), the frame is
     not unique and the axes candidates are only as good as an arbitrary choice; the
     ``"critical"`` candidates and ICP then decide.
+
+    References
+    ----------
+    .. [1] P. J. Besl and N. D. McKay, "A method for registration of 3-D shapes", *IEEE
+           Trans. Pattern Anal. Mach. Intell.* 14(2):239-256, 1992. doi:10.1109/34.121791
+    .. [2] B. K. P. Horn, "Closed-form solution of absolute orientation using unit
+           quaternions", *J. Opt. Soc. Am. A* 4(4):629-642, 1987.
+           doi:10.1364/JOSAA.4.000629
 
     Examples
     --------

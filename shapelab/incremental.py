@@ -196,6 +196,25 @@ def incremental_triangulation(P: WeightedPoints, order=None):
     -------
     ndarray of int64, shape (m, k+1)
         The top simplices, vertices ascending in each row.
+
+    See Also
+    --------
+    regular_triangulation
+        The public entry point; certified Qhull first.
+    shapelab.certify.certify
+        The check that decides when this is needed.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner and N. R. Shah, "Incremental topological flipping works for
+           regular triangulations", *Algorithmica* 15:223-241, 1996.
+           doi:10.1007/BF01975867
+    .. [2] H. Edelsbrunner and E. P. Mücke, "Simulation of Simplicity: a technique to
+           cope with degenerate cases in geometric algorithms", *ACM Trans. Graph.*
+           9(1):66-104, 1990. doi:10.1145/77635.77639
+    .. [3] J. R. Shewchuk, "Adaptive precision floating-point arithmetic and fast robust
+           geometric predicates", *Discrete Comput. Geom.* 18:305-363, 1997.
+           doi:10.1007/PL00009321
     """
     n, k = P.n, P.k
     order = np.arange(n) if order is None else np.asarray(order)

@@ -42,6 +42,11 @@ def reference_point(points, kind: str = "centroid") -> np.ndarray:
     -------
     ndarray, shape (d,)
 
+    See Also
+    --------
+    hausdorff_under_translation
+        Uses reference points to match under translation.
+
     Notes
     -----
     A *reference point* r for the Hausdorff distance must be equivariant,
@@ -61,6 +66,11 @@ def reference_point(points, kind: str = "centroid") -> np.ndarray:
       points without this caveat.  (For convex bodies the Steiner point is a
       reference point with c = 4/π in the plane — Aichholzer, Alt and Rote; not
       implemented here.)
+
+    References
+    ----------
+    .. [1] H. Alt, B. Behrends and J. Blömer, "Approximate matching of polygonal shapes",
+           *Ann. Math. Artif. Intell.* 13:251-265, 1995. doi:10.1007/BF01530830
     """
     P = as_points(points, "points")
     if kind == "centroid":
@@ -104,6 +114,11 @@ class TranslationMatch:
         How many translations were evaluated.
     converged : bool
         Whether the gap closed to the tolerance within the evaluation budget.
+
+    See Also
+    --------
+    hausdorff_under_translation
+        Produces it.
     """
 
     centroid_translation: np.ndarray
@@ -182,6 +197,21 @@ def hausdorff_under_translation(
     -------
     TranslationMatch
 
+    Raises
+    ------
+    ValueError
+        Bad A or B (see :func:`directed_hausdorff`), tol <= 0, or
+        max_evaluations < 1.
+
+    See Also
+    --------
+    reference_point
+        The reference points used for the first guess.
+    hausdorff
+        The distance it minimises.
+    icp
+        Local improvement under rigid motions.
+
     Notes
     -----
     The search is a Lipschitz branch and bound.  ``f(t) = H(A, B + t)`` is
@@ -194,11 +224,13 @@ def hausdorff_under_translation(
     (Nelder-Mead alone gets stuck: f has many local minima), this returns a
     certified interval ``[lower_bound, optimal_distance]`` for the optimum.
 
-    Raises
-    ------
-    ValueError
-        Bad A or B (see :func:`directed_hausdorff`), tol <= 0, or
-        max_evaluations < 1.
+    References
+    ----------
+    .. [1] H. Alt, B. Behrends and J. Blömer, "Approximate matching of polygonal shapes",
+           *Ann. Math. Artif. Intell.* 13:251-265, 1995. doi:10.1007/BF01530830
+    .. [2] D. P. Huttenlocher, G. A. Klanderman and W. J. Rucklidge, "Comparing images
+           using the Hausdorff distance", *IEEE Trans. Pattern Anal. Mach. Intell.*
+           15(9):850-863, 1993. doi:10.1109/34.232073
     """
     A, B = as_point_pair(A, B)
     tol = as_finite_scalar(tol, "tol", positive=True)

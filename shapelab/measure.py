@@ -152,6 +152,11 @@ class UnionMeasure:
 
     Properties ``area``, ``perimeter`` (2D), ``volume``, ``surface_area`` (3D) name
     the two numbers in the usual words; in 3D ``area`` is the surface area.
+
+    See Also
+    --------
+    union_measure
+        Produces it.
     """
 
     dim: int
@@ -574,6 +579,18 @@ def measure_from_simplices(centers, weights, simplices, *, tau: float = 0.0) -> 
     Returns
     -------
     UnionMeasure
+
+    See Also
+    --------
+    union_measure
+        The same on the dual complex it builds.
+    shapelab.oracles.naive_union_area
+        The full inclusion–exclusion formula, an oracle.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner, "The union of balls and its dual shape", *Discrete Comput.
+           Geom.* 13:415-440, 1995. doi:10.1007/BF02574053
     """
     Zall = np.asarray(centers, dtype=np.float64)
     Wall = np.asarray(weights, dtype=np.float64)
@@ -650,6 +667,21 @@ def union_measure(F_or_balls, tau=0.0) -> UnionMeasure:
         empty.  Default 0: the balls as given.  ``-inf`` gives the empty union;
         ``inf`` is refused (every ball would be infinite).
 
+    Returns
+    -------
+    UnionMeasure
+        ``measure`` (area/volume), ``boundary`` (perimeter/surface area), the
+        per-ball shares ``ball_measure`` = vol(:math:`B_i \\cap \\Pi(B_i)`) and
+        ``ball_boundary`` = area(:math:`\\partial B_i \\cap \\partial U`), and the
+        per-dimension ``terms`` of the formula.
+
+    See Also
+    --------
+    dual_complex
+        The simplices of the short formula.
+    shapelab.oracles.monte_carlo_union_measure
+        A sampled estimate, an oracle.
+
     Notes
     -----
     K is taken just before τ: a simplex entering at v is left out unless
@@ -662,13 +694,13 @@ def union_measure(F_or_balls, tau=0.0) -> UnionMeasure:
     :math:`(\\mathrm{TIE\\_TOL}\\,|\\tau|)^{d/2}` or less at τ, and attached pairs,
     which enter together, are left out together.
 
-    Returns
-    -------
-    UnionMeasure
-        ``measure`` (area/volume), ``boundary`` (perimeter/surface area), the
-        per-ball shares ``ball_measure`` = vol(:math:`B_i \\cap \\Pi(B_i)`) and
-        ``ball_boundary`` = area(:math:`\\partial B_i \\cap \\partial U`), and the
-        per-dimension ``terms`` of the formula.
+    References
+    ----------
+    .. [1] H. Edelsbrunner, "The union of balls and its dual shape", *Discrete Comput.
+           Geom.* 13:415-440, 1995. doi:10.1007/BF02574053
+    .. [2] J. Liang, H. Edelsbrunner, P. Fu, P. V. Sudhakar and S. Subramaniam,
+           "Analytical shape computation of macromolecules: I. Molecular area and volume
+           through alpha shape", *Proteins* 33(1):1-17, 1998.
 
     Examples
     --------

@@ -45,6 +45,11 @@ def intersection_area(centers, radii) -> float:
     :math:`\\tfrac12[r^2 (\\phi_2-\\phi_1) + r\\,(c_x(\\sin\\phi_2-\\sin\\phi_1)
     - c_y(\\cos\\phi_2-\\cos\\phi_1))]`.  Used by :func:`naive_union_area`; cost
     :math:`O(k^2)` for k disks.
+
+    See Also
+    --------
+    naive_union_area
+        Sums it over all subsets.
     """
     from ._toolkit.validate import as_points, as_radii
 
@@ -115,6 +120,16 @@ def naive_union_area(balls: Balls, *, max_balls: int = 16, max_order=None):
         :math:`2^n - 1`, the number of terms of the formula.
     n_nonzero : int
         How many terms were nonzero.
+
+    See Also
+    --------
+    union_measure
+        The short formula this checks.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner, "The union of balls and its dual shape", *Discrete Comput.
+           Geom.* 13:415-440, 1995. doi:10.1007/BF02574053
     """
     check_balls(balls)
     if balls.dim != 2:
@@ -151,6 +166,11 @@ def monte_carlo_union_measure(balls: Balls, n_samples=100_000, *, seed=0, chunk:
 
     Samples uniformly in the bounding box; returns the estimate and its standard
     error :math:`V_{box}\\sqrt{p(1-p)/N}`.
+
+    See Also
+    --------
+    union_measure
+        The exact measure this estimates.
     """
     check_balls(balls)
     n_samples = as_positive_int(n_samples, "n_samples")
@@ -214,6 +234,18 @@ def sampled_nerve(balls: Balls, *, tau=0.0, spacing=0.02, margin=None, max_dim=N
     -------
     set of tuple of int
         The simplices, each a sorted tuple of ball indices.
+
+    See Also
+    --------
+    dual_complex
+        The exact nerve this checks.
+    shapelab.power.clipped_cells
+        The sets whose nerve it is.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner, "The union of balls and its dual shape", *Discrete Comput.
+           Geom.* 13:415-440, 1995. doi:10.1007/BF02574053
     """
     check_balls(balls)
     t = as_tau(tau, finite=True)
@@ -253,6 +285,11 @@ def raster_topology(balls: Balls, *, tau=0.0, spacing=0.02, min_hole_pixels: int
     -------
     tuple of int
         ``(components, holes)``.
+
+    See Also
+    --------
+    shapelab.topology.betti
+        The exact Betti numbers this checks.
     """
     from scipy import ndimage
 

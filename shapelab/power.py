@@ -306,6 +306,13 @@ class TriangulationReport:
     counts : dict
         Tests decided by the floating-point filter and exactly, ties broken by
         Simulation of Simplicity.
+
+    See Also
+    --------
+    triangulation_report
+        Produces this report.
+    regular_triangulation
+        The triangulation it describes.
     """
 
     method: str
@@ -360,7 +367,26 @@ def triangulate_local(balls: Balls, report: bool = False):
 def triangulation_report(balls: Balls) -> TriangulationReport:
     """How the regular triangulation of ``balls`` is computed and certified
     (Notes §23.1): Qhull's answer certified exactly, or the exact incremental
-    algorithm where the certificate failed; see :class:`TriangulationReport`."""
+    algorithm where the certificate failed; see :class:`TriangulationReport`.
+
+    See Also
+    --------
+    regular_triangulation
+        The triangulation itself.
+    shapelab.certify.certify
+        The exact check of Qhull's candidate.
+    shapelab.incremental.incremental_triangulation
+        The exact fallback.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner and N. R. Shah, "Incremental topological flipping works for
+           regular triangulations", *Algorithmica* 15:223-241, 1996.
+           doi:10.1007/BF01975867
+    .. [2] H. Edelsbrunner and E. P. Mücke, "Simulation of Simplicity: a technique to
+           cope with degenerate cases in geometric algorithms", *ACM Trans. Graph.*
+           9(1):66-104, 1990. doi:10.1145/77635.77639
+    """
     check_balls(balls)
     return triangulate_local(balls, report=True)[3]
 
@@ -390,6 +416,15 @@ def regular_triangulation(balls: Balls) -> np.ndarray:
         distinct centre).  Vertices ascend within each row and rows are sorted
         lexicographically.  Hidden balls never appear.
 
+    See Also
+    --------
+    power_diagram
+        Its dual: the cells of the balls.
+    alpha_filtration
+        The growth model's filtration of this triangulation.
+    triangulation_report
+        Which road (certified Qhull or exact incremental) was taken.
+
     Notes
     -----
     Computed by the lifting map :math:`z \\mapsto (z, |z|^2 - r^2)` and the lower
@@ -398,6 +433,20 @@ def regular_triangulation(balls: Balls) -> np.ndarray:
     of the input with its weights perturbed symbolically (Simulation of Simplicity,
     earlier balls slightly larger), so it depends on the input alone, never on the
     machine.
+
+    References
+    ----------
+    .. [1] F. Aurenhammer, "Power diagrams: properties, algorithms and applications",
+           *SIAM J. Comput.* 16(1):78-96, 1987. doi:10.1137/0216006
+    .. [2] H. Edelsbrunner and N. R. Shah, "Incremental topological flipping works for
+           regular triangulations", *Algorithmica* 15:223-241, 1996.
+           doi:10.1007/BF01975867
+    .. [3] H. Edelsbrunner and E. P. Mücke, "Simulation of Simplicity: a technique to
+           cope with degenerate cases in geometric algorithms", *ACM Trans. Graph.*
+           9(1):66-104, 1990. doi:10.1145/77635.77639
+    .. [4] C. B. Barber, D. P. Dobkin and H. Huhdanpaa, "The Quickhull algorithm for
+           convex hulls", *ACM Trans. Math. Softw.* 22(4):469-483, 1996.
+           doi:10.1145/235815.235821
 
     Examples
     --------
@@ -442,6 +491,13 @@ class PowerDiagram:
     unbounded : ndarray of bool, shape (n,)
         True for the (non-hidden) balls whose cell is unbounded, i.e. whose centre
         is on the boundary of the convex hull of the centres.
+
+    See Also
+    --------
+    power_diagram
+        Builds it.
+    regular_triangulation
+        Its dual triangulation.
     """
 
     balls: Balls
@@ -531,6 +587,15 @@ def power_diagram(balls: Balls, *, bbox=None) -> PowerDiagram:
     -------
     PowerDiagram
 
+    See Also
+    --------
+    power_distance
+        The distance whose minimisation defines the cells.
+    regular_triangulation
+        The dual triangulation.
+    clipped_cells
+        Cells clipped to the grown disks.
+
     Notes
     -----
     The cell :math:`\\Pi(B_i) = \\{x : \\pi_i(x) \\le \\pi_j(x)\\ \\forall j\\}` is an
@@ -540,6 +605,13 @@ def power_diagram(balls: Balls, *, bbox=None) -> PowerDiagram:
     DT neighbours ``j`` of ``i`` matter.  In 2D each cell is clipped from the box by
     these half-planes; in 3D the cell is described by its vertices (orthocentres of
     the incident tetrahedra) and ``unbounded`` flags the cells on the hull.
+
+    References
+    ----------
+    .. [1] F. Aurenhammer, "Power diagrams: properties, algorithms and applications",
+           *SIAM J. Comput.* 16(1):78-96, 1987. doi:10.1137/0216006
+    .. [2] H. Edelsbrunner, "The union of balls and its dual shape", *Discrete Comput.
+           Geom.* 13:415-440, 1995. doi:10.1007/BF02574053
     """
     check_balls(balls)
     d = balls.dim
@@ -699,6 +771,20 @@ def clipped_cells(balls: Balls, *, tau=0.0, diagram=None, arc_resolution: int = 
     -------
     tuple of ndarray
         One (k_i, 2) counter-clockwise polygon per ball, (0, 2) when empty.
+
+    See Also
+    --------
+    power_diagram
+        The unclipped cells.
+    dual_complex
+        The nerve of these clipped cells.
+    shapelab.oracles.sampled_nerve
+        The same nerve by sampling, an oracle.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner, "The union of balls and its dual shape", *Discrete Comput.
+           Geom.* 13:415-440, 1995. doi:10.1007/BF02574053
     """
     check_balls(balls)
     if balls.dim != 2:

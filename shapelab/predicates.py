@@ -509,6 +509,10 @@ def affine_basis(coords) -> list:
         ``k + 1`` row indices, ``k`` the exact affine dimension of the points (``[]``
         for no points).  Every point lies exactly in the affine hull of these rows.
 
+    See Also
+    --------
+    projection_axes : the coordinate axes a lower-dimensional flat projects to.
+
     Notes
     -----
     Greedy: starting from row 0, add at each step the point with the largest
@@ -518,10 +522,6 @@ def affine_basis(coords) -> list:
     points are tested with Python integers, and when every minor of every point is
     exactly zero the flat is the affine hull.  No rank threshold is involved: a
     set flat up to a relative 1e-12 but not exactly flat is full-dimensional.
-
-    See Also
-    --------
-    projection_axes : the coordinate axes a lower-dimensional flat projects to.
 
     References
     ----------

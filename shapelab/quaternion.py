@@ -112,6 +112,19 @@ def qmul(a, b) -> np.ndarray:
         :math:`a\\cdot b` with :math:`(a_0 b_0 - \\vec a\\cdot\\vec b,\\;
         a_0\\vec b + b_0\\vec a + \\vec a\\times\\vec b)`, the product of Notes §23.2 with
         the sign of the :math:`\\mathbf k` part corrected (see the module docstring).
+
+    See Also
+    --------
+    Quaternion
+        The same product on one quaternion (``a * b``).
+    left_matrices
+        The product as a matrix, ``a * b = Q(a) b``.
+
+    References
+    ----------
+    .. [1] B. K. P. Horn, "Closed-form solution of absolute orientation using unit
+           quaternions", *J. Opt. Soc. Am. A* 4(4):629-642, 1987.
+           doi:10.1364/JOSAA.4.000629
     """
     a = _as_quats(a, "a")
     b = _as_quats(b, "b")
@@ -129,13 +142,29 @@ def qmul(a, b) -> np.ndarray:
 
 
 def qconj(q) -> np.ndarray:
-    """Conjugates :math:`q^* = q_0 - q_1\\mathbf i - q_2\\mathbf j - q_3\\mathbf k` (Notes §23.2)."""
+    """Conjugates :math:`q^* = q_0 - q_1\\mathbf i - q_2\\mathbf j - q_3\\mathbf k` (Notes §23.2).
+
+    See Also
+    --------
+    qmul
+        The product; ``q * qconj(q) = |q|^2``.
+    qnorm
+        The norm.
+    """
     q = _as_quats(q, "q")
     return q * np.array([1.0, -1.0, -1.0, -1.0])
 
 
 def qnorm(q) -> np.ndarray:
-    """Norms :math:`\\lVert q\\rVert = \\sqrt{q_0^2+q_1^2+q_2^2+q_3^2}`, shape (...)."""
+    """Norms :math:`\\lVert q\\rVert = \\sqrt{q_0^2+q_1^2+q_2^2+q_3^2}`, shape (...).
+
+    See Also
+    --------
+    qnormalize
+        Divide by the norm.
+    qconj
+        ``q q* = |q|^2``.
+    """
     q = _as_quats(q, "q")
     return np.linalg.norm(q, axis=-1)
 
@@ -155,7 +184,15 @@ def unit_quaternions(q: np.ndarray, name: str) -> np.ndarray:
 
 
 def qnormalize(q) -> np.ndarray:
-    """Unit quaternions :math:`q/\\lVert q\\rVert`; the zero quaternion raises ValueError."""
+    """Unit quaternions :math:`q/\\lVert q\\rVert`; the zero quaternion raises ValueError.
+
+    See Also
+    --------
+    qnorm
+        The norm.
+    qmatrix
+        Rotation matrices of unit quaternions.
+    """
     return unit_quaternions(_as_quats(q, "q"), "q")
 
 
@@ -164,6 +201,19 @@ def qmatrix(q) -> np.ndarray:
 
     The matrix :math:`M` with :math:`M r = q r q^*` for a unit :math:`q`, i.e. the
     lower-right 3×3 block of :math:`\\bar Q^T Q` (Notes §23.2, :math:`I_q`).
+
+    See Also
+    --------
+    qrotate
+        Rotate points directly.
+    qfrom_matrix
+        The inverse map, up to sign.
+
+    References
+    ----------
+    .. [1] B. K. P. Horn, "Closed-form solution of absolute orientation using unit
+           quaternions", *J. Opt. Soc. Am. A* 4(4):629-642, 1987.
+           doi:10.1364/JOSAA.4.000629
     """
     w, x, y, z = np.moveaxis(unit_quaternions(_as_quats(q, "q"), "q"), -1, 0)
     xx, yy, zz = x * x, y * y, z * z
@@ -198,6 +248,19 @@ def qrotate(q, points) -> np.ndarray:
     Returns
     -------
     ndarray, shape like ``points`` (or (n, 3) when ``q`` has n rows)
+
+    See Also
+    --------
+    qmatrix
+        The rotation matrix of the same quaternion.
+    Quaternion.rotate
+        One quaternion.
+
+    References
+    ----------
+    .. [1] B. K. P. Horn, "Closed-form solution of absolute orientation using unit
+           quaternions", *J. Opt. Soc. Am. A* 4(4):629-642, 1987.
+           doi:10.1364/JOSAA.4.000629
     """
     q = _as_quats(q, "q")
     p = np.asarray(as_points3(points, "points"))
@@ -229,6 +292,18 @@ def qfrom_matrix(m, *, atol: float = 1e-6) -> np.ndarray:
     m : array_like, shape (3, 3) or (n, 3, 3)
         Proper rotation matrices: :math:`M^TM = I` and :math:`\\det M = +1` within
         ``atol``.  Anything else (a reflection, a scaling) raises ValueError.
+
+    See Also
+    --------
+    qmatrix
+        The forward map.
+    scipy.spatial.transform.Rotation.as_quat
+        SciPy's, in (x, y, z, w) order.
+
+    References
+    ----------
+    .. [1] S. W. Shepperd, "Quaternion from rotation matrix", *J. Guid. Control*
+           1(3):223-224, 1978. doi:10.2514/3.55767b
     """
     m = _as_float_array(m, "matrix")
     if m.ndim < 2 or m.shape[-2:] != (3, 3):
@@ -273,6 +348,19 @@ def qfrom_axis_angle(axis, angle) -> np.ndarray:
 
     ``axis`` (shape (..., 3), non-zero, normalised here) and ``angle`` (radians,
     shape (...)) broadcast against each other.
+
+    See Also
+    --------
+    rotation_angle
+        The angle between two rotations.
+    Quaternion.from_axis_angle
+        One quaternion.
+
+    References
+    ----------
+    .. [1] B. K. P. Horn, "Closed-form solution of absolute orientation using unit
+           quaternions", *J. Opt. Soc. Am. A* 4(4):629-642, 1987.
+           doi:10.1364/JOSAA.4.000629
     """
     u = _as_float_array(axis, "axis")
     if u.ndim == 0 or u.shape[-1] != 3:
@@ -327,6 +415,19 @@ def left_matrices(q) -> np.ndarray:
     """The matrices :math:`Q` with :math:`q\\cdot r = Q r`, shape (..., 4, 4) (Notes §23.2).
 
     A pure 3-vector (shape (..., 3)) is read as the quaternion :math:`0 + r`.
+
+    See Also
+    --------
+    right_matrices
+        The matrices of right multiplication.
+    shapelab.registration.horn_matrix
+        Built from these matrices.
+
+    References
+    ----------
+    .. [1] B. K. P. Horn, "Closed-form solution of absolute orientation using unit
+           quaternions", *J. Opt. Soc. Am. A* 4(4):629-642, 1987.
+           doi:10.1364/JOSAA.4.000629
     """
     q = np.asarray(q, dtype=np.float64)
     if q.ndim >= 1 and q.shape[-1] == 3:
@@ -339,6 +440,19 @@ def right_matrices(q) -> np.ndarray:
 
     :math:`\\bar Q` is :math:`Q` with its lower-right 3×3 block transposed (Notes §23.2).
     A pure 3-vector (shape (..., 3)) is read as the quaternion :math:`0 + r`.
+
+    See Also
+    --------
+    left_matrices
+        The matrices of left multiplication.
+    shapelab.registration.horn_matrix
+        Built from these matrices.
+
+    References
+    ----------
+    .. [1] B. K. P. Horn, "Closed-form solution of absolute orientation using unit
+           quaternions", *J. Opt. Soc. Am. A* 4(4):629-642, 1987.
+           doi:10.1364/JOSAA.4.000629
     """
     q = np.asarray(q, dtype=np.float64)
     if q.ndim >= 1 and q.shape[-1] == 3:
@@ -352,6 +466,16 @@ def rotation_angle(a, b) -> np.ndarray:
     Invariant under the sign of either quaternion; computed as
     :math:`2\\operatorname{atan2}(\\lVert\\vec c\\rVert, |c_0|)` with :math:`c = a^* b`
     (normalised), which stays accurate for tiny angles, unlike :math:`2\\arccos`.
+
+    See Also
+    --------
+    qfrom_axis_angle
+        A rotation from its axis and angle.
+
+    References
+    ----------
+    .. [1] K. Shoemake, "Animating rotation with quaternion curves", *SIGGRAPH '85*,
+           *Comput. Graph.* 19(3):245-254, 1985. doi:10.1145/325165.325242
     """
     a = unit_quaternions(_as_quats(a, "a"), "a")
     b = unit_quaternions(_as_quats(b, "b"), "b")
@@ -360,13 +484,29 @@ def rotation_angle(a, b) -> np.ndarray:
 
 
 def to_scipy_order(q) -> np.ndarray:
-    """``(w, x, y, z)`` → ``(x, y, z, w)``, the order of SciPy's ``Rotation.from_quat``."""
+    """``(w, x, y, z)`` → ``(x, y, z, w)``, the order of SciPy's ``Rotation.from_quat``.
+
+    See Also
+    --------
+    from_scipy_order
+        The inverse.
+    scipy.spatial.transform.Rotation
+        SciPy's rotations.
+    """
     q = _as_quats(q, "q")
     return np.concatenate([q[..., 1:], q[..., :1]], -1)
 
 
 def from_scipy_order(q) -> np.ndarray:
-    """``(x, y, z, w)`` (SciPy's ``Rotation.as_quat``) → ``(w, x, y, z)``."""
+    """``(x, y, z, w)`` (SciPy's ``Rotation.as_quat``) → ``(w, x, y, z)``.
+
+    See Also
+    --------
+    to_scipy_order
+        The inverse.
+    scipy.spatial.transform.Rotation
+        SciPy's rotations.
+    """
     q = _as_quats(q, "q")
     return np.concatenate([q[..., 3:], q[..., :3]], -1)
 
@@ -387,11 +527,26 @@ class Quaternion:
     w, x, y, z : float
         The notes' :math:`q_0, q_1, q_2, q_3`; finite, stored as float64.
 
+    See Also
+    --------
+    qmul
+        Vectorised products of arrays of quaternions.
+    optimal_rotation
+        The optimal rotation as a unit quaternion.
+
     Notes
     -----
     ``*`` is the Hamilton product (and scaling by a real number), ``+``/``-`` are
     componentwise, ``==`` is exact equality of the components (use
     :meth:`isclose`, or :meth:`same_rotation` which also accepts :math:`-q`).
+
+    References
+    ----------
+    .. [1] B. K. P. Horn, "Closed-form solution of absolute orientation using unit
+           quaternions", *J. Opt. Soc. Am. A* 4(4):629-642, 1987.
+           doi:10.1364/JOSAA.4.000629
+    .. [2] K. Shoemake, "Animating rotation with quaternion curves", *SIGGRAPH '85*,
+           *Comput. Graph.* 19(3):245-254, 1985. doi:10.1145/325165.325242
 
     Examples
     --------

@@ -93,6 +93,17 @@ class DegenerateRotationWarning(UserWarning):
 
     The returned rotation is the optimal one of smallest angle; the rotation about the
     common line of the points (or the mirror's axis) is undetermined by the data.
+
+    See Also
+    --------
+    optimal_rotation
+        Warns with it.
+
+    References
+    ----------
+    .. [1] B. K. P. Horn, "Closed-form solution of absolute orientation using unit
+           quaternions", *J. Opt. Soc. Am. A* 4(4):629-642, 1987.
+           doi:10.1364/JOSAA.4.000629
     """
 
 
@@ -103,6 +114,21 @@ def cross_covariance(R, G) -> np.ndarray:
     """The 3×3 matrix :math:`M = \\sum_j r_j g_j^T` of paired point sets (no centring).
 
     Computed as one matrix product, O(n).
+
+    See Also
+    --------
+    horn_matrix
+        Horn's matrix, built from these sums.
+    kabsch
+        Uses its SVD.
+
+    References
+    ----------
+    .. [1] B. K. P. Horn, "Closed-form solution of absolute orientation using unit
+           quaternions", *J. Opt. Soc. Am. A* 4(4):629-642, 1987.
+           doi:10.1364/JOSAA.4.000629
+    .. [2] W. Kabsch, "A solution for the best rotation to relate two sets of vectors",
+           *Acta Cryst. A* 32:922-923, 1976. doi:10.1107/S0567739476001873
     """
     R, G = _paired(R, G)
     return _covariance(R, G)
@@ -139,6 +165,19 @@ def horn_matrix(R, G) -> np.ndarray:
 
     with :math:`S_{ab} = \\sum_j r_{j,a}\\, g_{j,b}`; the trace of :math:`A` is zero.
     The tests check this against the literal sum of the notes.
+
+    See Also
+    --------
+    optimal_rotation
+        Its top eigenvector.
+    cross_covariance
+        The 3×3 sums it is made of.
+
+    References
+    ----------
+    .. [1] B. K. P. Horn, "Closed-form solution of absolute orientation using unit
+           quaternions", *J. Opt. Soc. Am. A* 4(4):629-642, 1987.
+           doi:10.1364/JOSAA.4.000629
     """
     return _horn_from_m(cross_covariance(R, G))
 
@@ -342,6 +381,11 @@ def optimal_rotation(R, G, weights=None, *, return_sensitivity: bool = False):
         about that spread (SVD-based ``align_vectors`` still finds the exact spin), a
         jump of up to a half turn about the line across the threshold.
 
+    See Also
+    --------
+    register : the rigid motion (weighted centroids, then this rotation).
+    kabsch : the SVD route.
+
     Notes
     -----
     * **Reflections.** If ``G`` is a mirror image of ``R``, no rotation matches it;
@@ -352,11 +396,6 @@ def optimal_rotation(R, G, weights=None, *, return_sensitivity: bool = False):
       here, unlike for :func:`register`, where centring leaves a single direction).
     * Cost: one pass over the data for :math:`M` (blocked 3×3 products, O(n)) and a
       4×4 symmetric eigenproblem; input finiteness is read off :math:`M`.
-
-    See Also
-    --------
-    register : the rigid motion (weighted centroids, then this rotation).
-    kabsch : the SVD route.
 
     References
     ----------
@@ -410,6 +449,21 @@ def kabsch(R, G, *, proper: bool = True) -> np.ndarray:
     proper : bool
         True (default): the det fix, always a rotation.  False: the naive
         :math:`VU^T`, which is a reflection when that fits better.
+
+    See Also
+    --------
+    optimal_rotation
+        Horn's quaternion method.
+    scipy.spatial.transform.Rotation.align_vectors
+        SciPy's.
+
+    References
+    ----------
+    .. [1] W. Kabsch, "A solution for the best rotation to relate two sets of vectors",
+           *Acta Cryst. A* 32:922-923, 1976. doi:10.1107/S0567739476001873
+    .. [2] S. Umeyama, "Least-squares estimation of transformation parameters between two
+           point patterns", *IEEE Trans. Pattern Anal. Mach. Intell.* 13(4):376-380,
+           1991. doi:10.1109/34.88573
     """
     R = as_points(R, "R", dim=3)
     G = as_points(G, "G", dim=3)
@@ -440,6 +494,13 @@ class RigidMotion:
         Any non-zero quaternion; stored normalised.  Default: the identity.
     translation : array_like, shape (3,), optional
         Default: zero.
+
+    See Also
+    --------
+    register
+        The least-squares motion of paired points.
+    icp
+        The motion of unpaired point sets.
 
     Notes
     -----
@@ -599,15 +660,15 @@ def register(R, G, weights=None, *, return_sensitivity: bool = False):
     --------
     optimal_rotation, icp
 
-    References
-    ----------
-    .. [1] B. K. P. Horn, "Closed-form solution of absolute orientation using unit
-       quaternions", J. Opt. Soc. Am. A 4 (1987) 629–642.
-
     Notes
     -----
     Centring also makes the computation robust to huge offsets (e.g. coordinates
     around 1e6): the rotation is computed from centred coordinates only.
+
+    References
+    ----------
+    .. [1] B. K. P. Horn, "Closed-form solution of absolute orientation using unit
+       quaternions", J. Opt. Soc. Am. A 4 (1987) 629–642.
 
     Examples
     --------
@@ -653,6 +714,11 @@ class ICPResult:
         ``n_iter + 1``.
     correspondences : ndarray of int, shape (n_iter + 1, n), or None
         The correspondence at each motion, when ``icp(..., keep_history=True)``.
+
+    See Also
+    --------
+    icp
+        Produces it.
     """
 
     motion: RigidMotion
@@ -685,6 +751,18 @@ def closest_points(points, target, *, max_distance=None, tree=None):
     -------
     index : ndarray of int, shape (n,)
     distance : ndarray, shape (n,)
+
+    See Also
+    --------
+    icp
+        Step 1 of each iteration.
+    scipy.spatial.cKDTree
+        The nearest-neighbour search.
+
+    References
+    ----------
+    .. [1] P. J. Besl and N. D. McKay, "A method for registration of 3-D shapes", *IEEE
+           Trans. Pattern Anal. Mach. Intell.* 14(2):239-256, 1992. doi:10.1109/34.121791
     """
     points = as_points(points, "points", dim=3)
     target = as_points(target, "target", dim=3)
@@ -821,6 +899,15 @@ def icp(
     -------
     ICPResult
 
+    See Also
+    --------
+    register
+        Step 2 of each iteration.
+    closest_points
+        Step 1.
+    coarse_align
+        Starting motions that avoid wrong local minima.
+
     Notes
     -----
     **Monotone cost.** Step 2 cannot increase :math:`\\mu` for fixed :math:`\\pi` (the
@@ -840,6 +927,14 @@ def icp(
     accelerated step is rejected) plus O(n) work.  The source is queried in a
     space-filling-curve order (cache-friendly); results are reported in the
     caller's order.
+
+    References
+    ----------
+    .. [1] P. J. Besl and N. D. McKay, "A method for registration of 3-D shapes", *IEEE
+           Trans. Pattern Anal. Mach. Intell.* 14(2):239-256, 1992. doi:10.1109/34.121791
+    .. [2] B. K. P. Horn, "Closed-form solution of absolute orientation using unit
+           quaternions", *J. Opt. Soc. Am. A* 4(4):629-642, 1987.
+           doi:10.1364/JOSAA.4.000629
 
     Examples
     --------

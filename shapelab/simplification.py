@@ -54,6 +54,11 @@ class CurvePersistence:
         On a closed curve, the index of the global maximum, where the loop closes (the
         class of :math:`H_1` born there never dies); None on an open path.
     closed : bool
+
+    See Also
+    --------
+    curve_persistence
+        Produces it.
     """
 
     pairs: np.ndarray
@@ -92,6 +97,11 @@ class Simplification:
         The persistence of ``g``: the pairs of ``f`` with persistence ≥ ``epsilon``.
     error : float
         :math:`\\|g - f\\|_\\infty`, at most ``epsilon / 2``.
+
+    See Also
+    --------
+    simplify
+        Produces it.
     """
 
     values: np.ndarray
@@ -153,12 +163,27 @@ def curve_persistence(values, *, closed: bool = True) -> CurvePersistence:
     -------
     CurvePersistence
 
+    See Also
+    --------
+    simplify
+        Removes the pairs of small persistence.
+    critical_points
+        The critical points of a distance function.
+
     Notes
     -----
     The piecewise-linear function on the path or cycle graph, filtered by sublevel
     sets (lower-star filtration): components are born at minima and die at maxima,
     where the younger of the two merging components dies (the elder rule, notes §23.1
     and lesson 09).  Union–find over the vertices in increasing order, O(n log n).
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner, D. Letscher and A. Zomorodian, "Topological persistence and
+           simplification", *Discrete Comput. Geom.* 28:511-533, 2002.
+           doi:10.1007/s00454-002-2885-2
+    .. [2] H. Edelsbrunner and J. L. Harer, *Computational Topology: An Introduction*,
+           American Mathematical Society, 2010. doi:10.1090/mbk/069
 
     Examples
     --------
@@ -234,6 +259,11 @@ def simplify(values, epsilon, *, closed: bool = True) -> Simplification:
         ``g`` may have flat stretches (where a pair was cancelled); a flat stretch is no
         critical point.
 
+    See Also
+    --------
+    curve_persistence
+        The pairs it cancels.
+
     Notes
     -----
     The least persistent pair is always a pair of *adjacent* critical points ``m, M``
@@ -245,6 +275,12 @@ def simplify(values, epsilon, *, closed: bool = True) -> Simplification:
     Only values strictly between ``A`` and ``B`` change, by at most half the
     persistence; the sequence of critical points loses ``m`` and ``M`` and stays
     alternating, so the next cancellation is of the same kind.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner, D. Letscher and A. Zomorodian, "Topological persistence and
+           simplification", *Discrete Comput. Geom.* 28:511-533, 2002.
+           doi:10.1007/s00454-002-2885-2
 
     Examples
     --------
