@@ -750,6 +750,75 @@ class Filtration(_SimplicialMixin):
         dim = max((k for k, c in enumerate(counts) if c > 0), default=-1)
         return Complex(self.balls, t, dim, self._simplices, self._values, self._boundary, counts)
 
+    def attached(self, k: int) -> np.ndarray:
+        """Which k-simplices are *attached*: enter with a coface, not at their own time.
+
+        Parameters
+        ----------
+        k : int
+            Dimension, ``0 <= k <= balls.dim``.
+
+        Returns
+        -------
+        ndarray of bool, shape (n_k,)
+            Aligned with :meth:`simplices` and :meth:`values`: ``True`` where the
+            k-simplex is attached.  Top-dimensional simplices are never attached.
+
+        Notes
+        -----
+        Notes §23.1 (the growth model).  Let :math:`(c_\\sigma, \\rho_\\sigma)` be the
+        smallest orthogonal sphere of :math:`\\sigma`: the point of the affine hull of
+        :math:`\\sigma` with equal power :math:`\\rho_\\sigma` from all its balls.
+        :math:`\\sigma` is *unattached* if no other ball is closer to :math:`c_\\sigma`
+        in power, :math:`\\pi_v(c_\\sigma) \\ge \\rho_\\sigma` for every vertex
+        :math:`v` of a coface (equivalently, of every ball); then
+        :math:`c_\\sigma` lies in the power face dual to :math:`\\sigma` and
+        :math:`\\sigma` enters at :math:`\\rho_\\sigma`.  Otherwise it is *attached*:
+        its cells first meet at a point of that face where the power is higher than
+        :math:`\\rho_\\sigma`, on the boundary of the face, i.e. together with a
+        coface, and it enters at the earliest entry time of its cofaces [1]_, [2]_.
+        The test is exact (the sign of a barycentric coordinate of the coface's
+        orthocentre, certified or in rational arithmetic); in a tie
+        (:math:`\\pi_v(c_\\sigma) = \\rho_\\sigma`) the simplex counts as unattached,
+        and both rules give the same time.  A vertex is attached when a neighbour's
+        power covers its centre (:math:`c = z_i`, :math:`\\rho = -r_i^2`).
+
+        Computed on first use (one more pass over the triangulation) and kept on
+        the filtration.
+
+        See Also
+        --------
+        values : the entry times; ``values(k)[attached(k)]`` are coface times.
+        shapelab.power_distance : :math:`\\pi_v(x)`.
+
+        References
+        ----------
+        .. [1] H. Edelsbrunner, "The union of balls and its dual shape", *Discrete
+           Comput. Geom.* 13 (1995) 415-440.
+        .. [2] H. Edelsbrunner and J. L. Harer, *Computational Topology*, AMS, 2010,
+           §III.4 (alpha complexes).
+
+        Examples
+        --------
+        Three unit disks on an obtuse triangle: the orthogonal circle of the long
+        edge is centred at (2, 0) with :math:`\\rho = 2^2 - 1 = 3`, and the third
+        centre has power :math:`1 - 1 = 0 < 3` there, so the edge is attached and
+        enters with the triangle (circumcentre (2, -1.5), :math:`6.25 - 1`):
+
+        >>> import shapelab as sl
+        >>> F = sl.alpha_filtration(sl.Balls([[0, 0], [4, 0], [2, 1]], 1.0))
+        >>> F.simplices(1).tolist()
+        [[0, 2], [1, 2], [0, 1]]
+        >>> F.attached(1).tolist()
+        [False, False, True]
+        >>> F.values(1).tolist(), F.values(2).tolist()
+        ([0.25, 0.25, 5.25], [5.25])
+        """
+        k = _check_k(k, self.balls.dim)
+        if k > self.dimension:
+            return freeze(np.zeros(0, dtype=bool))
+        return self.derived("filtration.attached", _attached_flags)[k]
+
     def betti(self, tau) -> tuple:
         """Betti numbers of :math:`K(\\tau)` (see :func:`shapelab.topology.betti`)."""
         from .topology import betti
@@ -884,9 +953,11 @@ def alpha_filtration(balls: Balls) -> Filtration:
     return Filtration(balls, dim, tuple(simp_out), tuple(vals_out), tuple(bnd_out), counts)
 
 
-def _entry_times(balls: Balls):
+def _entry_times(balls: Balls, *, with_attached: bool = False):
     """Steps 1-4 of :func:`alpha_filtration`: faces, boundary matrices and entry times
-    per dimension, in frame-local indices and units (``None`` if there are no balls)."""
+    per dimension, in frame-local indices and units (``None`` if there are no balls).
+    With ``with_attached``, a sixth item: the attachment flags per dimension (the
+    top dimension's all False), aligned with the faces."""
     fr, simp, nbr = triangulate_local(balls)
     if simp.shape[0] == 0:
         return None
@@ -904,6 +975,7 @@ def _entry_times(balls: Balls):
 
     # 2. smallest orthogonal spheres and attachment, 3. top-down propagation
     vals = [None] * (dim + 1)
+    flags = [None] * dim + [np.zeros(faces[dim].shape[0], dtype=bool)]
     rho, att = _orthospheres_certified(balls, fr, faces[dim])
     vals[dim] = rho
     for j in range(dim, 0, -1):
@@ -919,13 +991,38 @@ def _entry_times(balls: Balls):
         for i in range(j + 1):
             np.minimum.at(cof, B[:, i], vals[j])
         vals[j - 1] = np.where(attached, cof, rho_f)
+        if with_attached:
+            flags[j - 1] = attached
         del cof, attached
         att = att_f
     # 4. non-decreasing against round-off (GUDHI's make_filtration_non_decreasing)
     for j in range(1, dim + 1):
         for i in range(j + 1):
             np.maximum(vals[j], vals[j - 1][bnd[j][:, i]], out=vals[j])
+    if with_attached:
+        return fr, faces, bnd, vals, dim, flags
     return fr, faces, bnd, vals, dim
+
+
+def _attached_flags(F: Filtration) -> tuple:
+    """The attachment flag of every simplex of ``F``, per dimension, in the order of
+    ``F.simplices(k)`` (what :meth:`Filtration.attached` returns): the entry times
+    are recomputed with the flags and sorted exactly as :func:`alpha_filtration`
+    sorts them, and the rows are checked to be ``F``'s own."""
+    res = _entry_times(F.balls, with_attached=True)
+    if res is None:
+        return ()
+    fr, faces, _, vals, dim, flags = res
+    s2 = fr.scale**2
+    out = []
+    for j in range(dim + 1):
+        v = vals[j] * s2 if s2 != 1.0 else vals[j]
+        order = _filtration_order(v, faces[j])
+        rows = fr.keep[faces[j][order]]
+        if not np.array_equal(rows, F.simplices(j)):  # pragma: no cover - F built elsewhere
+            raise ValueError("F: its simplices are not those of alpha_filtration(F.balls)")
+        out.append(freeze(flags[j][order]))
+    return tuple(out)
 
 
 def simplices_up_to(balls: Balls, select) -> list:
