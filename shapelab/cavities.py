@@ -92,6 +92,19 @@ class Void:
         2D); exact.
     tau : float
         The growth time the void was computed at.
+
+    See Also
+    --------
+    voids
+        Produces voids.
+    Pocket
+        A dent that closes into a void later.
+
+    References
+    ----------
+    .. [1] J. Liang, H. Edelsbrunner, P. Fu, P. V. Sudhakar and S. Subramaniam,
+           "Analytical shape computation of macromolecules: II. Inaccessible cavities in
+           proteins", *Proteins* 33(1):18-29, 1998.
     """
 
     cells: np.ndarray
@@ -139,6 +152,22 @@ class Pocket:
     volume : float
         Free space in the pocket's cells not covered by any ball grown to ``tau``
         (area in 2D); exact, computed on first access.
+
+    See Also
+    --------
+    pockets
+        Produces pockets.
+    Void
+        What a pocket becomes when it closes.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner, M. Facello and J. Liang, "On the definition and the
+           construction of pockets in macromolecules", *Discrete Appl. Math.* 88:83-102,
+           1998. doi:10.1016/S0166-218X(98)00067-5
+    .. [2] J. Liang, H. Edelsbrunner and C. Woodward, "Anatomy of protein pockets and
+           cavities: measurement of binding site geometry and implications for ligand
+           design", *Protein Sci.* 7(9):1884-1897, 1998. doi:10.1002/pro.5560070905
     """
 
     cells: np.ndarray
@@ -193,6 +222,13 @@ class Tunnel:
         The same edges as rows of ``F.simplices(1)``.
     tau : float
         The growth time the tunnel was computed at.
+
+    See Also
+    --------
+    tunnels
+        Produces tunnels.
+    channel_profile
+        The free radius along a tunnel.
     """
 
     birth: float
@@ -350,6 +386,23 @@ def voids(F, tau=0.0) -> tuple:
         Sorted by persistence ``dies - born``, largest first (ties: earlier ``born``).
         Their number equals :math:`\\beta_{d-1}(\\tau)`.
 
+    See Also
+    --------
+    pockets
+        Dents that close into voids later.
+    shapelab.freespace.free_space
+        The free volume of cells.
+    shapelab.topology.betti
+        β₂ counts the voids (Alexander duality).
+
+    References
+    ----------
+    .. [1] J. Liang, H. Edelsbrunner, P. Fu, P. V. Sudhakar and S. Subramaniam,
+           "Analytical shape computation of macromolecules: II. Inaccessible cavities in
+           proteins", *Proteins* 33(1):18-29, 1998.
+    .. [2] H. Edelsbrunner and J. L. Harer, *Computational Topology: An Introduction*,
+           American Mathematical Society, 2010. doi:10.1090/mbk/069
+
     Examples
     --------
     >>> import numpy as np, shapelab as sl
@@ -428,11 +481,29 @@ def pockets(F, tau=0.0, *, min_persistence=0.0) -> tuple:
     tuple of Pocket
         Sorted by persistence ``fills_at - closes_at``, largest first.
 
+    See Also
+    --------
+    voids
+        The voids at a time.
+    shapelab.freespace.free_area
+        The area of a mouth.
+    shapelab.report
+        Pockets measured as CASTp does.
+
     Notes
     -----
     The notes only say "a pocket can be roughly viewed as a dent on the surface"; which
     part of the dent is the pocket is left open.  Here it is the part that gets sealed:
     the cells of the void at the moment it closes.  Nested pockets are all reported.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner, M. Facello and J. Liang, "On the definition and the
+           construction of pockets in macromolecules", *Discrete Appl. Math.* 88:83-102,
+           1998. doi:10.1016/S0166-218X(98)00067-5
+    .. [2] J. Liang, H. Edelsbrunner and C. Woodward, "Anatomy of protein pockets and
+           cavities: measurement of binding site geometry and implications for ligand
+           design", *Protein Sci.* 7(9):1884-1897, 1998. doi:10.1002/pro.5560070905
     """
     F = as_filtration(F, "pockets")
     balls = F.balls
@@ -558,6 +629,20 @@ def tunnels(F, tau=0.0) -> tuple:
     ------
     ValueError
         For 2D balls (there the :math:`H_1` classes are the holes: use :func:`voids`).
+
+    See Also
+    --------
+    grooves
+        H₁ classes born later.
+    channel_profile
+        The free radius along a tunnel.
+    shapelab.topology.persistence
+        The H₁ pairs.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner and J. L. Harer, *Computational Topology: An Introduction*,
+           American Mathematical Society, 2010. doi:10.1090/mbk/069
     """
     F = as_filtration(F, "tunnels")
     tau = as_tau(tau)
@@ -585,6 +670,16 @@ def grooves(F, tau=0.0, *, min_persistence=0.0) -> tuple:
     -------
     tuple of Tunnel
         Sorted by persistence, largest first.
+
+    See Also
+    --------
+    tunnels
+        H₁ classes alive at τ.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner and J. L. Harer, *Computational Topology: An Introduction*,
+           American Mathematical Society, 2010. doi:10.1090/mbk/069
     """
     F = as_filtration(F, "grooves")
     tau = as_tau(tau)
@@ -606,6 +701,11 @@ class ChannelProfile:
         overlaps no ball (negative where the balls cover the whole neighbourhood).
     centers : ndarray, shape (k, 3)
         The centres of those spheres.
+
+    See Also
+    --------
+    channel_profile
+        Produces it.
     """
 
     offsets: np.ndarray
@@ -643,6 +743,19 @@ def channel_profile(balls, point, direction, offsets, *, search: float = 3.0) ->
     Returns
     -------
     ChannelProfile
+
+    See Also
+    --------
+    tunnels
+        The channels.
+    shapelab.plot.channel_profile
+        Draws the profile.
+
+    References
+    ----------
+    .. [1] O. S. Smart, J. M. Goodfellow and B. A. Wallace, "The pore dimensions of
+           gramicidin A", *Biophys. J.* 65(6):2455-2460, 1993.
+           doi:10.1016/S0006-3495(93)81293-1
     """
     from scipy.optimize import minimize
     from scipy.spatial import cKDTree

@@ -171,6 +171,13 @@ def fullerene_c60(*, bond_length=1.4, atom_radius=CARBON_RADIUS, jitter=0.0, see
     Balls
         60 balls in 3D.  Without jitter the input is deliberately degenerate: all 60
         centres are co-spherical and each hexagon is co-circular.
+
+    See Also
+    --------
+    c60_edges
+        Its bonds.
+    nanotube
+        Another carbon cage.
     """
     b = as_finite_scalar(bond_length, "bond_length", positive=True)
     r = as_finite_scalar(atom_radius, "atom_radius", nonnegative=True)
@@ -190,6 +197,11 @@ def c60_edges(balls: Balls | None = None, *, tol: float = 1e-6) -> np.ndarray:
         A C60 from :func:`fullerene_c60` (default: ``fullerene_c60()``).
     tol : float
         Relative tolerance on the bond length.
+
+    See Also
+    --------
+    fullerene_c60
+        The atoms.
     """
     balls = fullerene_c60() if balls is None else balls
     c = balls.centers
@@ -202,7 +214,13 @@ def c60_edges(balls: Balls | None = None, *, tol: float = 1e-6) -> np.ndarray:
 
 # ------------------------------------------------------------------- nanotube
 def nanotube_radius(n, m, *, a=GRAPHENE_LATTICE_CONSTANT) -> float:
-    """Radius :math:`a\\sqrt{n^2 + nm + m^2}/(2\\pi)` of an (n, m) nanotube, in Å."""
+    """Radius :math:`a\\sqrt{n^2 + nm + m^2}/(2\\pi)` of an (n, m) nanotube, in Å.
+
+    See Also
+    --------
+    nanotube
+        The tube.
+    """
     n = as_positive_int(n, "n", minimum=0)
     m = as_positive_int(m, "m", minimum=0)
     a = as_finite_scalar(a, "a", positive=True)
@@ -249,6 +267,13 @@ def nanotube(
         Move every centre by a seeded random vector of length ≤ ``jitter`` (Å): the
         exact tube is degenerate (co-cylindrical, and rings of co-circular atoms).
     seed : int or Generator
+
+    See Also
+    --------
+    nanotube_radius
+        Its radius.
+    tunnels
+        Its tunnel.
     """
     n = as_positive_int(n, "n", minimum=1)
     m = as_positive_int(m, "m", minimum=0)
@@ -331,6 +356,11 @@ def bowl(*, radius=6.0, opening=50.0, spacing=2.0, atom_radius=CARBON_RADIUS, ji
     atom_radius : float
     jitter : float
     seed : int or Generator
+
+    See Also
+    --------
+    pockets
+        Its one pocket.
     """
     R = as_finite_scalar(radius, "radius", positive=True)
     op = as_finite_scalar(opening, "opening", positive=True)
@@ -514,6 +544,13 @@ def globule(
     Balls
         About 650 balls for the defaults.  :func:`globule_structure` gives the same
         atoms with elements and pseudo-residues.
+
+    See Also
+    --------
+    globule_structure
+        With atom labels.
+    report
+        Its voids and pockets.
     """
     pos, _, r, _ = _globule_geometry(
         seed, semi_axes, spacing, void_radius, pocket_radius, mouth_radius, groove_radius, slit_halfwidth, jitter
@@ -533,6 +570,13 @@ def globule_structure(seed=0, *, residue_size=8, **kwargs):
     Returns
     -------
     shapelab.io.PDBStructure
+
+    See Also
+    --------
+    globule
+        The balls alone.
+    example_pdb
+        The same molecule as a file.
     """
     from ._toolkit.validate import readonly as _readonly
     from .io import PDBStructure  # io imports balls only; no cycle
@@ -594,6 +638,13 @@ def example_pdb() -> Path:
     :func:`shapelab.io.write_pdb` from ``globule_structure(seed=0)`` (coordinates
     rounded to 0.001 Å, the PDB's precision).  Read it with
     ``shapelab.read_pdb(example_pdb())``.
+
+    See Also
+    --------
+    read_pdb
+        Reads it.
+    globule_structure
+        The same molecule.
     """
     return Path(str(resources.files("shapelab").joinpath("data", "globule.pdb")))
 
@@ -608,6 +659,11 @@ def ring(n=12, *, radius=3.0, disk_radius=1.0, dim=2) -> Balls:
     :math:`\\tau = R^2\\sin^2(\\pi/n) - r^2` (neighbours touch) until
     :math:`\\tau = R^2 - r^2` (the centre is covered).  All centres are co-circular,
     a deliberately degenerate input.
+
+    See Also
+    --------
+    voids
+        Its one hole.
     """
     n = as_positive_int(n, "n", minimum=3)
     R = as_finite_scalar(radius, "radius", positive=True)
@@ -629,6 +685,13 @@ def figure_23_1() -> Balls:
     cluster of three whose common intersection is non-empty twice over (two
     triangles of K at τ = 0), and a few isolated or just-touching disks so that the
     filtration shows vertices, edges and triangles entering at different times.
+
+    See Also
+    --------
+    dual_complex
+        Its dual complex.
+    shapelab.plot.dual_complex
+        Draws it.
     """
     c = np.array(
         [
@@ -689,6 +752,13 @@ def figure_23_2(*, body_radius=6.0, spacing=1.0, disk_radius=0.65):
     -------
     (Balls, Balls)
         The left and the right shape, each centred at the origin.
+
+    See Also
+    --------
+    pockets
+        The dents' pockets.
+    shapelab.plot.pockets
+        Draws them.
     """
     R = as_finite_scalar(body_radius, "body_radius", positive=True)
     s = as_finite_scalar(spacing, "spacing", positive=True)
@@ -731,6 +801,11 @@ def swiss_cheese(*, spacing=1.0, disk_radius=0.65):
     Returns
     -------
     Balls
+
+    See Also
+    --------
+    voids
+        Its holes.
     """
     s = as_finite_scalar(spacing, "spacing", positive=True)
     r = as_finite_scalar(disk_radius, "disk_radius", positive=True)
@@ -769,6 +844,11 @@ def nested_pockets(*, disk_radius=0.65):
     Returns
     -------
     Balls
+
+    See Also
+    --------
+    pockets
+        The pocket hierarchy.
     """
     r = as_finite_scalar(disk_radius, "disk_radius", positive=True)
     p = _hex_disk(8.0, 1.0)
@@ -802,6 +882,11 @@ def mixed_dent(*, small_radius=0.3, big_radius=3.0, bowl_radius=3.0, gap=3.6):
     -------
     Balls
         The small disks first, then the two big ones.
+
+    See Also
+    --------
+    pockets
+        Pockets with and without a probe.
     """
     rs = as_finite_scalar(small_radius, "small_radius", positive=True)
     rb = as_finite_scalar(big_radius, "big_radius", positive=True)
@@ -848,6 +933,13 @@ class StructureInfo:
         How the file differs from the PDB's own entry, and how that is known.
     read : dict
         Keyword arguments :func:`structure` passes to :func:`shapelab.io.read_pdb`.
+
+    See Also
+    --------
+    structure
+        Reads the structure.
+    structure_path
+        Its path.
     """
 
     name: str
@@ -891,6 +983,13 @@ STRUCTURES = _load_structures()
 def structure_path(name: str) -> Path:
     """Path of the shipped file of structure ``name`` (a key of :data:`STRUCTURES`).
 
+    See Also
+    --------
+    structure
+        Reads it.
+    StructureInfo
+        Where it came from.
+
     Examples
     --------
     >>> structure_path("1grm").name
@@ -923,6 +1022,13 @@ def structure(name: str, **kwargs):
     shapelab.io.PDBStructure
         By default heavy atoms only, without water, HETATM groups included.
 
+    See Also
+    --------
+    read_pdb
+        The reader used.
+    structure_path
+        The shipped file.
+
     Examples
     --------
     >>> s = structure("t4l-l99a", probe=1.4)
@@ -942,7 +1048,13 @@ def structure(name: str, **kwargs):
 def noisy_sphere(n: int, *, noise: float = 0.01, center=(0.0, 0.0, 0.0), seed=0) -> np.ndarray:
     """``n`` points of the unit sphere (uniform directions) plus isotropic Gaussian
     noise of standard deviation ``noise``, moved to ``center``; deterministic in
-    ``seed``.  The data of the benchmarks and of lesson 12."""
+    ``seed``.  The data of the benchmarks and of lesson 12.
+
+    See Also
+    --------
+    shapelab.diagrams.bottleneck_distance
+        Compare the diagrams of noisy samples.
+    """
     n = as_positive_int(n, "n")
     noise = as_finite_scalar(noise, "noise", nonnegative=True)
     c = np.asarray(center, dtype=float)
@@ -957,7 +1069,15 @@ def noisy_sphere(n: int, *, noise: float = 0.01, center=(0.0, 0.0, 0.0), seed=0)
 # --------------------------------------------------------------------------- curves and meshes
 # (critical points, lessons 11 and 12)
 def ellipse_curve(a: float = 2.0, b: float = 1.0, center=(0.0, 0.0)) -> Callable:
-    """The ellipse ``t -> center + (a cos t, b sin t)`` as a vectorised function."""
+    """The ellipse ``t -> center + (a cos t, b sin t)`` as a vectorised function.
+
+    See Also
+    --------
+    shapelab.critical.polyline
+        Samples it.
+    critical_points
+        Its critical points.
+    """
     a = as_finite_scalar(a, "a", positive=True)
     b = as_finite_scalar(b, "b", positive=True)
     c = as_point(center, "center", dim=2)
@@ -975,6 +1095,13 @@ def blob_curve(t):
     ``r(t) = 1 + 0.25 cos 3t + 0.12 sin(2t + 0.6)`` in polar coordinates about
     the origin; vectorised: returns ``(x, y)``.  Seen from S = (0.1, 0.05) it has
     three minima and three maxima.
+
+    See Also
+    --------
+    shapelab.critical.polyline
+        Samples it.
+    critical_points
+        Its critical points.
     """
     t = np.asarray(t, dtype=float)
     r = 1.0 + 0.25 * np.cos(3 * t) + 0.12 * np.sin(2 * t + 0.6)
@@ -987,6 +1114,13 @@ def icosphere(subdivisions: int = 2, radius: float = 1.0) -> tuple[np.ndarray, n
 
     Returns ``(vertices, faces)`` with ``10 * 4**s + 2`` vertices and
     ``20 * 4**s`` outward-oriented triangles.
+
+    See Also
+    --------
+    bumpy_sphere
+        A sphere with bumps.
+    shapelab.critical.euler_characteristic
+        χ = 2.
     """
     subdivisions = as_positive_int(subdivisions, "subdivisions", minimum=0)
     if subdivisions > 7:
@@ -1064,6 +1198,13 @@ def bumpy_sphere(
     a closed star-shaped surface with several minima, maxima and saddles.
 
     Returns ``(vertices, faces)``; deterministic in ``seed``.
+
+    See Also
+    --------
+    icosphere
+        The smooth sphere.
+    critical_points
+        Its critical points.
     """
     bumps = as_positive_int(bumps, "bumps", minimum=0)
     amplitude = as_finite_scalar(amplitude, "amplitude", nonnegative=True)
@@ -1084,7 +1225,15 @@ def bumpy_sphere(
 
 def torus(n_major: int = 24, n_minor: int = 12, *, R: float = 1.0, r: float = 0.4) -> tuple[np.ndarray, np.ndarray]:
     """A triangulated torus (χ = 0) around the z axis: ``n_major * n_minor``
-    vertices, ``2 * n_major * n_minor`` triangles."""
+    vertices, ``2 * n_major * n_minor`` triangles.
+
+    See Also
+    --------
+    icosphere
+        A sphere.
+    shapelab.critical.euler_characteristic
+        χ = 0.
+    """
     n_major = as_positive_int(n_major, "n_major", minimum=3)
     n_minor = as_positive_int(n_minor, "n_minor", minimum=3)
     R = as_finite_scalar(R, "R", positive=True)
@@ -1129,6 +1278,13 @@ def sample_shape(kind: str, n: int, *, seed: int = 0) -> np.ndarray:
     ndarray, shape (n, 3)
         For the smooth shapes the direction from the origin is uniform on the sphere
         (not uniform in area); the cube is uniform in area.
+
+    See Also
+    --------
+    icp
+        Registers sampled shapes.
+    shape_family
+        Shapes in classes.
     """
     if not isinstance(kind, str):
         raise TypeError(f"kind must be a string, got {type(kind).__name__}")
@@ -1175,6 +1331,13 @@ def shape_family(
     shapes : list of ndarray, shape (n, 3)
     labels : list of str
         The kind of each shape; members of one class are contiguous.
+
+    See Also
+    --------
+    sample_shape
+        One shape.
+    shapelab.diagrams.distance_matrix
+        Compares the family's diagrams.
     """
     from .quaternion import Quaternion
 

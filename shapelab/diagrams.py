@@ -60,6 +60,13 @@ class DiagramMatching:
         ``(i, j)``: point ``i`` of the first diagram matched to point ``j`` of the
         second; ``j = -1`` (or ``i = -1``) for a point matched to the diagonal.  Every
         point of both diagrams appears exactly once.
+
+    See Also
+    --------
+    bottleneck_distance
+        Produces it.
+    wasserstein_distance
+        Produces it.
     """
 
     distance: float
@@ -516,6 +523,21 @@ def distance_matrix(diagrams, *, p=np.inf) -> np.ndarray:
     -------
     ndarray, shape (k, k)
         Symmetric, zero on the diagonal.
+
+    See Also
+    --------
+    bottleneck_distance
+        One pair.
+    wasserstein_distance
+        One pair.
+    classical_mds
+        Embeds the matrix in the plane.
+
+    References
+    ----------
+    .. [1] D. Cohen-Steiner, H. Edelsbrunner and J. Harer, "Stability of persistence
+           diagrams", *Discrete Comput. Geom.* 37:103-120, 2007.
+           doi:10.1007/s00454-006-1276-5
 
     Examples
     --------

@@ -46,7 +46,13 @@ __all__ = ["free_area", "free_measure", "free_space", "FreeSpace", "void_measure
 
 
 def vertex_values(F, n_balls: int) -> np.ndarray:
-    """Entry time of every ball in ``F`` (``inf`` for a ball that never enters)."""
+    """Entry time of every ball in ``F`` (``inf`` for a ball that never enters).
+
+    See Also
+    --------
+    alpha_filtration
+        The filtration whose vertex values these are.
+    """
     out = np.full(n_balls, np.inf)
     out[np.asarray(F.simplices(0), dtype=np.int64).ravel()] = F.values(0)
     return out
@@ -208,7 +214,21 @@ def _edge_lookup(F):
 
 def void_measure(F, balls, tau: float, cell_ids: np.ndarray) -> np.ndarray:
     """Fractional inclusion–exclusion free measure of each cell (exact summed over a
-    void; see the module docstring)."""
+    void; see the module docstring).
+
+    See Also
+    --------
+    free_measure
+        The exact free measure of simplices.
+    shapelab.cavities.Void
+        A void's volume.
+
+    References
+    ----------
+    .. [1] J. Liang, H. Edelsbrunner, P. Fu, P. V. Sudhakar and S. Subramaniam,
+           "Analytical shape computation of macromolecules: II. Inaccessible cavities in
+           proteins", *Proteins* 33(1):18-29, 1998.
+    """
     k = int(F.dimension)
     simp = np.asarray(F.simplices(k), dtype=np.int64)[cell_ids]
     W = balls.weights
@@ -717,6 +737,19 @@ def free_measure(balls, tau, cells) -> np.ndarray:
     Returns
     -------
     ndarray, shape (m,)
+
+    See Also
+    --------
+    free_space
+        The same with the wall.
+    union_measure
+        The measure of the union itself.
+
+    References
+    ----------
+    .. [1] J. Liang, H. Edelsbrunner, P. Fu, P. V. Sudhakar and S. Subramaniam,
+           "Analytical shape computation of macromolecules: II. Inaccessible cavities in
+           proteins", *Proteins* 33(1):18-29, 1998.
     """
     return _free_space(balls, tau, cells, False).measure
 
@@ -736,6 +769,11 @@ class FreeSpace:
         The wall split by ball: simplex row, ball index and the measure of
         :math:`\\partial B_i \\cap \\Pi_i \\cap t` (positive entries only); summed per
         simplex they give ``wall``.
+
+    See Also
+    --------
+    free_space
+        Produces it.
     """
 
     measure: np.ndarray
@@ -768,6 +806,19 @@ def free_space(balls, tau, cells) -> FreeSpace:
     Returns
     -------
     FreeSpace
+
+    See Also
+    --------
+    free_measure
+        The measure alone.
+    free_area
+        The free area of mouth triangles.
+
+    References
+    ----------
+    .. [1] J. Liang, H. Edelsbrunner, P. Fu, P. V. Sudhakar and S. Subramaniam,
+           "Analytical shape computation of macromolecules: II. Inaccessible cavities in
+           proteins", *Proteins* 33(1):18-29, 1998.
     """
     return _free_space(balls, tau, cells, True)
 
@@ -911,6 +962,19 @@ def free_area(balls, tau, triangles) -> FreeSpace:
     FreeSpace
         ``measure`` the free area of each triangle, ``wall`` the length of
         :math:`\\partial U_\\tau` inside it, split by ball in the ``contact_*`` arrays.
+
+    See Also
+    --------
+    free_space
+        Free measure of full-dimensional simplices.
+    pockets
+        Pockets whose mouths this measures.
+
+    References
+    ----------
+    .. [1] J. Liang, H. Edelsbrunner and C. Woodward, "Anatomy of protein pockets and
+           cavities: measurement of binding site geometry and implications for ligand
+           design", *Protein Sci.* 7(9):1884-1897, 1998. doi:10.1002/pro.5560070905
     """
     from scipy.spatial import cKDTree
 
@@ -1002,6 +1066,11 @@ def free_points(balls, tau, cells, n_points, rng) -> np.ndarray:
     Returns
     -------
     ndarray (k, d)
+
+    See Also
+    --------
+    free_measure
+        The exact measure these points sample.
     """
     X = balls.centers[cells]  # (m, d+1, d)
     E = X[:, 1:] - X[:, :1]

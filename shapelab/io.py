@@ -231,6 +231,13 @@ class PDBStructure:
         Serial of the MODEL that was read (None if the file has no MODEL record).
 
     The last five default to blanks/NaN for structures built in code.
+
+    See Also
+    --------
+    read_pdb
+        Produces it.
+    write_pdb
+        Writes it back.
     """
 
     balls: Balls
@@ -626,6 +633,15 @@ def read_pdb(
         returned in part: any error in the model read fails the whole call.
     FileNotFoundError, IsADirectoryError
         If ``path`` cannot be opened.
+
+    See Also
+    --------
+    write_pdb
+        The writer.
+    vdw_radius
+        The radii given to the atoms.
+    gemmi.read_structure
+        A full reader of PDB and mmCIF files.
 
     Notes
     -----

@@ -82,6 +82,11 @@ class CavityRow:
     lining_insertion_codes : tuple of str
         The insertion code of each entry of ``lining_residues`` (``""`` for none);
         empty when built without them, which :meth:`residue_labels` reads as none.
+
+    See Also
+    --------
+    CavityReport
+        The table of rows.
     """
 
     kind: str
@@ -149,6 +154,13 @@ class CavityReport:
     structure : object
         The :class:`~shapelab.io.PDBStructure` or :class:`~shapelab.Balls` reported
         on (for the PDB output); not compared.
+
+    See Also
+    --------
+    report
+        Produces it.
+    shapelab.io.write_mmcif
+        How it writes the structure.
     """
 
     rows: tuple
@@ -445,6 +457,11 @@ def check_output(structure, out_dir, stem) -> None:
     unmarked structure).  What is left -- the number of features -- can only limit
     the optional PDB file, never the mmCIF one.  The command line runs this first.
 
+    See Also
+    --------
+    CavityReport.write
+        Writes what this checks.
+
     Examples
     --------
     >>> import tempfile
@@ -543,6 +560,15 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
     ValueError
         ``probe`` negative or not finite; balls not 3-dimensional.
 
+    See Also
+    --------
+    voids
+        The voids.
+    pockets
+        The pockets.
+    read_pdb
+        Reads a structure as balls.
+
     Notes
     -----
     *Same as CASTp.*  Cavities are regions of empty Delaunay cells of the SA model:
@@ -570,6 +596,18 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
     exceed the SA volume.  (3) Mouth area is the free area of the mouth triangles in
     the SA model, perimeter the length of its rim (CASTp gives SA and MS mouth areas
     and circumferences).
+
+    References
+    ----------
+    .. [1] J. Liang, H. Edelsbrunner, P. Fu, P. V. Sudhakar and S. Subramaniam,
+           "Analytical shape computation of macromolecules: II. Inaccessible cavities in
+           proteins", *Proteins* 33(1):18-29, 1998.
+    .. [2] H. Edelsbrunner, M. Facello and J. Liang, "On the definition and the
+           construction of pockets in macromolecules", *Discrete Appl. Math.* 88:83-102,
+           1998. doi:10.1016/S0166-218X(98)00067-5
+    .. [3] W. Tian, C. Chen, X. Lei, J. Zhao and J. Liang, "CASTp 3.0: computed atlas of
+           surface topography of proteins", *Nucleic Acids Res.* 46(W1):W363-W367, 2018.
+           doi:10.1093/nar/gky473
     """
     import math
 
@@ -681,6 +719,11 @@ def main(argv=None) -> int:
     and no files, for an unreadable, malformed or empty file, an output directory
     that cannot be written, or a bad option -- all found before any cavity is
     computed.  If no PDB file is written, one line on stderr says why.
+
+    See Also
+    --------
+    report
+        The function behind the command.
     """
     ap = argparse.ArgumentParser(
         prog="python -m shapelab.report",

@@ -150,6 +150,13 @@ def disks(balls, *, tau=0.0, ax=None, labels=False, title=None, color=None, show
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    dual_complex
+        With cells and the dual complex.
+    Balls.grow
+        The grown disks.
     """
     _check_balls(balls, dim=2)
     tau = as_tau(tau, finite=True)
@@ -191,6 +198,13 @@ def power_diagram(balls_or_diagram, *, bbox=None, ax=None, show_disks=True, labe
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    shapelab.power_diagram
+        The diagram drawn.
+    lifting
+        The lifting map behind it.
     """
     from ..power import PowerDiagram
     from ..power import power_diagram as _pd
@@ -268,6 +282,11 @@ class DualComplexView:
 
     Parameters are those of :func:`dual_complex`, plus ``legend`` (bool) and
     ``view_tau``: the largest τ the view should have room for.
+
+    See Also
+    --------
+    dual_complex
+        Produces it.
     """
 
     @filtration_first(name="DualComplexView")
@@ -481,6 +500,13 @@ def dual_complex(F, tau=0.0, *, ax=None, show_cells=True, show_disks=True, bbox=
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    shapelab.dual_complex
+        The complex drawn.
+    filtration
+        All simplices by entry time.
     """
     return DualComplexView(
         F, tau, ax=ax, show_cells=show_cells, show_disks=show_disks, bbox=bbox, labels=labels, title=title
@@ -510,6 +536,13 @@ def filtration(F, *, tau=None, ax=None, cmap="cividis", show_disks=False, title=
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    shapelab.alpha_filtration
+        The filtration drawn.
+    dual_complex
+        One time.
     """
     from ..filtration import Filtration
 
@@ -637,6 +670,13 @@ def balls3d(balls, *, tau=0.0, ax=None, resolution=10, alpha=0.35, color=None, e
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    complex3d
+        The dual complex in 3D.
+    shapelab.plot.view3d
+        An interactive view.
     """
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
@@ -697,6 +737,13 @@ def complex3d(
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    balls3d
+        The balls.
+    shapelab.dual_complex
+        The complex drawn.
     """
     from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
@@ -792,6 +839,13 @@ def lifting(balls, *, ax=None, elev=18.0, azim=-60.0, title=None):
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    power_diagram
+        The projected lower hull.
+    shapelab.regular_triangulation
+        The triangulation.
     """
     from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
@@ -877,6 +931,11 @@ def method_comparison(sizes, seconds, errors=None, *, xlabel="number of disks n"
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    shapelab.plot.matching.timings
+        A bar chart of times.
     """
     n = np.asarray(sizes, dtype=float)
     if errors is not None and ax is not None:

@@ -92,6 +92,13 @@ def critical_points(
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    shapelab.critical_points
+        The points drawn.
+    critical_surface
+        On a surface.
     """
     from ..critical import distance_along, polyline
 
@@ -211,6 +218,11 @@ def critical_surface(
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    critical_points
+        On a curve.
     """
     from matplotlib import colormaps
     from matplotlib.cm import ScalarMappable
@@ -302,6 +314,11 @@ def hausdorff(A, B, *, ax=None, size=PAGE, labels=("A", "B"), disks: bool = True
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    shapelab.directed_hausdorff
+        The witnesses drawn.
     """
     from .._toolkit.validate import as_points
     from ..distance import hausdorff_pair
@@ -345,6 +362,11 @@ def translation(A, B, match, *, size=SLIDE, labels=("A", "B"), title: str | None
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    shapelab.hausdorff_under_translation
+        The match drawn.
     """
     from .._toolkit.validate import as_points
     from ..matching import TranslationMatch
@@ -402,6 +424,11 @@ def timings(seconds: dict, *, ax=None, size=PAGE, title: str | None = None, log:
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    shapelab.distance.timings
+        Measures the times.
     """
     from matplotlib.ticker import LogLocator, NullFormatter
 
@@ -452,6 +479,11 @@ def docking_landscape(angles, shifts, scores, *, marks=None, ax=None, size=PAGE,
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    shapelab.Docking
+        The scores.
     """
     A = np.degrees(np.asarray(angles, float).ravel())
     S = np.asarray(shifts, float).ravel()
@@ -492,6 +524,11 @@ def docking_pose(
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    shapelab.Docking
+        The poses.
     """
     from scipy.spatial import cKDTree
 

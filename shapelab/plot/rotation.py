@@ -86,6 +86,11 @@ def point_sets(
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    icp_step
+        One ICP iteration.
     """
     R = as_points(R, "R", dim=(2, 3))
     G = as_points(G, "G", dim=(2, 3))
@@ -187,6 +192,13 @@ def icp_step(
         Iteration, 0 ≤ k ≤ ``result.n_iter``.
     max_lines : int
         At most this many correspondence segments (evenly spaced source points).
+
+    See Also
+    --------
+    shapelab.icp
+        The iterations drawn.
+    icp_convergence
+        The error per iteration.
     """
     if not isinstance(result, ICPResult):
         raise TypeError(f"result must be an ICPResult, got {type(result).__name__}")
@@ -262,6 +274,11 @@ def icp_convergence(result, *, truth: RigidMotion | None = None, ax=None, mark: 
         is drawn too, dashed, on a second log axis.
     mark : int, optional
         An iteration to highlight (e.g. the widget's current one).
+
+    See Also
+    --------
+    shapelab.icp
+        The errors drawn.
     """
     runs = result if isinstance(result, dict) else {"ICP": result}
     if not runs:
@@ -327,6 +344,11 @@ def rotation_axis(rotation, angle=None, *, points=None, ax=None, title=None, ele
         quaternion.
     points : array_like, shape (3,) or (k, 3), optional
         Points to rotate; default one point off the axis.
+
+    See Also
+    --------
+    shapelab.Quaternion
+        The rotation's quaternion.
     """
     if isinstance(rotation, Quaternion):
         if angle is not None:
@@ -402,6 +424,13 @@ def two_stage(source, target, stages: dict, *, size=(12.0, 4.5), elev: float = 2
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    shapelab.coarse_align
+        Stage one.
+    shapelab.icp
+        Stage two.
     """
     source = as_points(source, "source", dim=3)
     target = as_points(target, "target", dim=3)
@@ -440,6 +469,11 @@ def displacement(residues, displacements: dict, *, domains: dict | None = None, 
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    shapelab.register
+        The superposition.
     """
     x = np.asarray(residues, float).ravel()
     if not isinstance(displacements, dict) or not displacements:

@@ -163,6 +163,18 @@ def persistence_diagram(
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    barcode
+        The same pairs as bars.
+    shapelab.topology.persistence
+        The pairs drawn.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner and J. L. Harer, *Computational Topology: An Introduction*,
+           American Mathematical Society, 2010. doi:10.1090/mbk/069
     """
     P, d = _pairs_of(pairs_or_filtration, dim)
     dims = _select(P, dims, d)
@@ -254,6 +266,16 @@ def barcode(
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    persistence_diagram
+        The same pairs as points.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner and J. L. Harer, *Computational Topology: An Introduction*,
+           American Mathematical Society, 2010. doi:10.1090/mbk/069
     """
     P, d = _pairs_of(pairs_or_filtration, dim)
     dims = _select(P, dims, d)
@@ -333,6 +355,11 @@ def betti_curve(F_or_curve, *, taus=None, tau=None, log=None, ax=None, title="Be
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    shapelab.topology.betti_curve
+        The numbers drawn.
     """
     if isinstance(F_or_curve, tuple) and len(F_or_curve) == 2:
         t = np.asarray(F_or_curve[0], dtype=np.float64).reshape(-1)
@@ -576,6 +603,11 @@ def voids(
     -------
     matplotlib.figure.Figure
 
+    See Also
+    --------
+    shapelab.voids
+        The voids drawn.
+
     Notes
     -----
     In 3D the free space is shown as a cloud of points: uniform samples of the
@@ -658,6 +690,13 @@ def pockets(
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    shapelab.pockets
+        The pockets drawn.
+    pocket_gallery
+        In 3D.
     """
     F = _filtration_of(F, "plot.pockets")
     balls = F.balls
@@ -716,6 +755,13 @@ def pocket_gallery(F, tau=0.0, *, pockets=None, voids=None, min_persistence=1e-9
     -------
     matplotlib.figure.Figure
         Slide-sized; up to six close-ups (two columns).
+
+    See Also
+    --------
+    pockets
+        In 2D.
+    shapelab.plot.view3d
+        An interactive view.
     """
     import matplotlib.pyplot as plt
 
@@ -777,6 +823,11 @@ def tunnels(F, tau=0.0, *, tunnels=None, ax=None, show_complex=False, elev=20, a
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    shapelab.tunnels
+        The tunnels drawn.
     """
     F = _filtration_of(F, "plot.tunnels")
     tau = _check_tau(tau)
@@ -977,6 +1028,11 @@ def channel_profile(profile, *, reference: dict | None = None, ax=None, title: s
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    shapelab.channel_profile
+        The profile drawn.
     """
     if not all(hasattr(profile, a) for a in ("offsets", "radius", "bottleneck")):
         raise TypeError(f"profile must be a ChannelProfile, got {type(profile).__name__}")

@@ -81,6 +81,11 @@ def library_path() -> Path | None:
     -------
     pathlib.Path or None
         None when neither file exists.
+
+    See Also
+    --------
+    view3d
+        Uses it.
     """
     env = os.environ.get("SHAPELAB_3DMOL_JS")
     candidates = [Path(env)] if env else []
@@ -119,6 +124,11 @@ def without_library(html: str) -> str:
 
     The course site serves the library from ``vendor/3dmol/`` instead; the book build
     applies this to every lesson output (``course/build.py``).
+
+    See Also
+    --------
+    view3d
+        Produces the html.
 
     Examples
     --------
@@ -400,6 +410,11 @@ class View3D:
     library : bool or None
         Whether the HTML carries 3Dmol.js inline (None: the first view shown in this
         process does).
+
+    See Also
+    --------
+    view3d
+        Produces it.
     """
 
     def __init__(self, data: dict, legend: list, width: int, height: int, library):
@@ -502,6 +517,18 @@ def view3d(structure_or_balls, features=(), *, style="auto", opacity=None, width
     ValueError
         If the balls are not 3D, a feature names a ball that does not exist, or
         ``style``, ``opacity``, ``width`` or ``height`` is out of range.
+
+    See Also
+    --------
+    shapelab.plot.topology.pocket_gallery
+        A static overview.
+    shapelab.report
+        The cavities to show.
+
+    References
+    ----------
+    .. [1] N. Rego and D. Koes, "3Dmol.js: molecular visualization with WebGL",
+           *Bioinformatics* 31(8):1322-1324, 2015. doi:10.1093/bioinformatics/btu829
 
     Examples
     --------

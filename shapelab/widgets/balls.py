@@ -73,6 +73,13 @@ def alpha_explorer(F, *, tau=0.0, tau_range=None, steps=100, show_cells=True, sh
     -------
     AlphaExplorer
         An ``ipywidgets.VBox``: the slider, a status line and the figure.
+
+    See Also
+    --------
+    shapelab.alpha_filtration
+        The filtration explored.
+    shapelab.plot.dual_complex
+        One frame.
     """
     from ..filtration import as_filtration
     from ._frame import check_balls, value_range
@@ -100,6 +107,11 @@ class AlphaExplorer(StaticFallback, W.VBox):
         The current frame (PNG), redrawn by blitting (``view.png()``).
     view : shapelab.plot.balls.DualComplexView
         The figure's artists; ``view.complex`` is the complex drawn.
+
+    See Also
+    --------
+    alpha_explorer
+        Produces it.
     """
 
     def __init__(self, balls, F, tau, lo, hi, step, show_cells, show_measure, bbox):

@@ -42,6 +42,13 @@ def critical_points_explorer(
     CriticalPointsExplorer
         An ``ipywidgets.VBox``: the two sliders, a status line with the counts and
         the figure.
+
+    See Also
+    --------
+    shapelab.critical_points
+        What is recomputed.
+    shapelab.plot.critical_points
+        One frame.
     """
     from ..critical import closed_vertices, polyline
 
@@ -69,7 +76,13 @@ def critical_points_explorer(
 
 
 class CriticalPointsExplorer(StaticFallback, W.VBox):
-    """Sliders + figure; see :func:`critical_points_explorer`."""
+    """Sliders + figure; see :func:`critical_points_explorer`.
+
+    See Also
+    --------
+    critical_points_explorer
+        Produces it.
+    """
 
     def __init__(self, curve, S, xr, yr, steps, close):
         self._curve = curve

@@ -52,6 +52,13 @@ def icp_explorer(
     -------
     ICPExplorer
         An ``ipywidgets.VBox``: the slider, a status line and the two figures.
+
+    See Also
+    --------
+    shapelab.icp
+        The iterations.
+    shapelab.plot.icp_step
+        One frame.
     """
     from ..registration import RigidMotion, icp
 
@@ -74,7 +81,13 @@ def icp_explorer(
 
 
 class ICPExplorer(StaticFallback, W.VBox):
-    """Slider + figures; see :func:`icp_explorer`.  ``.result`` is the ICPResult."""
+    """Slider + figures; see :func:`icp_explorer`.  ``.result`` is the ICPResult.
+
+    See Also
+    --------
+    icp_explorer
+        Produces it.
+    """
 
     def __init__(self, source, target, result, truth, max_lines):
         self.source, self.target, self.result = source, target, result

@@ -36,7 +36,13 @@ _ENV = "SHAPELAB_STATIC_EXPLORERS"
 
 
 def static_enabled() -> bool:
-    """True when explorers should carry their static player (``SHAPELAB_STATIC_EXPLORERS=1``)."""
+    """True when explorers should carry their static player (``SHAPELAB_STATIC_EXPLORERS=1``).
+
+    See Also
+    --------
+    static_html
+        The player.
+    """
     return os.environ.get(_ENV, "") == "1"
 
 
@@ -76,6 +82,11 @@ def control_values(control, frames: int = FRAMES) -> list:
     [0, 1, 2, 3, 4, 5]
     >>> control_values(W.FloatSlider(value=0.3, min=0.0, max=1.0, step=0.1), frames=3)
     [0.0, 0.3, 1.0]
+
+    See Also
+    --------
+    static_html
+        Uses the values.
     """
     import ipywidgets as W
 
@@ -129,6 +140,11 @@ def static_html(explorer, *, frames: int = FRAMES) -> str:
 
     The explorer is moved through the values and put back where it was.  The output is
     deterministic (the element id is a hash of the content) and names no URL.
+
+    See Also
+    --------
+    StaticFallback
+        The mixin that calls it.
     """
     control = _main_control(explorer)
     image = getattr(explorer, "image", None)
@@ -185,7 +201,13 @@ def static_html(explorer, *, frames: int = FRAMES) -> str:
 
 class StaticFallback:
     """Mixin for an explorer (an ipywidgets box with ``.image``, ``.status`` and a slider):
-    adds the static player to its display data when :func:`static_enabled`."""
+    adds the static player to its display data when :func:`static_enabled`.
+
+    See Also
+    --------
+    static_html
+        The player it embeds.
+    """
 
     def _repr_mimebundle_(self, **kwargs):
         data = super()._repr_mimebundle_(**kwargs)

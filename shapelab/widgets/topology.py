@@ -59,6 +59,13 @@ def pocket_explorer(F, *, tau=0.0, tau_range=None, steps=100, min_persistence=1e
     -------
     PocketExplorer
         An ``ipywidgets.VBox`` holding the slider and the figure.
+
+    See Also
+    --------
+    shapelab.pockets
+        The pockets.
+    shapelab.plot.pockets
+        One frame.
     """
     from ..filtration import as_filtration
     from ._frame import check_balls, value_range
@@ -80,7 +87,13 @@ def pocket_explorer(F, *, tau=0.0, tau_range=None, steps=100, min_persistence=1e
 
 
 class PocketExplorer(StaticFallback, W.VBox):
-    """Slider + figure; see :func:`pocket_explorer`."""
+    """Slider + figure; see :func:`pocket_explorer`.
+
+    See Also
+    --------
+    pocket_explorer
+        Produces it.
+    """
 
     def __init__(self, balls, F, tau, lo, hi, step, min_persistence, show_complex):
         self._balls = balls
