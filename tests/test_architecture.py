@@ -187,3 +187,29 @@ def test_the_cache_checker_catches_what_it_should(tmp_path):
         p = tmp_path / "m.py"
         p.write_text(src)
         assert module_caches(p) == want, src
+
+
+# ------------------------------------------------------------ lazy exports match __all__
+
+LAZY_PACKAGES = ["shapelab", "shapelab.plot", "shapelab.widgets", "shapelab.check"]
+
+
+def _lazy_exports():
+    import importlib
+
+    for pkg in LAZY_PACKAGES:
+        for name, module in importlib.import_module(pkg)._EXPORTS.items():
+            yield pkg, name, module
+
+
+@pytest.mark.parametrize("pkg, name, module", list(_lazy_exports()), ids=lambda x: str(x))
+def test_every_lazy_export_resolves_to_a_name_its_module_exports(pkg, name, module):
+    """A lazy export is the module's own public name: it exists, and it is in the
+    module's ``__all__`` (so ``from shapelab.<module> import *``, the docs and the
+    docstring checks see it too)."""
+    import importlib
+
+    mod = importlib.import_module(f"{pkg}.{module}")
+    assert hasattr(mod, name), f"{pkg}.{name} points at {pkg}.{module}, which has no {name}"
+    assert name in getattr(mod, "__all__", ()), f"{pkg}.{name} is exported lazily but not in {pkg}.{module}.__all__"
+    assert getattr(importlib.import_module(pkg), name) is getattr(mod, name)

@@ -29,6 +29,10 @@ __all__ = [
     "timings",
     "docking_landscape",
     "docking_pose",
+    "point_clouds",
+    "distance_matrix",
+    "embedding",
+    "stability",
 ]
 
 _KIND_STYLE = {
@@ -574,6 +578,11 @@ def point_clouds(clouds: dict, *, size=SLIDE, elev: float = 20.0, azim: float = 
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    shapelab.datasets.shape_family
+        A family of shapes to draw.
     """
     from .._toolkit.validate import as_points
 
@@ -610,6 +619,13 @@ def distance_matrix(D, labels, *, ax=None, size=PAGE, title: str | None = None, 
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    shapelab.diagrams.distance_matrix
+        The distances drawn.
+    embedding
+        The same distances in the plane.
     """
     D = np.asarray(D, float)
     labels = [str(s) for s in labels]
@@ -643,6 +659,13 @@ def embedding(points, labels, *, ax=None, size=PAGE, title: str | None = None):
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    shapelab.classical_mds
+        The embedding drawn.
+    distance_matrix
+        The distances embedded.
     """
     from .._toolkit.validate import as_points
 
@@ -679,6 +702,17 @@ def stability(perturbation, distances: dict, *, ax=None, size=PAGE, title: str |
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    shapelab.bottleneck_distance
+        The distances drawn.
+
+    References
+    ----------
+    .. [1] D. Cohen-Steiner, H. Edelsbrunner and J. Harer, "Stability of persistence
+           diagrams", *Discrete Comput. Geom.* 37:103-120, 2007.
+           doi:10.1007/s00454-006-1276-5
     """
     x = np.asarray(perturbation, float).ravel()
     if x.size == 0 or not np.all(np.isfinite(x)) or np.any(x <= 0):

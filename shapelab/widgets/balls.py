@@ -14,7 +14,14 @@ from .._toolkit.validate import (
 from . import _frame
 from .static import StaticFallback
 
-__all__ = ["alpha_explorer", "AlphaExplorer"]
+__all__ = [
+    "alpha_explorer",
+    "AlphaExplorer",
+    "power_explorer",
+    "PowerExplorer",
+    "complex3d_explorer",
+    "Complex3DExplorer",
+]
 
 
 def _default_range(F):
@@ -219,6 +226,13 @@ def power_explorer(balls, *, index=0, radius=None, radius_range=None, steps=100,
     -------
     PowerExplorer
         An ``ipywidgets.VBox``: the two sliders, a status line and the figure.
+
+    See Also
+    --------
+    shapelab.power_diagram
+        The diagram recomputed.
+    shapelab.plot.power_diagram
+        One frame.
     """
     from .._toolkit.validate import as_bbox, default_bbox
     from ..balls import Balls
@@ -252,6 +266,11 @@ class PowerExplorer(StaticFallback, W.VBox):
     image : ipywidgets.Image
     diagram : PowerDiagram
         The power diagram drawn now.
+
+    See Also
+    --------
+    power_explorer
+        Produces it.
     """
 
     SIZE = (7.2, 5.4)
@@ -393,6 +412,13 @@ def complex3d_explorer(F, *, tau=0.0, tau_range=None, steps=60, azim=35.0, elev=
     -------
     Complex3DExplorer
         An ``ipywidgets.VBox``: the sliders, a status line and the figure.
+
+    See Also
+    --------
+    shapelab.plot.complex3d
+        One frame.
+    alpha_explorer
+        The same in 2D.
     """
     from ..filtration import as_filtration
     from ._frame import check_balls, value_range
@@ -414,7 +440,13 @@ def complex3d_explorer(F, *, tau=0.0, tau_range=None, steps=60, azim=35.0, elev=
 
 
 class Complex3DExplorer(StaticFallback, W.VBox):
-    """τ slider + azimuth slider + status + figure; see :func:`complex3d_explorer`."""
+    """τ slider + azimuth slider + status + figure; see :func:`complex3d_explorer`.
+
+    See Also
+    --------
+    complex3d_explorer
+        Produces it.
+    """
 
     SIZE = (7.0, 5.6)
 

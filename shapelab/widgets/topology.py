@@ -11,7 +11,7 @@ from .._toolkit.validate import as_finite_scalar, as_tau, filtration_first
 from . import _frame
 from .static import StaticFallback
 
-__all__ = ["pocket_explorer", "PocketExplorer"]
+__all__ = ["pocket_explorer", "PocketExplorer", "persistence_explorer", "PersistenceExplorer"]
 
 _DPI = 90
 _SIZE = (6.8, 5.0)
@@ -180,6 +180,19 @@ def persistence_explorer(filtration, *, threshold=0.0, threshold_range=None, ste
     -------
     PersistenceExplorer
         An ``ipywidgets.VBox``: the slider, a status line and the figure.
+
+    See Also
+    --------
+    shapelab.topology.persistence
+        The pairs.
+    shapelab.plot.persistence_diagram
+        One frame.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner, D. Letscher and A. Zomorodian, "Topological persistence and
+           simplification", *Discrete Comput. Geom.* 28:511-533, 2002.
+           doi:10.1007/s00454-002-2885-2
     """
     from ..filtration import Filtration
 
@@ -210,7 +223,13 @@ def persistence_explorer(filtration, *, threshold=0.0, threshold_range=None, ste
 
 
 class PersistenceExplorer(StaticFallback, W.VBox):
-    """Threshold slider + status + diagram and barcode; see :func:`persistence_explorer`."""
+    """Threshold slider + status + diagram and barcode; see :func:`persistence_explorer`.
+
+    See Also
+    --------
+    persistence_explorer
+        Produces it.
+    """
 
     SIZE = (10.0, 4.6)
 
