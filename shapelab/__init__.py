@@ -12,6 +12,7 @@ Modules, one per concept of the notes:
 ``shapelab.filtration``   :func:`alpha_filtration`, :func:`dual_complex`
 ``shapelab.topology``     Betti numbers and persistence of a filtration
 ``shapelab.cavities``     :func:`voids`, :func:`pockets`, :func:`tunnels`
+``shapelab.flow``         :func:`discrete_flow`, :func:`flow_pockets`: the literature's pockets
 ``shapelab.freespace``    exact free area/volume of cells (void and pocket volumes)
 ``shapelab.measure``      :func:`union_measure` (area/volume of a union)
 ``shapelab.oracles``      brute-force and sampling oracles (naive formula, Monte Carlo)
@@ -59,6 +60,10 @@ _EXPORTS = {
     "Void": "cavities",
     "Pocket": "cavities",
     "Tunnel": "cavities",
+    "discrete_flow": "flow",
+    "flow_pockets": "flow",
+    "DiscreteFlow": "flow",
+    "FlowPocket": "flow",
     "Quaternion": "quaternion",
     "optimal_rotation": "registration",
     "register": "registration",
@@ -92,6 +97,7 @@ _SUBMODULES = {
     "filtration",
     "topology",
     "cavities",
+    "flow",
     "freespace",
     "measure",
     "oracles",

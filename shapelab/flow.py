@@ -1,0 +1,528 @@
+"""Edelsbrunner's discrete flow and the pockets it defines (Notes §23.1, "Voids and pockets").
+
+The notes define a pocket by the growth model (:func:`shapelab.pockets`): a dent that
+becomes a void later in the growth.  The literature's pocket, the one CAST and CASTp
+compute, is defined instead on one complex, by a *discrete flow* on the regular
+(weighted Delaunay) triangulation [EFL98]_, [LEW98]_.  This module computes it, in 2D
+and 3D, from the α-filtration (:func:`shapelab.alpha_filtration`) at one growth time
+τ, and states the definitions it uses:
+
+* **Empty simplices.**  A top simplex :math:`\\sigma` (a triangle in 2D, a
+  tetrahedron in 3D) of the regular triangulation DT is *empty* at τ if it is not in
+  the dual complex :math:`K_\\tau`; a facet is *open* if it is not in :math:`K_\\tau`.
+  An open facet belongs to two empty top simplices or, on the boundary of the convex
+  hull, to one empty top simplex and the outside, written :math:`\\infty`.
+* **Flow.**  Let :math:`y_\\sigma` be the orthocentre of :math:`\\sigma` (the centre of
+  its orthogonal sphere, the weighted circumcentre: the vertex of the power diagram
+  dual to :math:`\\sigma`).  An empty :math:`\\sigma` *flows* across its facet
+  :math:`\\nu` into the simplex on the other side of :math:`\\nu` (or into
+  :math:`\\infty` if :math:`\\nu` is on the hull) when :math:`\\nu` is open and
+  :math:`y_\\sigma` lies strictly beyond the affine hull of :math:`\\nu`, on the side
+  opposite :math:`\\sigma`'s own vertex :math:`a`.  Equivalently (see below), when
+  :math:`a` lies inside the smallest orthogonal sphere of :math:`\\nu`:
+  :math:`\\pi_a(y_\\nu) < \\rho_\\nu`, i.e. :math:`a` *attaches* :math:`\\nu`.  In 2D
+  with equal radii: an obtuse triangle flows across its longest edge.  A simplex can
+  flow across up to :math:`d` facets (a weighted orthocentre can lie beyond two
+  edges of a triangle), so the flow is a directed graph, not a forest.
+* **Sinks.**  An empty simplex that flows across no facet is a *sink*: it is
+  *centred* (its orthocentre lies in the closed simplex) or every facet its
+  orthocentre lies beyond belongs to :math:`K_\\tau` (the flow is *blocked*).
+  :math:`\\infty` is a sink too.  Following the flow from an empty simplex one
+  reaches a set of sinks (one in 2D with equal radii).
+* **Pockets and voids.**  The empty simplices that do not flow to :math:`\\infty`,
+  glued along their open facets, form the *pocket regions* (:func:`flow_pockets`):
+  the collections flowing into the same sink, merged when they share an open facet,
+  as in [LEW98]_.  A region's *mouth* is the set of its open facets shared with
+  simplices that flow to :math:`\\infty` or with the outside; a region without a
+  mouth is a *void* (a cavity).  These voids are exactly the voids of
+  :func:`shapelab.voids` (tested): a component of the complement of
+  :math:`K_\\tau` that does not reach the outside cannot flow out of itself.
+
+CASTp goes on to measure pockets, keep only those with a cross section wider than
+their mouth, and rank them; that is not done here.
+
+Why the flow stops
+------------------
+Let :math:`\\sigma` and :math:`\\tau'` share the facet :math:`\\nu` and put the line
+:math:`L` through :math:`y_\\nu` orthogonal to :math:`\\nu` as a coordinate :math:`t`,
+positive towards :math:`\\tau'`.  Both orthocentres lie on :math:`L`, and the power of
+the orthogonal sphere of a simplex with centre at :math:`t` is
+:math:`\\rho(t) = t^2 + \\rho_\\nu`.  For the vertex :math:`a` of :math:`\\sigma` opposite
+:math:`\\nu`, :math:`g(t) = \\pi_a - \\pi_\\nu` is affine along :math:`L`, increasing
+away from :math:`a`, and zero at :math:`t_\\sigma`; so :math:`t_\\sigma > 0` (the
+orthocentre is beyond :math:`\\nu`) exactly when :math:`g(0) < 0`, which is the
+attachment test above.  Local regularity of DT at :math:`\\nu` (the far vertex
+:math:`b` of :math:`\\tau'` is not closer in power than :math:`\\rho_\\sigma` to
+:math:`y_\\sigma`) gives :math:`t_\\sigma \\le t_{\\tau'}` in the same way.  Hence along a
+flow step :math:`0 < t_\\sigma \\le t_{\\tau'}` and :math:`\\rho_\\sigma \\le \\rho_{\\tau'}`:
+the flow never decreases the orthosphere's power, and where it keeps it (a tie,
+:math:`y_\\sigma = y_{\\tau'}`) it moves towards that common point, which is acyclic by
+Edelsbrunner's acyclicity theorem for regular complexes [E90]_.  So the flow has no
+cycle and every path ends in a sink; :func:`discrete_flow` checks this on every call
+and raises ``RuntimeError`` if it ever failed.
+
+Exact decisions
+---------------
+Whether :math:`\\sigma` flows across :math:`\\nu` is the sign of
+:math:`D\\,(\\pi_a(y_\\nu) - \\rho_\\nu)`, with :math:`D > 0` the Gram determinant of the
+facet's edge vectors: a polynomial in the input's coordinates and squared radii
+(degree 4 in 2D, 6 in 3D).  It is evaluated in floating point with a bound on its
+rounding error (the same expression on absolute values, times a generous
+:math:`64u`, as in :mod:`shapelab.predicates`); where the bound cannot decide, it
+is recomputed exactly with :class:`fractions.Fraction` from the input's own binary
+values.  A tie (the orthocentre exactly on the facet's hull, as in a right triangle)
+is no flow.  The decisions do not depend on τ and are kept on the filtration.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+
+import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import breadth_first_order, connected_components
+
+from ._toolkit.tolerances import FILTER_UNDERFLOW
+from ._toolkit.validate import as_tau, filtration_first, readonly
+from .filtration import as_filtration, derived
+
+__all__ = ["DiscreteFlow", "FlowPocket", "discrete_flow", "flow_pockets", "flow_side_exact"]
+
+_U = 2.0**-53
+_C = 64.0  # generous against the ~24 roundings of the 3D expression (see the module docstring)
+_TINY = FILTER_UNDERFLOW  # below this a float bound may be spoilt by underflow: decide exactly
+
+
+# ============================================================================ results
+@dataclass(frozen=True, eq=False)
+class FlowPocket:
+    """A pocket region of the discrete flow at ``tau`` (or a void: no mouth).
+
+    Attributes
+    ----------
+    cells : ndarray, shape (m, d+1), int
+        Its empty top simplices, as ball indices.
+    cell_ids : ndarray, shape (m,), int
+        The same, as rows of ``F.simplices(d)`` (ascending).
+    sinks : ndarray, int
+        Rows of ``F.simplices(d)`` of the sinks in the region (centred or blocked).
+    mouth, mouth_ids : ndarray
+        The open facets through which the region meets simplices that flow to
+        infinity, or the outside: ball indices, shape (q, d), and rows of
+        ``F.simplices(d-1)``.  Empty for a void.
+    tau : float
+        The growth time of the complex :math:`K_\\tau` the flow was computed on.
+    """
+
+    cells: np.ndarray
+    cell_ids: np.ndarray
+    sinks: np.ndarray
+    mouth: np.ndarray
+    mouth_ids: np.ndarray
+    tau: float
+
+    @property
+    def is_void(self) -> bool:
+        """``True`` when the region has no mouth: a void (cavity), not a pocket."""
+        return len(self.mouth_ids) == 0
+
+    def __repr__(self) -> str:
+        kind = "void" if self.is_void else "pocket"
+        return (
+            f"FlowPocket({kind}, cells={len(self.cell_ids)}, sinks={len(self.sinks)}, "
+            f"mouth={len(self.mouth_ids)}, tau={self.tau:.6g})"
+        )
+
+
+@dataclass(frozen=True, eq=False)
+class DiscreteFlow:
+    """The discrete flow on the empty top simplices of :math:`K_\\tau` (Notes §23.1).
+
+    Attributes
+    ----------
+    tau : float
+        The growth time.
+    empty : ndarray of bool, shape (n,)
+        Top simplex ``i`` (row of ``F.simplices(d)``) is not in :math:`K_\\tau`.
+    neighbour : ndarray of int, shape (n, d+1)
+        The top simplex across the facet ``F.boundary(d)[i, j]`` (opposite vertex
+        ``j``), ``-1`` for the outside.
+    flows : ndarray of bool, shape (n, d+1)
+        ``flows[i, j]``: simplex ``i`` flows across that facet (into ``neighbour[i, j]``,
+        or to infinity if it is ``-1``).
+    sink : ndarray of bool, shape (n,)
+        Empty simplices that flow across no facet.
+    to_infinity : ndarray of bool, shape (n,)
+        Empty simplices from which the flow reaches the outside.
+    region : ndarray of int, shape (n,)
+        The index in :attr:`pockets` of the region of each simplex, ``-1`` for
+        simplices in :math:`K_\\tau` or flowing to infinity.
+    pockets : tuple of FlowPocket
+        The regions, ordered by their smallest cell row.
+    """
+
+    tau: float
+    empty: np.ndarray
+    neighbour: np.ndarray
+    flows: np.ndarray
+    sink: np.ndarray
+    to_infinity: np.ndarray
+    region: np.ndarray
+    pockets: tuple
+
+    def successors(self, i: int) -> np.ndarray:
+        """Where simplex ``i`` flows in one step: rows of ``F.simplices(d)``, ``-1`` for
+        infinity (empty for a sink or a simplex of :math:`K_\\tau`)."""
+        return self.neighbour[i][self.flows[i]]
+
+    def downstream(self, i: int) -> frozenset:
+        """The sinks the flow from simplex ``i`` reaches (``-1`` for infinity)."""
+        seen, stack, out = {int(i)}, [int(i)], set()
+        while stack:
+            c = stack.pop()
+            nxt = self.successors(c).tolist()
+            if not nxt and self.empty[c]:
+                out.add(c)
+            for s in nxt:
+                if s < 0:
+                    out.add(-1)
+                elif s not in seen:
+                    seen.add(s)
+                    stack.append(s)
+        return frozenset(out)
+
+    def __repr__(self) -> str:
+        n_void = sum(p.is_void for p in self.pockets)
+        return (
+            f"DiscreteFlow(tau={self.tau:.6g}, empty={int(self.empty.sum())}, sinks={int(self.sink.sum())}, "
+            f"to_infinity={int(self.to_infinity.sum())}, pockets={len(self.pockets) - n_void}, voids={n_void})"
+        )
+
+
+# ===================================================================== the predicate
+def flow_side_exact(z_facet, w_facet, z_apex, w_apex) -> int:
+    """Sign of :math:`D(\\pi_a(y_\\nu) - \\rho_\\nu)` in exact rational arithmetic (Notes §23.1).
+
+    ``-1``: the apex :math:`a` is closer in power to the facet's orthocentre
+    :math:`y_\\nu` than its balls, so the simplex :math:`\\nu \\cup \\{a\\}` flows across
+    :math:`\\nu`; ``0``: a tie (no flow); ``+1``: no flow.
+
+    Parameters
+    ----------
+    z_facet : array_like, shape (d, d)
+        The centres of the facet's ``d`` balls (``d`` = 2 or 3).
+    w_facet : array_like, shape (d,)
+        Their weights (squared radii), as :class:`fractions.Fraction` or floats (taken
+        exactly).
+    z_apex : array_like, shape (d,)
+    w_apex : float or Fraction
+
+    Returns
+    -------
+    int
+
+    See Also
+    --------
+    discrete_flow : uses it where the floating-point filter cannot decide.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner, M. Facello and J. Liang, "On the definition and the
+       construction of pockets in macromolecules", Discrete Appl. Math. 88 (1998) 83-102.
+
+    Examples
+    --------
+    An obtuse triangle flows across its long edge, an acute one does not:
+
+    >>> flow_side_exact([[-1.0, 0.0], [1.0, 0.0]], [0.0, 0.0], [0.0, 0.1], 0.0)
+    -1
+    >>> flow_side_exact([[-1.0, 0.0], [1.0, 0.0]], [0.0, 0.0], [0.0, 3.0], 0.0)
+    1
+    >>> flow_side_exact([[-1.0, 0.0], [1.0, 0.0]], [0.0, 0.0], [0.0, 1.0], 0.0)  # right angle
+    0
+    """
+    Z = [[Fraction(float(c)) if not isinstance(c, Fraction) else c for c in row] for row in z_facet]
+    W = [Fraction(float(w)) if not isinstance(w, Fraction) else w for w in w_facet]
+    A = [Fraction(float(c)) if not isinstance(c, Fraction) else c for c in z_apex]
+    wa = w_apex if isinstance(w_apex, Fraction) else Fraction(float(w_apex))
+    return _sign(_flow_value(Z, W, A, wa))
+
+
+def _sign(x) -> int:
+    return (x > 0) - (x < 0)
+
+
+def _dot(a, b):
+    s = a[0] * b[0]
+    for i in range(1, len(a)):
+        s = s + a[i] * b[i]
+    return s
+
+
+def _flow_value(Z, W, A, wa, absmode=False):
+    """``D (pi_a(y_nu) - rho_nu)``, or with ``absmode`` its error-bound companion (the
+    same expansion on absolute values, every sign ``+``), for scalars or numpy arrays."""
+    p, wp = Z[0], W[0]
+    d = len(p)
+    U = [[Z[i][c] - p[c] for c in range(d)] for i in range(1, len(Z))]
+    v = [A[c] - p[c] for c in range(d)]
+    if absmode:
+        U = [[abs(e) for e in u] for u in U]
+        v = [abs(e) for e in v]
+    vv = _dot(v, v)
+    if len(U) == 1:
+        (u,) = U
+        G11 = _dot(u, u)
+        c1 = _dot(u, v)
+        if absmode:
+            return G11 * (vv + wa + wp) + (G11 + wp + W[1]) * c1
+        return G11 * (vv - wa + wp) - (G11 + wp - W[1]) * c1
+    u1, u2 = U
+    G11, G12, G22 = _dot(u1, u1), _dot(u1, u2), _dot(u2, u2)
+    c1, c2 = _dot(u1, v), _dot(u2, v)
+    if absmode:
+        D = G11 * G22 + G12 * G12
+        return (
+            D * (vv + wa + wp) + (G11 + wp + W[1]) * (G22 * c1 + G12 * c2) + (G22 + wp + W[2]) * (G11 * c2 + G12 * c1)
+        )
+    D = G11 * G22 - G12 * G12
+    b1, b2 = G11 + wp - W[1], G22 + wp - W[2]
+    return D * (vv - wa + wp) - (b1 * (G22 * c1 - G12 * c2) + b2 * (G11 * c2 - G12 * c1))
+
+
+def _beyond(F) -> np.ndarray:
+    """``(n, d+1)`` int8: the sign for top simplex ``i`` and its facet opposite vertex
+    ``j`` (``-1``: the orthocentre is strictly beyond that facet)."""
+    balls = F.balls
+    d = balls.dim
+    S = np.asarray(F.simplices(d), dtype=np.int64)
+    n = S.shape[0]
+    out = np.zeros((n, d + 1), dtype=np.int8)
+    if n == 0:
+        return out
+    z = np.asarray(balls.centers, dtype=np.float64)
+    r = np.asarray(balls.radii, dtype=np.float64)
+    w = r * r
+    for j in range(d + 1):
+        fcols = [c for c in range(d + 1) if c != j]
+        Zc = [[z[S[:, c], k] for k in range(d)] for c in fcols]
+        Wc = [w[S[:, c]] for c in fcols]
+        A = [z[S[:, j], k] for k in range(d)]
+        wa = w[S[:, j]]
+        with np.errstate(all="ignore"):
+            val = _flow_value(Zc, Wc, A, wa)
+            bound = _C * _U * _flow_value(Zc, Wc, A, wa, absmode=True)
+        ok = (np.abs(val) > bound) & (bound > _TINY) & np.isfinite(val) & np.isfinite(bound)
+        out[:, j] = np.where(ok, np.sign(np.where(ok, val, 0.0)), 0)
+        for i in np.flatnonzero(~ok).tolist():
+            row = S[i]
+            rf = [Fraction(float(x)) for x in r[row]]
+            out[i, j] = flow_side_exact(z[row[fcols]], [rf[c] ** 2 for c in fcols], z[row[j]], rf[j] ** 2)
+    return out
+
+
+def _neighbours(F) -> np.ndarray:
+    """``(n, d+1)``: the top simplex across each facet (``-1``: the outside)."""
+    d = F.balls.dim
+    B = np.asarray(F.boundary(d), dtype=np.int64)
+    n = B.shape[0]
+    nf = len(F.values(d - 1))
+    flat = B.ravel()
+    owner = np.repeat(np.arange(n), d + 1)
+    order = np.argsort(flat, kind="stable")
+    fs, ow = flat[order], owner[order]
+    first = np.full(nf, -1, dtype=np.int64)
+    second = np.full(nf, -1, dtype=np.int64)
+    start = np.r_[True, fs[1:] != fs[:-1]]
+    first[fs[start]] = ow[start]
+    dup = ~start
+    second[fs[dup]] = ow[dup]
+    other = np.where(first[flat] == owner, second[flat], first[flat])
+    return other.reshape(n, d + 1)
+
+
+def _static(F):
+    return {"beyond": _beyond(F), "neighbour": _neighbours(F)}
+
+
+# ======================================================================= the flow
+@filtration_first
+def discrete_flow(F, tau=0.0) -> DiscreteFlow:
+    """Edelsbrunner's discrete flow on the empty simplices of :math:`K_\\tau`
+    (Notes §23.1; [1]_).
+
+    Each top simplex of the regular triangulation not in :math:`K_\\tau` flows across
+    each facet not in :math:`K_\\tau` beyond which its orthocentre lies strictly; the
+    simplices that flow nowhere are the sinks, the outside is the sink
+    :math:`\\infty`.  The empty simplices that do not reach :math:`\\infty`, glued along
+    facets not in :math:`K_\\tau`, are the pocket regions; those without a mouth
+    are the voids.  The definitions, the proof that the flow is acyclic and how its
+    decisions are made exact are in the module docstring (:mod:`shapelab.flow`).
+
+    Parameters
+    ----------
+    F : Filtration
+        ``alpha_filtration(balls)`` of 2D or 3D balls (a :class:`~shapelab.Balls` is
+        accepted too: its filtration is built for this call).  The flow's decisions
+        do not depend on τ and are kept on ``F``.
+    tau : float, default 0.0
+        The growth time of the complex (radii :math:`\\sqrt{r_i^2 + \\tau}`).  CASTp's
+        complex is that of the balls grown by the probe, at ``tau = 0``.
+
+    Returns
+    -------
+    DiscreteFlow
+
+    Raises
+    ------
+    RuntimeError
+        If the flow had a cycle (impossible for a regular triangulation; checked).
+
+    See Also
+    --------
+    flow_pockets : the pocket regions alone.
+    shapelab.pockets : pockets by the growth model of the notes.
+    shapelab.voids : the voids, which the flow's mouthless regions equal.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner, M. Facello and J. Liang, "On the definition and the
+       construction of pockets in macromolecules", Discrete Appl. Math. 88 (1998) 83-102.
+    .. [2] J. Liang, H. Edelsbrunner and C. Woodward, "Anatomy of protein pockets and
+       cavities: measurement of binding site geometry and implications for ligand
+       design", Protein Sci. 7 (1998) 1884-1897.
+    .. [3] H. Edelsbrunner, "An acyclicity theorem for cell complexes in d dimensions",
+       Combinatorica 10 (1990) 251-260.
+
+    Examples
+    --------
+    A ring of twelve disks with one gap: the chamber is a pocket, its mouth the gap.
+
+    >>> import numpy as np, shapelab as sl
+    >>> t = np.linspace(0, 2 * np.pi, 12, endpoint=False)[1:]
+    >>> ring = sl.Balls(3 * np.c_[np.cos(t), np.sin(t)], 0.9)
+    >>> flow = sl.discrete_flow(sl.alpha_filtration(ring))
+    >>> flow.pockets
+    (FlowPocket(pocket, cells=9, sinks=1, mouth=1, tau=0),)
+    """
+    F = as_filtration(F, "discrete_flow")
+    tau = as_tau(tau)
+    d = F.balls.dim
+    n = len(F.values(d)) if int(F.dimension) == d else 0
+    if n == 0:
+        e = np.zeros(0, dtype=bool)
+        z = np.zeros((0, d + 1), dtype=np.int64)
+        return DiscreteFlow(
+            tau,
+            readonly(e),
+            readonly(z),
+            readonly(z.astype(bool)),
+            readonly(e),
+            readonly(e),
+            readonly(np.zeros(0, dtype=np.int64)),
+            (),
+        )
+    st = derived(F, "flow.static", _static)
+    nb, beyond = st["neighbour"], st["beyond"]
+    B = np.asarray(F.boundary(d), dtype=np.int64)
+    empty = np.asarray(F.values(d)) > tau
+    open_f = np.asarray(F.values(d - 1)) > tau
+    flows = (beyond < 0) & open_f[B]  # an open facet has only empty cofaces
+    sink = empty & ~flows.any(axis=1)
+    # the flow graph, with node n for infinity
+    src, col = np.nonzero(flows)
+    dst = nb[src, col]
+    dst = np.where(dst < 0, n, dst)
+    G = coo_matrix((np.ones(src.size, dtype=np.int8), (src, dst)), shape=(n + 1, n + 1)).tocsr()
+    n_scc, _ = connected_components(G, directed=True, connection="strong")
+    if n_scc != n + 1:
+        raise RuntimeError("discrete_flow: the flow has a cycle; please report this input")
+    reach = breadth_first_order(G.T.tocsr(), n, directed=True, return_predecessors=False)
+    to_inf = np.zeros(n + 1, dtype=bool)
+    to_inf[reach] = True
+    to_inf = to_inf[:n] & empty
+    # regions: empty cells not reaching infinity, glued along open facets
+    inpk = empty & ~to_inf
+    i, j = np.nonzero(open_f[B] & (nb >= 0))
+    m = inpk[i] & inpk[np.maximum(nb[i, j], 0)]
+    g = coo_matrix((np.ones(int(m.sum()), dtype=np.int8), (i[m], nb[i, j][m])), shape=(n, n))
+    _, lab = connected_components(g, directed=False)
+    region = np.full(n, -1, dtype=np.int64)
+    ids = np.flatnonzero(inpk)
+    pockets = []
+    if ids.size:
+        labs = lab[ids]
+        _, first, inv = np.unique(labs, return_index=True, return_inverse=True)
+        rank = np.argsort(np.argsort(ids[first], kind="stable"), kind="stable")
+        region[ids] = rank[inv]
+        simp = np.asarray(F.simplices(d), dtype=np.int64)
+        fsimp = np.asarray(F.simplices(d - 1), dtype=np.int64)
+        for k in range(first.size):
+            cid = np.flatnonzero(region == k)
+            other = nb[cid]
+            on_mouth = open_f[B[cid]] & ((other < 0) | (region[np.maximum(other, 0)] != k))
+            mouth = np.unique(B[cid][on_mouth])
+            pockets.append(
+                FlowPocket(
+                    cells=readonly(simp[cid], np.int64),
+                    cell_ids=readonly(cid, np.int64),
+                    sinks=readonly(cid[sink[cid]], np.int64),
+                    mouth=readonly(fsimp[mouth].reshape(-1, d), np.int64),
+                    mouth_ids=readonly(mouth, np.int64),
+                    tau=tau,
+                )
+            )
+    return DiscreteFlow(
+        tau=tau,
+        empty=readonly(empty),
+        neighbour=readonly(nb, np.int64),
+        flows=readonly(flows),
+        sink=readonly(sink),
+        to_infinity=readonly(to_inf),
+        region=readonly(region),
+        pockets=tuple(pockets),
+    )
+
+
+@filtration_first
+def flow_pockets(F, tau=0.0) -> tuple:
+    """The pockets and voids of the discrete flow at ``tau`` (Notes §23.1; [1]_, [2]_).
+
+    Shorthand for ``discrete_flow(F, tau).pockets``: the empty top simplices that do
+    not flow to infinity, glued along facets not in :math:`K_\\tau`; a region with no
+    mouth (:attr:`FlowPocket.is_void`) is a void.
+
+    Parameters
+    ----------
+    F : Filtration
+        ``alpha_filtration(balls)`` of 2D or 3D balls (or the :class:`~shapelab.Balls`).
+    tau : float, default 0.0
+
+    Returns
+    -------
+    tuple of FlowPocket
+        Ordered by their smallest cell row.
+
+    See Also
+    --------
+    discrete_flow : the flow itself (sinks, arrows, which simplices reach infinity).
+    shapelab.pockets : the notes' growth-model pockets, for comparison.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner, M. Facello and J. Liang, "On the definition and the
+       construction of pockets in macromolecules", Discrete Appl. Math. 88 (1998) 83-102.
+    .. [2] J. Liang, H. Edelsbrunner and C. Woodward, "Anatomy of protein pockets and
+       cavities", Protein Sci. 7 (1998) 1884-1897.
+
+    Examples
+    --------
+    A closed ring of disks encloses a void, which has no mouth:
+
+    >>> import numpy as np, shapelab as sl
+    >>> t = np.linspace(0, 2 * np.pi, 12, endpoint=False)
+    >>> sl.flow_pockets(sl.Balls(3 * np.c_[np.cos(t), np.sin(t)], 0.9))
+    (FlowPocket(void, cells=10, sinks=1, mouth=0, tau=0),)
+    """
+    return discrete_flow(as_filtration(F, "flow_pockets"), tau).pockets

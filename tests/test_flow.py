@@ -1,0 +1,242 @@
+"""Tests of shapelab.flow: the discrete flow and its pockets (Notes §23.1).
+
+Oracles: the orthocentre's barycentric coordinates solved in exact rationals (a
+different formulation from the module's attachment polynomial), shapes whose pockets
+are known by construction, the voids of shapelab.cavities, the entry times of the
+filtration (the flow never decreases them), and GUDHI-free invariants.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import shapelab as sl
+from shapelab import datasets
+from shapelab.flow import flow_side_exact
+
+
+# ----------------------------------------------------------------------------- oracle
+def _solve(M, b):
+    """Exact Gaussian elimination (Fractions)."""
+    n = len(M)
+    A = [list(row) + [bb] for row, bb in zip(M, b)]
+    for c in range(n):
+        p = next(r for r in range(c, n) if A[r][c] != 0)
+        A[c], A[p] = A[p], A[c]
+        for r in range(n):
+            if r != c and A[r][c] != 0:
+                f = A[r][c] / A[c][c]
+                A[r] = [x - f * y for x, y in zip(A[r], A[c])]
+    return [A[i][n] / A[i][i] for i in range(n)]
+
+
+def _barycentric_orthocentre(z, w):
+    """Barycentric coordinates of the orthocentre of the simplex with centres ``z``
+    (d+1 rows) and weights ``w``, exactly."""
+    Z = [[Fraction(float(c)) for c in row] for row in z]
+    W = [Fraction(x) for x in w]
+    d = len(Z[0])
+    M = [[2 * (Z[i][k] - Z[0][k]) for k in range(d)] for i in range(1, d + 1)]
+    b = [sum(c * c for c in Z[i]) - W[i] - sum(c * c for c in Z[0]) + W[0] for i in range(1, d + 1)]
+    y = _solve(M, b)
+    # sum_i lam_i z_i = y, sum_i lam_i = 1
+    A = [[Z[i][k] for i in range(d + 1)] for k in range(d)] + [[Fraction(1)] * (d + 1)]
+    return _solve(A, y + [Fraction(1)])
+
+
+def _weights(balls):
+    return [Fraction(float(r)) ** 2 for r in balls.radii]
+
+
+def _check_against_oracle(balls):
+    F = sl.alpha_filtration(balls)
+    d = balls.dim
+    flow = sl.discrete_flow(F, -np.inf)  # every simplex empty, every facet open
+    S = F.simplices(d)
+    W = _weights(balls)
+    assert flow.empty.all()
+    for i, row in enumerate(S.tolist()):
+        lam = _barycentric_orthocentre(balls.centers[row], [W[v] for v in row])
+        assert flow.flows[i].tolist() == [x < 0 for x in lam], (i, row, lam)
+    return F, flow
+
+
+# ------------------------------------------------------------------------- predicate
+def test_predicate_obtuse_right_acute():
+    e = [[-1.0, 0.0], [1.0, 0.0]]
+    assert flow_side_exact(e, [0.0, 0.0], [0.0, 0.5], 0.0) == -1
+    assert flow_side_exact(e, [0.0, 0.0], [0.0, 1.0], 0.0) == 0  # right angle: on the edge
+    assert flow_side_exact(e, [0.0, 0.0], [0.0, 1.5], 0.0) == 1
+    # a heavy apex pushes the orthocentre away from it: acute triangle, yet flow
+    assert flow_side_exact(e, [0.0, 0.0], [0.0, 1.5], 4.0) == -1
+
+
+@pytest.mark.parametrize("seed", range(4))
+@pytest.mark.parametrize("d", [2, 3])
+def test_flow_is_the_sign_of_the_orthocentres_barycentric_coordinate(d, seed):
+    rng = np.random.default_rng(seed)
+    balls = sl.Balls(rng.uniform(-3, 3, (14 if d == 3 else 20, d)), rng.uniform(0.2, 1.2, 14 if d == 3 else 20))
+    _check_against_oracle(balls)
+
+
+@pytest.mark.parametrize("d", [2, 3])
+def test_lattice_ties(d):
+    """Integer lattices: co-circular/co-spherical everywhere, right angles on facets."""
+    g = np.arange(4.0)
+    pts = np.array(np.meshgrid(*([g] * d))).reshape(d, -1).T
+    F, flow = _check_against_oracle(sl.Balls(pts, 0.4))
+    # ties (orthocentre exactly on a facet) are no flow: a square's two right
+    # triangles are both sinks
+    assert flow.sink.any()
+
+
+# ------------------------------------------------------------------ known by construction
+def _ring(n=12, gap=False, r=0.9):
+    t = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    if gap:
+        t = t[1:]
+    return sl.Balls(3 * np.c_[np.cos(t), np.sin(t)], r)
+
+
+def test_ring_with_a_gap_is_one_pocket_whose_mouth_is_the_gap():
+    balls = _ring(gap=True)
+    (p,) = sl.flow_pockets(balls)
+    assert not p.is_void
+    assert sorted(map(sorted, p.mouth.tolist())) == [[0, 10]]  # the two disks beside the gap
+    # the whole chamber: every empty triangle of the hull
+    F = sl.alpha_filtration(balls)
+    assert set(p.cell_ids.tolist()) == set(np.flatnonzero(F.values(2) > 0).tolist())
+
+
+def test_closed_ring_is_a_void_without_mouth():
+    (p,) = sl.flow_pockets(_ring())
+    assert p.is_void and p.mouth.shape == (0, 2)
+
+
+def test_closed_shell_in_3d_is_a_void():
+    k = np.arange(100) + 0.5
+    phi = np.arccos(1 - 2 * k / 100)
+    th = np.pi * (1 + 5**0.5) * k
+    pts = 3 * np.c_[np.cos(th) * np.sin(phi), np.sin(th) * np.sin(phi), np.cos(phi)]
+    balls = sl.Balls(pts, 1.0)
+    F = sl.alpha_filtration(balls)
+    regions = sl.flow_pockets(F)
+    (v,) = sl.voids(F)
+    voids = [p for p in regions if p.is_void]
+    assert len(voids) == 1
+    assert set(voids[0].cell_ids.tolist()) == set(v.cell_ids.tolist())
+
+
+def test_flask_and_funnel():
+    left, right = datasets.figure_23_2()
+    F = sl.alpha_filtration(left)
+    (p,) = sl.flow_pockets(F)
+    (g,) = sl.pockets(F, min_persistence=1e-9)
+    # the flow's pocket holds the growth model's, and its one mouth edge is the gap at the top
+    assert set(g.cell_ids.tolist()) < set(p.cell_ids.tolist())
+    assert len(p.mouth) == 1
+    gap = left.centers[p.mouth[0]]
+    assert np.allclose(sorted(gap[:, 0]), [-1.0, 1.0]) and np.allclose(gap[:, 1], gap[0, 1])
+    assert sl.flow_pockets(right) == ()
+
+
+# -------------------------------------------------------------------------- invariants
+def _invariants(F, tau):
+    d = F.balls.dim
+    flow = sl.discrete_flow(F, tau)
+    vals = F.values(d)
+    n = len(vals)
+    for i in range(n):
+        if not flow.empty[i]:
+            assert not flow.flows[i].any() and not flow.sink[i]
+            continue
+        for s in flow.successors(i).tolist():
+            if s >= 0:
+                assert flow.empty[s]
+                # the flow never lowers the orthosphere's power (a top simplex enters at
+                # it); equal powers (co-circular ties) are computed to round-off
+                assert vals[s] >= vals[i] or np.isclose(vals[s], vals[i], rtol=1e-12, atol=0)
+        down = flow.downstream(i)
+        assert down, i  # every path ends: in a sink or at infinity
+        assert (-1 in down) == bool(flow.to_infinity[i])
+        sinks = [s for s in down if s >= 0]
+        assert all(flow.sink[s] for s in sinks)
+        if not flow.to_infinity[i]:
+            assert {int(flow.region[s]) for s in sinks} == {int(flow.region[i])}
+    # regions partition the empty simplices that do not reach infinity
+    inside = flow.empty & ~flow.to_infinity
+    assert np.array_equal(flow.region >= 0, inside)
+    cells = np.concatenate([p.cell_ids for p in flow.pockets]) if flow.pockets else np.zeros(0, int)
+    assert sorted(cells.tolist()) == np.flatnonzero(inside).tolist()
+    # mouthless regions are exactly the voids of the growth model, cell for cell
+    ours = sorted(sorted(p.cell_ids.tolist()) for p in flow.pockets if p.is_void)
+    theirs = sorted(sorted(v.cell_ids.tolist()) for v in sl.voids(F, tau))
+    assert ours == theirs
+    return flow
+
+
+@settings(max_examples=25, deadline=None)
+@given(
+    seed=st.integers(0, 2**31 - 1),
+    d=st.sampled_from([2, 3]),
+    tau=st.sampled_from([-0.5, 0.0, 0.3, 1.0]),
+)
+def test_invariants_random(seed, d, tau):
+    rng = np.random.default_rng(seed)
+    n = 30 if d == 2 else 25
+    balls = sl.Balls(rng.uniform(-3, 3, (n, d)), rng.uniform(0.3, 1.0, n))
+    _invariants(sl.alpha_filtration(balls), tau)
+
+
+@pytest.mark.parametrize("tau", [0.0, 0.2, 0.6])
+def test_invariants_shapes(tau):
+    for balls in (*datasets.figure_23_2(), datasets.nested_pockets(), datasets.mixed_dent(), _ring(gap=True)):
+        _invariants(sl.alpha_filtration(balls), tau)
+
+
+@pytest.mark.parametrize("d", [2, 3])
+def test_invariants_lattice_with_ties(d):
+    g = np.arange(4.0)
+    pts = np.array(np.meshgrid(*([g] * d))).reshape(d, -1).T
+    keep = np.any(pts != 1.0, axis=1)  # a lattice with one site removed
+    F = sl.alpha_filtration(sl.Balls(pts[keep], 0.45))
+    for tau in (-0.2, 0.0, 0.1, 0.3):
+        _invariants(F, tau)
+
+
+def test_attached_facets_are_the_facets_the_flow_crosses():
+    """The filtration's attachment flags (if this version has them) mark the facets
+    some coface's orthocentre lies beyond: exactly those the flow crosses at -inf."""
+    rng = np.random.default_rng(7)
+    balls = sl.Balls(rng.uniform(-3, 3, (40, 2)), rng.uniform(0.2, 1.0, 40))
+    F = sl.alpha_filtration(balls)
+    if not hasattr(F, "attached"):
+        pytest.skip("Filtration.attached not available")
+    flow = sl.discrete_flow(F, -np.inf)
+    crossed = np.zeros(len(F.values(1)), dtype=bool)
+    crossed[np.asarray(F.boundary(2))[flow.flows]] = True
+    assert np.array_equal(crossed, F.attached(1))
+
+
+# ------------------------------------------------------------------------ edge cases
+def test_flat_and_tiny_input():
+    assert sl.flow_pockets(sl.Balls(np.c_[np.arange(5.0), np.zeros(5)], 0.5)) == ()
+    assert sl.discrete_flow(sl.Balls(np.zeros((1, 3)), 1.0)).pockets == ()
+
+
+def test_tau_is_validated():
+    with pytest.raises((TypeError, ValueError), match="tau"):
+        sl.discrete_flow(_ring(), "0")
+    with pytest.raises((TypeError, ValueError), match="tau"):
+        sl.discrete_flow(_ring(), float("nan"))
+
+
+def test_tau_infinite():
+    F = sl.alpha_filtration(_ring(gap=True))
+    assert sl.flow_pockets(F, np.inf) == ()  # everything in K
+    assert sl.discrete_flow(F, -np.inf).empty.all()
