@@ -1,0 +1,63 @@
+"""Reading and writing molecules as balls: a small, strict PDB reader (Notes §23.1).
+
+The notes model a molecule as a union of balls :math:`\\bigcup B_i`, one ball per atom,
+with the atom's van der Waals radius.  Adding a *probe* radius :math:`p` to every ball
+gives the solvent-accessible model (Lee & Richards 1971): a water molecule of radius
+:math:`p` can touch the van der Waals surface exactly where its centre lies on the
+boundary of :math:`\\bigcup B(z_i, r_i + p)`.
+
+Only the fixed-column ATOM and HETATM records of the PDB format (wwPDB, *Atomic
+Coordinate Entry Format Description*, v3.3) are read; nothing in a file is ever
+evaluated or executed.
+
+Radii
+-----
+:data:`VDW_RADII` is the table of A. Bondi, "van der Waals Volumes and Radii",
+*J. Phys. Chem.* **68**, 441–451 (1964), Table I (values in Å), completed for the
+main-group elements Bondi does not list (Be, B, Al, Ca, Ge, Rb, Sr, Sb, Cs, Ba, Bi,
+Po, At, Rn, Fr, Ra) by M. Mantina, A. C. Chamberlin, R. Valero, C. J. Cramer and
+D. G. Truhlar, "Consistent van der Waals Radii for the Whole Main Group",
+*J. Phys. Chem. A* **113**, 5806–5812 (2009), Table 12.  Where Bondi has a value it is
+kept (Mantina et al. give H 1.10, Li 1.81 and Br 1.83 instead of Bondi's 1.20, 1.82
+and 1.85; the rest of their Table 12 is Bondi's).  Most transition metals (Fe, Mn,
+Co, Mo, ...) have no consistent van der Waals radius in either table: an atom of
+such an element raises unless a ``default_radius`` (or ``radii=``) is given.
+
+Layout
+------
+A reader turns a file into :class:`~shapelab.io._structure.AtomRecord` rows; the rules
+every reader shares then keep some of them (:mod:`~shapelab.io._selection`: alternate
+locations, water, HETATM, chains, hydrogens) and give each its radius
+(:mod:`~shapelab.io._radii`), and the result is a :class:`PDBStructure`:
+
+==========================  ===================================================
+``shapelab.io._pdb``        :func:`read_pdb`: the PDB format's fixed columns
+``shapelab.io._selection``  which atoms are kept
+``shapelab.io._radii``      :data:`VDW_RADII`, :func:`vdw_radius`
+``shapelab.io._structure``  :class:`PDBStructure`
+``shapelab.io._writers``    :func:`write_pdb`, :func:`write_mmcif`
+==========================  ===================================================
+
+Everything public is imported from ``shapelab.io``; the private modules are its
+implementation, as in ``scipy.spatial``.
+"""
+
+from __future__ import annotations
+
+from ._pdb import MAX_PDB_BYTES, read_pdb
+from ._radii import VDW_RADII, vdw_radius
+from ._selection import STANDARD_RESIDUES, WATER_RESIDUES
+from ._structure import PDBStructure
+from ._writers import write_mmcif, write_pdb
+
+__all__ = [
+    "VDW_RADII",
+    "WATER_RESIDUES",
+    "STANDARD_RESIDUES",
+    "MAX_PDB_BYTES",
+    "PDBStructure",
+    "read_pdb",
+    "write_pdb",
+    "write_mmcif",
+    "vdw_radius",
+]
