@@ -94,3 +94,27 @@ def test_orthogonal_circle_is_orthogonal():
     import shapelab
 
     assert shapelab.alpha_filtration(shapelab.Balls(z, r)).values(2)[0] == pytest.approx(R2, rel=1e-12)
+
+
+def good_dual_edge(c1, r1, c2, r2):
+    # exact: the closed clipped cells meet iff |r1 - r2| <= d <= r1 + r2 (squared, in rationals)
+    from fractions import Fraction as Q
+
+    d2 = sum((Q(float(a)) - Q(float(b))) ** 2 for a, b in zip(c1, c2))
+    return (Q(r1) - Q(r2)) ** 2 <= d2 <= (Q(r1) + Q(r2)) ** 2
+
+
+def test_dual_edge_passes_the_exact_answer_and_refuses_the_open_cases(capsys):
+    """check.dual_edge has touching cases (outside and inside) and a disk inside the other:
+    strict inequalities, a missing ``abs`` and 'the disks intersect' all fail."""
+    res = check.dual_edge(good_dual_edge)
+    assert res.passed and res.n_cases >= 9
+    mistakes = [
+        lambda c1, r1, c2, r2: abs(r1 - r2) < np.linalg.norm(np.subtract(c2, c1)) < r1 + r2,  # touching left out
+        lambda c1, r1, c2, r2: bool(np.linalg.norm(np.subtract(c2, c1)) <= r1 + r2),  # nested disks counted
+        lambda c1, r1, c2, r2: r1 - r2 <= np.linalg.norm(np.subtract(c2, c1)) <= r1 + r2,  # no abs
+        lambda c1, r1, c2, r2: good_dual_edge(c1, r1, c2, r2) and abs(r1 - r2) != np.linalg.norm(np.subtract(c2, c1)),
+    ]
+    for fn in mistakes:
+        assert not check.dual_edge(fn, quiet=True).passed
+    assert not check.dual_edge(lambda *a: 1, quiet=True).passed  # an int is not a bool

@@ -19,6 +19,7 @@ _EXPORTS = {
     "power_distance": "balls",
     "orthogonal_radius": "balls",
     "union_area": "balls",
+    "dual_edge": "balls",
     # topology.py
     "euler_characteristic": "topology",
     "betti_numbers": "topology",

@@ -4,6 +4,8 @@
 * :func:`orthogonal_radius` — the squared radius of the circle orthogonal to three
   circles, which is the time τ at which their triangle enters the α-filtration;
 * :func:`union_area` — the area of the union of two disks by inclusion–exclusion.
+* :func:`dual_edge` — whether the dual complex of two disks has the edge (they cross
+  or touch).
 
 Each runs the student's function on edge cases first, then on seeded random cases,
 and compares with the library (:func:`shapelab.power_distance`,
@@ -16,7 +18,7 @@ import numpy as np
 
 from ._runner import CheckResult, allclose, run_check
 
-__all__ = ["power_distance", "orthogonal_radius", "union_area"]
+__all__ = ["power_distance", "orthogonal_radius", "union_area", "dual_edge"]
 
 
 def power_distance(student_fn, *, quiet: bool = False) -> CheckResult:
@@ -92,8 +94,8 @@ def union_area(student_fn, *, quiet: bool = False) -> CheckResult:
     """Check ``student_fn(c1, r1, c2, r2) -> float``, the area of the union of two
     disks: :math:`\\pi r_1^2 + \\pi r_2^2 - \\operatorname{area}(B_1 \\cap B_2)`.
 
-    Cases: disjoint, tangent, overlapping, one inside the other, identical disks, a
-    disk of radius 0, then random pairs.  The library's answer is
+    Cases: disjoint, tangent from outside, overlapping, one inside the other, identical
+    disks, a disk of radius 0, tangent from inside, then random pairs.  The library's answer is
     :func:`shapelab.union_measure`.
     """
     from ..balls import Balls
@@ -108,6 +110,7 @@ def union_area(student_fn, *, quiet: bool = False) -> CheckResult:
         (p([1.0, 1.0]), 2.0, p([1.0, 1.0]), 2.0),
         (p([0.0, 0.0]), 0.0, p([1.0, 0.0]), 1.0),
         (p([0.0, 0.0]), 2.0, p([0.0, 2.5]), 1.0),
+        (p([0.0, 0.0]), 2.0, p([1.0, 0.0]), 1.0),  # touching from inside
     ]
     rng = np.random.default_rng(22)
     for _ in range(6):
@@ -121,3 +124,60 @@ def union_area(student_fn, *, quiet: bool = False) -> CheckResult:
     return run_check(
         "area of the union of two disks", student_fn, cases, reference, allclose(atol=1e-9, rtol=1e-9), quiet=quiet
     )
+
+
+def dual_edge(student_fn, *, quiet: bool = False) -> CheckResult:
+    """Check ``student_fn(c1, r1, c2, r2) -> bool``: whether the dual complex of two
+    disks with centres :math:`c_1 \\ne c_2` has the edge (Notes §23.1, the
+    definition of K).
+
+    The two power cells meet along the radical axis, and the closed clipped cells
+    :math:`B_i \\cap \\Pi(B_i)` share a point exactly when
+    :math:`|r_1 - r_2| \\le \\lVert c_1 - c_2 \\rVert \\le r_1 + r_2`: the circles cross
+    or touch.  The library's answer is ``dual_complex(Balls([c1, c2], [r1, r2]))``.
+
+    Cases, edge cases first: circles touching from outside and from inside (an edge:
+    the cells share the point of contact), one disk inside the other without touching
+    (no edge, although neither disk is hidden), disjoint and crossing disks, the same
+    with the centres 5 apart on a 3-4-5 triangle (exact in floating point) and the
+    larger disk second, then random pairs kept away from tangency.
+
+    See Also
+    --------
+    shapelab.dual_complex : The library's answer.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner, "The union of balls and its dual shape", *Discrete Comput.
+           Geom.* 13:415-440, 1995.
+    """
+    from ..balls import Balls
+    from ..filtration import dual_complex
+
+    p = np.array
+    cases = [
+        (p([0.0, 0.0]), 1.0, p([2.0, 0.0]), 1.0),  # touching from outside
+        (p([0.0, 0.0]), 1.0, p([0.5, 0.0]), 0.5),  # touching from inside
+        (p([0.0, 0.0]), 3.0, p([1.0, 0.0]), 0.5),  # inside, not touching
+        (p([0.0, 0.0]), 1.0, p([3.0, 0.0]), 1.0),  # disjoint
+        (p([0.0, 0.0]), 1.0, p([1.5, 0.0]), 1.0),  # crossing
+        (p([0.0, 0.0]), 2.0, p([3.0, 4.0]), 3.0),  # touching from outside, off the axes
+        (p([3.0, 4.0]), 2.0, p([0.0, 0.0]), 7.0),  # touching from inside, larger disk second
+        (p([3.0, 4.0]), 1.5, p([0.0, 0.0]), 7.0),  # inside, larger disk second
+        (p([1.0, 1.0]), 0.5, p([1.0, 2.2]), 0.9),  # crossing
+    ]
+    rng = np.random.default_rng(24)
+    while len(cases) < 16:
+        c1, c2 = rng.uniform(-2, 2, 2), rng.uniform(-2, 2, 2)
+        r1, r2 = (float(v) for v in rng.uniform(0.2, 2.0, 2))
+        d = float(np.linalg.norm(c2 - c1))
+        if min(abs(d - r1 - r2), abs(d - abs(r1 - r2))) > 1e-3:  # no near-tangency
+            cases.append((c1, r1, c2, r2))
+
+    def reference(c1, r1, c2, r2):
+        return dual_complex(Balls(np.array([c1, c2]), [r1, r2])).dimension >= 1
+
+    def compare(expected, received):
+        return isinstance(received, (bool, np.bool_)) and bool(received) == expected
+
+    return run_check("edge of the dual complex of two disks", student_fn, cases, reference, compare, quiet=quiet)
