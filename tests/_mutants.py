@@ -191,6 +191,12 @@ def _residues(v, ns):
     ]
 
 
+def _chis(v, ns):
+    F, taus = ns["F"], ns["taus"]
+    no_tets = [int(n[0] - n[1] + n[2]) for n in (F.complex_at(t).counts() for t in taus)]
+    return [*_generic(v), ("tetrahedra left out", no_tets), ("the sphere's 2 at every τ", [2] * len(v))]
+
+
 def _most_exposed(v, ns):
     area = ns["area_by_residue"]
     ranked = sorted(area, key=lambda k: (area[k], k), reverse=True)
@@ -286,6 +292,7 @@ OVERRIDES = {
     "02_dual_complex:my_edge": _edge,
     "07_pockets:my_closes_at": _closes_at,
     "07_pockets:r_closed": _r_closed,
+    "05_dual_complex_3d:chis": _chis,
     "08_tunnels:is_closed_chain": _closed_chain,
     "09_persistence:betti_from_pairs": _betti_from_pairs,
     "09_persistence:eps_one_pocket": _eps_one_pocket,

@@ -45,6 +45,7 @@ _EXPORTS = {
     "buried_area": "answers",
     "most_spread_class": "answers",
     "curve_pairs": "answers",
+    "euler_poincare": "answers",
     "most_exposed_residue": "answers",
     "pocket_residues": "answers",
     "void_radii": "answers",

@@ -23,6 +23,7 @@ __all__ = [
     "void_count",
     "ring_tunnel",
     "curve_pairs",
+    "euler_poincare",
     "most_exposed_residue",
     "pocket_residues",
     "void_radii",
@@ -251,6 +252,51 @@ def curve_pairs(student) -> CheckResult:
     cases += [(rng.integers(-5, 6, size=n).astype(float),) for n in (8, 15, 30)]
     cases += [(np.round(rng.normal(size=50), 3),)]
     return run_check("persistence pairs along a path", student, cases, reference, compare=compare)
+
+
+def euler_poincare(chis, betti_sums, F, taus) -> CheckResult:
+    """Lesson 05: the Euler characteristic of :math:`K_\\tau` at each τ of ``taus``,
+    from its simplex counts, and the alternating sum of its Betti numbers.
+
+    Both are compared entry by entry with the library's: :math:`\\chi` from
+    ``Complex.euler_characteristic`` (the alternating sum of the counts, tetrahedra
+    included) and :math:`\\sum_k (-1)^k \\beta_k` from ``Filtration.betti``.  The two
+    lists agree by the Euler–Poincaré formula; a wrong answer is told how many entries
+    differ, never what they should be.
+
+    Parameters
+    ----------
+    chis : sequence of int
+        The student's :math:`\\chi(K_\\tau)`, one per τ.
+    betti_sums : sequence of int
+        The student's :math:`\\beta_0 - \\beta_1 + \\beta_2`, one per τ.
+    F : Filtration
+        The α-filtration the lesson built.
+    taus : sequence of float
+        The growth times.
+
+    Returns
+    -------
+    CheckResult
+        Passed when both lists agree with the references.
+
+    See Also
+    --------
+    shapelab.check.euler_characteristic : the function exercise on χ.
+
+    References
+    ----------
+    .. [1] Lecture notes, §23.1 (the dual complex and the growth model).
+    .. [2] H. Edelsbrunner and J. Harer, *Computational Topology*, AMS, 2010, §IV.1
+           (the Euler–Poincaré formula).
+    """
+    taus = [float(t) for t in taus]
+    chi = [int(F.complex_at(t).euler_characteristic()) for t in taus]
+    sums = [int(sum((-1) ** k * b for k, b in enumerate(F.betti(t)))) for t in taus]
+    first = value("χ of K_τ from its counts, at each τ", chis, chi)
+    second = value("β0 − β1 + β2 at each τ", betti_sums, sums)
+    passed = bool(first.passed and second.passed)
+    return CheckResult("the Euler–Poincaré formula", passed, 2, first.message + "\n" + second.message)
 
 
 def most_exposed_residue(answer, structure, probe: float = 1.4) -> CheckResult:
