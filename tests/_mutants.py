@@ -287,9 +287,14 @@ def _betti_from_pairs(v, ns):
     return [*_generic(v), ("alive on (birth, death]", half_open_left)]
 
 
+def _bounded_counts(v, ns):
+    return [*_generic(v), ("the unbounded component counted too", [int(n) + 1 for n in v])]
+
+
 #: ``"lesson stem:name"`` -> ``f(solution's value, the kernel's globals)`` -> [(label, wrong answer)]
 OVERRIDES = {
     "02_dual_complex:my_edge": _edge,
+    "06_voids:n_bounded": _bounded_counts,
     "07_pockets:my_closes_at": _closes_at,
     "07_pockets:r_closed": _r_closed,
     "05_dual_complex_3d:chis": _chis,

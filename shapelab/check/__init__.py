@@ -49,6 +49,7 @@ _EXPORTS = {
     "most_exposed_residue": "answers",
     "pocket_residues": "answers",
     "void_radii": "answers",
+    "void_components": "answers",
     # quizzes.py: the end-of-part quizzes
     "quiz": "quizzes",
     "show_quiz": "quizzes",

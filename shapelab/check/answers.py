@@ -27,6 +27,7 @@ __all__ = [
     "most_exposed_residue",
     "pocket_residues",
     "void_radii",
+    "void_components",
     "buried_area",
     "most_spread_class",
 ]
@@ -455,6 +456,48 @@ def void_radii(r_low, r_high, *, bond_length: float = 1.4, rtol: float = 1e-8) -
         rtol=rtol,
         atol=0.0,
     )
+
+
+def void_components(counts, balls, taus) -> CheckResult:
+    """Lesson 06: the number of bounded components of the complement of the union of
+    ``balls`` grown to each τ of ``taus``, counted by the student on voxels.
+
+    The reference is :math:`\\beta_2` of the α-complex at each τ (Alexander duality:
+    the bounded components of :math:`\\mathbb{R}^3 \\setminus U_\\tau` are counted by
+    :math:`\\beta_2(U_\\tau) = \\beta_2(K_\\tau)`), compared entry by entry.
+
+    Parameters
+    ----------
+    counts : sequence of int
+        The student's counts, one per τ.
+    balls : Balls
+        The union's balls (3D).
+    taus : sequence of float
+        The growth times.
+
+    Returns
+    -------
+    CheckResult
+        Passed when every count agrees; otherwise says how many differ and where.
+
+    See Also
+    --------
+    shapelab.oracles.voxel_complement : the same count, on voxels.
+
+    References
+    ----------
+    .. [1] Lecture notes, §23.1 ("Voids and pockets").
+    .. [2] A. Hatcher, *Algebraic Topology*, 2002, Theorem 3.44.
+    """
+    from ..filtration import alpha_filtration
+
+    F = alpha_filtration(balls)
+    expected = np.array([F.betti(float(t))[2] for t in taus], dtype=int)
+    name = "the bounded components of the complement at each τ"
+    received = counts
+    if isinstance(received, np.ndarray) and received.dtype == bool:
+        received = None  # truth values are not counts
+    return value(name, received, expected, rtol=0.0, atol=0.0)
 
 
 def buried_area(answer, receptor, ligand, probe: float = 0.0) -> CheckResult:
