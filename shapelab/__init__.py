@@ -6,33 +6,34 @@ the modules it uses.
 
 Modules, one per concept of the notes:
 
-========================  =====================================================
-``shapelab.balls``        :class:`Balls`, :func:`power_distance` (§23.1)
-``shapelab.power``        :func:`power_diagram`, :func:`regular_triangulation`, clipped cells
-``shapelab.filtration``   :func:`alpha_filtration`, :func:`dual_complex`
-``shapelab.topology``     Betti numbers and persistence of a filtration
-``shapelab.cavities``     :func:`voids`, :func:`pockets`, :func:`tunnels`
-``shapelab.flow``         :func:`discrete_flow`, :func:`flow_pockets`: the literature's pockets
-``shapelab.freespace``    exact free area/volume of cells (void and pocket volumes)
-``shapelab.measure``      :func:`union_measure` (area/volume of a union)
-``shapelab.oracles``      brute-force and sampling oracles (naive formula, Monte Carlo)
-``shapelab.quaternion``   :class:`Quaternion` (§23.2, rotations)
-``shapelab.registration`` :func:`optimal_rotation`, :func:`register`, :func:`icp`
-``shapelab.distance``     :func:`hausdorff`, :func:`directed_hausdorff` (§23.2)
-``shapelab.matching``     :func:`hausdorff_under_translation`, reference points
-``shapelab.critical``     :func:`critical_points` on curves and surfaces
-``shapelab.simplification`` :func:`simplify`: ε-simplification along a curve (ELZ 2002)
-``shapelab.diagrams``     :func:`bottleneck_distance`, :func:`wasserstein_distance`, ``distance_matrix``
-``shapelab.embedding``    :func:`classical_mds`: a distance matrix drawn in the plane
-``shapelab.docking``      :func:`docking_score`, :class:`Docking`: buried area minus clashes, two-stage docking
-``shapelab.features``     :func:`coarse_align`: starts for ICP from pose-free features
-``shapelab.io``           :func:`read_pdb`
-``shapelab.report``       :func:`report`: CASTp-style table of voids and pockets (also a CLI)
-``shapelab.datasets``     generated molecules and the inputs of the figures
-``shapelab.plot``         one function per kind of figure, a shared style
-``shapelab.widgets``      ipywidgets explorers built on :mod:`shapelab.plot`
-``shapelab.check``        self-checks for exercises
-========================  =====================================================
+============================  =====================================================
+``shapelab.balls``            :class:`Balls`, :func:`power_distance` (§23.1)
+``shapelab.power``            :func:`power_diagram`, :func:`regular_triangulation`, clipped cells
+``shapelab.filtration``       :func:`alpha_filtration`, :func:`dual_complex`
+``shapelab.topology``         Betti numbers and persistence of a filtration
+``shapelab.cavities``         :func:`voids`, :func:`pockets`, :func:`tunnels`
+``shapelab.flow``             :func:`discrete_flow`, :func:`flow_pockets`: the literature's pockets
+``shapelab.freespace``        exact free area/volume of cells (void and pocket volumes)
+``shapelab.measure``          :func:`union_measure` (area/volume of a union)
+``shapelab.oracles``          brute-force and sampling oracles (naive formula, Monte Carlo)
+``shapelab.quaternion``       :class:`Quaternion` (§23.2, rotations)
+``shapelab.registration``     :func:`optimal_rotation`, :func:`register`, :func:`icp`
+``shapelab.distance``         :func:`hausdorff`, :func:`directed_hausdorff` (§23.2)
+``shapelab.matching``         :func:`hausdorff_under_translation`, reference points
+``shapelab.critical``         :func:`critical_points` on curves and surfaces
+``shapelab.simplification``   :func:`simplify`: ε-simplification along a curve (ELZ 2002)
+``shapelab.diagrams``         :func:`bottleneck_distance`, :func:`wasserstein_distance`, ``distance_matrix``
+``shapelab.embedding``        :func:`classical_mds`: a distance matrix drawn in the plane
+``shapelab.docking``          :func:`docking_score`, :class:`Docking`: buried area minus clashes, two-stage docking
+``shapelab.features``         :func:`coarse_align`: starts for ICP from pose-free features
+``shapelab.io``               :func:`read_pdb`
+``shapelab.cavity_report``    :func:`report`: CASTp-style table of voids and pockets
+``shapelab.cli``              ``python -m shapelab report FILE``: the command line
+``shapelab.datasets``         generated molecules and the inputs of the figures
+``shapelab.plot``             one function per kind of figure, a shared style
+``shapelab.widgets``          ipywidgets explorers built on :mod:`shapelab.plot`
+``shapelab.check``            self-checks for exercises
+============================  =====================================================
 """
 
 from __future__ import annotations
@@ -90,6 +91,8 @@ _EXPORTS = {
     "DockedPose": "docking",
     "curve_persistence": "simplification",
     "simplify": "simplification",
+    "report": "cavity_report",
+    "CavityReport": "cavity_report",
 }
 _SUBMODULES = {
     "balls",
@@ -112,26 +115,11 @@ _SUBMODULES = {
     "widgets",
     "check",
     "simplification",
+    "cavity_report",
+    "cli",
 }
 
 __all__ = sorted(_EXPORTS) + ["__version__"]
 
 
 __getattr__, __dir__ = attach(__name__, _EXPORTS, _SUBMODULES, eager=__all__)
-
-# ``shapelab.report`` is the function, although ``shapelab/report.py`` is a module of
-# the same name: importing it here binds the attribute to the function once and for
-# all (a later ``import shapelab.report`` finds the module in sys.modules and leaves
-# the attribute alone), while ``python -m shapelab.report`` still runs the module.
-# The module imports nothing heavy at import time, so this keeps ``import shapelab`` fast.
-import warnings as _warnings  # noqa: E402
-
-# runpy warns that the module was imported with its package before ``-m`` ran it:
-# harmless here (main() is only run from ``__main__``), and it would break the CLI's
-# quiet stderr
-_warnings.filterwarnings(
-    "ignore", message="'shapelab.report' found in sys.modules", category=RuntimeWarning, module="runpy"
-)
-from .report import CavityReport, report  # noqa: E402
-
-__all__ += ["report", "CavityReport"]

@@ -1,4 +1,4 @@
-"""shapelab.report: the CASTp-style table of voids and pockets (Notes §23.1).
+"""shapelab.report (shapelab.cavity_report, and the command line shapelab.cli): the CASTp-style table of voids and pockets (Notes §23.1).
 
 Oracles are independent of the report's own computation: β₂ of the filtration, the
 fractional inclusion–exclusion of ``Void.volume``, a seeded jittered-grid flood fill
@@ -27,7 +27,13 @@ import shapelab as sl
 from shapelab.datasets import bowl, structure, structure_path
 
 ROOT = Path(__file__).resolve().parents[1]
-report_module = importlib.import_module("shapelab.report")
+report_module = importlib.import_module("shapelab.cavity_report")
+cli = importlib.import_module("shapelab.cli")
+
+
+def cli_main(argv):
+    """The report subcommand of ``python -m shapelab``."""
+    return cli.main(["report", *argv])
 
 
 @pytest.fixture(scope="module")
@@ -341,7 +347,12 @@ def test_attribute_is_the_function():
 def _cli(args, cwd):
     env = dict(os.environ, PYTHONPATH=str(ROOT))
     return subprocess.run(
-        [sys.executable, "-m", "shapelab.report", *args], cwd=cwd, env=env, capture_output=True, text=True, timeout=300
+        [sys.executable, "-m", "shapelab", "report", *args],
+        cwd=cwd,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=300,
     )
 
 
@@ -393,7 +404,7 @@ def test_cli_flags_map_to_read_pdb(monkeypatch, tmp_path):
         raise ValueError("stop here")
 
     monkeypatch.setattr(importlib.import_module("shapelab.io"), "read_pdb", fake_read_pdb)
-    main = report_module.main
+    main = cli_main
     defaults = dict(chain=None, model=None, hetatm=True, water=False, hydrogens=False, default_radius=None)
     assert main(["x.pdb"]) == 2 and seen == defaults
     assert main(["x.pdb", "--hetatm"]) == 2 and seen == defaults
@@ -428,18 +439,18 @@ def test_cli_checks_the_output_before_computing(monkeypatch, tmp_path, capsys):
 
     monkeypatch.setattr(report_module, "report", no_report)
     src = _cage_pdb(tmp_path)
-    assert report_module.main([str(src), "--out", str(tmp_path / "missing"), "--default-radius", "2"]) == 2
+    assert cli_main([str(src), "--out", str(tmp_path / "missing"), "--default-radius", "2"]) == 2
     err = capsys.readouterr().err
     assert err.startswith("error: output directory") and err.count("\n") == 1
     # an element without a radius is found when reading, and the message names the flag
-    assert report_module.main([str(src), "--out", str(tmp_path)]) == 2
+    assert cli_main([str(src), "--out", str(tmp_path)]) == 2
     assert "--default-radius" in capsys.readouterr().err
     if os.geteuid() != 0:  # root writes anywhere
         ro = tmp_path / "ro"
         ro.mkdir()
         ro.chmod(0o500)
         try:
-            assert report_module.main([str(src), "--out", str(ro), "--default-radius", "2"]) == 2
+            assert cli_main([str(src), "--out", str(ro), "--default-radius", "2"]) == 2
             assert "Permission denied" in capsys.readouterr().err
             assert list(ro.iterdir()) == []
         finally:
@@ -452,7 +463,7 @@ def test_cli_without_a_pdb_file_says_why(tmp_path, capsys):
     out = tmp_path / "out"
     out.mkdir()
     (out / "cage_cavities.pdb").write_text("a stale file of another run")
-    assert report_module.main([str(src), "--out", str(out), "--default-radius", "2"]) == 0
+    assert cli_main([str(src), "--out", str(out), "--default-radius", "2"]) == 0
     cap = capsys.readouterr()
     assert cap.err.startswith("note: no cage_cavities.pdb (residue_numbers") and cap.err.count("\n") == 1
     assert sorted(p.name for p in out.iterdir()) == ["cage_cavities.cif", "cage_cavities.csv", "cage_cavities.md"]
@@ -508,7 +519,7 @@ def test_cli_any_file_name(tmp_path):
         out = tmp_path / f"out{len(stem)}"
         out.mkdir()
         p = src.rename(tmp_path / name)
-        assert report_module.main([str(p), "--out", str(out), "--default-radius", "2"]) == 0
+        assert cli_main([str(p), "--out", str(out), "--default-radius", "2"]) == 0
         assert sorted(f.name for f in out.iterdir()) == [f"{stem}_cavities.{e}" for e in ("cif", "csv", "md", "pdb")]
         src = p
 
@@ -550,3 +561,24 @@ def test_a_target_that_is_a_directory_is_found_before_writing(bowl_report, tmp_p
         assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
             f"bowl_cavities.{e}" for e in ("csv", "md", "cif", "pdb")
         )
+
+
+def test_import_changes_no_global_state():
+    """``import shapelab`` (and the report) installs no warnings filter and runs no
+    program: the command line lives in shapelab.cli alone."""
+    code = (
+        "import warnings, sys; before = list(warnings.filters); "
+        "import shapelab, shapelab.cavity_report; shapelab.report; "
+        "assert warnings.filters == before, warnings.filters[:3]; "
+        "assert 'shapelab.cli' not in sys.modules"
+    )
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+
+
+def test_cli_needs_a_command(tmp_path, capsys):
+    with pytest.raises(SystemExit) as e:
+        cli.main([])
+    assert e.value.code == 2
+    assert "COMMAND" in capsys.readouterr().err

@@ -1,0 +1,147 @@
+"""The command line: ``python -m shapelab report FILE.pdb [--probe 1.4] [--out DIR] [options]``.
+
+One program, ``python -m shapelab`` (or the ``shapelab`` script), with one subcommand
+per task:
+
+``report``
+    The CASTp-style report of the voids and pockets of a structure
+    (:func:`shapelab.report`, Notes §23.1): reads ``FILE`` with
+    :func:`shapelab.read_pdb` and its defaults (HETATM records kept, water and
+    hydrogens dropped; each flag changes one of them), so that it prints exactly the
+    table of ``report(read_pdb(FILE), 1.4)``, and writes ``<stem>_cavities.csv``,
+    ``.md``, ``.cif`` and, when the PDB format can hold the marked structure,
+    ``.pdb`` to ``DIR`` (:meth:`shapelab.cavity_report.CavityReport.write`).  An
+    unreadable, malformed or empty file, or an output directory that cannot be
+    written, exits with status 2 and one line on stderr before any cavity is
+    computed, and writes nothing.
+
+The library modules read no arguments and change no global state when imported; only
+this module is a program.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from . import cavity_report
+
+__all__ = ["main", "parser"]
+
+
+def parser() -> argparse.ArgumentParser:
+    """The argument parser of ``python -m shapelab`` and its subcommands.
+
+    See Also
+    --------
+    main
+        Parses and runs.
+    """
+    top = argparse.ArgumentParser(
+        prog="python -m shapelab",
+        description="shapelab on the command line: biogeometric shape analysis (Lecture 23).",
+    )
+    sub = top.add_subparsers(dest="command", metavar="COMMAND", required=True)
+    ap = sub.add_parser(
+        "report",
+        description="CASTp-style report of the voids and pockets of a PDB file (Notes §23.1). "
+        "The file is read as shapelab.read_pdb reads it by default: HETATM records (ligands, ions) "
+        "kept, water and hydrogens dropped.",
+    )
+    ap.add_argument("file", help="PDB file (plain or gzip)")
+    ap.add_argument("--probe", type=float, default=1.4, help="probe radius in Å (default 1.4)")
+    ap.add_argument("--out", default=".", help="output directory, which must exist (default: current directory)")
+    ap.add_argument("--chain", action="append", metavar="ID", help="keep only this chain (repeatable)")
+    ap.add_argument("--model", type=int, metavar="N", help="read MODEL N (default: the first)")
+    het = ap.add_mutually_exclusive_group()
+    het.add_argument("--no-hetatm", action="store_true", help="drop every HETATM record")
+    het.add_argument(
+        "--hetatm",
+        action="append",
+        nargs="?",
+        const=True,
+        metavar="NAME",
+        help="keep only the HETATM residues named NAME (repeatable); without NAME, all (the default)",
+    )
+    ap.add_argument("--water", action="store_true", help="keep water molecules")
+    ap.add_argument("--hydrogens", action="store_true", help="keep hydrogen atoms")
+    ap.add_argument(
+        "--default-radius",
+        type=float,
+        metavar="R",
+        help="van der Waals radius (Å) of elements shapelab.io.VDW_RADII lacks "
+        "(Bondi 1964 and Mantina et al. 2009 list none for most transition metals)",
+    )
+    return top
+
+
+def main(argv=None) -> int:
+    """``python -m shapelab report FILE.pdb [--probe 1.4] [--out DIR] [options]``.
+
+    Runs the subcommand named first in ``argv`` (default: ``sys.argv[1:]``) and returns
+    the exit status.  ``report`` reads ``FILE`` with :func:`shapelab.read_pdb` and its
+    defaults, changed only by the flags ``--chain``, ``--model``,
+    ``--no-hetatm``/``--hetatm NAME``, ``--water``, ``--hydrogens`` and
+    ``--default-radius``; checks the output directory
+    (:func:`shapelab.cavity_report.check_output`); then computes
+    ``report(structure, probe)``, writes its files (the PDB file when the format can
+    hold it) and prints the Markdown table.  Exit status 2 with a one-line message on
+    stderr, and no files, for an unreadable, malformed or empty file, an output
+    directory that cannot be written, or a bad option -- all found before any cavity
+    is computed.  If no PDB file is written, one line on stderr says why.
+
+    See Also
+    --------
+    shapelab.report
+        The function behind ``report``.
+    parser
+        The options.
+    """
+    args = parser().parse_args(argv)
+    return _run_report(args)
+
+
+def _run_report(args) -> int:
+    from .io import read_pdb
+
+    def fail(e) -> int:
+        msg = str(e).splitlines()[0] if str(e) else type(e).__name__
+        if "default_radius=" in msg:
+            msg += " (on the command line: --default-radius R)"
+        print(f"error: {msg}", file=sys.stderr)
+        return 2
+
+    names = [h for h in (args.hetatm or []) if h is not True]
+    hetatm = False if args.no_hetatm else (set(names) if names else True)
+    stem = Path(args.file).name
+    for suffix in (".gz", ".pdb", ".ent"):
+        if stem.lower().endswith(suffix):
+            stem = stem[: -len(suffix)]
+    if stem in ("", ".", ".."):  # "..pdb": no name a file could be written under
+        stem = "structure"
+    try:
+        s = read_pdb(
+            args.file,
+            chain=args.chain,
+            model=args.model,
+            hetatm=hetatm,
+            water=args.water,
+            hydrogens=args.hydrogens,
+            default_radius=args.default_radius,
+        )
+        cavity_report.check_output(s, args.out, stem)  # before the expensive part
+    except (ValueError, TypeError, OSError) as e:
+        return fail(e)
+    try:
+        rep = cavity_report.report(s, args.probe, name=stem)
+        paths = rep.write(args.out, stem)
+    except (ValueError, TypeError, OSError) as e:
+        return fail(e)
+    sys.stdout.write(rep.to_markdown())
+    if not any(p.suffix == ".pdb" for p in paths):
+        print(
+            f"note: no {stem}_cavities.pdb ({rep.pdb_problem()}); the marked structure is in {paths[2].name}",
+            file=sys.stderr,
+        )
+    return 0
