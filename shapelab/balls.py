@@ -22,6 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._toolkit.bases import BallsBase
 from ._toolkit.validate import (
     as_finite_scalar,
     as_point,
@@ -36,7 +37,7 @@ __all__ = ["Balls", "power_distance"]
 
 
 @dataclass(frozen=True, eq=False)
-class Balls:
+class Balls(BallsBase):
     """A finite set of balls (disks in 2D) with centres and radii.
 
     Parameters

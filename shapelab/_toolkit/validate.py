@@ -18,6 +18,8 @@ import numbers
 
 import numpy as np
 
+from .bases import BallsBase
+
 __all__ = [
     "as_float_array",
     "check_finite",
@@ -251,9 +253,7 @@ def check_balls(balls, name: str = "balls", *, dim: int | None = None):
     """Return ``balls`` if it is a :class:`shapelab.Balls` (of dimension ``dim`` if
     given), else raise a TypeError/ValueError naming ``name``.  The one ball check:
     the centres and radii themselves were validated when the Balls was built."""
-    from ..balls import Balls
-
-    if not isinstance(balls, Balls):
+    if not isinstance(balls, BallsBase):
         raise TypeError(f"{name} must be a shapelab.Balls, got {type(balls).__name__}")
     if dim is not None and balls.dim != dim:
         raise ValueError(f"{name} must be {dim}-dimensional here, got dim={balls.dim}")
