@@ -249,6 +249,34 @@ def _edge(v, ns):
     return [*_generic(v), ("strict inequalities (touching disks have no edge)", strict)]
 
 
+def _attached(v, ns):
+    def orthocentre(z, r, i, j, weighted=True):
+        a = z[j] - z[i]
+        w = r**2 if weighted else 0 * r
+        return z[i] + (a @ a - w[j] + w[i]) / (2 * (a @ a)) * a
+
+    def diametral(centers, radii, edge):  # the unweighted Gabriel test: radii ignored
+        z = np.asarray(centers, float)
+        i, j = edge
+        d = np.sum((z - (z[i] + z[j]) / 2) ** 2, axis=1)
+        d[[i, j]] = np.inf
+        return bool(np.any(d < np.sum((z[j] - z[i]) ** 2) / 4))
+
+    def centres_in_circle(centers, radii, edge):  # another centre inside the orthogonal circle
+        z, r = np.asarray(centers, float), np.asarray(radii, float)
+        i, j = edge
+        c = orthocentre(z, r, i, j)
+        d = np.sum((z - c) ** 2, axis=1)
+        d[[i, j]] = np.inf
+        return bool(np.any(d < np.sum((c - z[i]) ** 2) - r[i] ** 2))
+
+    return [
+        *_generic(v),
+        ("the diametral circle (radii ignored)", diametral),
+        ("centres, not powers", centres_in_circle),
+    ]
+
+
 def _closes_at(v, ns):
     def equal_radii(pocket, balls):  # (d/2)² − r²: right only where the two radii are equal
         i, j = np.asarray(pocket.mouth).T
@@ -294,6 +322,7 @@ def _bounded_counts(v, ns):
 #: ``"lesson stem:name"`` -> ``f(solution's value, the kernel's globals)`` -> [(label, wrong answer)]
 OVERRIDES = {
     "02_dual_complex:my_edge": _edge,
+    "03_alpha_filtration:is_attached": _attached,
     "06_voids:n_bounded": _bounded_counts,
     "07_pockets:my_closes_at": _closes_at,
     "07_pockets:r_closed": _r_closed,

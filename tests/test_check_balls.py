@@ -96,6 +96,39 @@ def test_orthogonal_circle_is_orthogonal():
     assert shapelab.alpha_filtration(shapelab.Balls(z, r)).values(2)[0] == pytest.approx(R2, rel=1e-12)
 
 
+def good_attached(centers, radii, edge):
+    # the edge's orthocentre c on the line z_i z_j (equal power), then every other power at c
+    z, r = np.asarray(centers, float), np.asarray(radii, float)
+    i, j = edge
+    a = z[j] - z[i]
+    c = z[i] + (a @ a - r[j] ** 2 + r[i] ** 2) / (2 * (a @ a)) * a
+    rho = np.sum((c - z[i]) ** 2) - r[i] ** 2
+    pw = np.sum((z - c) ** 2, axis=1) - r**2
+    pw[[i, j]] = np.inf
+    return bool(np.any(pw < rho))
+
+
+def diametral_attached(centers, radii, edge):  # the unweighted Gabriel test: radii ignored
+    z = np.asarray(centers, float)
+    i, j = edge
+    d = np.sum((z - (z[i] + z[j]) / 2) ** 2, axis=1)
+    d[[i, j]] = np.inf
+    return bool(np.any(d < np.sum((z[j] - z[i]) ** 2) / 4))
+
+
+def test_attached_edge_check(capsys):
+    assert check.attached_edge(good_attached).passed
+    assert "✓" in capsys.readouterr().out
+    for wrong in (
+        diametral_attached,
+        lambda c, r, e: not good_attached(c, r, e),
+        lambda c, r, e: False,
+        lambda c, r, e: int(good_attached(c, r, e)),  # an int is not an answer
+    ):
+        assert not check.attached_edge(wrong).passed
+        assert "✗" in capsys.readouterr().out
+
+
 def good_dual_edge(c1, r1, c2, r2):
     # exact: the closed clipped cells meet iff |r1 - r2| <= d <= r1 + r2 (squared, in rationals)
     from fractions import Fraction as Q

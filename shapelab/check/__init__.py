@@ -20,6 +20,7 @@ _EXPORTS = {
     "orthogonal_radius": "balls",
     "union_area": "balls",
     "dual_edge": "balls",
+    "attached_edge": "balls",
     # topology.py
     "euler_characteristic": "topology",
     "betti_numbers": "topology",

@@ -6,6 +6,8 @@
 * :func:`union_area` — the area of the union of two disks by inclusion–exclusion.
 * :func:`dual_edge` — whether the dual complex of two disks has the edge (they cross
   or touch).
+* :func:`attached_edge` — whether an edge of the regular triangulation enters with a
+  coface (its smallest orthogonal sphere claimed by another ball).
 
 Each runs the student's function on edge cases first, then on seeded random cases,
 and compares with the library (:func:`shapelab.power_distance`,
@@ -18,7 +20,7 @@ import numpy as np
 
 from ._runner import CheckResult, allclose, run_check
 
-__all__ = ["power_distance", "orthogonal_radius", "union_area", "dual_edge"]
+__all__ = ["power_distance", "orthogonal_radius", "union_area", "dual_edge", "attached_edge"]
 
 
 def power_distance(student_fn, *, quiet: bool = False) -> CheckResult:
@@ -181,3 +183,64 @@ def dual_edge(student_fn, *, quiet: bool = False) -> CheckResult:
         return isinstance(received, (bool, np.bool_)) and bool(received) == expected
 
     return run_check("edge of the dual complex of two disks", student_fn, cases, reference, compare, quiet=quiet)
+
+
+def attached_edge(student_fn, *, quiet: bool = False) -> CheckResult:
+    """Check ``student_fn(centers, radii, edge) -> bool``: whether the edge ``(i, j)``
+    of the regular triangulation of the balls is *attached* (Notes §23.1; lesson 03).
+
+    The edge's smallest orthogonal sphere has its centre c on the line through
+    :math:`z_i, z_j`, with :math:`\\pi_i(c) = \\pi_j(c) = \\rho`; the edge is attached
+    iff some other ball has :math:`\\pi_v(c) < \\rho`.  The library's answer is
+    ``alpha_filtration(Balls(centers, radii)).attached(1)`` at the edge's row.
+
+    Cases: the long edge of an obtuse triangle of equal disks (attached) and a short
+    one (not), a tangent pair beside a third ball, a third ball whose centre lies
+    outside the orthogonal circle but whose disk claims its centre (attached: the
+    test is on the power, not on the centre), unequal radii where the diametral
+    circle and the orthogonal circle disagree, a hidden ball, then random edges of
+    random balls in 2D and 3D (none of them a tie).
+    """
+    from ..balls import Balls
+    from ..filtration import alpha_filtration
+
+    p = np.array
+    cases = [
+        (p([[0.0, 0.0], [4.0, 0.0], [2.0, 1.0]]), p([1.0, 1.0, 1.0]), (0, 1)),
+        (p([[0.0, 0.0], [4.0, 0.0], [2.0, 1.0]]), p([1.0, 1.0, 1.0]), (0, 2)),
+        (p([[0.0, 0.0], [2.0, 0.0], [1.0, 5.0]]), p([1.0, 1.0, 0.5]), (0, 1)),
+        (p([[0.0, 0.0], [4.0, 0.0], [2.0, 2.5]]), p([1.0, 1.0, 2.0]), (0, 1)),
+        (p([[0.0, 0.0], [4.0, 0.0], [1.6, 1.7]]), p([2.0, 0.5, 0.0]), (0, 1)),
+        (p([[0.0, 0.0], [1.0, 0.0], [5.0, 1.0], [0.2, 0.1], [2.0, 4.0]]), p([3.0, 0.5, 1.0, 0.1, 1.0]), (0, 4)),
+    ]
+    rng = np.random.default_rng(23)
+    for d in (2, 2, 3, 2, 3, 2):
+        while True:
+            c, r = rng.uniform(0, 4, (7, d)), rng.uniform(0.2, 1.2, 7)
+            E = alpha_filtration(Balls(c, r)).simplices(1)
+            e = tuple(int(v) for v in E[rng.integers(len(E))])
+            ce, re = _edge_orthosphere(c, r, e)
+            gap = np.delete(np.sum((c - ce) ** 2, axis=1) - r**2, list(e)) - re
+            if np.min(np.abs(gap)) > 1e-3 * (1.0 + abs(re)):  # no near-tie
+                cases.append((c, r, e))
+                break
+
+    def reference(centers, radii, edge):
+        F = alpha_filtration(Balls(centers, radii))
+        row = [tuple(s) for s in F.simplices(1).tolist()].index(tuple(sorted(edge)))
+        return bool(F.attached(1)[row])
+
+    def compare(expected, received):
+        return isinstance(received, (bool, np.bool_)) and bool(received) == expected
+
+    return run_check("attached edge", student_fn, cases, reference, compare, quiet=quiet)
+
+
+def _edge_orthosphere(c, r, e):
+    """Centre and power of the smallest orthogonal sphere of the edge ``e`` (to keep
+    the random cases away from ties)."""
+    z0, z1 = c[e[0]], c[e[1]]
+    a = z1 - z0
+    t = (a @ a - r[e[1]] ** 2 + r[e[0]] ** 2) / (2 * (a @ a))
+    x = z0 + t * a
+    return x, float(np.sum((x - z0) ** 2) - r[e[0]] ** 2)
