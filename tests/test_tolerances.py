@@ -71,7 +71,7 @@ WIRED = (
     "topology",
     "registration",
     "quaternion",
-    "report",
+    "cavity_report",
     "embedding",
 )
 
