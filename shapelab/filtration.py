@@ -51,6 +51,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
@@ -60,7 +61,7 @@ from ._toolkit.validate import as_bbox, as_tau, check_balls, freeze
 from .balls import Balls
 from .power import clipped_cells, power_diagram, triangulate_local
 
-__all__ = ["alpha_filtration", "dual_complex", "Filtration", "Complex"]
+__all__ = ["alpha_filtration", "dual_complex", "Filtration", "Complex", "BoundaryMatrix"]
 
 
 # ----------------------------------------------------------------------------------
@@ -646,6 +647,30 @@ class Complex(_SimplicialMixin):
         return f"Complex(tau={self.tau!r}, counts={self.counts()})"
 
 
+class BoundaryMatrix(NamedTuple):
+    """The boundary matrix of a filtration over :math:`\\mathbb{Z}/2`
+    (:meth:`Filtration.boundary_matrix`).
+
+    Column (and row) ``i`` is the simplex ``F.simplices(dims[i])[rows[i]]``, which
+    enters at ``values[i]``.
+
+    See Also
+    --------
+    Filtration.boundary_matrix : builds it.
+    shapelab.topology.reduce_boundary : reduces it.
+    """
+
+    #: (n, n) ``scipy.sparse.csc_matrix`` of 0/1 (uint8): entry ``[i, j]`` is 1 when
+    #: simplex ``i`` is a facet of simplex ``j``.
+    matrix: object
+    #: (n,) int64: the dimension of each simplex.
+    dims: np.ndarray
+    #: (n,) int64: its row in ``F.simplices(dims[i])``.
+    rows: np.ndarray
+    #: (n,) float64: its entry time τ, non-decreasing.
+    values: np.ndarray
+
+
 @dataclass(frozen=True, eq=False, repr=False)
 class Filtration(_SimplicialMixin):
     """The α-filtration (Notes §23.1, "the dual-complex") of a set of balls.
@@ -830,6 +855,87 @@ class Filtration(_SimplicialMixin):
         from .topology import betti_curve
 
         return betti_curve(self, taus)
+
+    def boundary_matrix(self) -> BoundaryMatrix:
+        """The boundary matrix :math:`D` of the filtration over :math:`\\mathbb{Z}/2`,
+        columns and rows in filtration order (Notes §23.1, "Voids and pockets").
+
+        Every simplex of the filtration is one column and one row, ordered by entry
+        time, then dimension, then row of :meth:`simplices` (the order in which
+        :func:`shapelab.topology.persistence` reads the filtration).  Column ``j`` holds
+        the boundary of simplex ``j``: a 1 in the row of each of its facets.
+
+        Returns
+        -------
+        BoundaryMatrix
+            ``(matrix, dims, rows, values)``: the (n, n) ``scipy.sparse.csc_matrix``
+            of 0/1 (uint8), and for each column its dimension, its row in
+            ``simplices(dims[i])`` and its entry time τ.
+
+        See Also
+        --------
+        shapelab.topology.reduce_boundary : the standard column reduction of ``D``.
+        shapelab.topology.persistence : the pairs, computed without this matrix.
+
+        Notes
+        -----
+        A face enters no later than its cofaces, and at a tie the lower dimension
+        comes first, so :math:`D` is strictly upper triangular.  Reducing its columns
+        (:func:`shapelab.topology.reduce_boundary`) pairs the simplices that create a
+        homology class with those that destroy one [1]_, [2]_.  Dense, it has
+        :math:`n^2` entries: meant for small filtrations (lessons, tests).
+
+        References
+        ----------
+        .. [1] H. Edelsbrunner, D. Letscher, A. Zomorodian, "Topological persistence and
+           simplification", Discrete Comput. Geom. 28 (2002) 511-533.
+        .. [2] H. Edelsbrunner, J. Harer, *Computational Topology: An Introduction*,
+           AMS (2010), §VII.1.
+
+        Examples
+        --------
+        >>> import shapelab as sl
+        >>> F = sl.alpha_filtration(sl.Balls([[0, 0], [2, 0], [1, 1.5]], [0.5, 0.5, 0.5]))
+        >>> B = F.boundary_matrix()
+        >>> B.dims.tolist()
+        [0, 0, 0, 1, 1, 1, 2]
+        >>> F.simplices(1).tolist()  # the two sides of length 1.80 enter first
+        [[0, 2], [1, 2], [0, 1]]
+        >>> B.matrix.toarray()
+        array([[0, 0, 0, 1, 0, 1, 0],
+               [0, 0, 0, 0, 1, 1, 0],
+               [0, 0, 0, 1, 1, 0, 0],
+               [0, 0, 0, 0, 0, 0, 1],
+               [0, 0, 0, 0, 0, 0, 1],
+               [0, 0, 0, 0, 0, 0, 1],
+               [0, 0, 0, 0, 0, 0, 0]], dtype=uint8)
+        """
+        from scipy.sparse import csc_matrix
+
+        top = self.dimension
+        dims = np.concatenate([np.full(int(self._counts[k]), k, dtype=np.int64) for k in range(top + 1)] or [[]])
+        rows = np.concatenate([np.arange(int(self._counts[k]), dtype=np.int64) for k in range(top + 1)] or [[]])
+        values = np.concatenate([np.asarray(self.values(k), dtype=np.float64) for k in range(top + 1)] or [[]])
+        dims, rows = dims.astype(np.int64), rows.astype(np.int64)
+        order = np.lexsort((rows, dims, values))
+        dims, rows, values = dims[order], rows[order], values[order]
+        n = order.size
+        pos = [np.empty(int(self._counts[k]), dtype=np.int64) for k in range(top + 1)]
+        for k in range(top + 1):
+            pos[k][rows[dims == k]] = np.flatnonzero(dims == k)
+        r_idx, c_idx = [], []
+        for k in range(1, top + 1):
+            cols = np.flatnonzero(dims == k)
+            facets = np.asarray(self.boundary(k), dtype=np.int64)[rows[cols]]
+            r_idx.append(pos[k - 1][facets].ravel())
+            c_idx.append(np.repeat(cols, k + 1))
+        r = np.concatenate(r_idx) if r_idx else np.zeros(0, dtype=np.int64)
+        c = np.concatenate(c_idx) if c_idx else np.zeros(0, dtype=np.int64)
+        D = csc_matrix((np.ones(r.size, dtype=np.uint8), (r, c)), shape=(n, n))
+        D.sort_indices()
+        for a in (dims, rows, values):
+            a.flags.writeable = False
+        return BoundaryMatrix(D, dims, rows, values)
 
     def persistence(self, *, field=2) -> dict:
         """Persistence diagrams over :math:`\\mathbb{Z}/p`, ``p = field`` (default 2; see

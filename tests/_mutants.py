@@ -319,6 +319,32 @@ def _bounded_counts(v, ns):
     return [*_generic(v), ("the unbounded component counted too", [int(n) + 1 for n in v])]
 
 
+def _reduce(v, ns):
+    def reduction(pivot, once=False, mod2=True):
+        def fn(D):
+            R = np.array(D, dtype=np.int64)
+            owner = {}
+            for j in range(R.shape[1]):
+                while R[:, j].any():
+                    i = int(pivot(np.flatnonzero(R[:, j])))
+                    if i not in owner:
+                        owner[i] = j
+                        break
+                    R[:, j] = (R[:, j] + R[:, owner[i]]) % 2 if mod2 else R[:, j] - R[:, owner[i]]
+                    if once:
+                        break
+            return R
+
+        return fn
+
+    return [
+        *_generic(v),
+        ("the topmost 1 of a column instead of the lowest", reduction(lambda rows: rows[0])),
+        ("at most one addition per column", reduction(lambda rows: rows[-1], once=True)),
+        ("columns subtracted over the integers, not mod 2", reduction(lambda rows: rows[-1], mod2=False)),
+    ]
+
+
 #: ``"lesson stem:name"`` -> ``f(solution's value, the kernel's globals)`` -> [(label, wrong answer)]
 OVERRIDES = {
     "02_dual_complex:my_edge": _edge,
@@ -330,6 +356,7 @@ OVERRIDES = {
     "08_tunnels:is_closed_chain": _closed_chain,
     "09_persistence:betti_from_pairs": _betti_from_pairs,
     "09_persistence:eps_one_pocket": _eps_one_pocket,
+    "09_persistence:my_reduce": _reduce,
     "10_molecule_case_study:pocket_residues": _residues,
     "10_molecule_case_study:most_exposed": _most_exposed,
     "10_molecule_case_study:voids_after": _voids_after,

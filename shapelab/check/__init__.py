@@ -24,6 +24,7 @@ _EXPORTS = {
     # topology.py
     "euler_characteristic": "topology",
     "betti_numbers": "topology",
+    "boundary_reduction": "topology",
     # matching.py
     "hausdorff": "matching",
     "directed_hausdorff": "matching",
