@@ -200,7 +200,25 @@ def _chis(v, ns):
 def _most_exposed(v, ns):
     area = ns["area_by_residue"]
     ranked = sorted(area, key=lambda k: (area[k], k), reverse=True)
-    return [("the runner-up residue", ranked[1]), ("the least exposed residue", ranked[-1])]
+    sl, mol = ns["sl"], ns["mol"]
+    keys = [f"{n} {k}" for n, k in zip(mol.residue_names, mol.residue_numbers)]
+
+    def top(values, how=sum):  # the residue whose atoms' values, combined by `how`, are largest
+        by = {}
+        for key, a in zip(keys, values):
+            by.setdefault(key, []).append(float(a))
+        return max(by, key=lambda k: (how(by[k]), k))
+
+    vdw = sl.union_measure(mol.balls).ball_boundary
+    sa = sl.union_measure(sl.Balls(mol.balls.centers, mol.balls.radii + 1.4)).ball_boundary
+    plausible = [
+        ("van der Waals radii, no probe", top(vdw)),
+        ("the mean area per atom", top(sa, lambda a: sum(a) / len(a))),
+        ("the residue of the most exposed atom", top(sa, max)),
+    ]
+    return [("the runner-up residue", ranked[1]), ("the least exposed residue", ranked[-1])] + [
+        (label, w) for label, w in plausible if w != v
+    ]
 
 
 def _most_spread(v, ns):
