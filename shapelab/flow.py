@@ -24,11 +24,16 @@ and 3D, from the α-filtration (:func:`shapelab.alpha_filtration`) at one growth
   with equal radii: an obtuse triangle flows across its longest edge.  A simplex can
   flow across up to :math:`d` facets (a weighted orthocentre can lie beyond two
   edges of a triangle), so the flow is a directed graph, not a forest.
-* **Sinks.**  An empty simplex that flows across no facet is a *sink*: it is
-  *centred* (its orthocentre lies in the closed simplex) or every facet its
-  orthocentre lies beyond belongs to :math:`K_\\tau` (the flow is *blocked*).
-  :math:`\\infty` is a sink too.  Following the flow from an empty simplex one
-  reaches a set of sinks (one in 2D with equal radii).
+* **Sinks.**  An empty simplex that flows across no facet is a *sink*.  In a
+  general complex the flow could be *blocked* (the orthocentre beyond a facet of
+  :math:`K_\\tau`), but not in the α-complex: if :math:`y_\\sigma` lies beyond
+  :math:`\\nu`, then :math:`\\nu` is attached (see below), so it enters
+  :math:`K` with its earliest coface, at :math:`\\min(\\rho_\\sigma, \\rho_{\\tau'})
+  = \\rho_\\sigma`, together with :math:`\\sigma`: a facet beyond which an empty
+  simplex's orthocentre lies is open.  So the sinks are exactly the *centred* empty
+  simplices (orthocentre in the closed simplex: local maxima of the power distance to
+  the balls), tested.  :math:`\\infty` is a sink too.  Following the flow from an
+  empty simplex one reaches a set of sinks (one in 2D with equal radii).
 * **Pockets and voids.**  The empty simplices that do not flow to :math:`\\infty`,
   glued along their open facets, form the *pocket regions* (:func:`flow_pockets`):
   the collections flowing into the same sink, merged when they share an open facet,
@@ -106,7 +111,7 @@ class FlowPocket:
     cell_ids : ndarray, shape (m,), int
         The same, as rows of ``F.simplices(d)`` (ascending).
     sinks : ndarray, int
-        Rows of ``F.simplices(d)`` of the sinks in the region (centred or blocked).
+        Rows of ``F.simplices(d)`` of the sinks in the region (its centred simplices).
     mouth, mouth_ids : ndarray
         The open facets through which the region meets simplices that flow to
         infinity, or the outside: ball indices, shape (q, d), and rows of
@@ -152,7 +157,8 @@ class DiscreteFlow:
         ``flows[i, j]``: simplex ``i`` flows across that facet (into ``neighbour[i, j]``,
         or to infinity if it is ``-1``).
     sink : ndarray of bool, shape (n,)
-        Empty simplices that flow across no facet.
+        Empty simplices that flow across no facet: the centred ones (their
+        orthocentre in the closed simplex).
     to_infinity : ndarray of bool, shape (n,)
         Empty simplices from which the flow reaches the outside.
     region : ndarray of int, shape (n,)
@@ -354,7 +360,7 @@ def discrete_flow(F, tau=0.0) -> DiscreteFlow:
 
     Each top simplex of the regular triangulation not in :math:`K_\\tau` flows across
     each facet not in :math:`K_\\tau` beyond which its orthocentre lies strictly; the
-    simplices that flow nowhere are the sinks, the outside is the sink
+    simplices that flow nowhere are the sinks (the centred ones), the outside is the sink
     :math:`\\infty`.  The empty simplices that do not reach :math:`\\infty`, glued along
     facets not in :math:`K_\\tau`, are the pocket regions; those without a mouth
     are the voids.  The definitions, the proof that the flow is acyclic and how its

@@ -304,6 +304,28 @@ def _closes_at(v, ns):
     return [*_generic(v), ("the equal-radii formula (d/2)² − r²", equal_radii)]
 
 
+def _flow_sinks(v, ns):
+    def with_complex(F, tau):  # every centred triangle, also those already in K_tau
+        z = F.balls.centers[np.asarray(F.simplices(2))]
+        ok = np.ones(len(z), dtype=bool)
+        for j in range(3):
+            a, b, c = z[:, j], z[:, (j + 1) % 3], z[:, (j + 2) % 3]
+            ok &= np.einsum("ij,ij->i", b - a, c - a) >= 0
+        return np.flatnonzero(ok).tolist()
+
+    def first_angle_only(F, tau):  # the obtuse test at the first vertex of each row only
+        z = F.balls.centers[np.asarray(F.simplices(2))]
+        a, b, c = z[:, 0], z[:, 1], z[:, 2]
+        ok = (np.einsum("ij,ij->i", b - a, c - a) >= 0) & (np.asarray(F.values(2)) > tau)
+        return np.flatnonzero(ok).tolist()
+
+    return [
+        *_generic(v),
+        ("centred triangles of K_tau counted too", with_complex),
+        ("one angle tested instead of three", first_angle_only),
+    ]
+
+
 def _r_closed(v, ns):
     return [*_generic(v), ("read off a grid of step 0.05, one step low", v - 0.05)]
 
@@ -370,6 +392,7 @@ OVERRIDES = {
     "06_voids:n_bounded": _bounded_counts,
     "07_pockets:my_closes_at": _closes_at,
     "07_pockets:r_closed": _r_closed,
+    "07_pockets:my_sinks": _flow_sinks,
     "05_dual_complex_3d:chis": _chis,
     "08_tunnels:is_closed_chain": _closed_chain,
     "09_persistence:betti_from_pairs": _betti_from_pairs,

@@ -168,6 +168,9 @@ def _invariants(F, tau):
         assert all(flow.sink[s] for s in sinks)
         if not flow.to_infinity[i]:
             assert {int(flow.region[s]) for s in sinks} == {int(flow.region[i])}
+    # no flow is ever blocked by K: the sinks are the centred empty simplices
+    centred = ~sl.discrete_flow(F, -np.inf).flows.any(axis=1)
+    assert np.array_equal(flow.sink, flow.empty & centred)
     # regions partition the empty simplices that do not reach infinity
     inside = flow.empty & ~flow.to_infinity
     assert np.array_equal(flow.region >= 0, inside)
@@ -240,3 +243,16 @@ def test_tau_infinite():
     F = sl.alpha_filtration(_ring(gap=True))
     assert sl.flow_pockets(F, np.inf) == ()  # everything in K
     assert sl.discrete_flow(F, -np.inf).empty.all()
+
+
+# ------------------------------------------------------------------------------ figure
+def test_plot_draws_one_arrow_per_flow_step():
+    from shapelab import plot
+
+    F = sl.alpha_filtration(_ring(gap=True))
+    fig = plot.discrete_flow(F)
+    ax = fig.axes[0]
+    arrows = [t for t in ax.texts if getattr(t, "arrow_patch", None) is not None]
+    assert len(arrows) == int(sl.discrete_flow(F).flows.sum()) > 0
+    with pytest.raises(ValueError, match="2D"):
+        plot.discrete_flow(sl.Balls(np.eye(3) * 2, 1.0))

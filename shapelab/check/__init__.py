@@ -40,6 +40,7 @@ _EXPORTS = {
     "standard_error_factor": "answers",
     "neck_closing": "answers",
     "mouth_closing": "answers",
+    "flow_sinks": "answers",
     "torus_viewpoints": "answers",
     "radical_center": "answers",
     "void_count": "answers",

@@ -18,6 +18,7 @@ __all__ = [
     "standard_error_factor",
     "neck_closing",
     "mouth_closing",
+    "flow_sinks",
     "torus_viewpoints",
     "radical_center",
     "void_count",
@@ -150,6 +151,41 @@ def mouth_closing(student) -> CheckResult:
         cases,
         lambda p, b: p.closes_at,
         describe=lambda case: f"a pocket with {len(case[0].mouth)} mouth edges among {len(case[1])} disks",
+    )
+
+
+def flow_sinks(student) -> CheckResult:
+    """Lesson 07: ``student(F, tau)`` returns the rows of ``F.simplices(2)`` that are the
+    sinks of the discrete flow at ``tau`` (disks of one radius), as a list; compared as
+    sets with :func:`shapelab.discrete_flow` on a ring of disks with a gap and on seeded
+    random disks at three growth times (every case has sinks; the random ones also
+    have centred triangles already in :math:`K_\\tau`, which are no sinks) (Notes §23.1)."""
+    from ..balls import Balls
+    from ..filtration import alpha_filtration
+    from ..flow import discrete_flow
+    from ._runner import run_check
+
+    rng = np.random.default_rng(7)
+    t = np.linspace(0, 2 * np.pi, 14, endpoint=False)[1:]
+    ring = Balls(3 * np.c_[np.cos(t), np.sin(t)] + rng.normal(0, 0.05, (13, 2)), 0.8)
+    cases = [(alpha_filtration(ring), 0.0)]
+    for n, tau in ((30, 0.0), (30, 0.6), (40, 0.2)):
+        cases.append((alpha_filtration(Balls(rng.uniform(-4, 4, (n, 2)), 0.7)), tau))
+
+    def same_set(expected, received):
+        try:
+            got = sorted(int(i) for i in received)
+        except (TypeError, ValueError):
+            return False
+        return got == sorted(int(i) for i in expected) and len(got) == len(set(got))
+
+    return run_check(
+        "the sinks of the discrete flow",
+        student,
+        cases,
+        lambda F, tau: np.flatnonzero(discrete_flow(F, tau).sink).tolist(),
+        same_set,
+        describe=lambda case: f"{len(case[0].balls)} disks at tau = {case[1]:g}",
     )
 
 

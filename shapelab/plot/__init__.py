@@ -7,6 +7,7 @@ the rest of the library.
 ================  ==============================================================
 ``balls``         disks, power diagrams, dual complexes, filtrations, 3D views
 ``topology``      persistence diagrams, barcodes, Betti curves, voids, pockets
+``flow``          the discrete flow in 2D: arrows, sinks, pocket regions
 ``matching``      critical points, Hausdorff witnesses
 ``rotation``      point sets, ICP steps and convergence, rotations in 3D
 ``viewer3d``      ``view3d``: an interactive 3Dmol.js view of a molecule and its
@@ -36,6 +37,8 @@ _EXPORTS = {
     "pocket_gallery": "topology",
     "tunnels": "topology",
     "channel_profile": "topology",
+    # flow.py
+    "discrete_flow": "flow",
     # matching.py
     "critical_points": "matching",
     "critical_surface": "matching",
