@@ -227,6 +227,43 @@ def _most_spread(v, ns):
     return [("the runner-up class", ranked[1]), ("the least spread class", ranked[-1])]
 
 
+def _class_spreads(v, ns):
+    """Lesson 17's per-class spreads, read the wrong way (each lands on the right class)."""
+    labels = list(ns["labels"])
+
+    def per_class(M, stat):
+        out = {}
+        for kind in dict.fromkeys(labels):
+            idx = [i for i, s in enumerate(labels) if s == kind]
+            out[kind] = float(stat(M[np.ix_(idx, idx)][np.triu_indices(len(idx), 1)]))
+        return out
+
+    H1 = ns["distance_matrix"]([d[1] for d in ns["dgms"]], p=2)
+    first = next(iter(v))
+    return [
+        ("the mean distance within a class", per_class(ns["wasserstein"], np.mean)),
+        ("H1's Wasserstein distance only", per_class(H1, np.max)),
+        ("the bottleneck matrix", per_class(ns["bottleneck"], np.max)),
+        ("one class's value 10 % off", {**v, first: v[first] + _off(v[first])}),
+    ]
+
+
+def _rips_gap(v, ns):
+    import gudhi
+
+    X = ns["small_torus"]
+    st = gudhi.RipsComplex(points=X, max_edge_length=1.6).create_simplex_tree(max_dimension=2)
+    st.compute_persistence(homology_coeff_field=2)
+    rips = st.persistence_intervals_in_dimension(1)
+    tau = np.asarray(ns["alpha_filtration"](ns["Balls"](X, 0.0)).persistence()[1], dtype=float)
+    bd = ns["bottleneck_distance"]
+    return [
+        *_generic(v),
+        ("Rips in the edge-length scale", float(bd(np.sqrt(np.maximum(tau, 0.0)), rips))),
+        ("α left in the τ scale", float(bd(tau, rips / 2))),
+    ]
+
+
 def _viewpoints(v, ns):
     return [
         ("two viewpoints swapped against their counts", [v[1], v[0], v[2]]),
@@ -406,6 +443,8 @@ OVERRIDES = {
     "13_icp:best": _icp_best,
     "13_icp:my_icp_step": _icp_step,
     "17_shape_classification:most_spread": _most_spread,
+    "17_shape_classification:spread": _class_spreads,
+    "17_shape_classification:rips_gap": _rips_gap,
 }
 
 

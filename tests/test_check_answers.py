@@ -88,3 +88,51 @@ def test_mouth_closing_refuses_the_equal_radii_formula(capsys):
     assert check.mouth_closing(_mouth_time(equal_radii=False))
     assert not check.mouth_closing(_mouth_time(equal_radii=True))
     assert "✗" in capsys.readouterr().out
+
+
+# ---- lesson 17: the most spread-out class, with its per-class values -------------------
+#: four classes of two shapes each; within-class distances 0.3, 0.1, 0.5, 0.2 (the cube
+#: is the most spread out); between classes 1.0
+SPREAD_LABELS = ["sphere", "sphere", "ellipsoid", "ellipsoid", "cube", "cube", "torus", "torus"]
+SPREAD_RIGHT = {"sphere": 0.3, "ellipsoid": 0.1, "cube": 0.5, "torus": 0.2}
+
+
+def _spread_matrix():
+    D = np.ones((8, 8)) - np.eye(8)
+    for k, v in enumerate(SPREAD_RIGHT.values()):
+        D[2 * k, 2 * k + 1] = D[2 * k + 1, 2 * k] = v
+    return D
+
+
+def test_most_spread_class_passes_the_closed_form(capsys):
+    assert check.most_spread_class(" Cube", _spread_matrix(), SPREAD_LABELS, spread=dict(SPREAD_RIGHT))
+    assert "✓" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(
+    "answer, spread",
+    [
+        ("sphere", SPREAD_RIGHT),  # the runner-up class
+        ("cube", {**SPREAD_RIGHT, "cube": 0.25}),  # right class, one value wrong (a mean, say)
+        ("cube", {k: v for k, v in SPREAD_RIGHT.items() if k != "torus"}),  # a class missing
+        ("cube", list(SPREAD_RIGHT.values())),  # not a dict
+    ],
+)
+def test_most_spread_class_refuses_a_wrong_label_or_value_without_giving_it(answer, spread, capsys):
+    assert not check.most_spread_class(answer, _spread_matrix(), SPREAD_LABELS, spread=spread)
+    out = capsys.readouterr().out
+    assert "✗" in out and "✓" not in out and "0.5" not in out  # a wrong value is named by its class only
+
+
+# ---- lesson 17: Rips against α, on the regular octahedron ---------------------------------
+def test_rips_union_gap_closed_form_on_the_octahedron(capsys):
+    # edges sqrt(2): 7 loops born at rho = sqrt(1/2) in both filtrations; the faces close them
+    # at their circumradius sqrt(2/3) in the alpha filtration, at once (with their edges) in
+    # the Rips one, whose H1 is empty: the gap is (sqrt(2/3) - sqrt(1/2)) / 2
+    octahedron = np.vstack([np.eye(3), -np.eye(3)])
+    gap = (np.sqrt(2 / 3) - np.sqrt(1 / 2)) / 2
+    assert check.rips_union_gap(gap, octahedron)
+    assert not check.rips_union_gap(2 * gap, octahedron)  # Rips in the edge-length scale: no, but 2x off
+    assert not check.rips_union_gap(gap**2, octahedron)
+    out = capsys.readouterr().out
+    assert out.count("✓") == 1 and out.count("✗") == 2

@@ -31,6 +31,7 @@ __all__ = [
     "void_components",
     "buried_area",
     "most_spread_class",
+    "rips_union_gap",
 ]
 
 
@@ -556,15 +557,106 @@ def buried_area(answer, receptor, ligand, probe: float = 0.0) -> CheckResult:
     return value("the buried area (Å²)", answer, expected, rtol=1e-6)
 
 
-def most_spread_class(answer, distances, labels) -> CheckResult:
-    """Lesson 17: the class with the largest distance between two of its members."""
+def most_spread_class(answer, distances, labels, *, spread) -> CheckResult:
+    """Lesson 17: the class with the largest distance between two of its members, and
+    that largest distance for every class.
+
+    Both are checked: the label alone has four possible values, and a wrong reading of
+    "spread" (the mean distance, one dimension's distance, the bottleneck matrix) can
+    land on the right class by chance; the per-class values cannot.
+
+    Parameters
+    ----------
+    answer : str
+        The student's class (case and surrounding spaces ignored).
+    distances : array_like, shape (n, n)
+        The lesson's distance matrix between the shapes.
+    labels : sequence of str
+        The class of each shape.
+    spread : dict
+        The student's largest within-class distance, class -> number (to 1e-9
+        relative), compared class by class.
+
+    Returns
+    -------
+    CheckResult
+        Passed when every class's value and the label are right; a wrong value is
+        named by its class, never given.
+
+    See Also
+    --------
+    shapelab.diagrams.distance_matrix : the matrices of the lesson.
+
+    References
+    ----------
+    .. [1] Lecture notes, §23.2 (protein shape classification).
+    """
     D = np.asarray(distances, dtype=float)
     labels = [str(s) for s in labels]
-    spread = {}
+    want = {}
     for i, a in enumerate(labels):
         for j, b in enumerate(labels):
-            if a == b:
-                spread[a] = max(spread.get(a, 0.0), float(D[i, j]))
-    expected = max(spread, key=lambda k: (spread[k], k))
+            if a == b and i != j:
+                want[a] = max(want.get(a, 0.0), float(D[i, j]))
+    expected = max(want, key=lambda k: (want[k], k))
+    per_class = "the largest distance within each class"
+    if not isinstance(spread, dict):
+        msg = f"✗ {per_class}: expected a dict class -> distance, got a {type(spread).__name__}."
+    elif {str(k).strip().lower() for k in spread} != set(want):
+        msg = f"✗ {per_class}: its keys should be the classes {sorted(want)}."
+    else:
+        got = {str(k).strip().lower(): v for k, v in spread.items()}
+        wrong = [k for k in want if not value(per_class, got[k], want[k], rtol=1e-9, atol=0.0, quiet=True).passed]
+        msg = f"✗ {per_class}: not quite: yours differs for {', '.join(map(repr, wrong))}." if wrong else ""
+    if msg:
+        print(msg)
+        return CheckResult("the most spread-out class", False, 1, msg)
     received = answer.strip().lower() if isinstance(answer, str) else answer
     return value("the most spread-out class", received, expected)
+
+
+def rips_union_gap(gap, points, *, max_edge_length: float = 1.6, rtol: float = 1e-6) -> CheckResult:
+    """Lesson 17: the bottleneck distance between the :math:`H_1` diagrams of the
+    Vietoris–Rips filtration of ``points`` (in the scale ρ = half the edge length) and
+    of their α-filtration (in ρ = √τ): the union's diagram against one that is not a
+    nerve's.
+
+    Parameters
+    ----------
+    gap : float
+        The student's distance.
+    points : array_like, shape (n, 3)
+        The points (balls of radius 0).
+    max_edge_length : float
+        GUDHI's Rips threshold; every :math:`H_1` class must die below it (checked).
+    rtol : float
+        Relative tolerance.
+
+    Returns
+    -------
+    CheckResult
+
+    See Also
+    --------
+    shapelab.filtration.alpha_filtration : the α-filtration, the nerve of the union's cells.
+
+    References
+    ----------
+    .. [1] Lecture notes, §23.1 (the dual complex and the union).
+    .. [2] H. Edelsbrunner and J. Harer, *Computational Topology*, AMS, 2010, §III.2
+       (Čech and Vietoris–Rips complexes).
+    """
+    import gudhi
+
+    from ..balls import Balls
+    from ..diagrams import bottleneck_distance
+    from ..filtration import alpha_filtration
+
+    X = np.asarray(points, dtype=float)
+    alpha = np.sqrt(np.maximum(np.asarray(alpha_filtration(Balls(X, 0.0)).persistence()[1], dtype=float), 0.0))
+    st = gudhi.RipsComplex(points=X, max_edge_length=max_edge_length).create_simplex_tree(max_dimension=2)
+    st.compute_persistence(homology_coeff_field=2)
+    rips = np.asarray(st.persistence_intervals_in_dimension(1), dtype=float).reshape(-1, 2) / 2.0
+    if not np.all(np.isfinite(rips)):
+        raise ValueError(f"max_edge_length={max_edge_length!r} leaves a loop of the Rips filtration alive")
+    return value("the H1 bottleneck distance, Rips against α (in ρ)", gap, bottleneck_distance(alpha, rips), rtol=rtol)
