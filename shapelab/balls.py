@@ -80,6 +80,47 @@ class Balls(BallsBase):
         r = as_radii(radii, c.shape[0], "radii")
         object.__setattr__(self, "centers", readonly(c))
         object.__setattr__(self, "radii", readonly(r))
+        object.__setattr__(self, "_derived", {})
+
+    def derived(self, key: str, build):
+        """A result derived from these balls, built on first use and kept with them.
+
+        The one input rule of the library: every function of a filtration takes Balls
+        or a Filtration alike, and Balls are turned into their filtration
+        (:func:`shapelab.alpha_filtration`) once, here, so that ``voids(balls)`` then
+        ``pockets(balls)`` build it once.  The balls are immutable, so what is kept
+        stays right; it lives as long as the balls, and is not pickled or copied.
+
+        Parameters
+        ----------
+        key : str
+            Names the result; one key, one builder.
+        build : callable
+            ``build(balls)`` computes it.
+
+        Returns
+        -------
+        object
+            ``build(self)``, computed once per Balls object.
+
+        See Also
+        --------
+        shapelab.filtration.Filtration.derived
+            The same for results derived from a filtration.
+        """
+        cache = self._derived
+        try:
+            return cache[key]
+        except KeyError:
+            return cache.setdefault(key, build(self))
+
+    def __getstate__(self):
+        return {"centers": self.centers, "radii": self.radii}
+
+    def __setstate__(self, state):
+        object.__setattr__(self, "centers", state["centers"])
+        object.__setattr__(self, "radii", state["radii"])
+        object.__setattr__(self, "_derived", {})
 
     # ------------------------------------------------------------------ basics
     @property

@@ -53,6 +53,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
 from ._toolkit import tolerances as tol
+from ._toolkit.derived import derived
 from ._toolkit.unionfind import elder_merges
 from ._toolkit.validate import (
     as_finite_scalar,
@@ -61,9 +62,9 @@ from ._toolkit.validate import (
     filtration_first,
     readonly,
 )
-from .filtration import as_filtration, derived
+from ._topology import is_roundoff, reduce_h1, summary
+from .filtration import as_filtration
 from .freespace import free_measure, vertex_values, void_measure
-from .topology import is_roundoff, reduce_h1, summary
 
 __all__ = ["Void", "Pocket", "Tunnel", "voids", "pockets", "tunnels", "grooves", "ChannelProfile", "channel_profile"]
 

@@ -55,6 +55,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from . import _topology
 from ._toolkit.geometry import cross, dot
 from ._toolkit.tolerances import ENTRY_TIME_RTOL, ENTRY_TIME_SAFETY, GRAM_PINV_RCOND
 from ._toolkit.validate import as_bbox, as_tau, check_balls, freeze
@@ -846,15 +847,11 @@ class Filtration(_SimplicialMixin):
 
     def betti(self, tau) -> tuple:
         """Betti numbers of :math:`K(\\tau)` (see :func:`shapelab.topology.betti`)."""
-        from .topology import betti
-
-        return betti(self, tau)
+        return _topology.betti(self, tau)
 
     def betti_curve(self, taus) -> np.ndarray:
         """Betti numbers at each τ (see :func:`shapelab.topology.betti_curve`)."""
-        from .topology import betti_curve
-
-        return betti_curve(self, taus)
+        return _topology.betti_curve(self, taus)
 
     def boundary_matrix(self) -> BoundaryMatrix:
         """The boundary matrix :math:`D` of the filtration over :math:`\\mathbb{Z}/2`,
@@ -940,9 +937,7 @@ class Filtration(_SimplicialMixin):
     def persistence(self, *, field=2) -> dict:
         """Persistence diagrams over :math:`\\mathbb{Z}/p`, ``p = field`` (default 2; see
         :func:`shapelab.topology.persistence`)."""
-        from .topology import persistence
-
-        return persistence(self, field=field)
+        return _topology.persistence(self, field=field)
 
     def __repr__(self) -> str:
         return f"Filtration(n_balls={len(self.balls)}, dimension={self.dimension}, counts={self.counts()})"
@@ -950,14 +945,15 @@ class Filtration(_SimplicialMixin):
 
 def as_filtration(F, who: str):
     """The filtration a function works on: ``F`` itself, or ``alpha_filtration(F)``
-    when ``F`` is a :class:`~shapelab.Balls` (built here, once per call).
+    when ``F`` is a :class:`~shapelab.Balls` (built once and kept with the balls:
+    :meth:`shapelab.Balls.derived`).  The one input rule of the library.
 
     ``F`` may also be any object with the filtration's accessors and ``.balls``
     (``dimension``, ``simplices(k)``, ``values(k)``, ``boundary(k)``).  ``who`` names
     the calling function in the error message.
     """
     if isinstance(F, Balls):
-        return alpha_filtration(F)
+        return F.derived("filtration.alpha", alpha_filtration)
     missing = [a for a in ("balls", "dimension", "simplices", "values", "boundary") if not hasattr(F, a)]
     if missing or not isinstance(F.balls, Balls):
         what = f"it has no {missing[0]!r}" if missing else "its .balls is not a shapelab.Balls"
@@ -966,14 +962,6 @@ def as_filtration(F, who: str):
             f"{what} (got {type(F).__name__})"
         )
     return F
-
-
-def derived(F, key: str, build):
-    """``F.derived(key, build)`` (:meth:`Filtration.derived`): the result kept on the
-    filtration.  Any other object with the filtration's accessors (an adapter over
-    another library's complex, in the tests) keeps nothing: ``build(F)`` each time."""
-    get = getattr(F, "derived", None)
-    return get(key, build) if callable(get) else build(F)
 
 
 # ----------------------------------------------------------------------------------

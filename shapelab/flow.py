@@ -88,9 +88,10 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import breadth_first_order, connected_components
 
+from ._toolkit.derived import derived
 from ._toolkit.tolerances import FILTER_UNDERFLOW
 from ._toolkit.validate import as_tau, filtration_first, readonly
-from .filtration import as_filtration, derived
+from .filtration import as_filtration
 
 __all__ = ["DiscreteFlow", "FlowPocket", "discrete_flow", "flow_pockets", "flow_side_exact"]
 

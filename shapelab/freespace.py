@@ -37,10 +37,11 @@ from itertools import combinations
 import numpy as np
 
 from ._toolkit import tolerances as tol
+from ._toolkit.derived import derived
 from ._toolkit.geometry import cross_rows
 from ._toolkit.validate import as_tau, check_balls
 from .balls import Balls, power_distance
-from .filtration import as_filtration, derived
+from .filtration import as_filtration
 
 __all__ = ["free_area", "free_measure", "free_space", "FreeSpace", "void_measure", "vertex_values", "free_points"]
 

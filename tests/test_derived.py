@@ -9,7 +9,8 @@ import weakref
 import numpy as np
 
 import shapelab as sl
-from shapelab import cavities, filtration, topology
+from shapelab import _topology as topology  # the implementation holds summary()
+from shapelab import cavities, filtration
 
 
 def _ring(n=12, radius=3.0, r=0.9):
