@@ -317,6 +317,20 @@ def _attached(v, ns):
         d[[i, j]] = np.inf
         return bool(np.any(d < np.sum((z[j] - z[i]) ** 2) / 4))
 
+    def powers_at(midpoint=False, tie=False, nearest=False):
+        def fn(centers, radii, edge):
+            z, r = np.asarray(centers, float), np.asarray(radii, float)
+            i, j = edge
+            c = (z[i] + z[j]) / 2 if midpoint else orthocentre(z, r, i, j)
+            pw = np.sum((z - c) ** 2, axis=1) - r**2
+            rho, d2 = pw[i], np.sum((z - c) ** 2, axis=1)
+            pw[[i, j]] = d2[[i, j]] = np.inf
+            if nearest:
+                return bool(pw[np.argmin(d2)] < rho)
+            return bool(np.any(pw <= rho)) if tie else bool(np.any(pw < rho))
+
+        return fn
+
     def centres_in_circle(centers, radii, edge):  # another centre inside the orthogonal circle
         z, r = np.asarray(centers, float), np.asarray(radii, float)
         i, j = edge
@@ -329,6 +343,24 @@ def _attached(v, ns):
         *_generic(v),
         ("the diametral circle (radii ignored)", diametral),
         ("centres, not powers", centres_in_circle),
+        ("powers at the midpoint (the orthocentre of equal radii only)", powers_at(midpoint=True)),
+        ("a tie counted as attached (<=)", powers_at(tie=True)),
+        ("only the centre nearest c tested", powers_at(nearest=True)),
+    ]
+
+
+def _edge_time(v, ns):
+    def foot_on_segment(c1, r1, c2, r2):  # the foot f clamped between the centres
+        d = np.linalg.norm(np.subtract(c2, c1))
+        return float(np.clip((d**2 + r1**2 - r2**2) / (2 * d), 0.0, d) ** 2 - r1**2)
+
+    def equal_radii(c1, r1, c2, r2):  # (d/2)² − r1²: f at the midpoint
+        return float((np.linalg.norm(np.subtract(c2, c1)) / 2) ** 2 - r1**2)
+
+    return [
+        *_generic(v),
+        ("the foot of the radical axis clamped to the segment", foot_on_segment),
+        ("the midpoint (equal radii) formula", equal_radii),
     ]
 
 
@@ -419,13 +451,34 @@ def _reduce(v, ns):
         ("the topmost 1 of a column instead of the lowest", reduction(lambda rows: rows[0])),
         ("at most one addition per column", reduction(lambda rows: rows[-1], once=True)),
         ("columns subtracted over the integers, not mod 2", reduction(lambda rows: rows[-1], mod2=False)),
+        (
+            "a later column added to an earlier one (same lowest ones, R is not D V)",
+            _later_added(reduction(lambda rows: rows[-1])),
+        ),
     ]
+
+
+def _later_added(reduce):
+    """Reduce right, then add to each non-zero column the first later one whose lowest one
+    is higher up: the lowest ones and D R = 0 survive, R = D V (V upper triangular) does not."""
+
+    def fn(D):
+        R = np.asarray(reduce(D)) % 2
+        low = [int(np.flatnonzero(c)[-1]) if c.any() else -1 for c in R.T]
+        for j in range(R.shape[1]):
+            k = next((k for k in range(j + 1, R.shape[1]) if 0 <= low[k] < low[j]), None)
+            if k is not None:
+                R[:, j] = (R[:, j] + R[:, k]) % 2
+        return R
+
+    return fn
 
 
 #: ``"lesson stem:name"`` -> ``f(solution's value, the kernel's globals)`` -> [(label, wrong answer)]
 OVERRIDES = {
     "02_dual_complex:my_edge": _edge,
     "03_alpha_filtration:is_attached": _attached,
+    "03_alpha_filtration:my_edge_time": _edge_time,
     "06_voids:n_bounded": _bounded_counts,
     "07_pockets:my_closes_at": _closes_at,
     "07_pockets:r_closed": _r_closed,

@@ -129,6 +129,35 @@ def test_attached_edge_check(capsys):
         assert "✗" in capsys.readouterr().out
 
 
+def _powers_at(centers, radii, edge, *, at_midpoint=False, tie=False, nearest=False):
+    z, r = np.asarray(centers, float), np.asarray(radii, float)
+    i, j = edge
+    a = z[j] - z[i]
+    c = (z[i] + z[j]) / 2 if at_midpoint else z[i] + (a @ a - r[j] ** 2 + r[i] ** 2) / (2 * (a @ a)) * a
+    pw, d2 = np.sum((z - c) ** 2, axis=1) - r**2, np.sum((z - c) ** 2, axis=1)
+    rho = pw[i]
+    pw[[i, j]] = d2[[i, j]] = np.inf
+    if nearest:
+        return bool(pw[np.argmin(d2)] < rho)
+    return bool(np.any(pw <= rho)) if tie else bool(np.any(pw < rho))
+
+
+@pytest.mark.parametrize(
+    "wrong",
+    [
+        lambda c, r, e: _powers_at(c, r, e, at_midpoint=True),  # the orthocentre of equal radii
+        lambda c, r, e: _powers_at(c, r, e, tie=True),  # a tie (right angle) counted as attached
+        lambda c, r, e: _powers_at(c, r, e, nearest=True),  # only the centre nearest c
+        lambda c, r, e: good_attached(c, r, e) if np.shape(c)[1] == 2 else False,  # right in 2D only
+        lambda c, r, e: good_attached(c, r, e) if np.shape(c)[1] == 3 else False,  # right in 3D only
+    ],
+)
+def test_attached_edge_refuses_plausible_mistakes(wrong):
+    """Second reading (issue 21): each of these passed the first version of the check."""
+    assert _powers_at([[0.0, 0.0], [4.0, 0.0], [2.0, 1.0]], [1.0] * 3, (0, 1))  # they are answers, not noise
+    assert not check.attached_edge(wrong, quiet=True).passed
+
+
 def good_dual_edge(c1, r1, c2, r2):
     # exact: the closed clipped cells meet iff |r1 - r2| <= d <= r1 + r2 (squared, in rationals)
     from fractions import Fraction as Q

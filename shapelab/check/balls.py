@@ -198,8 +198,12 @@ def attached_edge(student_fn, *, quiet: bool = False) -> CheckResult:
     one (not), a tangent pair beside a third ball, a third ball whose centre lies
     outside the orthogonal circle but whose disk claims its centre (attached: the
     test is on the power, not on the centre), unequal radii where the diametral
-    circle and the orthogonal circle disagree, a hidden ball, then random edges of
-    random balls in 2D and 3D (none of them a tie).
+    circle and the orthogonal circle disagree, a hidden ball, the hypotenuse of a
+    right triangle (a tie, :math:`\\pi_v(c) = \\rho`: unattached, so ``<=`` fails),
+    unequal radii where the midpoint of the edge and ``c`` disagree, a claiming
+    ball that is not the centre nearest ``c``, the obtuse triangle lifted into 3D
+    with a fourth ball, then random edges of random balls in 2D and 3D, one
+    attached and one unattached edge in each dimension (none of them near a tie).
     """
     from ..balls import Balls
     from ..filtration import alpha_filtration
@@ -212,13 +216,20 @@ def attached_edge(student_fn, *, quiet: bool = False) -> CheckResult:
         (p([[0.0, 0.0], [4.0, 0.0], [2.0, 2.5]]), p([1.0, 1.0, 2.0]), (0, 1)),
         (p([[0.0, 0.0], [4.0, 0.0], [1.6, 1.7]]), p([2.0, 0.5, 0.0]), (0, 1)),
         (p([[0.0, 0.0], [1.0, 0.0], [5.0, 1.0], [0.2, 0.1], [2.0, 4.0]]), p([3.0, 0.5, 1.0, 0.1, 1.0]), (0, 4)),
+        (p([[0.0, 0.0], [4.0, 0.0], [2.0, 2.0]]), p([1.0, 1.0, 1.0]), (0, 1)),  # tie: unattached
+        (p([[0.0, 0.0], [4.0, 0.0], [2.75, 1.25]]), p([2.0, 0.5, 0.0]), (0, 1)),  # not at the midpoint
+        (p([[0.0, 0.0], [4.0, 0.0], [2.0, -2.25], [2.0, 3.0]]), p([1.0, 1.0, 0.0, 2.5]), (0, 1)),  # far claim
+        (p([[0.0, 0.0, 0.0], [4.0, 0.0, 0.0], [2.0, 1.0, 0.0], [2.0, 0.0, 3.0]]), p([1.0, 1.0, 1.0, 1.0]), (0, 1)),
     ]
     rng = np.random.default_rng(23)
-    for d in (2, 2, 3, 2, 3, 2):
+    for d, want in ((2, True), (2, False), (3, True), (3, False), (2, True), (3, False)):
         while True:
             c, r = rng.uniform(0, 4, (7, d)), rng.uniform(0.2, 1.2, 7)
-            E = alpha_filtration(Balls(c, r)).simplices(1)
-            e = tuple(int(v) for v in E[rng.integers(len(E))])
+            F = alpha_filtration(Balls(c, r))
+            rows = np.flatnonzero(F.attached(1) == want)
+            if rows.size == 0:
+                continue
+            e = tuple(int(v) for v in F.simplices(1)[rows[rng.integers(rows.size)]])
             ce, re = _edge_orthosphere(c, r, e)
             gap = np.delete(np.sum((c - ce) ** 2, axis=1) - r**2, list(e)) - re
             if np.min(np.abs(gap)) > 1e-3 * (1.0 + abs(re)):  # no near-tie
