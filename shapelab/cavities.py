@@ -59,7 +59,6 @@ from ._toolkit.validate import (
     as_finite_scalar,
     as_tau,
     check_balls,
-    filtration_first,
     readonly,
 )
 from ._topology import is_roundoff, reduce_h1, summary
@@ -360,7 +359,6 @@ def _full_dim(balls, F) -> bool:
 
 
 # ========================================================================== voids
-@filtration_first
 def voids(F, tau=0.0) -> tuple:
     """The voids (holes in 2D) of the union of the balls grown to ``tau``.
 
@@ -431,7 +429,7 @@ def voids(F, tau=0.0) -> tuple:
     cells, L = cells[o], L[o]
     starts = np.flatnonzero(np.r_[True, L[1:] != L[:-1]])
     ends = np.r_[starts[1:], L.shape[0]]
-    meas = void_measure(F, balls, tau, cells)
+    meas = void_measure(F, tau, cells)
     csum = np.r_[0.0, np.cumsum(meas)]
     simp = np.asarray(F.simplices(k), dtype=np.int64)
     vval = vertex_values(F, len(balls))
@@ -456,7 +454,6 @@ def voids(F, tau=0.0) -> tuple:
 
 
 # ======================================================================== pockets
-@filtration_first
 def pockets(F, tau=0.0, *, min_persistence=0.0) -> tuple:
     """Pockets by the growth model of Notes §23.1 (Figure 23.2).
 
@@ -605,7 +602,6 @@ def _h1_classes(F, tau, select, fname):
     return tuple(out)
 
 
-@filtration_first
 def tunnels(F, tau=0.0) -> tuple:
     """The tunnels of the union of balls grown to ``tau``, in 3D (Notes §23.1).
 
@@ -650,7 +646,6 @@ def tunnels(F, tau=0.0) -> tuple:
     return _h1_classes(F, tau, lambda b, d: (b <= tau) & (d > tau), "tunnels")
 
 
-@filtration_first
 def grooves(F, tau=0.0, *, min_persistence=0.0) -> tuple:
     """Grooves at ``tau``: :math:`H_1` classes born later, ``birth > tau`` (3D).
 

@@ -213,9 +213,10 @@ def _edge_lookup(F):
     return derived(F, "cavities.edge_keys", _build_edge_lookup)
 
 
-def void_measure(F, balls, tau: float, cell_ids: np.ndarray) -> np.ndarray:
+def void_measure(F, tau: float, cell_ids: np.ndarray) -> np.ndarray:
     """Fractional inclusion–exclusion free measure of each cell (exact summed over a
-    void; see the module docstring).
+    void; see the module docstring) of the filtration ``F`` at ``tau``; ``cell_ids``
+    index its top simplices.
 
     See Also
     --------
@@ -230,6 +231,7 @@ def void_measure(F, balls, tau: float, cell_ids: np.ndarray) -> np.ndarray:
            "Analytical shape computation of macromolecules: II. Inaccessible cavities in
            proteins", *Proteins* 33(1):18-29, 1998.
     """
+    balls = F.balls
     k = int(F.dimension)
     simp = np.asarray(F.simplices(k), dtype=np.int64)[cell_ids]
     W = balls.weights
@@ -711,7 +713,7 @@ def _measure_pairs(X, As, bs, scale, pm, Z, R, row, D, Rj, beaten, boundary):
     return meas, wall
 
 
-def free_measure(balls, tau, cells) -> np.ndarray:
+def free_measure(F, tau, cells) -> np.ndarray:
     """Exact free measure (area in 2D, volume in 3D) of simplices not covered by the balls.
 
     For each simplex :math:`t` (a row of ``cells``, ball indices) returns
@@ -726,8 +728,9 @@ def free_measure(balls, tau, cells) -> np.ndarray:
 
     Parameters
     ----------
-    balls : Balls or Filtration
-        The balls, or their :func:`~shapelab.alpha_filtration`: then only the planes
+    F : Filtration or Balls
+        The balls' :func:`~shapelab.alpha_filtration`, or the balls: with a
+        filtration only the planes
         of its edges in :math:`K_\\tau` cut the power cells (by duality those are
         all the facets of :math:`B_i \\cap \\Pi_i`), which is several times faster
         on molecules, where many balls overlap each one.  The result is the same.
@@ -752,7 +755,7 @@ def free_measure(balls, tau, cells) -> np.ndarray:
            "Analytical shape computation of macromolecules: II. Inaccessible cavities in
            proteins", *Proteins* 33(1):18-29, 1998.
     """
-    return _free_space(balls, tau, cells, False).measure
+    return _free_space(F, tau, cells, False).measure
 
 
 @dataclass(frozen=True, eq=False)
@@ -784,7 +787,7 @@ class FreeSpace:
     contact_wall: np.ndarray
 
 
-def free_space(balls, tau, cells) -> FreeSpace:
+def free_space(F, tau, cells) -> FreeSpace:
     """Exact free measure and wall of simplices: :func:`free_measure` plus the boundary.
 
     The wall of a simplex :math:`t` is :math:`\\partial U_\\tau \\cap t
@@ -821,14 +824,14 @@ def free_space(balls, tau, cells) -> FreeSpace:
            "Analytical shape computation of macromolecules: II. Inaccessible cavities in
            proteins", *Proteins* 33(1):18-29, 1998.
     """
-    return _free_space(balls, tau, cells, True)
+    return _free_space(F, tau, cells, True)
 
 
-def _balls_of(balls, who):
+def _balls_of(F, who):
     """``(balls, F)``: the balls, and the filtration when one was given (else None)."""
-    if isinstance(balls, Balls):
-        return balls, None
-    F = as_filtration(balls, who)
+    if isinstance(F, Balls):
+        return F, None
+    F = as_filtration(F, who)
     return F.balls, F
 
 
@@ -879,10 +882,10 @@ def _neighbours(F, tau, C, R, live, tree, rmax):
     return start, count, dst
 
 
-def _free_space(balls, tau, cells, boundary):
+def _free_space(F, tau, cells, boundary):
     from scipy.spatial import cKDTree
 
-    balls, F = _balls_of(balls, "free_space")
+    balls, F = _balls_of(F, "free_space")
     check_balls(balls)
     tau = as_tau(tau)
     d = balls.dim
@@ -940,7 +943,7 @@ def _free_space(balls, tau, cells, boundary):
     return FreeSpace(out, wall, pm[order], ball[order], wall_p[order])
 
 
-def free_area(balls, tau, triangles) -> FreeSpace:
+def free_area(F, tau, triangles) -> FreeSpace:
     """Exact free area and rim of triangles in space: a pocket's mouth (Notes §23.1).
 
     The union cut by a triangle's plane is a union of disks, the sections of the
@@ -952,7 +955,7 @@ def free_area(balls, tau, triangles) -> FreeSpace:
 
     Parameters
     ----------
-    balls : Balls or Filtration
+    F : Filtration or Balls
         3-dimensional; as for :func:`free_measure`.
     tau : float
     triangles : array_like, shape (m, 3), int
@@ -979,7 +982,7 @@ def free_area(balls, tau, triangles) -> FreeSpace:
     """
     from scipy.spatial import cKDTree
 
-    balls, F = _balls_of(balls, "free_area")
+    balls, F = _balls_of(F, "free_area")
     check_balls(balls)
     tau = as_tau(tau)
     if balls.dim != 3:
@@ -1049,14 +1052,15 @@ def free_area(balls, tau, triangles) -> FreeSpace:
     return FreeSpace(out, wall, pm[order], ball[order], wall_p[order])
 
 
-def free_points(balls, tau, cells, n_points, rng) -> np.ndarray:
+def free_points(F, tau, cells, n_points, rng) -> np.ndarray:
     """Points of the free space inside ``cells`` (uniform in the cells, then kept where
     no ball grown to τ covers them, by :func:`shapelab.power_distance`): a picture of a
     void's shape for :func:`shapelab.plot.voids`, not a measurement.
 
     Parameters
     ----------
-    balls : Balls
+    F : Filtration or Balls
+        The balls (a filtration's ``.balls`` are used).
     tau : float
     cells : int array (m, d+1)
         Simplices as ball indices.
@@ -1073,6 +1077,7 @@ def free_points(balls, tau, cells, n_points, rng) -> np.ndarray:
     free_measure
         The exact measure these points sample.
     """
+    balls = check_balls(_balls_of(F, "free_points")[0], "F")
     X = balls.centers[cells]  # (m, d+1, d)
     E = X[:, 1:] - X[:, :1]
     vol = np.abs(np.linalg.det(E))

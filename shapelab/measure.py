@@ -109,7 +109,6 @@ from ._toolkit import tolerances as tol
 from ._toolkit.geometry import cross, dot
 from ._toolkit.validate import (
     as_tau,
-    filtration_first,
 )
 from .balls import Balls
 from .filtration import as_filtration, simplices_up_to
@@ -645,8 +644,7 @@ def measure_from_simplices(centers, weights, simplices, *, tau: float = 0.0) -> 
     )
 
 
-@filtration_first
-def union_measure(F_or_balls, tau=0.0) -> UnionMeasure:
+def union_measure(F, tau=0.0) -> UnionMeasure:
     """Area and perimeter (2D) or volume and surface area (3D) of a union of balls.
 
     Computed exactly with the short inclusion–exclusion formula over the dual complex
@@ -657,7 +655,7 @@ def union_measure(F_or_balls, tau=0.0) -> UnionMeasure:
 
     Parameters
     ----------
-    F_or_balls : Filtration or Balls
+    F : Filtration or Balls
         The balls (disks in 2D), or their filtration ``alpha_filtration(balls)`` to
         measure at many τ.  Given the balls, only the entry times are computed
         (not the whole :class:`~shapelab.filtration.Filtration`), once per call.
@@ -710,10 +708,10 @@ def union_measure(F_or_balls, tau=0.0) -> UnionMeasure:
     (2.0, 4.0)
     """
     t = as_tau(tau)
-    if isinstance(F_or_balls, Balls):
-        balls, F = F_or_balls, None
+    if isinstance(F, Balls):
+        balls, F = F, None
     else:
-        F = as_filtration(F_or_balls, "union_measure")
+        F = as_filtration(F, "union_measure")
         balls = F.balls
     if t == np.inf:
         raise ValueError("tau must be finite for union_measure (at tau = inf the union is all of R^d)")

@@ -528,14 +528,19 @@ def test_infinite_growth_times_are_the_ends_of_the_filtration():
 
 
 @pytest.mark.parametrize("fn", [sl.voids, sl.pockets, sl.tunnels, C.grooves])
-def test_the_filtration_keyword_is_gone(fn):
+def test_one_input_rule(fn):
+    """Balls or a Filtration alike (issue 22): the balls' filtration is built once and
+    kept with them, so a second call on the same balls reuses it."""
     balls = sl.datasets.fullerene_c60()
     F = sl.alpha_filtration(balls)
-    name = fn.__name__
-    with pytest.raises(TypeError, match=rf"{name}\(balls, filtration=F\) is now {name}\(F\)"):
-        fn(balls, 0.0, filtration=F)
-    # the balls are still accepted (their filtration is built once, for the call)
+    with pytest.raises(TypeError, match="filtration"):
+        fn(balls, 0.0, filtration=F)  # the old keyword: Python's own TypeError
     assert [repr(x) for x in fn(balls, 0.0)] == [repr(x) for x in fn(F, 0.0)]
+    from shapelab.filtration import as_filtration
+
+    G = as_filtration(balls, "test")
+    fn(balls, 0.0)
+    assert as_filtration(balls, "test") is G and G is not F
 
     with pytest.raises(ValueError, match="cells"):
         FS.free_measure(balls, 0.0, [[0, 1]])

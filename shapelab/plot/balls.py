@@ -32,7 +32,6 @@ from .._toolkit.validate import (
     as_positive_int,
     as_tau,
     check_balls,
-    filtration_first,
 )
 from ..balls import Balls
 from ._style import COLORS, PAGE, PALETTE, new_figure, style
@@ -289,7 +288,6 @@ class DualComplexView:
         Produces it.
     """
 
-    @filtration_first(name="DualComplexView")
     def __init__(
         self,
         F,
@@ -479,7 +477,6 @@ class DualComplexView:
         return self
 
 
-@filtration_first(name="plot.dual_complex")
 def dual_complex(F, tau=0.0, *, ax=None, show_cells=True, show_disks=True, bbox=None, labels=False, title=None):
     """Figure 23.1 (i): disks, clipped cells :math:`B_i \\cap \\Pi(B_i)` and the dual
     complex K on top (Notes §23.1).

@@ -19,7 +19,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, Patch
 from matplotlib.ticker import MaxNLocator
 
-from .._toolkit.validate import as_finite_scalar, as_tau, filtration_first
+from .._toolkit.validate import as_finite_scalar, as_tau
 from ._style import COLORS, PAGE, PALETTE, SLIDE, new_figure, style
 
 __all__ = [
@@ -567,7 +567,6 @@ def _filtration_of(F, who):
     return as_filtration(F, who)
 
 
-@filtration_first(name="plot.voids")
 def voids(
     F, tau=0.0, *, voids=None, ax=None, show_complex=False, elev=20, azim=35, title=None, show_volumes=None, legend=True
 ):
@@ -636,7 +635,6 @@ def voids(
     )
 
 
-@filtration_first(name="plot.pockets")
 def pockets(
     F,
     tau=0.0,
@@ -727,7 +725,6 @@ def pockets(
     )
 
 
-@filtration_first(name="plot.pocket_gallery")
 def pocket_gallery(F, tau=0.0, *, pockets=None, voids=None, min_persistence=1e-9, elev=20, azim=35, title=None):
     """The pockets of a 3D molecule: an overview beside a close-up of each (Notes §23.1).
 
@@ -804,7 +801,6 @@ def pocket_gallery(F, tau=0.0, *, pockets=None, voids=None, min_persistence=1e-9
     return fig
 
 
-@filtration_first(name="plot.tunnels")
 def tunnels(F, tau=0.0, *, tunnels=None, ax=None, show_complex=False, elev=20, azim=35, title=None, legend=True):
     """Draw the tunnels alive at τ: a representative cycle of each H₁ class (Notes §23.1).
 

@@ -9,7 +9,6 @@ from .._toolkit.validate import (
     as_finite_scalar,
     as_positive_int,
     as_tau,
-    filtration_first,
 )
 from . import _frame
 from .static import StaticFallback
@@ -46,7 +45,6 @@ def _default_range(F):
     return lo, hi
 
 
-@filtration_first(name="alpha_explorer")
 def alpha_explorer(F, *, tau=0.0, tau_range=None, steps=100, show_cells=True, show_measure=True, bbox=None):
     """A slider in the growth time τ over the disks grown to :math:`\\sqrt{r_i^2+\\tau}`
     and their dual complex :math:`K_\\tau` (Notes §23.1, Figure 23.1).
@@ -382,7 +380,6 @@ class PowerExplorer(StaticFallback, W.VBox):
 
 
 # --------------------------------------------------------------------------- 3D
-@filtration_first(name="complex3d_explorer")
 def complex3d_explorer(F, *, tau=0.0, tau_range=None, steps=60, azim=35.0, elev=20.0, show_balls=True, resolution=8):
     """The growth model in 3D: a slider in τ and one for the view angle (Notes §23.1).
 

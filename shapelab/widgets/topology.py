@@ -7,7 +7,7 @@ import io
 import ipywidgets as W
 import numpy as np
 
-from .._toolkit.validate import as_finite_scalar, as_tau, filtration_first
+from .._toolkit.validate import as_finite_scalar, as_tau
 from . import _frame
 from .static import StaticFallback
 
@@ -28,7 +28,6 @@ def _default_range(balls, F):
     return lo, hi + 0.1 * (hi - lo)
 
 
-@filtration_first(name="pocket_explorer")
 def pocket_explorer(F, *, tau=0.0, tau_range=None, steps=100, min_persistence=1e-9, show_complex=False):
     """A slider in τ over the disks grown to :math:`\\sqrt{r^2+\\tau}`, with the holes
     (voids) and the pockets with their mouths at that τ (Notes §23.1, Figure 23.2).
