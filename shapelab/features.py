@@ -10,9 +10,12 @@ the pose:
 * ``"axes"``: the centroid and the principal axes (the eigenvectors of the covariance).
   Matching the two frames leaves only the signs of the axes open: 4 proper rotations
   in 3D, 2 in 2D.  Every one is proposed.
-* ``"critical"``: the critical points of the distance from the centroid (§23.2's
-  Figure 23.3, here the farthest points of each set).  The three farthest points of
-  each set, matched in order of distance, give a rotation by Horn's method.
+* ``"critical"``: a stand-in for the critical points of the distance from the
+  centroid (§23.2's Figure 23.3): the three sample points of each set farthest from
+  its centroid.  They lie near the global maximum of that distance but need not be
+  three distinct critical points (often they are neighbours of one maximum).  Each
+  of the 6 ways of matching the two triples (with the centroids) gives a rigid
+  motion by Horn's method.
 
 Candidates are ranked by the mean distance from each moved point to its nearest target
 point (a cheap stand-in for the Hausdorff distance), best first.  Each is a
@@ -63,8 +66,8 @@ def coarse_align(R, G, *, features=("axes", "critical")) -> list:
     R, G : array_like, shape (n, 3) and (m, 3)
         Source and target point sets (not paired; they may differ in size).
     features : str or sequence of str
-        ``"axes"`` (centroid and principal axes) and/or ``"critical"`` (the farthest
-        points from the centroid).
+        ``"axes"`` (centroid and principal axes: 4 candidates) and/or ``"critical"``
+        (the three points farthest from the centroid, in each of the 6 orders).
 
     Returns
     -------
@@ -76,15 +79,18 @@ def coarse_align(R, G, *, features=("axes", "critical")) -> list:
     icp
         Local improvement from each candidate.
     critical_points
-        The critical points used as features.
+        The critical points proper (of a curve or a surface mesh); here only
+        approximated by the farthest samples.
     optimal_rotation
         Horn's rotation of matched features.
 
     Notes
     -----
-    When two principal variances are equal (a shape with a symmetry axis), the frame is
-    not unique and the axes candidates are only as good as an arbitrary choice; the
-    ``"critical"`` candidates and ICP then decide.
+    When two principal variances are equal (for example a shape with a symmetry axis),
+    the frame is not unique and the axes candidates are only as good as an arbitrary
+    choice; the ``"critical"`` candidates and ICP then decide.  Cost: two 3 × 3
+    covariance eigendecompositions, six 4 × 4 ones (Horn), and one nearest-neighbour
+    query of all of ``R`` per candidate (10 with both features).
 
     References
     ----------

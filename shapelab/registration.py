@@ -878,7 +878,12 @@ def icp(
         At most this many iterations (0 only evaluates the start).
     init : RigidMotion, optional
         Starting motion of the source (default: identity).  ICP is a local method:
-        it converges to the local minimum nearest to ``init``.
+        from ``init`` the cost never increases and it ends (up to ``tol``) at a fixed
+        point, a local minimum of the closest-point cost when the closest points
+        there are unique.  Which one depends on ``init``, but it need not be the
+        local minimum nearest to it: an iteration can jump far, and near the
+        boundary of two basins the last bits of the arithmetic decide (lesson 13).
+        Nothing makes it the global minimum.
     max_distance : float, optional
         Pairs farther apart than this are left out of step 2 (Open3D's
         ``max_correspondence_distance``).  The cost then counts every source point,
@@ -917,7 +922,8 @@ def icp(
     point a plain step that would raise it by rounding is rejected and the loop stops
     as converged, so ``result.mse`` is non-increasing exactly.
 
-    **Failure modes.** ICP only finds a *local* minimum.  On a symmetric shape (a
+    **Failure modes.** ICP only finds a *local* minimum (Besl and McKay 1992: the mean
+    squared distance decreases monotonically to a local minimum).  On a symmetric shape (a
     sphere, a cube) many motions give the same small cost and ICP can stop at a wrong
     rotation with ``converged=True`` — a small MSE does not certify the right
     motion.  Large initial rotations (more than roughly 30–60° on elongated shapes)
