@@ -34,6 +34,14 @@ and 3D, from the α-filtration (:func:`shapelab.alpha_filtration`) at one growth
   simplices (orthocentre in the closed simplex: local maxima of the power distance to
   the balls), tested.  :math:`\\infty` is a sink too.  Following the flow from an
   empty simplex one reaches a set of sinks (one in 2D with equal radii).
+  That is exact arithmetic.  The filtration's entry times are computed to a relative
+  accuracy (``ENTRY_TIME_RTOL``, 1e-9), so where two of them are equal or nearly so
+  (nearly co-spherical balls) a facet can be put into :math:`K_\\tau` by round-off
+  just before the simplex that flows across it; at a τ between the two times that
+  simplex is *blocked* and counts as a sink although not centred (tested on a
+  float ring of 17 disks, where this happens within 2e-15 of the common time).  At
+  a τ farther than that tolerance from the entry time of every top simplex the
+  sinks are the centred empty simplices.
 * **Pockets and voids.**  The empty simplices that do not flow to :math:`\\infty`,
   glued along their open facets, form the *pocket regions* (:func:`flow_pockets`):
   the collections flowing into the same sink, merged when they share an open facet,
@@ -70,17 +78,23 @@ Exact decisions
 ---------------
 Whether :math:`\\sigma` flows across :math:`\\nu` is the sign of
 :math:`D\\,(\\pi_a(y_\\nu) - \\rho_\\nu)`, with :math:`D > 0` the Gram determinant of the
-facet's edge vectors: a polynomial in the input's coordinates and squared radii
-(degree 4 in 2D, 6 in 3D).  It is evaluated in floating point with a bound on its
-rounding error (the same expression on absolute values, times a generous
-:math:`64u`, as in :mod:`shapelab.predicates`); where the bound cannot decide, it
-is recomputed exactly with :class:`fractions.Fraction` from the input's own binary
-values.  A tie (the orthocentre exactly on the facet's hull, as in a right triangle)
-is no flow.  The decisions do not depend on τ and are kept on the filtration.
+facet's edge vectors: a polynomial in the input's coordinates and weights
+(degree 4 in 2D, 6 in 3D, counting a weight as degree 2).  The weights are
+``balls.weights`` (:math:`r^2` rounded once to float64), taken as exact, the numbers
+the filtration's attachment test uses: so :math:`\\sigma` flows across :math:`\\nu`
+exactly when the filtration finds :math:`\\nu` attached by :math:`\\sigma`'s apex, even
+where the exact :math:`r^2` and its rounding would decide a near-tie differently.  It
+is evaluated in floating point with a bound on its rounding error (the same
+expression on absolute values, times a generous :math:`64u`, as in
+:mod:`shapelab.predicates`); where the bound cannot decide, it is recomputed exactly
+with :class:`fractions.Fraction` from those binary values.  A tie (the orthocentre
+exactly on the facet's hull, as in a right triangle) is no flow.  The decisions do
+not depend on τ and are kept on the filtration.
 """
 
 from __future__ import annotations
 
+import numbers
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -90,7 +104,7 @@ from scipy.sparse.csgraph import breadth_first_order, connected_components
 
 from ._toolkit.derived import derived
 from ._toolkit.tolerances import FILTER_UNDERFLOW
-from ._toolkit.validate import as_tau, filtration_first, readonly
+from ._toolkit.validate import as_tau, readonly
 from .filtration import as_filtration
 
 __all__ = ["DiscreteFlow", "FlowPocket", "discrete_flow", "flow_pockets", "flow_side_exact"]
@@ -112,7 +126,8 @@ class FlowPocket:
     cell_ids : ndarray, shape (m,), int
         The same, as rows of ``F.simplices(d)`` (ascending).
     sinks : ndarray, int
-        Rows of ``F.simplices(d)`` of the sinks in the region (its centred simplices).
+        Rows of ``F.simplices(d)`` of the sinks in the region (its centred simplices,
+        see :attr:`DiscreteFlow.sink`).
     mouth, mouth_ids : ndarray
         The open facets through which the region meets simplices that flow to
         infinity, or the outside: ball indices, shape (q, d), and rows of
@@ -159,7 +174,8 @@ class DiscreteFlow:
         or to infinity if it is ``-1``).
     sink : ndarray of bool, shape (n,)
         Empty simplices that flow across no facet: the centred ones (their
-        orthocentre in the closed simplex).
+        orthocentre in the closed simplex), except within the filtration's round-off
+        of a tie of entry times (module docstring, *Sinks*).
     to_infinity : ndarray of bool, shape (n,)
         Empty simplices from which the flow reaches the outside.
     region : ndarray of int, shape (n,)
@@ -223,15 +239,25 @@ def flow_side_exact(z_facet, w_facet, z_apex, w_apex) -> int:
         Their weights (squared radii), as :class:`fractions.Fraction` or floats (taken
         exactly).
     z_apex : array_like, shape (d,)
+        The centre of the apex ball, opposite the facet.
     w_apex : float or Fraction
+        Its weight.
 
     Returns
     -------
     int
 
+    Raises
+    ------
+    TypeError
+        If an argument holds something other than real numbers.
+    ValueError
+        If the shapes do not match (``d`` facet centres of dimension ``d``), a value is
+        not finite, or the facet's centres are affinely dependent.
+
     See Also
     --------
-    discrete_flow : uses it where the floating-point filter cannot decide.
+    discrete_flow : makes the same exact decision where its floating-point filter cannot.
 
     References
     ----------
@@ -249,11 +275,50 @@ def flow_side_exact(z_facet, w_facet, z_apex, w_apex) -> int:
     >>> flow_side_exact([[-1.0, 0.0], [1.0, 0.0]], [0.0, 0.0], [0.0, 1.0], 0.0)  # right angle
     0
     """
-    Z = [[Fraction(float(c)) if not isinstance(c, Fraction) else c for c in row] for row in z_facet]
-    W = [Fraction(float(w)) if not isinstance(w, Fraction) else w for w in w_facet]
-    A = [Fraction(float(c)) if not isinstance(c, Fraction) else c for c in z_apex]
-    wa = w_apex if isinstance(w_apex, Fraction) else Fraction(float(w_apex))
+    Z = _exact(z_facet, "z_facet", 2)
+    d = len(Z)
+    if d not in (2, 3) or any(len(row) != d for row in Z):
+        raise ValueError(
+            f"flow_side_exact: z_facet must hold the centres of a facet's d balls, shape (d, d) with "
+            f"d = 2 or 3, got shape ({d}, {', '.join(sorted({str(len(row)) for row in Z}))})"
+        )
+    W = _exact(w_facet, "w_facet", 1)
+    if len(W) != d:
+        raise ValueError(f"flow_side_exact: w_facet must hold {d} weights, one per facet ball, got {len(W)}")
+    A = _exact(z_apex, "z_apex", 1)
+    if len(A) != d:
+        raise ValueError(f"flow_side_exact: z_apex must be a point of dimension {d}, got {len(A)} coordinates")
+    (wa,) = _exact([w_apex], "w_apex", 1)
+    if _flow_gram(Z) == 0:
+        raise ValueError("flow_side_exact: the centres z_facet are affinely dependent (a degenerate facet)")
     return _sign(_flow_value(Z, W, A, wa))
+
+
+def _exact(x, name, ndim):
+    """``x`` (a number, list or array of depth ``ndim``) as nested lists of Fractions,
+    finite, each float taken exactly; a clear error naming ``name`` otherwise."""
+    if isinstance(x, (str, bytes)):
+        raise TypeError(f"flow_side_exact: {name} must hold numbers, got {type(x).__name__}")
+    if ndim == 0 or not hasattr(x, "__len__"):
+        if ndim:
+            raise ValueError(f"flow_side_exact: {name} must be an array of depth {ndim}, got a scalar {x!r}")
+        if isinstance(x, Fraction):
+            return x
+        if isinstance(x, (bool, np.bool_)) or not isinstance(x, (numbers.Integral, numbers.Real)):
+            raise TypeError(f"flow_side_exact: {name} must hold real numbers, got {type(x).__name__}")
+        v = float(x)
+        if not np.isfinite(v):
+            raise ValueError(f"flow_side_exact: {name} must be finite, got {v!r}")
+        return Fraction(v)
+    return [_exact(e, name, ndim - 1) for e in x]
+
+
+def _flow_gram(Z):
+    """The Gram determinant of the facet's edge vectors (exact for Fractions)."""
+    U = [[Z[i][c] - Z[0][c] for c in range(len(Z[0]))] for i in range(1, len(Z))]
+    if len(U) == 1:
+        return _dot(U[0], U[0])
+    return _dot(U[0], U[0]) * _dot(U[1], U[1]) - _dot(U[0], U[1]) ** 2
 
 
 def _sign(x) -> int:
@@ -309,8 +374,9 @@ def _beyond(F) -> np.ndarray:
     if n == 0:
         return out
     z = np.asarray(balls.centers, dtype=np.float64)
-    r = np.asarray(balls.radii, dtype=np.float64)
-    w = r * r
+    # the filtration's own weights (r*r rounded once, then taken as exact), so that a
+    # facet is crossed exactly when the filtration finds it attached by this coface
+    w = np.asarray(balls.weights, dtype=np.float64)
     for j in range(d + 1):
         fcols = [c for c in range(d + 1) if c != j]
         Zc = [[z[S[:, c], k] for k in range(d)] for c in fcols]
@@ -324,8 +390,10 @@ def _beyond(F) -> np.ndarray:
         out[:, j] = np.where(ok, np.sign(np.where(ok, val, 0.0)), 0)
         for i in np.flatnonzero(~ok).tolist():
             row = S[i]
-            rf = [Fraction(float(x)) for x in r[row]]
-            out[i, j] = flow_side_exact(z[row[fcols]], [rf[c] ** 2 for c in fcols], z[row[j]], rf[j] ** 2)
+            Zf = [[Fraction(float(c)) for c in z[v]] for v in row[fcols]]
+            Wf = [Fraction(float(w[v])) for v in row[fcols]]
+            Af = [Fraction(float(c)) for c in z[row[j]]]
+            out[i, j] = _sign(_flow_value(Zf, Wf, Af, Fraction(float(w[row[j]]))))
     return out
 
 
@@ -354,7 +422,6 @@ def _static(F):
 
 
 # ======================================================================= the flow
-@filtration_first
 def discrete_flow(F, tau=0.0) -> DiscreteFlow:
     """Edelsbrunner's discrete flow on the empty simplices of :math:`K_\\tau`
     (Notes §23.1; [1]_).
@@ -492,7 +559,6 @@ def discrete_flow(F, tau=0.0) -> DiscreteFlow:
     )
 
 
-@filtration_first
 def flow_pockets(F, tau=0.0) -> tuple:
     """The pockets and voids of the discrete flow at ``tau`` (Notes §23.1; [1]_, [2]_).
 
