@@ -34,7 +34,9 @@ from .._toolkit.validate import (
     check_balls,
 )
 from ..balls import Balls
-from ._style import COLORS, PAGE, PALETTE, new_figure, style
+from ..filtration import as_filtration
+from ._common import axes, grown_radii, set_3d_view
+from ._style import COLORS, PALETTE, new_figure, style
 
 __all__ = [
     "disks",
@@ -56,23 +58,6 @@ def _check_balls(balls, name="balls", dim=None) -> Balls:
         hint = " (use balls3d/complex3d for 3D)" if dim == 2 else " (use disks/dual_complex for 2D)"
         raise ValueError(f"{name} must be {dim}D for this figure, got {balls.dim}D{hint}")
     return balls
-
-
-def _axes(ax, *, size=PAGE, projection=None):
-    if ax is None:
-        return new_figure(size=size, projection=projection)
-    if projection == "3d" and getattr(ax, "name", "") != "3d":
-        raise ValueError("ax must be a 3D axes (projection='3d') for this figure")
-    return ax.get_figure(), ax
-
-
-def _grown_radii(balls: Balls, tau: float) -> np.ndarray:
-    """Radii at time τ (Balls.grow); balls whose radius would be imaginary get 0."""
-    alive = balls.weights + tau >= 0
-    r = np.zeros(len(balls))
-    if alive.any():
-        r[alive] = balls[alive].grow(tau).radii
-    return r
 
 
 def _fmt(x: float) -> str:
@@ -117,12 +102,6 @@ def _disk_collection(ax, centers, radii, **kw):
     return coll
 
 
-def _filtration_of(F, who):
-    from ..filtration import as_filtration
-
-    return as_filtration(F, who)
-
-
 def _segments(centers, edges):
     return centers[edges] if len(edges) else np.zeros((0, 2, centers.shape[1]))
 
@@ -159,8 +138,8 @@ def disks(balls, *, tau=0.0, ax=None, labels=False, title=None, color=None, show
     """
     _check_balls(balls, dim=2)
     tau = as_tau(tau, finite=True)
-    fig, ax = _axes(ax)
-    r = _grown_radii(balls, tau)
+    fig, ax = axes(ax)
+    r = grown_radii(balls, tau)
     with style():
         fill = to_rgba(color or COLORS["ball"], 0.35)
         _disk_collection(ax, balls.centers, r, facecolors=[fill], edgecolors=[COLORS["ball_edge"]], linewidths=1.2)
@@ -217,7 +196,7 @@ def power_diagram(balls_or_diagram, *, bbox=None, ax=None, show_disks=True, labe
         pd = _pd(balls_or_diagram, bbox=bbox)
     balls = pd.balls
     _check_balls(balls, "balls_or_diagram", dim=2)
-    fig, ax = _axes(ax)
+    fig, ax = axes(ax)
     with style():
         polys = [c for c in pd.cells if len(c) >= 3]
         ax.add_collection(
@@ -302,16 +281,16 @@ class DualComplexView:
         legend=True,
         view_tau=None,
     ):
-        F = _filtration_of(F, "DualComplexView")
+        F = as_filtration(F, "DualComplexView")
         balls = F.balls
         _check_balls(balls, dim=2)
         tau = as_tau(tau, finite=True)
         self.balls = balls
         self.filtration, self.complex = F, F.complex_at(tau)
-        self.figure, self.ax = _axes(ax)
+        self.figure, self.ax = axes(ax)
         self._title = title
         ax = self.ax
-        r = _grown_radii(balls, tau)
+        r = grown_radii(balls, tau)
         with style():
             self._disks = None
             disk_face = "none" if show_cells else to_rgba(COLORS["ball"], 0.3)
@@ -352,7 +331,7 @@ class DualComplexView:
                     ax.annotate(str(i), c, xytext=(3, 3), textcoords="offset points", fontsize=8)
             lim_r = np.maximum(r, balls.radii)
             if view_tau is not None:  # keep room for the disks grown up to view_tau
-                lim_r = np.maximum(lim_r, _grown_radii(balls, as_tau(view_tau, "view_tau", finite=True)))
+                lim_r = np.maximum(lim_r, grown_radii(balls, as_tau(view_tau, "view_tau", finite=True)))
             _limits_2d(ax, balls.centers, lim_r, bbox=bbox)
             if legend:
                 handles = []
@@ -466,7 +445,7 @@ class DualComplexView:
     def update(self, tau) -> "DualComplexView":
         """Redraw at growth time ``tau``: only ``complex_at(tau)`` is computed."""
         tau = as_tau(tau, finite=True)
-        r = _grown_radii(self.balls, tau)
+        r = grown_radii(self.balls, tau)
         if self._disks is not None:
             self._disks.set_widths(2 * r)
             self._disks.set_heights(2 * r)
@@ -549,7 +528,7 @@ def filtration(F, *, tau=None, ax=None, cmap="cividis", show_disks=False, title=
     t = np.inf if tau is None else as_tau(tau, finite=True)
     K = F.complex_at(t)
     c = F.balls.centers
-    fig, ax = _axes(ax)
+    fig, ax = axes(ax)
     with style():
         shown = [K.values(k) for k in (1, 2) if K.dimension >= k]
         vals = np.concatenate(shown) if shown else np.zeros(0)
@@ -599,17 +578,6 @@ def filtration(F, *, tau=None, ax=None, cmap="cividis", show_disks=False, title=
 
 
 # ------------------------------------------------------------------- 3D
-def _setup_3d(ax, lo, hi, elev, azim):
-    ax.set_xlim(lo[0], hi[0])
-    ax.set_ylim(lo[1], hi[1])
-    ax.set_zlim(lo[2], hi[2])
-    ax.set_box_aspect(tuple(np.maximum(hi - lo, 1e-12)))
-    ax.view_init(elev=elev, azim=azim)
-    ax.set_xlabel("x")
-    ax.set_ylabel("y")
-    ax.set_zlabel("z")
-
-
 def _bounds_3d(centers, radii):
     if not len(centers):
         return -np.ones(3), np.ones(3)
@@ -681,8 +649,8 @@ def balls3d(balls, *, tau=0.0, ax=None, resolution=10, alpha=0.35, color=None, e
     tau = as_tau(tau, finite=True)
     resolution = as_positive_int(resolution, "resolution", minimum=3)
     alpha = as_finite_scalar(alpha, "alpha")
-    fig, ax = _axes(ax, projection="3d")
-    r = _grown_radii(balls, tau)
+    fig, ax = axes(ax, projection="3d")
+    r = grown_radii(balls, tau)
     live = r > 0
     with style():
         quads, normals = _sphere_quads(balls.centers[live], r[live], resolution)
@@ -690,7 +658,7 @@ def balls3d(balls, *, tau=0.0, ax=None, resolution=10, alpha=0.35, color=None, e
             quads, facecolors=_shade(color or COLORS["ball"], normals, alpha), edgecolors="none", linewidths=0
         )
         ax.add_collection3d(coll)
-        _setup_3d(ax, *_bounds_3d(balls.centers, r), elev, azim)
+        set_3d_view(ax, *_bounds_3d(balls.centers, r), elev, azim)
         ax.legend(
             handles=[Patch(facecolor=to_rgba(color or COLORS["ball"], 0.6), label="ball")],
             loc="upper left",
@@ -759,8 +727,8 @@ def complex3d(
         )
     balls = _check_balls(K.balls, "complex_or_filtration.balls", dim=3)
     c = balls.centers
-    fig, ax = _axes(ax, projection="3d")
-    r = _grown_radii(balls, K.tau) if np.isfinite(K.tau) else balls.radii
+    fig, ax = axes(ax, projection="3d")
+    r = grown_radii(balls, K.tau) if np.isfinite(K.tau) else balls.radii
     with style():
         vals = [K.values(k) for k in (1, 2) if K.dimension >= k]
         vals = np.concatenate(vals) if vals else np.zeros(0)
@@ -797,7 +765,7 @@ def complex3d(
         if shaded:
             cb = fig.colorbar(sm, ax=ax, shrink=0.7, pad=0.12)
             cb.set_label("entry time τ")
-        _setup_3d(ax, *_bounds_3d(c, r if show_balls else np.zeros(len(c))), elev, azim)
+        set_3d_view(ax, *_bounds_3d(c, r if show_balls else np.zeros(len(c))), elev, azim)
         n = K.counts() + (0,) * (4 - len(K.counts()))
         ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(-0.25, 1.0))
         ax.set_title(
@@ -850,7 +818,7 @@ def lifting(balls, *, ax=None, elev=18.0, azim=-60.0, title=None):
     from ..power import regular_triangulation
 
     _check_balls(balls, dim=2)
-    fig, ax = _axes(ax, projection="3d")
+    fig, ax = axes(ax, projection="3d")
     c = balls.centers
     h = np.einsum("ij,ij->i", c, c) - balls.weights
     lifted = np.column_stack([c, h])

@@ -19,6 +19,7 @@ import numpy as np
 from matplotlib.patches import Circle
 from matplotlib.ticker import MaxNLocator
 
+from ._common import axes
 from ._style import COLORS, PAGE, PALETTE, SLIDE, new_figure, style
 
 __all__ = [
@@ -40,12 +41,6 @@ _KIND_STYLE = {
     "max": dict(color=PALETTE[3], marker="^", label="maximum"),
     "saddle": dict(color=PALETTE[1], marker="X", label="saddle"),
 }
-
-
-def _axes(ax, *, size=PAGE, projection=None):
-    if ax is None:
-        return new_figure(size=size, projection=projection)
-    return ax.get_figure(), ax
 
 
 def _check_result(result, sources):
@@ -236,7 +231,7 @@ def critical_surface(
     _check_result(result, ("surface",))
     V = np.asarray(vertices, dtype=float)
     F = np.asarray(faces, dtype=np.intp)
-    fig, ax = _axes(ax, size=size, projection="3d")
+    fig, ax = axes(ax, size=size, projection="3d")
     S = result.viewpoint
     h = np.sqrt(np.sum((V - S) ** 2, axis=1))
     with style():
@@ -330,7 +325,7 @@ def hausdorff(A, B, *, ax=None, size=PAGE, labels=("A", "B"), disks: bool = True
     A = as_points(A, "A", dim=2)
     B = as_points(B, "B", dim=2)
     ab, ba = hausdorff_pair(A, B)
-    fig, ax = _axes(ax, size=size)
+    fig, ax = axes(ax, size=size)
     la, lb = labels
     ca, cb = COLORS["red"], COLORS["green"]
     with style():
@@ -442,7 +437,7 @@ def timings(seconds: dict, *, ax=None, size=PAGE, title: str | None = None, log:
     vals = np.array([float(seconds[k]) for k in names])
     if not np.all(np.isfinite(vals)) or np.any(vals <= 0):
         raise ValueError("seconds must hold positive finite times")
-    fig, ax = _axes(ax, size=size)
+    fig, ax = axes(ax, size=size)
     spare = iter(c for c in PALETTE if c not in _ALGORITHM_COLORS.values())
     colors = [_ALGORITHM_COLORS.get(k) or next(spare, COLORS["muted"]) for k in names]
     with style():
@@ -496,7 +491,7 @@ def docking_landscape(angles, shifts, scores, *, marks=None, ax=None, size=PAGE,
         raise ValueError(f"scores must have shape (len(angles), len(shifts)) = {(len(A), len(S))}, got {Z.shape}")
     if not (np.all(np.isfinite(Z)) and np.all(np.isfinite(A)) and np.all(np.isfinite(S))):
         raise ValueError("angles, shifts and scores must be finite")
-    fig, ax = _axes(ax, size=size)
+    fig, ax = axes(ax, size=size)
     with style():
         lo = np.percentile(Z, 5)  # clashes make some scores hugely negative: clip the colour scale
         mesh = ax.pcolormesh(A, S, Z.T, shading="nearest", cmap="viridis", vmin=lo, vmax=Z.max())
@@ -542,7 +537,7 @@ def docking_pose(
     crystal = as_points(crystal, "crystal", dim=3)
     docked = as_points(docked, "docked", dim=3)
     near = cKDTree(crystal).query(receptor, distance_upper_bound=radius)[0] < np.inf
-    fig, ax = _axes(ax, size=size, projection="3d")
+    fig, ax = axes(ax, size=size, projection="3d")
     with style():
         R = receptor[near]
         ax.scatter(*R.T, s=14, color=COLORS["muted"], alpha=0.25, linewidths=0, depthshade=False, label="receptor")
@@ -631,7 +626,7 @@ def distance_matrix(D, labels, *, ax=None, size=PAGE, title: str | None = None, 
     labels = [str(s) for s in labels]
     if D.ndim != 2 or D.shape != (len(labels), len(labels)):
         raise ValueError(f"D must be a square matrix with one row per label, got {D.shape} and {len(labels)} labels")
-    fig, ax = _axes(ax, size=size)
+    fig, ax = axes(ax, size=size)
     names, _ = _class_colors(labels)
     with style():
         im = ax.imshow(D, cmap="magma_r", interpolation="nearest")
@@ -673,7 +668,7 @@ def embedding(points, labels, *, ax=None, size=PAGE, title: str | None = None):
     labels = [str(s) for s in labels]
     if len(labels) != len(X):
         raise ValueError(f"labels must have one entry per point, got {len(labels)} for {len(X)} points")
-    fig, ax = _axes(ax, size=size)
+    fig, ax = axes(ax, size=size)
     names, colors = _class_colors(labels)
     markers = "osD^vP*X"
     with style():
@@ -719,7 +714,7 @@ def stability(perturbation, distances: dict, *, ax=None, size=PAGE, title: str |
         raise ValueError("perturbation must hold positive finite sizes")
     if not isinstance(distances, dict) or not distances:
         raise TypeError("distances must be a non-empty dict of label -> distances")
-    fig, ax = _axes(ax, size=size)
+    fig, ax = axes(ax, size=size)
     with style():
         ax.plot(x, x, color="black", lw=1.5, ls="--", label="bound: distance = δ")
         floor = x.min() / 30

@@ -13,21 +13,12 @@ import numpy as np
 from .._toolkit.validate import as_finite_scalar, as_point, as_points, as_positive_int
 from ..quaternion import Quaternion, qfrom_axis_angle, qrotate
 from ..registration import ICPResult, RigidMotion
-from ._style import COLORS, PAGE, PALETTE, new_figure, style
+from ._common import axes
+from ._style import COLORS, PALETTE, new_figure, style
 
 _SHADES = tuple(PALETTE[k] for k in (1, 4, 5))
 
 __all__ = ["point_sets", "icp_step", "icp_convergence", "rotation_axis", "two_stage", "displacement"]
-
-
-def _axes(ax, *, size=PAGE, projection=None):
-    if ax is None:
-        return new_figure(size=size, projection=projection)
-    if projection == "3d" and getattr(ax, "name", "") != "3d":
-        raise ValueError("ax must be a 3D axes (projection='3d') for this figure")
-    if projection is None and getattr(ax, "name", "") == "3d":
-        raise ValueError("ax must be a 2D axes for planar points")
-    return ax.get_figure(), ax
 
 
 def _cube_limits(ax, pts: np.ndarray, pad: float = 0.08) -> None:
@@ -100,7 +91,7 @@ def point_sets(
         raise ValueError(f"pairs=True needs R and G of the same shape, got {R.shape} and {G.shape}")
     max_pairs = as_positive_int(max_pairs, "max_pairs")
     three = R.shape[1] == 3
-    fig, ax = _axes(ax, projection="3d" if three else None)
+    fig, ax = axes(ax, projection="3d" if three else None, planar=True)
     with style():
         if pairs:
             idx = _stride(len(R), max_pairs)
@@ -212,7 +203,7 @@ def icp_step(
         raise ValueError(f"source has {src.shape[0]} points but the result pairs {corr.shape[0]}")
     max_lines = as_positive_int(max_lines, "max_lines")
     moved = result.motions[k].apply(src)
-    fig, ax = _axes(ax, projection="3d")
+    fig, ax = axes(ax, projection="3d", planar=True)
     from mpl_toolkits.mplot3d.art3d import Line3DCollection
 
     with style():
@@ -288,7 +279,7 @@ def icp_convergence(result, *, truth: RigidMotion | None = None, ax=None, mark: 
             raise TypeError(f"result[{name!r}] must be an ICPResult, got {type(r).__name__}")
     if truth is not None and not isinstance(truth, RigidMotion):
         raise TypeError(f"truth must be a RigidMotion, got {type(truth).__name__}")
-    fig, ax = _axes(ax)
+    fig, ax = axes(ax, planar=True)
     with style():
         colors = [COLORS["ball_edge"], COLORS["accent"], COLORS["mouth"], COLORS["green"]]
         handles = []
@@ -369,7 +360,7 @@ def rotation_axis(rotation, angle=None, *, points=None, ax=None, title=None, ele
     else:
         P = np.atleast_2d(np.asarray(points, dtype=float))
         P = as_points(P, "points", dim=3)
-    fig, ax = _axes(ax, projection="3d")
+    fig, ax = axes(ax, projection="3d", planar=True)
     t = np.linspace(0.0, theta, 64)
     full = np.linspace(0.0, 2 * np.pi, 129)
     with style():
@@ -478,7 +469,7 @@ def displacement(residues, displacements: dict, *, domains: dict | None = None, 
     x = np.asarray(residues, float).ravel()
     if not isinstance(displacements, dict) or not displacements:
         raise TypeError("displacements must be a non-empty dict of label -> per-residue distances")
-    fig, ax = _axes(ax)
+    fig, ax = axes(ax, planar=True)
     with style():
         for k, (name, (a, b)) in enumerate((domains or {}).items()):
             ax.axvspan(a - 0.5, b + 0.5, color=_SHADES[k % len(_SHADES)], alpha=0.35, lw=0)

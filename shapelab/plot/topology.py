@@ -20,7 +20,9 @@ from matplotlib.patches import Circle, Patch
 from matplotlib.ticker import MaxNLocator
 
 from .._toolkit.validate import as_finite_scalar, as_tau
-from ._style import COLORS, PAGE, PALETTE, SLIDE, new_figure, style
+from ..filtration import as_filtration
+from ._common import axes, grown_radii, set_3d_view
+from ._style import COLORS, PALETTE, SLIDE, new_figure, style
 
 __all__ = [
     "persistence_diagram",
@@ -47,13 +49,6 @@ def _dim_label(k: int, d: int | None) -> str:
         k, f"{k}-cycles"
     )
     return f"H{_SUB[k] if k < 4 else k} {name}"
-
-
-def _axes(ax, *, size=PAGE, projection=None):
-    if ax is None:
-        fig, ax = new_figure(size=size, projection=projection)
-        return fig, ax
-    return ax.get_figure(), ax
 
 
 def _pairs_of(obj, dim=None):
@@ -182,7 +177,7 @@ def persistence_diagram(
         tau = _check_tau(tau)
     if min_persistence is not None:
         min_persistence = as_finite_scalar(min_persistence, "min_persistence", nonnegative=True)
-    fig, ax = _axes(ax, size=(5.6, 5.0))
+    fig, ax = axes(ax, size=(5.6, 5.0))
     with style():
         lo, hi = _range(P, dims, tau)
         pad = 0.06 * (hi - lo)
@@ -284,7 +279,7 @@ def barcode(
     min_persistence = as_finite_scalar(min_persistence, "min_persistence", nonnegative=True)
     if isinstance(max_bars, bool) or not isinstance(max_bars, (int, np.integer)) or max_bars < 1:
         raise ValueError(f"max_bars must be a positive integer, got {max_bars!r}")
-    fig, ax = _axes(ax)
+    fig, ax = axes(ax)
     with style():
         lo, hi = _range(P, dims, tau)
         pad = 0.05 * (hi - lo)
@@ -392,7 +387,7 @@ def betti_curve(F_or_curve, *, taus=None, tau=None, log=None, ax=None, title="Be
         raise ValueError("taus must be finite")
     if tau is not None:
         tau = _check_tau(tau)
-    fig, ax = _axes(ax)
+    fig, ax = axes(ax)
     with style():
         for k in range(curve.shape[1]):
             if k == d and not curve[:, k].any():
@@ -422,13 +417,8 @@ def betti_curve(F_or_curve, *, taus=None, tau=None, log=None, ax=None, title="Be
 
 
 # ------------------------------------------------------------------ drawing
-def _grown_radii(balls, tau):
-    w = balls.weights + tau
-    return np.sqrt(np.clip(w, 0.0, None)), w > 0
-
-
 def _draw_disks(ax, balls, tau, *, highlight=None, alpha=1.0, zorder=2):
-    r, ok = _grown_radii(balls, tau)
+    r, ok = grown_radii(balls, tau), balls.weights + tau > 0
     c = balls.centers
     patches = [Circle(c[i], r[i]) for i in np.flatnonzero(ok)]
     face = np.tile(np.array(_rgba(COLORS["ball"], alpha)), (len(patches), 1))
@@ -496,14 +486,7 @@ def _setup_3d(ax, balls, elev, azim, around=None):
     lo, hi = c.min(0), c.max(0)
     mid = 0.5 * (lo + hi)
     half = 0.5 * (hi - lo).max() + balls.radii.max()
-    ax.set_xlim(mid[0] - half, mid[0] + half)
-    ax.set_ylim(mid[1] - half, mid[1] + half)
-    ax.set_zlim(mid[2] - half, mid[2] + half)
-    ax.set_box_aspect((1, 1, 1))
-    ax.view_init(elev=elev, azim=azim)
-    ax.set_xlabel("x")
-    ax.set_ylabel("y")
-    ax.set_zlabel("z")
+    set_3d_view(ax, mid - half, mid + half, elev, azim, cube=True)
     return half
 
 
@@ -512,7 +495,7 @@ def _draw_balls_3d(ax, balls, tau, *, highlight=None, half=1.0, box=None):
     features drawn after them (on top: the axes do not sort by depth) stay visible.
     With ``box`` (lo, hi), only the balls whose centres lie in it (the axes of a
     zoomed view do not clip what lies beyond them)."""
-    r, ok = _grown_radii(balls, tau)
+    r, ok = grown_radii(balls, tau), balls.weights + tau > 0
     c = balls.centers
     if box is not None:
         ok = ok & np.all((c >= box[0]) & (c <= box[1]), axis=1)
@@ -561,12 +544,6 @@ def _features_or_compute(F, features, tau, fn_name, **kw):
     return list(features)
 
 
-def _filtration_of(F, who):
-    from ..filtration import as_filtration
-
-    return as_filtration(F, who)
-
-
 def voids(
     F, tau=0.0, *, voids=None, ax=None, show_complex=False, elev=20, azim=35, title=None, show_volumes=None, legend=True
 ):
@@ -613,7 +590,7 @@ def voids(
     void's cells kept where no grown ball covers them.  The cells themselves would
     draw the void of :math:`K_\\tau`, which is much larger than the void of the union.
     """
-    F = _filtration_of(F, "plot.voids")
+    F = as_filtration(F, "plot.voids")
     balls = F.balls
     tau = _check_tau(tau)
     V = _features_or_compute(F, voids, tau, "voids")
@@ -696,7 +673,7 @@ def pockets(
     pocket_gallery
         In 3D.
     """
-    F = _filtration_of(F, "plot.pockets")
+    F = as_filtration(F, "plot.pockets")
     balls = F.balls
     tau = _check_tau(tau)
     Pk = _features_or_compute(F, pockets, tau, "pockets", min_persistence=min_persistence)
@@ -763,7 +740,7 @@ def pocket_gallery(F, tau=0.0, *, pockets=None, voids=None, min_persistence=1e-9
     import matplotlib.pyplot as plt
 
     draw = globals()["pockets"]  # the function; the argument of that name holds features
-    F = _filtration_of(F, "plot.pocket_gallery")
+    F = as_filtration(F, "plot.pocket_gallery")
     tau = _check_tau(tau)
     if F.balls.dim != 3:
         raise ValueError(f"pocket_gallery draws 3D molecules, got dim={F.balls.dim}; use pockets() in 2D")
@@ -825,7 +802,7 @@ def tunnels(F, tau=0.0, *, tunnels=None, ax=None, show_complex=False, elev=20, a
     shapelab.tunnels
         The tunnels drawn.
     """
-    F = _filtration_of(F, "plot.tunnels")
+    F = as_filtration(F, "plot.tunnels")
     tau = _check_tau(tau)
     T = _features_or_compute(F, tunnels, tau, "tunnels")
     title = title or f"{len(T)} tunnel{'s' if len(T) != 1 else ''} at τ = {tau:g}"
@@ -877,7 +854,7 @@ def _draw_features(
     lining = [_lining_of(f) for f in list(V) + list(Pk)]
     hl = np.unique(np.concatenate(lining)) if lining else None
     if d == 2:
-        fig, ax = _axes(ax, size=(6.8, 5.0))
+        fig, ax = axes(ax, size=(6.8, 5.0))
         with style():
             _draw_disks(ax, balls, tau, highlight=hl, zorder=2)
             for i, v in enumerate(V, 1):
@@ -919,7 +896,7 @@ def _draw_features(
     else:
         from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
-        fig, ax = _axes(ax, size=(6.8, 5.6), projection="3d")
+        fig, ax = axes(ax, size=(6.8, 5.6), projection="3d")
         ax.computed_zorder = False  # draw in the order given: features on top of the balls
         rng = np.random.default_rng(0)
         with style():
