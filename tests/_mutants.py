@@ -388,10 +388,27 @@ def _flow_sinks(v, ns):
         ok = (np.einsum("ij,ij->i", b - a, c - a) >= 0) & (np.asarray(F.values(2)) > tau)
         return np.flatnonzero(ok).tolist()
 
+    def _centred(F, strict):  # no angle obtuse (strict: no right angle either)
+        z = F.balls.centers[np.asarray(F.simplices(2))]
+        ok = np.ones(len(z), dtype=bool)
+        for j in range(3):
+            a, b, c = z[:, j], z[:, (j + 1) % 3], z[:, (j + 2) % 3]
+            dot = np.einsum("ij,ij->i", b - a, c - a)
+            ok &= dot > 0 if strict else dot >= 0
+        return ok
+
+    def open_triangle(F, tau):  # circumcentre in the open triangle: right triangles flow
+        return np.flatnonzero(_centred(F, True) & (np.asarray(F.values(2)) > tau)).tolist()
+
+    def entering_is_empty(F, tau):  # values >= tau: a triangle entering at tau counted empty
+        return np.flatnonzero(_centred(F, False) & (np.asarray(F.values(2)) >= tau)).tolist()
+
     return [
         *_generic(v),
         ("centred triangles of K_tau counted too", with_complex),
         ("one angle tested instead of three", first_angle_only),
+        ("right triangles counted as flowing (open triangle)", open_triangle),
+        ("a triangle entering at tau counted as empty", entering_is_empty),
     ]
 
 

@@ -160,7 +160,10 @@ def flow_sinks(student) -> CheckResult:
     sinks of the discrete flow at ``tau`` (disks of one radius), as a list; compared as
     sets with :func:`shapelab.discrete_flow` on a ring of disks with a gap and on seeded
     random disks at three growth times (every case has sinks; the random ones also
-    have centred triangles already in :math:`K_\\tau`, which are no sinks) (Notes §23.1)."""
+    have centred triangles already in :math:`K_\\tau`, which are no sinks), after
+    two edge cases: a lattice with right triangles (sinks: the circumcentre is on the
+    hypotenuse) and a τ equal to a centred triangle's entry time (then in
+    :math:`K_\\tau`, no sink) (Notes §23.1)."""
     from ..balls import Balls
     from ..filtration import alpha_filtration
     from ..flow import discrete_flow
@@ -172,6 +175,17 @@ def flow_sinks(student) -> CheckResult:
     cases = [(alpha_filtration(ring), 0.0)]
     for n, tau in ((30, 0.0), (30, 0.6), (40, 0.2)):
         cases.append((alpha_filtration(Balls(rng.uniform(-4, 4, (n, 2)), 0.7)), tau))
+    # edge cases: right triangles (circumcentre on the hypotenuse, in the closed
+    # triangle: sinks) on a lattice of even integers, three points moved by dyadic
+    # amounts (all exact); tau equal to a centred triangle's entry time (it is in K_tau)
+    g = np.array([(2.0 * i, 2.0 * j) for i in range(5) for j in range(4)])
+    g[[6, 9, 13]] += [[0.5, 0.25], [-0.25, 0.5], [0.25, -0.5]]
+    F_right = alpha_filtration(Balls(g, 0.7))
+    F_tie = alpha_filtration(Balls(rng.uniform(-4, 4, (30, 2)), 0.7))
+    centred = np.flatnonzero(discrete_flow(F_tie, -np.inf).sink)
+    tie = float(np.sort(F_tie.values(2)[centred])[len(centred) // 2])
+    cases = [(F_right, 0.0), (F_tie, tie), *cases]  # edge cases first
+    notes = {id(F_right): " (a lattice: right triangles)", id(F_tie): " (a triangle enters at this tau)"}
 
     def same_set(expected, received):
         try:
@@ -186,7 +200,7 @@ def flow_sinks(student) -> CheckResult:
         cases,
         lambda F, tau: np.flatnonzero(discrete_flow(F, tau).sink).tolist(),
         same_set,
-        describe=lambda case: f"{len(case[0].balls)} disks at tau = {case[1]:g}",
+        describe=lambda case: f"{len(case[0].balls)} disks at tau = {case[1]:g}{notes.get(id(case[0]), '')}",
     )
 
 
