@@ -287,9 +287,55 @@ def _icp_best(v, ns):
 
 
 def _icp_step(v, ns):
-    register = ns["register"]
+    register, closest = ns["register"], ns["closest_points"]
     return [
-        ("registration without closest points (rows paired in order)", lambda moved, target: register(moved, target))
+        ("registration without closest points (rows paired in order)", lambda moved, target: register(moved, target)),
+        (
+            "the notes' step 2 literally: the motion of the target partners onto the source",
+            lambda moved, target: register(target[closest(moved, target)[0]], moved),
+        ),
+    ]
+
+
+def _polyline_slopes(P, S):
+    V = np.asarray(P, dtype=float)[:-1]
+    R = V - S
+    E = np.roll(V, -1, axis=0) - V
+    return V, R, E, (R * E).sum(axis=1), (R * np.roll(E, 1, axis=0)).sum(axis=1)
+
+
+def _maxima(v, ns):
+    def non_strict(P, S):  # a zero slope taken for a turn
+        V, R, E, leaving, arriving = _polyline_slopes(P, S)
+        return np.sort(np.linalg.norm(R, axis=1)[(leaving <= 0) & (arriving >= 0)])
+
+    def by_neighbours(P, S):  # compares each vertex with its two neighbouring vertices
+        F = np.linalg.norm(np.asarray(P, dtype=float)[:-1] - S, axis=1)
+        return np.sort(F[(F > np.roll(F, 1)) & (F > np.roll(F, -1))])
+
+    return [
+        *_generic(v),
+        ("slopes compared with <= / >= (a regular vertex with one zero slope counted)", non_strict),
+        ("each vertex compared with its neighbouring vertices", by_neighbours),
+    ]
+
+
+def _minima(v, ns):
+    def closed_feet(P, S):  # a foot of the perpendicular at a vertex counted twice
+        V, R, E, leaving, arriving = _polyline_slopes(P, S)
+        at_vertices = np.linalg.norm(R, axis=1)[(leaving >= 0) & (arriving <= 0)]
+        s = -leaving / (E * E).sum(axis=1)
+        on = (s >= 0) & (s <= 1)
+        return np.sort(np.concatenate([at_vertices, np.linalg.norm(V[on] + s[on, None] * E[on] - S, axis=1)]))
+
+    def vertices_only(P, S):  # the feet inside edges left out
+        V, R, E, leaving, arriving = _polyline_slopes(P, S)
+        return np.sort(np.linalg.norm(R, axis=1)[(leaving >= 0) & (arriving <= 0)])
+
+    return [
+        *_generic(v),
+        ("feet counted on the closed edge [0, 1] (a foot at a vertex counted twice)", closed_feet),
+        ("the feet of perpendiculars inside edges left out", vertices_only),
     ]
 
 
@@ -510,6 +556,8 @@ OVERRIDES = {
     "10_molecule_case_study:voids_after": _voids_after,
     "10_molecule_case_study:v_before": _v_before,
     "11_critical_points:viewpoints": _viewpoints,
+    "11_critical_points:my_maxima": _maxima,
+    "11_critical_points:my_minima": _minima,
     "13_icp:best": _icp_best,
     "13_icp:my_icp_step": _icp_step,
     "17_shape_classification:most_spread": _most_spread,

@@ -79,6 +79,28 @@ def minima_vertices_only(P, S):
     return np.sort(F[(F <= np.roll(F, 1)) & (F <= np.roll(F, -1))])
 
 
+def maxima_non_strict(P, S):  # a zero slope taken for a turn: a regular vertex counted
+    V = np.asarray(P, float)[:-1]
+    R = V - S
+    E = np.roll(V, -1, axis=0) - V
+    fwd = (R * E).sum(axis=1)
+    bwd = (R * np.roll(E, 1, axis=0)).sum(axis=1)
+    return np.sort(np.linalg.norm(R, axis=1)[(fwd <= 0) & (bwd >= 0)])
+
+
+def minima_closed_feet(P, S):  # feet on the closed edge: a foot at a vertex counted twice
+    V = np.asarray(P, float)[:-1]
+    R = V - S
+    E = np.roll(V, -1, axis=0) - V
+    fwd = (R * E).sum(axis=1)
+    bwd = (R * np.roll(E, 1, axis=0)).sum(axis=1)
+    out = list(np.linalg.norm(R, axis=1)[(fwd >= 0) & (bwd <= 0)])
+    tau = -fwd / (E * E).sum(axis=1)
+    inside = (tau >= 0) & (tau <= 1)
+    out += list(np.linalg.norm(V[inside] + tau[inside, None] * E[inside] - S, axis=1))
+    return np.sort(out)
+
+
 def crashing(*args):
     raise RuntimeError("oops")
 
@@ -93,7 +115,7 @@ def not_implemented(*args):
     [
         (check.directed_hausdorff, directed_right, [directed_swapped, directed_max_max, hausdorff_right]),
         (check.hausdorff, hausdorff_right, [hausdorff_one_sided, hausdorff_min_of_both, directed_max_max]),
-        (check.critical_points, maxima_right, [maxima_by_neighbours, minima_right]),
+        (check.critical_points, maxima_right, [maxima_by_neighbours, minima_right, maxima_non_strict]),
     ],
 )
 def test_right_passes_and_wrong_fails(check_fn, right, wrongs, capsys):
@@ -109,6 +131,7 @@ def test_right_passes_and_wrong_fails(check_fn, right, wrongs, capsys):
 
 def test_minima_contract(capsys):
     assert check.critical_points(minima_right, kind="min")
+    assert not check.critical_points(minima_closed_feet, kind="min")  # second reading (issue 21)
     assert not check.critical_points(minima_vertices_only, kind="min")
     assert not check.critical_points(maxima_right, kind="min")
     with pytest.raises(ValueError, match="kind"):

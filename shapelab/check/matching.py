@@ -83,6 +83,11 @@ def _curve_cases():
         (ellipse, np.array([0.3, 0.2])),
         (blob, np.array([0.1, -0.1])),
         (blob, np.array([3.0, 0.0])),  # S outside the curve
+        # S on the line of the bottom edge: the feet of the perpendiculars to the right
+        # and left edges fall exactly on the vertices (2, 0) and (0, 0), one slope there
+        # is exactly 0; (2, 0) is a minimum, counted once, and (0, 0) is no extremum
+        # (a foot counted on the closed edge [0, 1], or a slope test with <= / >=, fails)
+        (square, np.array([3.0, 0.0])),
     ]
 
 
