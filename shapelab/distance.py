@@ -98,12 +98,16 @@ and the witness pair is valid.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
 from ._toolkit import tolerances as tol
+from ._toolkit.geometry import kdtree
 from ._toolkit.validate import as_point_pair, as_positive_int
+
+if TYPE_CHECKING:  # the tree is built by _toolkit.geometry.kdtree, imported on first use
+    from scipy.spatial import cKDTree
 
 __all__ = [
     "DirectedHausdorff",
@@ -127,14 +131,6 @@ _GROUP = 8
 _GRID_CELLS = 2048
 #: Point pairs below which the coarse-to-fine stage finishes by brute force.
 _LEAF_PAIRS = 1 << 20
-
-
-def cKDTree(*args, **kwargs):
-    """scipy's ``cKDTree``, imported on first use: ``import scipy.spatial`` costs
-    0.3-0.8 s, and the far-apart regime never needs a tree."""
-    from scipy.spatial import cKDTree as _cKDTree
-
-    return _cKDTree(*args, **kwargs)
 
 
 class DirectedHausdorff(NamedTuple):
@@ -207,7 +203,7 @@ class _Cloud:
         if self._tree is None:
             # The sliding-midpoint tree builds 2-3x faster than the balanced one
             # and answers queries on sampled surfaces as fast or faster.
-            self._tree = cKDTree(self.points, balanced_tree=False, compact_nodes=False)
+            self._tree = kdtree(self.points, balanced_tree=False, compact_nodes=False)
         return self._tree
 
     @property
@@ -392,7 +388,7 @@ def _subset_stage(src: _Cloud, alive: np.ndarray, u: np.ndarray, dst: _Cloud, be
     if inside.size == 0:  # impossible: every survivor has a neighbour inside
         return False
     pts = dst.points[inside]
-    tree = cKDTree(pts, balanced_tree=False, compact_nodes=False)
+    tree = kdtree(pts, balanced_tree=False, compact_nodes=False)
     order = np.argsort(-u[alive], kind="stable")
     rows, ub = alive[order], u[alive][order]
     pos, batch = 0, 64
@@ -1022,8 +1018,8 @@ def hausdorff_kdtree(A, B) -> float:
            15(9):850-863, 1993. doi:10.1109/34.232073
     """
     A, B = _validate_pair(A, B)
-    hab = cKDTree(B).query(A, k=1, workers=-1)[0].max()
-    hba = cKDTree(A).query(B, k=1, workers=-1)[0].max()
+    hab = kdtree(B).query(A, k=1, workers=-1)[0].max()
+    hba = kdtree(A).query(B, k=1, workers=-1)[0].max()
     return float(max(hab, hba))
 
 

@@ -14,18 +14,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._toolkit.geometry import kdtree
 from ._toolkit.tolerances import MATCHING_FATOL, MATCHING_GAP_ABS, MATCHING_STEP_REL, MATCHING_XATOL
 from ._toolkit.validate import as_finite_scalar, as_point_pair, as_points, as_positive_int
 from .distance import hausdorff
 
 __all__ = ["reference_point", "TranslationMatch", "hausdorff_under_translation"]
-
-
-def cKDTree(*args, **kwargs):
-    """scipy's ``cKDTree``, imported on first use (``import scipy.spatial`` is slow)."""
-    from scipy.spatial import cKDTree as _cKDTree
-
-    return _cKDTree(*args, **kwargs)
 
 
 def reference_point(points, kind: str = "centroid") -> np.ndarray:
@@ -150,7 +144,7 @@ def _translated_values(A: np.ndarray, B: np.ndarray, T: np.ndarray) -> np.ndarra
     m = B.shape[0]
     out = np.empty(T.shape[0])
     if n * m > 1 << 18:  # two k-d trees built once serve every translation
-        ta, tb = cKDTree(A), cKDTree(B)
+        ta, tb = kdtree(A), kdtree(B)
         for k, t in enumerate(T):
             hab = tb.query(A - t, k=1, workers=-1)[0].max()
             hba = ta.query(B + t, k=1, workers=-1)[0].max()

@@ -13,7 +13,6 @@ that names the offending argument, so that a student sees *which* input is wrong
 
 from __future__ import annotations
 
-import functools
 import numbers
 
 import numpy as np
@@ -35,7 +34,6 @@ __all__ = [
     "as_radii",
     "as_finite_scalar",
     "as_tau",
-    "filtration_first",
     "as_positive_int",
     "check_same_shape",
 ]
@@ -208,30 +206,6 @@ def as_tau(tau, name: str = "tau", *, finite: bool = False) -> float:
     if finite and not np.isfinite(t):
         raise ValueError(f"{name} must be finite here (balls grown by {name} = {t!r} have no finite size)")
     return t
-
-
-def filtration_first(fn=None, *, name: str | None = None):
-    """Decorator for functions that take the Filtration as their first argument.
-
-    They used to take ``(balls, tau, filtration=F)``; the ``filtration=`` keyword is
-    gone, and passing it raises a :class:`TypeError` that spells out the new call
-    (``voids(balls, filtration=F)`` is now ``voids(F)``).  The signature shown by
-    ``help()`` is the function's own.
-    """
-    if fn is None:
-        return functools.partial(filtration_first, name=name)
-    shown = name or fn.__name__
-
-    @functools.wraps(fn)
-    def wrapper(*args, **kwargs):
-        if "filtration" in kwargs:
-            raise TypeError(
-                f"{shown}(balls, filtration=F) is now {shown}(F): pass the Filtration "
-                "(from shapelab.alpha_filtration) as the first argument; the keyword filtration= is gone"
-            )
-        return fn(*args, **kwargs)
-
-    return wrapper
 
 
 def readonly(a, dtype=None) -> np.ndarray:
