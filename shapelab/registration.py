@@ -880,10 +880,9 @@ def icp(
         Starting motion of the source (default: identity).  ICP is a local method:
         from ``init`` the cost never increases and it ends (up to ``tol``) at a fixed
         point, a local minimum of the closest-point cost when the closest points
-        there are unique.  Which one depends on ``init``, but it need not be the
-        local minimum nearest to it: an iteration can jump far, and near the
-        boundary of two basins the last bits of the arithmetic decide (lesson 13).
-        Nothing makes it the global minimum.
+        there are unique.  Which one depends on ``init`` (near the boundary of two
+        basins even on the last bits of the arithmetic, lesson 13); nothing makes it
+        the global minimum.
     max_distance : float, optional
         Pairs farther apart than this are left out of step 2 (Open3D's
         ``max_correspondence_distance``).  The cost then counts every source point,
