@@ -261,7 +261,21 @@ def _rips_gap(v, ns):
         *_generic(v),
         ("Rips in the edge-length scale", float(bd(np.sqrt(np.maximum(tau, 0.0)), rips))),
         ("α left in the τ scale", float(bd(tau, rips / 2))),
+        ("Rips values read as τ (square root taken)", float(bd(np.sqrt(np.maximum(tau, 0.0)), np.sqrt(rips)))),
+        ("both in the τ scale", float(bd(tau, (rips / 2) ** 2))),
+        (
+            "the Delaunay–Čech complex, a nerve, instead of Rips",
+            float(bd(np.sqrt(np.maximum(tau, 0.0)), _del_cech_h1(X))),
+        ),
     ]
+
+
+def _del_cech_h1(X):
+    import gudhi
+
+    st = gudhi.DelaunayCechComplex(X).create_simplex_tree(output_squared_values=False)
+    st.compute_persistence(homology_coeff_field=2)
+    return st.persistence_intervals_in_dimension(1)
 
 
 def _viewpoints(v, ns):
@@ -294,6 +308,25 @@ def _icp_step(v, ns):
             "the notes' step 2 literally: the motion of the target partners onto the source",
             lambda moved, target: register(target[closest(moved, target)[0]], moved),
         ),
+    ]
+
+
+def _horn_rotation(v, ns):
+    horn = ns["horn_matrix"]
+
+    def pick(which):
+        def fn(R, G):
+            lam, X = np.linalg.eigh(horn(R, G))
+            return X[:, which(lam)]
+
+        return fn
+
+    return [
+        *_generic(v),
+        ("the smallest eigenvalue's eigenvector", pick(lambda lam: 0)),
+        ("the eigenvalue largest in magnitude", pick(lambda lam: int(np.argmax(np.abs(lam))))),
+        ("G rotated onto R (arguments swapped)", lambda R, G: v(G, R)),
+        ("SciPy's order (x, y, z, w)", lambda R, G: np.roll(np.asarray(v(R, G)), -1)),
     ]
 
 
@@ -560,6 +593,7 @@ OVERRIDES = {
     "11_critical_points:my_minima": _minima,
     "13_icp:best": _icp_best,
     "13_icp:my_icp_step": _icp_step,
+    "15_optimal_rotation:my_rotation": _horn_rotation,
     "17_shape_classification:most_spread": _most_spread,
     "17_shape_classification:spread": _class_spreads,
     "17_shape_classification:rips_gap": _rips_gap,

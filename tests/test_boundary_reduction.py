@@ -212,3 +212,80 @@ def test_boundary_reduction_check_passes_the_right_answer(capsys):
 def test_boundary_reduction_check_refuses_mistakes(wrong):
     r = check.boundary_reduction(wrong, quiet=True)
     assert not r.passed
+
+
+# ------------------------------------------------------- second reading (issue 21)
+def _right_then_later(D):  # the right R, then a later column added to an earlier one with a higher low
+    R = _right(D)
+    low = [int(np.flatnonzero(c)[-1]) if c.any() else -1 for c in R.T]
+    for j in range(R.shape[1]):
+        k = next((k for k in range(j + 1, R.shape[1]) if 0 <= low[k] < low[j]), None)
+        if k is not None:
+            R[:, j] ^= R[:, k]
+    return R
+
+
+def test_check_refuses_a_later_column_that_keeps_the_lowest_ones():
+    # the lowest ones are right and D R = 0 still holds, but R is not D V with V upper triangular
+    D = check.topology._hand_made_matrices()[-1]
+    R = _right_then_later(D)
+    assert (
+        np.array_equal([int(np.flatnonzero(c)[-1]) if c.any() else -1 for c in R.T], reduce_boundary(D)[1])
+        and not ((D.astype(int) @ R) % 2).any()
+    )
+    r = check.boundary_reduction(_right_then_later, quiet=True)
+    assert not r.passed and "not column" in r.message and "earlier columns" in r.message
+
+
+def test_later_column_additions_can_swap_the_lowest_ones():
+    # exercise 5's model answer: vertices 0, 1, 2, edges 01, 02; add 02 to 01, then reduce 02 by it
+    D = np.zeros((5, 5), dtype=np.uint8)
+    D[[0, 1], 3] = D[[0, 2], 4] = 1
+    M = D.copy()
+    M[:, 3] ^= M[:, 4]
+    M[:, 4] ^= M[:, 3]
+    lows = [int(np.flatnonzero(c)[-1]) if c.any() else -1 for c in M.T]
+    assert lows == [-1, -1, -1, 2, 1] and reduce_boundary(D)[1].tolist() == [-1, -1, -1, 1, 2]
+
+
+def _clearing(D):  # the twist: zero the column of each lowest one found (a valid shortcut)
+    R = np.array(D, dtype=np.uint8)
+    owner = {}
+    for j in range(R.shape[1]):
+        while R[:, j].any():
+            i = int(np.flatnonzero(R[:, j])[-1])
+            if i not in owner:
+                owner[i] = j
+                R[:, i] = 0
+                break
+            R[:, j] ^= R[:, owner[i]]
+    return R
+
+
+@pytest.mark.parametrize(
+    "right",
+    [_clearing, lambda D: _right(D).tolist(), lambda D: _right(D).astype(bool), lambda D: reduce_boundary(D)[0]],
+    ids=["clearing", "list", "bool", "sparse"],
+)
+def test_check_passes_right_answers_in_other_forms(right):
+    # a list of lists (also [] for the empty matrix), booleans, a scipy.sparse matrix, clearing
+    assert check.boundary_reduction(right, quiet=True).passed
+
+
+def test_check_says_what_is_wrong():
+    msg = check.boundary_reduction(lambda D: reduce_boundary(D)[1], quiet=True).message
+    assert "expected shape" in msg
+    msg = check.boundary_reduction(lambda D: np.array(D), quiet=True).message
+    assert "what is wrong: the lowest one of column" in msg and "not reduced" in msg
+
+
+@pytest.mark.xfail(strict=True, reason="reported to the lead: reduce_boundary(None) says 'got shape ()' (ValueError)")
+def test_reduce_boundary_refuses_none_with_a_type_error():
+    with pytest.raises(TypeError, match="D must"):
+        reduce_boundary(None)
+
+
+def test_check_refuses_a_wrong_shape_on_the_empty_matrix():
+    # the first case is the 0 x 0 matrix: [] is its reduction, an array of shape (1, 0) is not
+    r = check.boundary_reduction(lambda D: np.ones((1, 0)) if D.size == 0 else _right(D), quiet=True)
+    assert not r.passed and "expected shape (0, 0)" in r.message

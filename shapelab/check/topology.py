@@ -269,14 +269,36 @@ def _same_pairs(A: dict, B: dict) -> bool:
 
 class _Lows:
     """The reference of :func:`boundary_reduction`: the lowest one of each column of the
-    reduced matrix (-1 for a zero column), shown as such in a failure message."""
+    reduced matrix (-1 for a zero column) and the columns of the reference ``R`` (sets
+    of rows), shown in a failure message with what is wrong in the answer."""
 
-    def __init__(self, low, D):
+    def __init__(self, low, D, R):
         self.low, self.D = np.asarray(low), D
+        R = R.tocsc()
+        self.cols = [set(R.indices[R.indptr[j] : R.indptr[j + 1]].tolist()) for j in range(R.shape[1])]
+        self.owner = {int(i): j for j, i in enumerate(self.low.tolist()) if i >= 0}
+        self.why = ""
+
+    def in_span(self, v, j) -> bool:
+        """Whether the chain ``v`` (a set of rows) is a sum of the columns ``< j`` of
+        ``D``: the reference's columns ``< j`` span the same space and their lowest
+        ones are distinct, so reducing by them decides it."""
+        v = set(v)
+        while v:
+            k = self.owner.get(max(v))
+            if k is None or k >= j:
+                return False
+            v ^= self.cols[k]
+        return True
 
     def __repr__(self) -> str:
+        n = self.low.size
         with np.printoptions(threshold=20):
-            return f"a reduced matrix whose lowest ones (row of each column's last 1; -1: zero column) are {self.low}"
+            text = (
+                f"R = D V of shape ({n}, {n}) (column j of D plus earlier columns), lowest ones "
+                f"(-1: zero column) {self.low}"
+            )
+        return text + (f"\n  what is wrong: {self.why}" if self.why else "")
 
 
 def boundary_reduction(student_fn, *, quiet: bool = False) -> CheckResult:
@@ -285,11 +307,14 @@ def boundary_reduction(student_fn, *, quiet: bool = False) -> CheckResult:
 
     ``D`` is an (n, n) uint8 array of 0/1, columns and rows in filtration order
     (:meth:`shapelab.filtration.Filtration.boundary_matrix`, as a dense array).  The
-    answer ``R`` must be an (n, n) array of 0/1 whose non-zero columns have distinct
-    lowest ones, whose columns are cycles (:math:`D R = 0` mod 2, as for
-    :math:`R = D V`), and whose lowest ones are those of the standard algorithm
+    answer ``R`` (an array, or a scipy.sparse matrix) must be an (n, n) array of 0/1
+    with :math:`R = D V` over :math:`\\mathbb{Z}/2`, :math:`V` upper triangular with
+    ones on its diagonal (column ``j`` of ``R`` is column ``j`` of ``D`` plus earlier
+    columns of ``D``: tested by reducing the difference with the reference's earlier
+    columns), and whose lowest ones are those of the standard algorithm
     (:func:`shapelab.topology.reduce_boundary`): the pairing does not depend on the
-    order of the column additions.  Cases: tiny hand-made complexes, then small random
+    order of the column additions, but adding a *later* column is refused even where
+    it keeps the lowest ones.  Cases: tiny hand-made complexes, then small random
     α-filtrations in 2D and 3D and the course's Figure 23.1, a ring, C60 and the
     two-chamber flask, for which the pairs read off the reference's lowest ones are
     first compared with :meth:`Filtration.persistence` (finite and essential classes).
@@ -307,22 +332,46 @@ def boundary_reduction(student_fn, *, quiet: bool = False) -> CheckResult:
         pass
 
     def reference(D):
-        return _Lows(reduce_boundary(D)[1], D)
+        R, low = reduce_boundary(D)
+        return _Lows(low, D, R)
 
     def compare(expected, received):
+        expected.why = ""
+        n = expected.low.size
         try:
-            R = np.asarray(received)
-            n = expected.low.size
-            if R.dtype == object or R.dtype.kind not in "biuf" or R.shape != (n, n) or not np.all(np.isin(R, (0, 1))):
+            R = received.toarray() if hasattr(received, "toarray") else np.asarray(received)  # sparse too
+            if R.dtype == object or R.dtype.kind not in "biuf":
+                expected.why = f"expected an array of 0/1, got {type(received).__name__} of dtype {R.dtype}"
+                return False
+            if n == 0 and R.shape in ((0, 0), (0,)):  # (0,): a list of no rows, []
+                return True
+            if R.shape != (n, n):
+                expected.why = f"expected shape ({n}, {n}), got shape {R.shape}"
+                return False
+            if not np.all(np.isin(R, (0, 1))):
+                expected.why = "entries other than 0 and 1: add columns mod 2"
                 return False
         except (TypeError, ValueError):
             return False
-        R = R.astype(np.int64)
-        if n == 0:
-            return True
+        R = R.astype(np.uint8)
         low = np.where(R.any(axis=0), n - 1 - np.argmax(R[::-1, :], axis=0), -1)
-        # the same lowest ones as the standard algorithm, and every column a cycle (D R = 0)
-        return bool(np.array_equal(low, expected.low) and np.all((expected.D.astype(np.int64) @ R) % 2 == 0))
+        # the same lowest ones as the standard algorithm ...
+        bad = np.flatnonzero(low != expected.low)
+        if bad.size:
+            j = int(bad[0])
+            expected.why = f"the lowest one of column {j} is in row {int(low[j])}, not {int(expected.low[j])}"
+            lows = low[low >= 0]
+            if lows.size != np.unique(lows).size:
+                expected.why += " (and two columns share a lowest one: not reduced)"
+            return False
+        # ... and R = D V, V upper triangular with ones on its diagonal (so D R = 0):
+        # column j minus column j of D is a sum of earlier columns of D
+        X = (R != (np.asarray(expected.D) % 2)).T  # rows of X: the columns of R - D
+        for j in np.flatnonzero(X.any(axis=1)).tolist():
+            if not expected.in_span(np.flatnonzero(X[j]).tolist(), j):
+                expected.why = f"column {j} is not column {j} of D plus earlier columns (a later one added?)"
+                return False
+        return True
 
     def describe(case):
         D = case[0]
