@@ -61,6 +61,7 @@ _EXPORTS = {
     "Void": "cavities",
     "Pocket": "cavities",
     "Tunnel": "cavities",
+    "Cavity": "cavities",
     "discrete_flow": "flow",
     "flow_pockets": "flow",
     "DiscreteFlow": "flow",

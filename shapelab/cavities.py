@@ -47,6 +47,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
+from typing import Protocol, runtime_checkable
 
 import numpy as np
 from scipy.sparse import coo_matrix
@@ -65,10 +66,79 @@ from ._topology import is_roundoff, reduce_h1, summary
 from .filtration import as_filtration
 from .freespace import free_measure, vertex_values, void_measure
 
-__all__ = ["Void", "Pocket", "Tunnel", "voids", "pockets", "tunnels", "grooves", "ChannelProfile", "channel_profile"]
+__all__ = [
+    "Cavity",
+    "Void",
+    "Pocket",
+    "Tunnel",
+    "voids",
+    "pockets",
+    "tunnels",
+    "grooves",
+    "ChannelProfile",
+    "channel_profile",
+]
 
 
 # ============================================================================ results
+@runtime_checkable
+class Cavity(Protocol):
+    """What a void, a pocket and a tunnel share (Notes §23.1): one protocol, so that code
+    that lists, ranks, draws or reports cavities takes any of them.
+
+    Attributes
+    ----------
+    cells : ndarray, int
+        The simplices that carry it, as ball indices: the top simplices of the region
+        (:class:`Void`, :class:`Pocket`) or the edges of a representative cycle
+        (:class:`Tunnel`).
+    cell_ids : ndarray, int
+        The same simplices as rows of ``F.simplices(k)``.
+    lining : ndarray, int
+        The balls around it: the vertices of its cells whose balls exist at ``tau``.
+    born, dies : float
+        The growth times between which it is a feature of the union: a void is sealed
+        and filled, a pocket closes into a void and that void fills
+        (``closes_at``, ``fills_at``), a tunnel's :math:`H_1` class is born and dies.
+    persistence : float
+        ``dies - born``.
+    tau : float
+        The growth time it was computed at.
+
+    Notes
+    -----
+    Voids and pockets also have a ``volume`` (free space, exact); a tunnel bounds no
+    region and has none.  The discrete flow's :class:`shapelab.flow.FlowPocket` is a
+    region at one τ, with no birth or death, and is not a Cavity.
+
+    See Also
+    --------
+    voids, pockets, tunnels
+        Produce cavities.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> F = sl.alpha_filtration(sl.datasets.fullerene_c60())
+    >>> all(isinstance(c, sl.Cavity) for c in (*sl.voids(F, 0.0), *sl.tunnels(F, -1.5)))
+    True
+    """
+
+    cells: np.ndarray
+    cell_ids: np.ndarray
+    lining: np.ndarray
+    tau: float
+
+    @property
+    def born(self) -> float: ...
+
+    @property
+    def dies(self) -> float: ...
+
+    @property
+    def persistence(self) -> float: ...
+
+
 @dataclass(frozen=True, eq=False)
 class Void:
     """A bounded component of the complement of the grown union (Notes §23.1).
@@ -181,6 +251,16 @@ class Pocket:
     balls: object
 
     @property
+    def born(self) -> float:
+        """``closes_at``: when the pocket becomes a void (the :class:`Cavity` protocol)."""
+        return self.closes_at
+
+    @property
+    def dies(self) -> float:
+        """``fills_at``: when that void is filled (the :class:`Cavity` protocol)."""
+        return self.fills_at
+
+    @property
     def persistence(self) -> float:
         """``fills_at - closes_at``: how long the pocket lives as a void."""
         return self.fills_at - self.closes_at
@@ -236,6 +316,33 @@ class Tunnel:
     cycle: np.ndarray
     edge_ids: np.ndarray
     tau: float
+
+    @property
+    def born(self) -> float:
+        """``birth`` (the :class:`Cavity` protocol)."""
+        return self.birth
+
+    @property
+    def dies(self) -> float:
+        """``death`` (the :class:`Cavity` protocol)."""
+        return self.death
+
+    @property
+    def cells(self) -> np.ndarray:
+        """``cycle``: the edges that carry the tunnel (the :class:`Cavity` protocol)."""
+        return self.cycle
+
+    @property
+    def cell_ids(self) -> np.ndarray:
+        """``edge_ids`` (the :class:`Cavity` protocol)."""
+        return self.edge_ids
+
+    @cached_property
+    def lining(self) -> np.ndarray:
+        """The balls on the representative cycle, ascending (the :class:`Cavity` protocol)."""
+        out = np.unique(np.asarray(self.cycle, dtype=np.int64))
+        out.flags.writeable = False
+        return out
 
     @property
     def persistence(self) -> float:

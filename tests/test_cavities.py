@@ -572,3 +572,27 @@ def test_channel_profile_of_stacked_rings_has_the_closed_form_bottleneck():
         sl.channel_profile(balls, [0, 0, 0], [0, 0, 0], [0.0])
     with pytest.raises(TypeError, match="balls"):
         sl.channel_profile(np.zeros((3, 3)), [0, 0, 0], [0, 0, 1], [0.0])
+
+
+def test_voids_pockets_and_tunnels_share_the_cavity_protocol():
+    """One protocol (issue 22): born/dies/persistence agree with each kind's own fields
+    and with the persistence pairs; lining is the alive vertices of the cells."""
+    F = sl.alpha_filtration(sl.datasets.globule())
+    h1 = F.persistence()[1]
+    b, d = h1[np.argmax(h1[:, 1] - h1[:, 0])]  # inside the longest H1 pair: a tunnel is alive
+    found = [*sl.voids(F, 0.0), *sl.pockets(F, 0.0), *sl.tunnels(F, 0.5 * (b + d))]
+    kinds = {type(c).__name__ for c in found}
+    assert kinds == {"Void", "Pocket", "Tunnel"}, kinds
+    pairs = F.persistence()
+    for c in found:
+        assert isinstance(c, sl.Cavity)
+        assert c.persistence == pytest.approx(c.dies - c.born)
+        assert c.born <= c.dies
+        assert set(np.unique(c.cells).tolist()) >= set(np.asarray(c.lining).tolist())
+        k = 1 if isinstance(c, C.Tunnel) else F.balls.dim - 1
+        assert any(np.isclose(b, c.born) and np.isclose(d, c.dies) for b, d in pairs[k]), (c, k)
+    t = next(c for c in found if isinstance(c, C.Tunnel))
+    assert t.born == t.birth and t.dies == t.death and t.cells is t.cycle and t.cell_ids is t.edge_ids
+    p = next(c for c in found if isinstance(c, C.Pocket))
+    assert p.born == p.closes_at and p.dies == p.fills_at
+    assert not isinstance(sl.flow_pockets(F, 0.0)[0], sl.Cavity) if len(sl.flow_pockets(F, 0.0)) else True
