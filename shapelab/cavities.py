@@ -105,16 +105,16 @@ class Cavity(Protocol):
     tau : float
         The growth time it was computed at.
 
+    See Also
+    --------
+    voids, pockets, tunnels
+        Produce cavities.
+
     Notes
     -----
     Voids and pockets also have a ``volume`` (free space, exact); a tunnel bounds no
     region and has none.  The discrete flow's :class:`shapelab.flow.FlowPocket` is a
     region at one τ, with no birth or death, and is not a Cavity.
-
-    See Also
-    --------
-    voids, pockets, tunnels
-        Produce cavities.
 
     Examples
     --------
