@@ -136,3 +136,48 @@ def test_rips_union_gap_closed_form_on_the_octahedron(capsys):
     assert not check.rips_union_gap(gap**2, octahedron)
     out = capsys.readouterr().out
     assert out.count("✓") == 1 and out.count("✗") == 2
+
+
+def _exposed_toy():
+    """Three balls in a row: ALA 1 is one end ball; GLY 2, the middle and the other end, is the most exposed."""
+    from shapelab import Balls
+
+    balls = Balls([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [4.0, 0.0, 0.0]], [1.0, 1.0, 1.0])
+    return SimpleNamespace(
+        balls=balls, residue_names=np.array(["ALA", "GLY", "GLY"]), residue_numbers=np.array([1, 2, 2])
+    )
+
+
+@pytest.mark.parametrize("answer", ["GLY 2", "gly 2", " GLY  2 "])
+def test_most_exposed_residue_right_in_any_case_or_spacing(answer, capsys):
+    assert check.most_exposed_residue(answer, _exposed_toy())
+    assert "✓" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(
+    ("answer", "hint"),
+    [
+        ("GLY2", "is no residue of this structure"),  # refused with the label's spelling, not "not the answer"
+        ("2", "is no residue of this structure"),
+        ("ALA 1", "% below the largest"),
+        (None, "expected a str"),
+    ],
+)
+def test_most_exposed_residue_wrong_answer_says_how(answer, hint, capsys):
+    assert not check.most_exposed_residue(answer, _exposed_toy())
+    out = capsys.readouterr().out
+    assert "✗" in out and hint in out and "GLY 2" not in out, out
+
+
+def test_most_exposed_residue_oracle_toy_by_hand(capsys):
+    """Independent oracle: the end ball of three in a row, grown by the probe, keeps more of its sphere."""
+    from shapelab import Balls, union_measure
+
+    toy = _exposed_toy()
+    shares = union_measure(Balls(toy.balls.centers, toy.balls.radii + 1.4)).ball_boundary
+    # radius 2.4, neighbours 2 apart: each cap cut off at height 1 is 2*pi*2.4*(2.4-1); the middle ball loses two
+    cap = 2 * np.pi * 2.4 * (2.4 - 1.0)
+    np.testing.assert_allclose(
+        shares, [4 * np.pi * 2.4**2 - cap, 4 * np.pi * 2.4**2 - 2 * cap, 4 * np.pi * 2.4**2 - cap]
+    )
+    assert shares[1] + shares[2] > shares[0]

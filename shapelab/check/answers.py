@@ -364,7 +364,19 @@ def most_exposed_residue(answer, structure, probe: float = 1.4) -> CheckResult:
     for key, a in zip(keys, m.ball_boundary):
         totals[key] = totals.get(key, 0.0) + float(a)
     expected = max(totals, key=lambda k: (totals[k], k))
-    received = answer.strip().upper() if isinstance(answer, str) else answer
+    received = _label(answer) if isinstance(answer, str) else answer
+    if isinstance(received, str) and received != expected:
+        # "TYR83" or "83" is a spelling, not a residue; a real residue is told how far it falls short
+        if received not in totals:
+            return _fail(
+                "the most exposed residue", f'{answer!r} is no residue of this structure (a label reads "NAME NUMBER")'
+            )
+        short = 100.0 * (1.0 - totals[received] / totals[expected])
+        return _fail(
+            "the most exposed residue",
+            f"that residue's solvent-accessible area is {short:.1f} % below the largest "
+            f"(radii grown by the {probe} Å probe, atoms' shares of the boundary summed per residue)",
+        )
     return value("the most exposed residue", received, expected)
 
 
