@@ -10,6 +10,7 @@ algorithms are described in :mod:`shapelab.topology`'s docstring.
 
 from __future__ import annotations
 
+import numbers
 from dataclasses import dataclass
 
 import numpy as np
@@ -519,6 +520,8 @@ def _as_z2_matrix(D):
     the set of rows holding an odd entry, and its size."""
     from scipy import sparse
 
+    if D is None or isinstance(D, (str, bytes, bytearray, numbers.Number, np.generic)):
+        raise TypeError(f"D must be a square matrix of integers (mod 2), got {type(D).__name__}")
     if sparse.issparse(D):
         M = sparse.csc_matrix(D)
         A = M.data
