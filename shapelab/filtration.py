@@ -630,6 +630,13 @@ class Complex(_SimplicialMixin):
     tau : float
     dimension : int
         Largest k with a k-simplex (-1 if empty).
+
+    See Also
+    --------
+    dual_complex
+        Builds it.
+    Filtration.complex_at
+        The complex of a filtration at τ.
     """
 
     balls: Balls
@@ -686,6 +693,13 @@ class Filtration(_SimplicialMixin):
     balls : Balls
     dimension : int
         Largest k with a k-simplex (-1 if there are no balls).
+
+    See Also
+    --------
+    alpha_filtration
+        Builds it.
+    shapelab.topology.persistence
+        Its persistence pairs.
     """
 
     balls: Balls
@@ -986,6 +1000,15 @@ def alpha_filtration(balls: Balls) -> Filtration:
     -------
     Filtration
 
+    See Also
+    --------
+    dual_complex
+        The complex at one growth time.
+    Filtration
+        What it returns.
+    regular_triangulation
+        The triangulation it filters.
+
     Notes
     -----
     Notes §23.1 (the growth model).  Algorithm (GUDHI's, in vectorised form):
@@ -1009,6 +1032,13 @@ def alpha_filtration(balls: Balls) -> Filtration:
     arithmetic (:func:`_orthospheres_certified`).  So each value is within 1e-9
     (typically a few ulp) of the exact value for the float64 input, exact zeros
     are exact, and the Gabriel test is exact.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner, "The union of balls and its dual shape", *Discrete Comput.
+           Geom.* 13:415-440, 1995. doi:10.1007/BF02574053
+    .. [2] H. Edelsbrunner and E. P. Mücke, "Three-dimensional alpha shapes", *ACM Trans.
+           Graph.* 13(1):43-72, 1994. doi:10.1145/174462.156635
     """
     check_balls(balls)
     res = _entry_times(balls)
@@ -1181,5 +1211,17 @@ def dual_complex(balls: Balls) -> Complex:
 
     Same as ``alpha_filtration(balls).complex_at(0.0)``: the nerve of the clipped
     cells :math:`B_i \\cap \\Pi(B_i)`.
+
+    See Also
+    --------
+    alpha_filtration
+        Every growth time at once.
+    shapelab.oracles.sampled_nerve
+        The same nerve by sampling, an oracle.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner, "The union of balls and its dual shape", *Discrete Comput.
+           Geom.* 13:415-440, 1995. doi:10.1007/BF02574053
     """
     return alpha_filtration(balls).complex_at(0.0)

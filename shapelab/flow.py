@@ -134,6 +134,19 @@ class FlowPocket:
         ``F.simplices(d-1)``.  Empty for a void.
     tau : float
         The growth time of the complex :math:`K_\\tau` the flow was computed on.
+
+    See Also
+    --------
+    flow_pockets
+        Produces them.
+    shapelab.cavities.Pocket
+        The growth model's pocket.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner, M. Facello and J. Liang, "On the definition and the
+           construction of pockets in macromolecules", *Discrete Appl. Math.* 88:83-102,
+           1998. doi:10.1016/S0166-218X(98)00067-5
     """
 
     cells: np.ndarray
@@ -183,6 +196,19 @@ class DiscreteFlow:
         simplices in :math:`K_\\tau` or flowing to infinity.
     pockets : tuple of FlowPocket
         The regions, ordered by their smallest cell row.
+
+    See Also
+    --------
+    discrete_flow
+        Produces it.
+    FlowPocket
+        Its pocket regions.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner, M. Facello and J. Liang, "On the definition and the
+           construction of pockets in macromolecules", *Discrete Appl. Math.* 88:83-102,
+           1998. doi:10.1016/S0166-218X(98)00067-5
     """
 
     tau: float

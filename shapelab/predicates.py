@@ -93,7 +93,19 @@ def det(M):
 
     Entries may be floats, Python integers or numpy arrays of either (object arrays
     of integers are evaluated exactly, elementwise).  The expansion is fixed, so a
-    float evaluation has the error bound of :func:`permanent`."""
+    float evaluation has the error bound of :func:`permanent`.
+
+    See Also
+    --------
+    permanent
+        The same expansion without signs.
+
+    References
+    ----------
+    .. [1] J. R. Shewchuk, "Adaptive precision floating-point arithmetic and fast robust
+           geometric predicates", *Discrete Comput. Geom.* 18:305-363, 1997.
+           doi:10.1007/PL00009321
+    """
     n = len(M)
     if n == 1:
         return M[0][0]
@@ -111,7 +123,13 @@ def det(M):
 
 def permanent(M):
     """The expansion of :func:`det` with every sign ``+``: for the absolute values of
-    the entries, a bound on every partial sum of the determinant's expansion."""
+    the entries, a bound on every partial sum of the determinant's expansion.
+
+    See Also
+    --------
+    det
+        The signed expansion.
+    """
     n = len(M)
     if n == 1:
         return M[0][0]
@@ -233,6 +251,20 @@ class WeightedPoints:
     ----------
     stats : dict
         Counts of rows decided by the floating-point filter and exactly.
+
+    See Also
+    --------
+    shapelab.certify.certify
+        Uses the predicates on these points.
+
+    References
+    ----------
+    .. [1] J. R. Shewchuk, "Adaptive precision floating-point arithmetic and fast robust
+           geometric predicates", *Discrete Comput. Geom.* 18:305-363, 1997.
+           doi:10.1007/PL00009321
+    .. [2] H. Edelsbrunner and E. P. Mücke, "Simulation of Simplicity: a technique to
+           cope with degenerate cases in geometric algorithms", *ACM Trans. Graph.*
+           9(1):66-104, 1990. doi:10.1145/77635.77639
     """
 
     def __init__(self, coords, radii, axes=None, priority=None):

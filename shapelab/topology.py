@@ -92,6 +92,21 @@ def betti(F, tau) -> tuple:
         Length ``d + 1`` for balls in :math:`\\mathbb{R}^d` (zeros above the filtration's
         own dimension when the centres are degenerate, e.g. coplanar in 3D).
 
+    See Also
+    --------
+    betti_curve
+        At many growth times.
+    persistence
+        The pairs behind the numbers.
+
+    References
+    ----------
+    .. [1] C. J. A. Delfinado and H. Edelsbrunner, "An incremental algorithm for Betti
+           numbers of simplicial complexes on the 3-sphere", *Comput. Aided Geom. Design*
+           12(7):771-784, 1995. doi:10.1016/0167-8396(95)00016-Y
+    .. [2] H. Edelsbrunner and J. L. Harer, *Computational Topology: An Introduction*,
+           American Mathematical Society, 2010. doi:10.1090/mbk/069
+
     Examples
     --------
     >>> import numpy as np, shapelab as sl
@@ -110,12 +125,36 @@ def betti_curve(F, taus) -> np.ndarray:
     as the balls grow).  Costs two spanning forests once per filtration plus a binary
     search per τ: Delfinado–Edelsbrunner with :math:`\\beta_1` from the Euler
     characteristic in 3D.
+
+    See Also
+    --------
+    betti
+        At one growth time.
+    shapelab.plot.betti_curve
+        Draws it.
+
+    References
+    ----------
+    .. [1] C. J. A. Delfinado and H. Edelsbrunner, "An incremental algorithm for Betti
+           numbers of simplicial complexes on the 3-sphere", *Comput. Aided Geom. Design*
+           12(7):771-784, 1995. doi:10.1016/0167-8396(95)00016-Y
     """
     return _impl.betti_curve(as_filtration(F, "betti_curve"), taus)
 
 
 def euler_characteristic_curve(F, taus) -> np.ndarray:
-    """:math:`\\chi(K_\\tau) = \\sum_k (-1)^k \\#\\{k\\text{-simplices with value} \\le \\tau\\}`."""
+    """:math:`\\chi(K_\\tau) = \\sum_k (-1)^k \\#\\{k\\text{-simplices with value} \\le \\tau\\}`.
+
+    See Also
+    --------
+    betti_curve
+        The Betti numbers whose alternating sum it is.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner and J. L. Harer, *Computational Topology: An Introduction*,
+           American Mathematical Society, 2010. doi:10.1090/mbk/069
+    """
     return _impl.euler_characteristic_curve(as_filtration(F, "euler_characteristic_curve"), taus)
 
 
@@ -134,6 +173,11 @@ def is_roundoff(F, births, deaths) -> np.ndarray:
     balls of decimal input) count as round-off too.  It is geometric: a median of
     entry times would be dominated by the slivers of nearly flat centres (entry times
     up to ~1e30) and drop every finite pair.
+
+    See Also
+    --------
+    persistence
+        Drops these pairs.
     """
     return _impl.is_roundoff(as_filtration(F, "is_roundoff"), births, deaths)
 
