@@ -86,7 +86,7 @@ exactly when the filtration finds :math:`\\nu` attached by :math:`\\sigma`'s ape
 where the exact :math:`r^2` and its rounding would decide a near-tie differently.  It
 is evaluated in floating point with a bound on its rounding error (the same
 expression on absolute values, times a generous :math:`64u`, as in
-:mod:`shapelab.predicates`); where the bound cannot decide, it is recomputed exactly
+:mod:`shapelab.exact.predicates`); where the bound cannot decide, it is recomputed exactly
 with :class:`fractions.Fraction` from those binary values.  A tie (the orthocentre
 exactly on the facet's hull, as in a right triangle) is no flow.  The decisions do
 not depend on τ and are kept on the filtration.

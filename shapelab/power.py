@@ -19,13 +19,13 @@ the set of centers"; for balls of different radii that is imprecise: it is the
 Implementation notes
 --------------------
 * **Exact combinatorics.**  Qhull's lower hull is a floating-point *candidate*.
-  :mod:`shapelab.certify` checks it with exact predicates (:mod:`shapelab.predicates`:
+  :mod:`shapelab.exact.certify` checks it with exact predicates (:mod:`shapelab.exact.predicates`:
   a floating-point filter, then Python integers on the input's own binary values
   where the filter cannot decide; ties broken by Simulation of Simplicity on the
   heights, by input order): a tiling of the hull, every interior facet locally
   regular, every ball left out hidden.  Where the certificate fails (co-spherical
   cages, grids, lattices with round-off noise, nearly flat simplices) the exact
-  incremental algorithm of :mod:`shapelab.incremental` computes the triangulation.
+  incremental algorithm of :mod:`shapelab.exact.incremental` computes the triangulation.
   Either way the result is the unique regular triangulation of the perturbed input:
   the same on every CPU, BLAS and Qhull build.  :func:`triangulation_report` says
   which road was taken.
@@ -36,7 +36,7 @@ Implementation notes
   :math:`s^2`, and translation does not change them.  This keeps Qhull's relative
   precision for inputs offset by :math:`10^6` or scaled by :math:`10^{-6}`.
 * **Lower dimension.**  The affine dimension of the centres is decided exactly
-  (:func:`shapelab.predicates.affine_basis`: orientation minors, filtered, then in
+  (:func:`shapelab.exact.predicates.affine_basis`: orientation minors, filtered, then in
   Python integers), never by a rank threshold.  If the centres span an affine
   subspace of dimension :math:`k < d` *exactly* (collinear or coplanar input), they
   are expressed in an orthonormal basis of that subspace (SVD) for Qhull and
@@ -84,9 +84,9 @@ from ._toolkit.validate import (
     default_bbox,
 )
 from .balls import Balls
-from .certify import certify, facet_adjacency
-from .incremental import incremental_triangulation
-from .predicates import WeightedPoints, affine_basis, det, projection_axes
+from .exact.certify import certify, facet_adjacency
+from .exact.incremental import incremental_triangulation
+from .exact.predicates import WeightedPoints, affine_basis, det, projection_axes
 
 __all__ = [
     "regular_triangulation",
@@ -267,7 +267,7 @@ def _lower_hull(x: np.ndarray, w: np.ndarray):
     ascending in each row), or ``None`` if Qhull gives up.
 
     The answer is computed in floating point and is only a *candidate*:
-    :func:`triangulate_local` certifies it exactly (:mod:`shapelab.certify`).  On
+    :func:`triangulate_local` certifies it exactly (:mod:`shapelab.exact.certify`).  On
     co-spherical input (cages, grids) Qhull merges facets and ``Qt`` triangulates
     the merged ones, which can leave overlapping or flat tetrahedra; the certificate
     rejects such an answer and the exact incremental algorithm takes over.
@@ -300,7 +300,7 @@ class TriangulationReport:
     method : str
         ``"qhull"`` (Qhull's lower hull passed the exact certificate) or
         ``"incremental"`` (it did not, or Qhull failed, and the exact incremental
-        algorithm of :mod:`shapelab.incremental` computed it).
+        algorithm of :mod:`shapelab.exact.incremental` computed it).
     reason : str
         Why Qhull's answer was rejected ("" if it was not).
     counts : dict
@@ -373,9 +373,9 @@ def triangulation_report(balls: Balls) -> TriangulationReport:
     --------
     regular_triangulation
         The triangulation itself.
-    shapelab.certify.certify
+    shapelab.exact.certify.certify
         The exact check of Qhull's candidate.
-    shapelab.incremental.incremental_triangulation
+    shapelab.exact.incremental.incremental_triangulation
         The exact fallback.
 
     References

@@ -25,9 +25,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import shapelab as sl
-from shapelab.certify import certify
+from shapelab.exact.certify import certify
+from shapelab.exact.predicates import WeightedPoints, affine_basis
 from shapelab.power import triangulation_report
-from shapelab.predicates import WeightedPoints, affine_basis
 
 gudhi = pytest.importorskip("gudhi")
 

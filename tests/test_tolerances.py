@@ -25,8 +25,9 @@ import re
 
 import numpy as np
 
-from shapelab import distance, filtration, measure, predicates, topology
+from shapelab import distance, filtration, measure, topology
 from shapelab._toolkit import tolerances as T
+from shapelab.exact import predicates
 
 EPS = float(np.finfo(np.float64).eps)
 RTOL = T.ENTRY_TIME_RTOL
@@ -58,9 +59,9 @@ def test_filtration_and_topology_are_wired():
 #: the modules whose tolerances all live in the toolkit (commit 68559d7)
 WIRED = (
     "power",
-    "certify",
-    "predicates",
-    "incremental",
+    "exact.certify",
+    "exact.predicates",
+    "exact.incremental",
     "measure",
     "freespace",
     "cavities",

@@ -25,9 +25,9 @@ from hypothesis import strategies as st
 from scipy.spatial import ConvexHull
 
 from shapelab import Balls, alpha_filtration, regular_triangulation
-from shapelab.certify import certify
+from shapelab.exact.certify import certify
+from shapelab.exact.predicates import WeightedPoints
 from shapelab.power import triangulation_report
-from shapelab.predicates import WeightedPoints
 
 
 # ------------------------------------------------------------------ rational oracles

@@ -48,8 +48,8 @@ of that input: unique, and consistent across all tests.  Of two balls with the s
 centre and radius the earlier one wins (its weight is larger by :math:`\\varepsilon`),
 as in :func:`shapelab.regular_triangulation`'s treatment of duplicates.
 
-This module only answers signs; :mod:`shapelab.certify` checks a triangulation with
-them and :mod:`shapelab.incremental` builds one with them.
+This module only answers signs; :mod:`shapelab.exact.certify` checks a triangulation with
+them and :mod:`shapelab.exact.incremental` builds one with them.
 """
 
 from __future__ import annotations
@@ -58,7 +58,7 @@ import math
 
 import numpy as np
 
-from ._toolkit.tolerances import FILTER_UNDERFLOW
+from .._toolkit.tolerances import FILTER_UNDERFLOW
 
 __all__ = ["WeightedPoints", "affine_basis", "det", "permanent", "projection_axes"]
 
@@ -254,7 +254,7 @@ class WeightedPoints:
 
     See Also
     --------
-    shapelab.certify.certify
+    shapelab.exact.certify.certify
         Uses the predicates on these points.
 
     References

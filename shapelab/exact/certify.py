@@ -4,7 +4,7 @@ Qhull computes the lower hull of the lifted balls in floating point, and on
 co-spherical or nearly degenerate input its answer can be wrong in ways that depend
 on the last bits of the coordinates (overlapping tetrahedra, facets that are not
 locally regular).  :func:`certify` checks an answer with the exact predicates of
-:mod:`shapelab.predicates` (ties broken by Simulation of Simplicity), so that an
+:mod:`shapelab.exact.predicates` (ties broken by Simulation of Simplicity), so that an
 answer that passes is *the* regular triangulation of the (symbolically perturbed)
 input, whatever machine computed it:
 
@@ -34,7 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._toolkit.tolerances import COVER_PREFILTER
+from .._toolkit.tolerances import COVER_PREFILTER
 from .predicates import WeightedPoints, det
 
 __all__ = ["Certificate", "certify", "facet_adjacency"]
@@ -55,7 +55,7 @@ class Certificate:
         ``i``-th vertex, or -1 on the boundary (computed, not taken from Qhull).
     counts : dict
         How many tests were decided by the floating-point filter and how many
-        exactly (see :attr:`shapelab.predicates.WeightedPoints.stats`).
+        exactly (see :attr:`shapelab.exact.predicates.WeightedPoints.stats`).
 
     See Also
     --------
@@ -244,7 +244,7 @@ def certify(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None) -> 
     --------
     regular_triangulation
         Certifies Qhull's candidate with this.
-    shapelab.incremental.incremental_triangulation
+    shapelab.exact.incremental.incremental_triangulation
         The exact fallback when it fails.
 
     References
