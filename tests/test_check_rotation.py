@@ -63,6 +63,24 @@ def rotation_swapped(R, G):
     return rotation_right(G, R)  # rotates G onto R: the inverse
 
 
+def _horn(R, G):  # the notes' A = sum of R_j^T G_j, written out from M = sum r g^T
+    S = np.einsum("ja,jb->ab", R, G)
+    d = [S[1, 2] - S[2, 1], S[2, 0] - S[0, 2], S[0, 1] - S[1, 0]]
+    return np.array(
+        [
+            [np.trace(S), *d],
+            [d[0], S[0, 0] - S[1, 1] - S[2, 2], S[0, 1] + S[1, 0], S[0, 2] + S[2, 0]],
+            [d[1], S[0, 1] + S[1, 0], -S[0, 0] + S[1, 1] - S[2, 2], S[1, 2] + S[2, 1]],
+            [d[2], S[0, 2] + S[2, 0], S[1, 2] + S[2, 1], -S[0, 0] - S[1, 1] + S[2, 2]],
+        ]
+    )
+
+
+def rotation_largest_magnitude(R, G):  # the eigenvalue largest in |lambda| (power iteration's)
+    lam, X = np.linalg.eigh(_horn(R, G))
+    return X[:, np.argmax(np.abs(lam))]
+
+
 def centroid_right(R, G):
     return np.mean(G, axis=0) - np.mean(R, axis=0)
 
@@ -83,7 +101,7 @@ def crashes(*args):
     [
         (check.quaternion_product, product_right, [product_as_in_the_notes, product_commuted]),
         (check.rotation_matrix, matrix_right, [matrix_transposed]),
-        (check.optimal_rotation, rotation_right, [rotation_swapped]),
+        (check.optimal_rotation, rotation_right, [rotation_swapped, rotation_largest_magnitude]),
         (check.centroid_alignment, centroid_right, [centroid_reversed]),
     ],
 )
@@ -99,6 +117,20 @@ def test_right_passes_wrong_fails_crash_is_reported(checker, right, wrongs, caps
     result = checker(crashes)
     out = capsys.readouterr().out
     assert not result.passed and "raised IndexError" in out
+
+
+def test_horn_eigenvector_passes_and_largest_magnitude_fails(capsys):
+    def horn_top(R, G):
+        return np.linalg.eigh(_horn(R, G))[1][:, -1]
+
+    assert check.optimal_rotation(horn_top)  # the oracle's matrix is Horn's
+    assert not check.optimal_rotation(rotation_largest_magnitude)
+    # right wherever lambda_1 is largest in magnitude, wrong on a mirror image (lambda_4 < -lambda_1),
+    # whichever way a tie |lambda_1| = |lambda_4| (a planar case) is broken
+    M = np.random.default_rng(5).normal(size=(12, 3)) * [2.0, 1.2, 0.6]
+    M -= M.mean(axis=0)
+    lam = np.linalg.eigvalsh(_horn(M, M * [1.0, 1.0, -1.0]))
+    assert -lam[0] > lam[-1] > 0
 
 
 def test_sign_of_the_quaternion_does_not_matter(capsys):

@@ -94,6 +94,15 @@ def _rotation_cases():
         q = rng.normal(size=4)
         B = A @ qmatrix(q).T + 0.05 * rng.normal(size=A.shape)
         cases.append((A, B - B.mean(axis=0)))
+    # no rotation fits: a mirror image (its most negative eigenvalue is the largest in
+    # magnitude) and unrelated sets (np.linalg.eig does not list the top eigenvalue first)
+    rng = np.random.default_rng(2318)
+    M = rng.normal(size=(12, 3)) * [2.0, 1.2, 0.6]
+    M -= M.mean(axis=0)
+    cases.append((M, M * [1.0, 1.0, -1.0]))
+    for _ in range(3):
+        A, B = rng.normal(size=(9, 3)), rng.normal(size=(9, 3))
+        cases.append((A - A.mean(axis=0), B - B.mean(axis=0)))
     return cases
 
 
