@@ -181,3 +181,44 @@ def test_most_exposed_residue_oracle_toy_by_hand(capsys):
         shares, [4 * np.pi * 2.4**2 - cap, 4 * np.pi * 2.4**2 - 2 * cap, 4 * np.pi * 2.4**2 - cap]
     )
     assert shares[1] + shares[2] > shares[0]
+
+
+# lesson 06, exercise 4: C60 and a cage of 0.8 Å balls 16 Å away; a cage's void lives on
+# (b² - r², R² - r²) (closed forms, lesson 06), so the counts are known without the library
+TWO_TAUS = [-1.8, 0.0, 2.5, 7.0, 9.6, 12.0]
+TWO_COUNTS = [sum(1.4**2 - r * r < t < R_HIGH**2 - r * r for r in (1.70, 0.8)) for t in TWO_TAUS]
+
+
+@pytest.fixture(scope="module")
+def two_cages():
+    from shapelab import Balls, datasets
+
+    big, small = datasets.fullerene_c60(), datasets.fullerene_c60(atom_radius=0.8)
+    return Balls(np.vstack([big.centers, small.centers + [16.0, 0.0, 0.0]]), np.r_[big.radii, small.radii])
+
+
+def test_void_components_closed_forms_pass(two_cages, capsys):
+    assert TWO_COUNTS == [0, 1, 2, 2, 1, 0]
+    assert check.void_components(TWO_COUNTS, two_cages, TWO_TAUS)
+    assert check.void_components(np.array(TWO_COUNTS, dtype=float), two_cages, TWO_TAUS)
+    assert "✓" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(
+    ("answer", "hints", "absent"),
+    [
+        # 6-connectivity: cusp voxels counted as components (measured at 0.15 Å: 9 at τ = 0)
+        ([0, 9, 2, 2, 1, 0], ["1 of 6 counts differ", "τ = 0 (too many)", "26-connectivity"], []),
+        ([n + 1 for n in TWO_COUNTS], ["6 of 6 counts differ", "unbounded component"], []),
+        # radius r + τ instead of √(r² + τ): the voids fill too early
+        ([0, 1, 1, 0, 0, 0], ["τ = 2.5 (too few)", "√(r² + τ)"], ["26-connectivity"]),
+        (np.array(TWO_COUNTS, dtype=bool), ["truth values"], []),
+        ("012210", ["got a str"], []),
+        ([0, 1, 2, 2, 1], ["expected shape (6,)"], []),
+        ([0, 1, 2, 2, 1, np.nan], ["NaN"], []),
+    ],
+)
+def test_void_components_wrong_counts_say_where_and_how(two_cages, answer, hints, absent, capsys):
+    assert not check.void_components(answer, two_cages, TWO_TAUS)
+    out = capsys.readouterr().out
+    assert "✗" in out and all(h in out for h in hints) and not any(a in out for a in absent), out

@@ -541,7 +541,8 @@ def void_components(counts, balls, taus) -> CheckResult:
     Returns
     -------
     CheckResult
-        Passed when every count agrees; otherwise says how many differ and where.
+        Passed when every count agrees; otherwise says how many differ, at which τ and in
+        which direction (too many or too few), never the count itself.
 
     See Also
     --------
@@ -557,10 +558,29 @@ def void_components(counts, balls, taus) -> CheckResult:
     F = alpha_filtration(balls)
     expected = np.array([F.betti(float(t))[2] for t in taus], dtype=int)
     name = "the bounded components of the complement at each τ"
-    received = counts
-    if isinstance(received, np.ndarray) and received.dtype == bool:
-        received = None  # truth values are not counts
-    return value(name, received, expected, rtol=0.0, atol=0.0)
+    try:
+        given = np.asarray(counts)
+    except (TypeError, ValueError):
+        given = None
+    if given is not None and given.dtype == bool:
+        return _fail(name, "these are truth values (is there a void?), not counts of components")
+    result = value(name, counts, expected, rtol=0.0, atol=0.0, quiet=True)
+    numeric = given is not None and given.shape == expected.shape and np.issubdtype(given.dtype, np.number)
+    if result.passed or not numeric or not np.all(np.isfinite(given)):
+        print(result.message)
+        return result
+    # say where and in which direction, never the count itself
+    where = [
+        f"τ = {float(t):g} ({'too many' if g > e else 'too few'})" for t, g, e in zip(taus, given, expected) if g != e
+    ]
+    hint = f"{len(where)} of {len(expected)} counts differ, at " + ", ".join(where) + ". Check that a voxel is in "
+    hint += "the union when its centre lies in a ball grown to τ (radius √(r² + τ))"
+    if any(g > e for g, e in zip(given, expected)):
+        hint += (
+            ", that the unbounded component (the one touching the grid's border) is left out, and that voxels "
+            "meeting only at an edge or a corner are neighbours (26-connectivity)"
+        )
+    return _fail(name, hint)
 
 
 def buried_area(answer, receptor, ligand, probe: float = 0.0) -> CheckResult:
