@@ -148,7 +148,7 @@ def fullerene_c60(*, bond_length=1.4, atom_radius=CARBON_RADIUS, jitter=0.0, see
     scaled so that every one of the 90 edges has length ``bond_length``, centred at
     the origin.  All atoms lie on a sphere of radius
     :math:`R = \\tfrac{b}{2}\\sqrt{9\\varphi^2 + 1} \\approx 2.478\\,b` (3.47 Å for
-    b = 1.4 Å).  (Real C60 has two bond lengths, 1.40 and 1.45 Å; one is enough here.)
+    b = 1.4 Å).  (Real C60 has two bond lengths, 1.401 and 1.458 Å by gas-phase electron diffraction, Hedberg et al. 1991; one is enough here.)
 
     Topology: with the carbon radius 1.70 Å the faces are closed (a hexagon's centre is
     1.4 Å from its atoms, a pentagon's 1.19 Å), so the union has exactly **one void**,
