@@ -15,6 +15,18 @@ per task:
     written, exits with status 2 and one line on stderr before any cavity is
     computed, and writes nothing.
 
+``report PATH PATH ...``
+    Many structures at once (:func:`shapelab.batch.report_batch`): with more than
+    one ``PATH``, a folder (searched recursively for ``*.pdb``, ``*.ent``,
+    ``*.cif``, ``*.mmcif``, ``*.bcif`` and their ``.gz``), a glob pattern, or
+    ``--resume``, each
+    structure's files are written as above, in ``--jobs N`` worker processes, with
+    progress on stderr, and a summary table ``shapelab_summary.csv`` (and
+    ``.parquet`` when pyarrow is installed) in ``DIR``.  Nothing goes to stdout.  A
+    file that fails is named with its error on stderr and in the summary, and the
+    batch carries on; the exit status is then 1.  Status 2 stays for a bad option or
+    an output directory that cannot be written.
+
 The library modules read no arguments and change no global state when imported; only
 this module is a program.
 """
@@ -22,6 +34,7 @@ this module is a program.
 from __future__ import annotations
 
 import argparse
+import glob
 import sys
 from pathlib import Path
 
@@ -49,7 +62,13 @@ def parser() -> argparse.ArgumentParser:
         "The file is read as shapelab.read_pdb reads it by default: HETATM records (ligands, ions) "
         "kept, water and hydrogens dropped.",
     )
-    ap.add_argument("file", help="PDB file (plain or gzip)")
+    ap.add_argument(
+        "file",
+        nargs="+",
+        metavar="FILE",
+        help="PDB file (plain or gzip); several files, folders (searched for *.pdb, *.ent, *.cif, "
+        "*.bcif and their .gz) or glob patterns report on many structures at once",
+    )
     ap.add_argument("--probe", type=float, default=1.4, help="probe radius in Å (default 1.4)")
     ap.add_argument("--out", default=".", help="output directory, which must exist (default: current directory)")
     ap.add_argument("--chain", action="append", metavar="ID", help="keep only this chain (repeatable)")
@@ -73,6 +92,29 @@ def parser() -> argparse.ArgumentParser:
         help="van der Waals radius (Å) of elements shapelab.io.VDW_RADII lacks "
         "(Bondi 1964 and Mantina et al. 2009 list none for most transition metals)",
     )
+    many = ap.add_argument_group("many structures (shapelab.batch.report_batch)")
+    many.add_argument(
+        "-j",
+        "--jobs",
+        type=int,
+        default=1,
+        metavar="N",
+        help="worker processes (default 1); results do not depend on N",
+    )
+    many.add_argument(
+        "--resume",
+        action="store_true",
+        help="skip structures whose files are complete and current (done marker with the input's SHA-256, "
+        "probe and options); also for one file",
+    )
+    many.add_argument("--no-progress", action="store_true", help="no progress on stderr")
+    many.add_argument(
+        "--summary",
+        default="shapelab_summary",
+        metavar="NAME",
+        help="summary file name in DIR, without extension (default shapelab_summary): NAME.csv, and "
+        "NAME.parquet when pyarrow is installed",
+    )
     return top
 
 
@@ -91,15 +133,69 @@ def main(argv=None) -> int:
     directory that cannot be written, or a bad option -- all found before any cavity
     is computed.  If no PDB file is written, one line on stderr says why.
 
+    With several paths, a folder, a glob pattern or ``--resume``, ``report`` runs
+    :func:`shapelab.batch.report_batch` (``--jobs``, ``--resume``, ``--no-progress``,
+    ``--summary``): nothing on stdout, progress and each failure on stderr, exit
+    status 1 if any input failed, 2 for a bad option or an output directory that
+    cannot be written.
+
     See Also
     --------
     shapelab.report
         The function behind ``report``.
+    shapelab.batch.report_batch
+        The function behind ``report`` on many structures.
     parser
         The options.
     """
     args = parser().parse_args(argv)
+    if _is_batch(args):
+        return _run_batch(args)
+    args.file = args.file[0]
     return _run_report(args)
+
+
+def _is_batch(args) -> bool:
+    """More than one FILE, a folder, a glob pattern that is not a file's name, or --resume."""
+    if len(args.file) > 1 or args.resume:
+        return True
+    p = Path(args.file[0])
+    return p.is_dir() or (not p.exists() and glob.has_magic(args.file[0]))
+
+
+def _run_batch(args) -> int:
+    from .batch import report_batch
+
+    names = [h for h in (args.hetatm or []) if h is not True]
+    try:
+        summary = report_batch(
+            args.file,
+            probe=args.probe,
+            out=args.out,
+            jobs=args.jobs,
+            resume=args.resume,
+            progress=not args.no_progress,
+            summary=args.summary,
+            chain=args.chain,
+            model=args.model,
+            hetatm=False if args.no_hetatm else (set(names) if names else True),
+            water=args.water,
+            hydrogens=args.hydrogens,
+            default_radius=args.default_radius,
+        )
+    except (ValueError, TypeError, OSError) as e:
+        print(f"error: {str(e).splitlines()[0] if str(e) else type(e).__name__}", file=sys.stderr)
+        return 2
+    for row in summary.failed:
+        hint = " (on the command line: --default-radius R)" if "default_radius=" in row["error"] else ""
+        print(f"error: {row['path']}: {row['error']}{hint}", file=sys.stderr)
+    n = summary.counts()
+    print(
+        f"{len(summary)} structures: {n['ok']} ok, {n['skipped']} skipped, {n['failed']} failed; "
+        f"summary: {', '.join(str(p) for p in summary.files)}",
+        file=sys.stderr,
+    )
+    return 1 if n["failed"] else 0
 
 
 def _run_report(args) -> int:

@@ -37,6 +37,7 @@ ORDER = [
 # docstrings are complete; never remove one.
 DOCUMENTED = [
     "balls",
+    "batch",
     "cavities",
     "exact.certify",
     "critical",
