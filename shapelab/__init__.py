@@ -26,7 +26,7 @@ Modules, one per concept of the notes:
 ``shapelab.embedding``        :func:`classical_mds`: a distance matrix drawn in the plane
 ``shapelab.docking``          :func:`docking_score`, :class:`Docking`: buried area minus clashes, two-stage docking
 ``shapelab.features``         :func:`coarse_align`: starts for ICP from pose-free features
-``shapelab.io``               :func:`read_pdb`
+``shapelab.io``               :func:`read_structure` (PDB, mmCIF), :func:`read_pdb`
 ``shapelab.cavity_report``    :func:`report`: CASTp-style table of voids and pockets
 ``shapelab.cli``              ``python -m shapelab report FILE``: the command line
 ``shapelab.datasets``         generated molecules and the inputs of the figures
@@ -80,6 +80,7 @@ _EXPORTS = {
     "critical_points": "critical",
     "CriticalPoints": "critical",
     "read_pdb": "io",
+    "read_structure": "io",
     "bottleneck_distance": "diagrams",
     "wasserstein_distance": "diagrams",
     "DiagramMatching": "diagrams",

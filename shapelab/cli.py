@@ -1,14 +1,14 @@
-"""The command line: ``python -m shapelab report FILE.pdb [--probe 1.4] [--out DIR] [options]``.
+"""The command line: ``python -m shapelab report FILE [--probe 1.4] [--out DIR] [options]``.
 
 One program, ``python -m shapelab`` (or the ``shapelab`` script), with one subcommand
 per task:
 
 ``report``
     The CASTp-style report of the voids and pockets of a structure
-    (:func:`shapelab.report`, Notes §23.1): reads ``FILE`` with
-    :func:`shapelab.read_pdb` and its defaults (HETATM records kept, water and
+    (:func:`shapelab.report`, Notes §23.1): reads ``FILE``, PDB or mmCIF, with
+    :func:`shapelab.read_structure` and its defaults (HETATM records kept, water and
     hydrogens dropped; each flag changes one of them), so that it prints exactly the
-    table of ``report(read_pdb(FILE), 1.4)``, and writes ``<stem>_cavities.csv``,
+    table of ``report(read_structure(FILE), 1.4)``, and writes ``<stem>_cavities.csv``,
     ``.md``, ``.cif`` and, when the PDB format can hold the marked structure,
     ``.pdb`` to ``DIR`` (:meth:`shapelab.cavity_report.CavityReport.write`).  An
     unreadable, malformed or empty file, or an output directory that cannot be
@@ -58,21 +58,26 @@ def parser() -> argparse.ArgumentParser:
     sub = top.add_subparsers(dest="command", metavar="COMMAND", required=True)
     ap = sub.add_parser(
         "report",
-        description="CASTp-style report of the voids and pockets of a PDB file (Notes §23.1). "
-        "The file is read as shapelab.read_pdb reads it by default: HETATM records (ligands, ions) "
+        description="CASTp-style report of the voids and pockets of a PDB or mmCIF file (Notes §23.1). "
+        "The file is read as shapelab.read_structure reads it by default: HETATM records (ligands, ions) "
         "kept, water and hydrogens dropped.",
     )
     ap.add_argument(
         "file",
         nargs="+",
         metavar="FILE",
-        help="PDB file (plain or gzip); several files, folders (searched for *.pdb, *.ent, *.cif, "
+        help="PDB or mmCIF file (plain or gzip); several files, folders (searched for *.pdb, *.ent, *.cif, "
         "*.bcif and their .gz) or glob patterns report on many structures at once",
     )
     ap.add_argument("--probe", type=float, default=1.4, help="probe radius in Å (default 1.4)")
     ap.add_argument("--out", default=".", help="output directory, which must exist (default: current directory)")
     ap.add_argument("--chain", action="append", metavar="ID", help="keep only this chain (repeatable)")
-    ap.add_argument("--model", type=int, metavar="N", help="read MODEL N (default: the first)")
+    ap.add_argument(
+        "--model",
+        type=int,
+        metavar="N",
+        help="read model N (PDB MODEL serial or mmCIF pdbx_PDB_model_num; default: the first)",
+    )
     het = ap.add_mutually_exclusive_group()
     het.add_argument("--no-hetatm", action="store_true", help="drop every HETATM record")
     het.add_argument(
@@ -119,10 +124,10 @@ def parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
-    """``python -m shapelab report FILE.pdb [--probe 1.4] [--out DIR] [options]``.
+    """``python -m shapelab report FILE [--probe 1.4] [--out DIR] [options]``.
 
     Runs the subcommand named first in ``argv`` (default: ``sys.argv[1:]``) and returns
-    the exit status.  ``report`` reads ``FILE`` with :func:`shapelab.read_pdb` and its
+    the exit status.  ``report`` reads ``FILE`` with :func:`shapelab.read_structure` and its
     defaults, changed only by the flags ``--chain``, ``--model``,
     ``--no-hetatm``/``--hetatm NAME``, ``--water``, ``--hydrogens`` and
     ``--default-radius``; checks the output directory
@@ -199,7 +204,7 @@ def _run_batch(args) -> int:
 
 
 def _run_report(args) -> int:
-    from .io import read_pdb
+    from .io import read_structure
 
     def fail(e) -> int:
         msg = str(e).splitlines()[0] if str(e) else type(e).__name__
@@ -211,13 +216,13 @@ def _run_report(args) -> int:
     names = [h for h in (args.hetatm or []) if h is not True]
     hetatm = False if args.no_hetatm else (set(names) if names else True)
     stem = Path(args.file).name
-    for suffix in (".gz", ".pdb", ".ent"):
+    for suffix in (".gz", ".pdb", ".ent", ".cif", ".mmcif"):
         if stem.lower().endswith(suffix):
             stem = stem[: -len(suffix)]
     if stem in ("", ".", ".."):  # "..pdb": no name a file could be written under
         stem = "structure"
     try:
-        s = read_pdb(
+        s = read_structure(
             args.file,
             chain=args.chain,
             model=args.model,

@@ -403,7 +403,7 @@ def test_cli_flags_map_to_read_pdb(monkeypatch, tmp_path):
         seen.update(kw)
         raise ValueError("stop here")
 
-    monkeypatch.setattr(importlib.import_module("shapelab.io"), "read_pdb", fake_read_pdb)
+    monkeypatch.setattr(importlib.import_module("shapelab.io"), "read_structure", fake_read_pdb)
     main = cli_main
     defaults = dict(chain=None, model=None, hetatm=True, water=False, hydrogens=False, default_radius=None)
     assert main(["x.pdb"]) == 2 and seen == defaults

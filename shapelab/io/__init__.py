@@ -1,4 +1,4 @@
-"""Reading and writing molecules as balls: a small, strict PDB reader (Notes §23.1).
+"""Reading and writing molecules as balls: PDB and mmCIF files (Notes §23.1).
 
 The notes model a molecule as a union of balls :math:`\\bigcup B_i`, one ball per atom,
 with the atom's van der Waals radius.  Adding a *probe* radius :math:`p` to every ball
@@ -6,8 +6,10 @@ gives the solvent-accessible model (Lee & Richards 1971): a water molecule of ra
 :math:`p` can touch the van der Waals surface exactly where its centre lies on the
 boundary of :math:`\\bigcup B(z_i, r_i + p)`.
 
-Only the fixed-column ATOM and HETATM records of the PDB format (wwPDB, *Atomic
-Coordinate Entry Format Description*, v3.3) are read; nothing in a file is ever
+:func:`read_structure` reads what the PDB distributes: PDB files (the fixed-column
+ATOM and HETATM records of the wwPDB's *Atomic Coordinate Entry Format Description*,
+v3.3, read by the strict teaching parser :func:`read_pdb`) and PDBx/mmCIF files (the
+``_atom_site`` table, parsed by gemmi), plain or gzip; nothing in a file is ever
 evaluated or executed.
 
 Radii
@@ -31,7 +33,9 @@ locations, water, HETATM, chains, hydrogens) and give each its radius
 (:mod:`~shapelab.io._radii`), and the result is a :class:`PDBStructure`:
 
 ==========================  ===================================================
+``shapelab.io._read``       :func:`read_structure`: recognises the format
 ``shapelab.io._pdb``        :func:`read_pdb`: the PDB format's fixed columns
+``shapelab.io._mmcif``      mmCIF's ``_atom_site`` table (gemmi's CIF parser)
 ``shapelab.io._selection``  which atoms are kept
 ``shapelab.io._radii``      :data:`VDW_RADII`, :func:`vdw_radius`
 ``shapelab.io._structure``  :class:`PDBStructure`
@@ -46,6 +50,7 @@ from __future__ import annotations
 
 from ._pdb import MAX_PDB_BYTES, read_pdb
 from ._radii import VDW_RADII, vdw_radius
+from ._read import detect_format, read_structure
 from ._selection import STANDARD_RESIDUES, WATER_RESIDUES
 from ._structure import PDBStructure
 from ._writers import write_mmcif, write_pdb
@@ -57,6 +62,8 @@ __all__ = [
     "MAX_PDB_BYTES",
     "PDBStructure",
     "read_pdb",
+    "read_structure",
+    "detect_format",
     "write_pdb",
     "write_mmcif",
     "vdw_radius",

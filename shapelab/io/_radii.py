@@ -151,11 +151,11 @@ def radius_table(radii):
     return by_element, by_atom
 
 
-def atom_radii(records, tables, default_radius) -> np.ndarray:
+def atom_radii(records, tables, default_radius, where="line") -> np.ndarray:
     """The van der Waals radius of each atom record: ``radii=`` by (residue, atom) name,
     then by element, then :data:`VDW_RADII` (deuterium takes hydrogen's), then
-    ``default_radius``; an atom with none raises, naming its line.  ``tables`` is what
-    :func:`radius_table` returns."""
+    ``default_radius``; an atom with none raises, naming its line (``where`` names
+    what :attr:`AtomRecord.line` counts).  ``tables`` is what :func:`radius_table` returns."""
     radii_element, radii_atom = tables
     rad = np.empty(len(records))
     for i, r in enumerate(records):
@@ -169,7 +169,7 @@ def atom_radii(records, tables, default_radius) -> np.ndarray:
             ra = VDW_RADII[key] if key is not None else default_radius
         if ra is None:
             raise ValueError(
-                f"line {r.line}: element {e!r} (atom {name!r}, residue {resn} {r.number}) has no van "
+                f"{where} {r.line}: element {e!r} (atom {name!r}, residue {resn} {r.number}) has no van "
                 f"der Waals radius in Bondi's (1964) or Mantina et al.'s (2009) table; pass "
                 f"default_radius= (or radii=) to use one"
             )

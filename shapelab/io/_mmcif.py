@@ -1,0 +1,344 @@
+"""The mmCIF reader: the ``_atom_site`` table of a PDBx/mmCIF file, parsed by gemmi
+(Notes §23.1).
+
+gemmi's CIF parser (:func:`gemmi.cif.read_string`) turns the text into a document;
+the ``_atom_site`` table of its data block is read here, column by column, into
+:class:`~shapelab.io._structure.AtomRecord` rows, which then go through the same
+selection (:mod:`shapelab.io._selection`) and radii (:mod:`shapelab.io._radii`) as
+the PDB reader's.  BinaryCIF is refused: gemmi 0.7.5 has no BinaryCIF reader.
+"""
+
+from __future__ import annotations
+
+import gzip
+import math
+import os
+import re
+import zlib
+
+import numpy as np
+
+from .._toolkit.validate import as_finite_scalar, as_positive_int
+from ._radii import atom_radii, radius_table
+from ._selection import names_arg, resolve_alternate_locations, select_atoms
+from ._structure import AtomRecord, PDBStructure, structure_from_records
+
+__all__ = ["read_mmcif", "read_limited", "MMCIF_CHAIN_WIDTH", "MMCIF_RESIDUE_WIDTH"]
+
+#: Widest ``chain=`` name accepted for mmCIF (``auth_asym_id`` of the PDB's large
+#: entries reaches 4 characters) and widest ``hetatm=`` residue name (the wwPDB's
+#: extended 5-character CCD identifiers).
+MMCIF_CHAIN_WIDTH = 4
+MMCIF_RESIDUE_WIDTH = 5
+
+_CHUNK = 2**20
+_INT = re.compile(r"[+-]?[0-9]+")
+# a CIF number: optional sign, digits with an optional point, optional exponent, and an
+# optional standard uncertainty in parentheses (``12.345(6)``), which is dropped
+_NUMBER = re.compile(r"([+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)(?:\([0-9]+\))?")
+
+# the _atom_site items a table must have: each coordinate, the element, and for the atom,
+# residue, chain and residue number the auth_ item the PDB's own tools show or, in a file
+# without it, the label_ item
+_REQUIRED = (
+    ("Cartn_x",),
+    ("Cartn_y",),
+    ("Cartn_z",),
+    ("type_symbol",),
+    ("auth_atom_id", "label_atom_id"),
+    ("auth_comp_id", "label_comp_id"),
+    ("auth_asym_id", "label_asym_id"),
+    ("auth_seq_id", "label_seq_id"),
+)
+
+
+def read_limited(path, max_bytes: int) -> bytes:
+    """The bytes of a plain or gzip file (recognised by its first two bytes), refused
+    with a ValueError as soon as more than ``max_bytes`` have come out of it (after
+    decompression): a gzip bomb is never held whole."""
+    name = os.fspath(path)
+    with open(path, "rb") as raw:
+        gz = raw.read(2) == b"\x1f\x8b"
+        raw.seek(0)
+        fh = gzip.GzipFile(fileobj=raw, mode="rb") if gz else raw
+        parts, total = [], 0
+        while True:
+            try:
+                chunk = fh.read(min(_CHUNK, max_bytes + 1 - total))
+            except (OSError, EOFError, zlib.error) as e:
+                if not gz:
+                    raise
+                raise ValueError(f"{name!r} is not a readable gzip file: {e}") from None
+            if not chunk:
+                break
+            total += len(chunk)
+            if total > max_bytes:
+                what = "decompresses to" if gz else "holds"
+                raise ValueError(
+                    f"{name!r} {what} more than max_bytes={max_bytes} bytes; pass a larger max_bytes= to read it"
+                )
+            parts.append(chunk)
+    return b"".join(parts)
+
+
+def _text(cif, v: str) -> str:
+    """A CIF value as text: quotes removed, ``?`` and ``.`` (unknown, inapplicable) -> ``""``."""
+    return "" if cif.is_null(v) else cif.as_string(v)
+
+
+def _where(name: str, row: int, ident: str, item: str) -> str:
+    at = f" (id {ident})" if ident else ""
+    return f"{name!r}: _atom_site row {row}{at}, _atom_site.{item}"
+
+
+def _number(cif, v: str, name, row, ident, item, *, required: bool) -> float:
+    if cif.is_null(v):
+        if required:
+            raise ValueError(f"{_where(name, row, ident, item)} is {v!r} (unknown): a number is required")
+        return math.nan
+    t = cif.as_string(v)
+    m = _NUMBER.fullmatch(t)
+    if m is None:
+        raise ValueError(f"{_where(name, row, ident, item)} is not a number: {t!r}")
+    x = float(m.group(1))
+    if not math.isfinite(x):
+        raise ValueError(f"{_where(name, row, ident, item)} must be finite, got {t!r}")
+    return x
+
+
+def _integer(cif, v: str, name, row, ident, item) -> int:
+    t = "" if cif.is_null(v) else cif.as_string(v)
+    if not _INT.fullmatch(t):
+        raise ValueError(f"{_where(name, row, ident, item)} is not an integer: {v!r}")
+    return int(t)
+
+
+def _label(cif, v: str, name, row, ident, item) -> str:
+    t = _text(cif, v)
+    if not (t.isascii() and t.isprintable()):
+        raise ValueError(f"{_where(name, row, ident, item)} is not printable ASCII: {t!r}")
+    return t
+
+
+# a whole column of plain numbers (no quotes, nulls or uncertainties): checked by one
+# regular-expression match, converted by numpy; anything else takes the per-value path
+_PLAIN = r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?"
+_PLAIN_COLUMN = re.compile(rf"{_PLAIN}(?:\n{_PLAIN})*")
+_INT_COLUMN = re.compile(r"[+-]?[0-9]+(?:\n[+-]?[0-9]+)*")
+
+
+class _Rows:
+    """The rows read of the ``_atom_site`` table: their positions and how errors name them."""
+
+    def __init__(self, cif, name, rows, ids):
+        self.cif, self.name, self.rows, self.ids = cif, name, rows, ids
+
+    def ident(self, i):
+        return "" if self.ids is None else _text(self.cif, self.ids[i])
+
+    def numbers(self, col, item, *, required):
+        vals = [col[i] for i in self.rows]
+        if vals and _PLAIN_COLUMN.fullmatch("\n".join(vals)):
+            out = np.array(vals, dtype=np.float64)
+            if np.isfinite(out).all():
+                return out.tolist()
+        return [_number(self.cif, col[i], self.name, i + 1, self.ident(i), item, required=required) for i in self.rows]
+
+    def integers(self, col, item):
+        vals = [col[i] for i in self.rows]
+        if vals and _INT_COLUMN.fullmatch("\n".join(vals)):
+            return [int(v) for v in vals]
+        return [_integer(self.cif, col[i], self.name, i + 1, self.ident(i), item) for i in self.rows]
+
+    def labels(self, col, item):
+        cif = self.cif
+        vals = [
+            "" if v in ("?", ".") else (cif.as_string(v) if v[:1] in ("'", '"', ";") else v)
+            for v in (col[i] for i in self.rows)
+        ]
+        joined = "".join(vals)
+        if not (joined.isascii() and joined.isprintable()):
+            for i in self.rows:
+                _label(cif, col[i], self.name, i + 1, self.ident(i), item)
+        return vals
+
+
+def _parse(path, text: str):
+    """gemmi's document of ``text``; its errors name the file and the line."""
+    import gemmi
+
+    try:
+        return gemmi.cif.read_string(text)
+    except (ValueError, RuntimeError) as e:
+        msg = str(e)
+        m = re.match(r"string:(\d+):(?:\d+\(\d+\):)?", msg)  # line:column(offset):
+        if m:
+            msg = f"line {m.group(1)}: {msg[m.end() :].strip()}"
+        raise ValueError(f"{os.fspath(path)!r} is not a readable mmCIF file: {msg}") from None
+
+
+def read_mmcif(
+    path,
+    *,
+    probe=0.0,
+    default_radius=None,
+    model=None,
+    chain=None,
+    hetatm=True,
+    water=False,
+    hydrogens=False,
+    radii=None,
+    max_bytes=256 * 2**20,
+) -> PDBStructure:
+    """Read the ``_atom_site`` table of an mmCIF file (plain or gzip) as balls.
+
+    The keywords are those of :func:`~shapelab.io.read_structure`, which documents
+    them; this is its mmCIF branch.
+    """
+    if isinstance(path, (bytes, bytearray)) or not isinstance(path, (str, os.PathLike)):
+        raise TypeError(f"path must be a str or os.PathLike, got {type(path).__name__}")
+    probe = as_finite_scalar(probe, "probe", nonnegative=True)
+    if default_radius is not None:
+        default_radius = as_finite_scalar(default_radius, "default_radius", positive=True)
+    if model is not None:
+        if isinstance(model, bool):
+            raise TypeError("model must be an int, got bool")
+        model = as_positive_int(model, "model", minimum=0)
+    chains_wanted = names_arg(chain, "chain", MMCIF_CHAIN_WIDTH)
+    if isinstance(hetatm, (bool, np.bool_)):
+        het_keep = bool(hetatm)
+    else:
+        het_keep = names_arg(hetatm, "hetatm", MMCIF_RESIDUE_WIDTH)
+    for flag, fname in ((water, "water"), (hydrogens, "hydrogens")):
+        if not isinstance(flag, (bool, np.bool_)):
+            raise TypeError(f"{fname} must be a bool, got {type(flag).__name__}")
+    tables = radius_table(radii)
+    max_bytes = as_positive_int(max_bytes, "max_bytes")
+
+    import gemmi
+
+    cif = gemmi.cif
+    name = os.fspath(path)
+    data = read_limited(path, max_bytes)
+    if data.startswith(b"\xef\xbb\xbf"):
+        data = data[3:]
+    if not data.strip():
+        raise ValueError(f"{name!r} is empty: no data block and no _atom_site table")
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        line = data[: e.start].count(b"\n") + 1
+        raise ValueError(f"{name!r}: line {line}: byte 0x{data[e.start]:02x} is not UTF-8 text") from None
+    doc = _parse(path, text)
+    blocks = [b for b in doc if b.find_mmcif_category("_atom_site.")]
+    if not blocks:
+        raise ValueError(f"{name!r} has no _atom_site table (data blocks: {[b.name for b in doc]})")
+    block = blocks[0]
+    present = {t.lower() for t in block.find_mmcif_category("_atom_site.").tags}  # CIF tags ignore case
+    for items in _REQUIRED:
+        if not any(f"_atom_site.{t}".lower() in present for t in items):
+            raise ValueError(
+                f"{name!r}: the _atom_site table has no _atom_site.{' or _atom_site.'.join(items)} column "
+                f"(data block {block.name})"
+            )
+
+    def column(item):
+        key = f"_atom_site.{item}"
+        return list(block.find_values(key)) if key.lower() in present else None
+
+    def first(*items):
+        for it in items:
+            col = column(it)
+            if col is not None:
+                return it, col
+        return None, None
+
+    xs, ys, zs = column("Cartn_x"), column("Cartn_y"), column("Cartn_z")
+    n = len(xs)
+    if n == 0:
+        raise ValueError(f"{name!r}: the _atom_site table has no rows")
+    ids = column("id")
+    el_item, els = "type_symbol", column("type_symbol")
+    at_item, ats = first("auth_atom_id", "label_atom_id")
+    rn_item, rns = first("auth_comp_id", "label_comp_id")
+    ch_item, chs = first("auth_asym_id", "label_asym_id")
+    sq_item, sqs = first("auth_seq_id", "label_seq_id")
+    mods = column("pdbx_PDB_model_num")
+
+    # the model of each row; the one read is the first met unless model= says
+    if mods is not None:
+        row_model = _Rows(cif, name, range(n), ids).integers(mods, "pdbx_PDB_model_num")
+        models_seen = list(dict.fromkeys(row_model))
+    else:
+        row_model, models_seen = None, [1]
+    target = models_seen[0] if model is None else model
+    if target not in models_seen:
+        raise ValueError(f"{name!r} has no model {target} (pdbx_PDB_model_num holds: {models_seen})")
+    rows = range(n) if row_model is None else [i for i, m in enumerate(row_model) if m == target]
+    read = _Rows(cif, name, rows, ids)
+
+    x = read.numbers(xs, "Cartn_x", required=True)
+    y = read.numbers(ys, "Cartn_y", required=True)
+    z = read.numbers(zs, "Cartn_z", required=True)
+    col = column("occupancy")
+    occ = [math.nan] * len(rows) if col is None else read.numbers(col, "occupancy", required=False)
+    col = column("B_iso_or_equiv")
+    bf = [math.nan] * len(rows) if col is None else read.numbers(col, "B_iso_or_equiv", required=False)
+    num = read.integers(sqs, sq_item)
+    atom = read.labels(ats, at_item)
+    resn = read.labels(rns, rn_item)
+    ch = read.labels(chs, ch_item)
+    col = column("pdbx_PDB_ins_code")
+    icode = [""] * len(rows) if col is None else read.labels(col, "pdbx_PDB_ins_code")
+    col = column("label_alt_id")
+    alt = [""] * len(rows) if col is None else read.labels(col, "label_alt_id")
+    groups = column("group_PDB")
+    group = ["ATOM"] * len(rows) if groups is None else read.labels(groups, "group_PDB")
+    elem = read.labels(els, el_item)
+    symbols = {}  # each distinct type_symbol checked and normalised once
+    for k, i in enumerate(rows):
+        if group[k] not in ("ATOM", "HETATM"):
+            raise ValueError(
+                f"{_where(name, i + 1, read.ident(i), 'group_PDB')} is neither ATOM nor HETATM: {groups[i]!r}"
+            )
+        if not atom[k]:
+            raise ValueError(f"{_where(name, i + 1, read.ident(i), at_item)} is {ats[i]!r}: every atom needs a name")
+        e = elem[k]
+        if e not in symbols:
+            if not (e.isascii() and e.isalpha() and len(e) <= 2):
+                raise ValueError(f"{_where(name, i + 1, read.ident(i), el_item)} is not an element symbol: {els[i]!r}")
+            symbols[e] = e[0].upper() + e[1:].lower()
+    recs = [
+        AtomRecord(
+            i + 1,
+            group[k] == "HETATM",
+            alt[k],
+            atom[k],
+            resn[k],
+            ch[k],
+            num[k],
+            icode[k],
+            x[k],
+            y[k],
+            z[k],
+            occ[k],
+            bf[k],
+            symbols[elem[k]],
+        )
+        for k, i in enumerate(rows)
+    ]
+
+    kept = select_atoms(
+        resolve_alternate_locations(recs),
+        chains_wanted=chains_wanted,
+        het_keep=het_keep,
+        water=water,
+        hydrogens=hydrogens,
+        path=path,
+        chain=chain,
+        hetatm=hetatm,
+        read=recs,
+    )
+    return structure_from_records(
+        kept, atom_radii(kept, tables, default_radius, where=f"{name!r}: _atom_site row"), probe, target
+    )
