@@ -28,7 +28,8 @@ Modules, one per concept of the notes:
 ``shapelab.features``         :func:`coarse_align`: starts for ICP from pose-free features
 ``shapelab.io``               :func:`read_structure` (PDB, mmCIF), :func:`read_pdb`
 ``shapelab.cavity_report``    :func:`report`: CASTp-style table of voids and pockets
-``shapelab.cli``              ``python -m shapelab report FILE``: the command line
+``shapelab.batch``            :func:`report_batch`: many structures at once, in parallel, resumable
+``shapelab.cli``              ``python -m shapelab report FILE...``: the command line
 ``shapelab.datasets``         generated molecules and the inputs of the figures
 ``shapelab.plot``             one function per kind of figure, a shared style
 ``shapelab.widgets``          ipywidgets explorers built on :mod:`shapelab.plot`
@@ -95,6 +96,7 @@ _EXPORTS = {
     "simplify": "simplification",
     "report": "cavity_report",
     "CavityReport": "cavity_report",
+    "report_batch": "batch",
 }
 _SUBMODULES = {
     "balls",
@@ -118,6 +120,7 @@ _SUBMODULES = {
     "check",
     "simplification",
     "cavity_report",
+    "batch",
     "cli",
 }
 

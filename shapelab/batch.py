@@ -261,12 +261,8 @@ def error_message(e: BaseException) -> str:
 
 
 def read_structure_file(path, **options):
-    """Read one structure file, choosing the reader by the file's name.
-
-    PDB files (``.pdb``, ``.ent``, any other name) are read by
-    :func:`shapelab.io.read_pdb`; mmCIF files (``.cif``, ``.mmcif``, ``.bcif``, with or without
-    ``.gz``) by ``shapelab.io.read_structure`` where this shapelab has it, looked
-    up when called; without it, a ValueError ``mmCIF not supported``.
+    """Read one structure file with :func:`shapelab.io.read_structure`, which decides the
+    format by the file's content (PDB or mmCIF, plain or gzip), not by its name.
 
     Parameters
     ----------
@@ -280,22 +276,14 @@ def read_structure_file(path, **options):
 
     See Also
     --------
-    shapelab.io.read_pdb
-        The PDB reader and its options.
+    shapelab.io.read_structure
+        The reader and its options.
     report_batch
         Reads every input with it.
     """
     from . import io
 
-    name = Path(path).name.lower()
-    if name.endswith(".gz"):
-        name = name[:-3]
-    if name.endswith(_MMCIF):
-        reader = getattr(io, "read_structure", None)
-        if reader is None:
-            raise ValueError("mmCIF not supported: this shapelab has no shapelab.io.read_structure")
-        return reader(path, **options)
-    return io.read_pdb(path, **options)
+    return io.read_structure(path, **options)
 
 
 def _marker_path(out: Path, stem: str) -> Path:
@@ -367,7 +355,11 @@ def _run_one(task: dict) -> dict:
         )
         _write_atomic(_marker_path(out, stem), json.dumps(marker, indent=1, sort_keys=True) + "\n")
     except Exception as e:  # any failure of one structure is recorded; the batch carries on
-        row.update(status="failed", error=error_message(e))
+        msg = error_message(e)
+        for prefix in (f"{os.fspath(task['path'])!r}: ", f"{os.fspath(task['path'])}: "):
+            if msg.startswith(prefix):  # the row names its file already
+                msg = msg[len(prefix) :]
+        row.update(status="failed", error=msg)
         for k in ("atoms", "voids", "pockets", "largest_void_volume", "largest_pocket_volume"):
             row[k] = None
     row["seconds"] = time.perf_counter() - t0

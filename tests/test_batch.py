@@ -324,28 +324,23 @@ def test_same_stem_twice_fails_the_second(tmp_path):
     assert s[1]["error"] == f"its output name x_cavities.* is already taken by {tmp_path / 'a' / 'x.pdb'}"
 
 
-def test_mmcif_without_and_with_a_reader(tmp_path, monkeypatch):
+def test_every_input_is_read_by_content(tmp_path, monkeypatch):
+    """read_structure reads every input (PDB or mmCIF by content, not by name)."""
     shapelab_io = importlib.import_module("shapelab.io")
     p = tiny_pdb(tmp_path / "cage.pdb")
     cif = tmp_path / "cage2.cif"
     cif.write_text("data_x\n")
     out = tmp_path / "out"
     out.mkdir()
-    monkeypatch.delattr(shapelab_io, "read_structure", raising=False)
-    s = report_batch([p, cif], out=out, progress=False)
-    assert s["status"] == ["ok", "failed"] and s[1]["error"].startswith("mmCIF not supported")
     seen = []
 
     def fake_read_structure(path, **kw):
-        seen.append((Path(path).name, kw))
+        seen.append(Path(path).name)
         return sl.read_pdb(p, **kw)
 
-    monkeypatch.setattr(shapelab_io, "read_structure", fake_read_structure, raising=False)
-    s = report_batch([cif], out=out, progress=False, water=True)
-    assert s["status"] == ["ok"] and s["atoms"] == [12]
-    assert seen == [
-        ("cage2.cif", dict(chain=None, model=None, hetatm=True, water=True, hydrogens=False, default_radius=None))
-    ]
+    monkeypatch.setattr(shapelab_io, "read_structure", fake_read_structure)
+    s = report_batch([p, cif], out=out, progress=False, water=True)
+    assert s["status"] == ["ok", "ok"] and seen == ["cage.pdb", "cage2.cif"]
 
 
 def test_bad_options_and_output(tmp_path, capsys):

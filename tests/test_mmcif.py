@@ -476,3 +476,10 @@ def test_tags_ignore_case(tmp_path):
     path.write_text(_table([("C", "1", "2", "3", "CA", "ALA", "A", "5")], items))
     s = read_structure(path)
     assert s.label(0) == "A:ALA5:CA" and s.balls.centers.tolist() == [[1.0, 2.0, 3.0]]
+
+
+def test_read_pdb_points_an_mmcif_file_to_read_structure(tmp_path):
+    p = tmp_path / "x.pdb"
+    p.write_text("data_1ABC\nloop_\n_atom_site.id\n1\n")
+    with pytest.raises(ValueError, match=r"line 1: .*mmCIF file.*read_structure"):
+        sl.read_pdb(p)

@@ -356,6 +356,11 @@ def read_pdb(
     blank = True  # no character but whitespace seen so far
     with contextlib.closing(_pdb_lines(path, max_bytes)) as lines:  # closed at END, on error too
         for lineno, line in lines:
+            if blank and line.startswith("data_"):
+                raise ValueError(
+                    f"line {lineno}: {os.fspath(path)!r} is an mmCIF file (it starts with a data_ block), "
+                    f"not PDB: read it with shapelab.read_structure"
+                )
             blank = blank and not line.strip()
             rec = line[:6].rstrip()
             if rec == "END":
