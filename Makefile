@@ -1,6 +1,6 @@
 # shapelab: the course's commands.  Everything runs inside .venv, made on first use.
 #   make test     library tests + strict nbval on every lesson (what CI runs)
-#   make test-lib the library's tests and doctests only (no Node, no book)
+#   make test-lib the library's and the teaching layer's tests and doctests (tests/library, tests/teaching; no Node, no book)
 #   make lint     ruff: lint and format check (part of make test)
 #   make course   execute every lesson, build the book, slides, figures, student edition
 #   make lab      JupyterLab on 127.0.0.1 with a printed token
@@ -48,8 +48,7 @@ lint: $(VENV)/.installed-test
 	$(PY) -m ruff format --check .
 
 test-lib: $(VENV)/.installed-test
-	$(PY) -m pytest -n $(JOBS) --dist loadscope --doctest-modules tests shapelab \
-	    --ignore=tests/test_book.py --ignore=tests/test_slides.py --ignore=tests/test_student.py \
+	$(PY) -m pytest -n $(JOBS) --dist loadscope --doctest-modules tests/library tests/teaching shapelab \
 	    -p no:nbval
 
 lessons: $(VENV)/.installed-book

@@ -4,7 +4,7 @@
     python -m course.example_pdb OUT.pdb    # write it elsewhere
 
 The file is ``shapelab.datasets.globule_structure(seed=0)`` written with
-``shapelab.io.write_pdb``; ``tests/test_datasets.py`` checks that the shipped file still
+``shapelab.io.write_pdb``; ``tests/library/test_datasets.py`` checks that the shipped file still
 reads back as that structure.
 """
 

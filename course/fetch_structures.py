@@ -11,7 +11,7 @@ openmmtools, the sdist for MDAnalysisTests, which has no wheel), takes the recor
 out of the archive, and gzips it reproducibly (``mtime=0``, no file name in the header,
 level 9) as ``shapelab/data/<file>``.  The uncompressed bytes are the package's file,
 byte for byte.  It records both hashes and the atom counts, which
-``tests/test_datasets.py`` checks against an independent reading of each file.
+``tests/library/test_datasets.py`` checks against an independent reading of each file.
 The packages are *not* dependencies of shapelab.
 """
 

@@ -7,7 +7,7 @@ name from its module (``from .balls import Balls as Balls``), so that completion
 "go to definition" and mypy/pyright see the whole API; ``shapelab/py.typed`` (PEP 561)
 says the package carries its types.
 
-Run ``python -m course.stubs`` after adding a lazy export; ``tests/test_stubs.py``
+Run ``python -m course.stubs`` after adding a lazy export; ``tests/course/test_stubs.py``
 fails while a stub is stale.
 """
 

@@ -18,7 +18,7 @@ The ordinary formula runs over all :math:`2^n - 1` subsets; this one over at mos
 triangulation.  The notes state that :math:`K` has the topology of :math:`U` but do
 not give this formula; it is the reason the dual complex makes measures cheap.
 
-Closed forms (derived here, checked in ``tests/test_measure.py``)
+Closed forms (derived here, checked in ``tests/library/test_measure.py``)
 -----------------------------------------------------------------
 Write :math:`\pi_l(x) = \lVert x - z_l \rVert^2 - r_l^2` and, for a simplex
 :math:`\sigma \in K` and a vertex :math:`l \in \sigma`, let
@@ -544,7 +544,7 @@ def _pieces(Z, W, R, d, k):
 #: (see union_measure).  The entry times are certified to relative accuracy
 #: ``ENTRY_TIME_RTOL`` (1e-9; exact zeros are exact), which TIE_TOL must exceed so
 #: that simplices whose exact entry times tie at τ are all left out
-#: (``shapelab/_toolkit/tolerances.py``, ``tests/test_tolerances.py``).
+#: (``shapelab/_toolkit/tolerances.py``, ``tests/library/test_tolerances.py``).
 TIE_TOL = tol.MEASURE_TIE
 
 

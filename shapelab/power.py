@@ -207,7 +207,7 @@ def _qhull_facets(points: np.ndarray):
     ``ConvexHull`` also computes the hull's volume and area, which we never use and
     which cost ~15 % of the time; scipy's Qhull wrapper underneath it does not.
     That wrapper is private, so this falls back to ``ConvexHull`` if it changes
-    (``tests/test_power.py`` checks that both give the same arrays)."""
+    (``tests/library/test_power.py`` checks that both give the same arrays)."""
     try:
         from scipy.spatial._qhull import _Qhull
 

@@ -1,6 +1,6 @@
 """Wrong answers of the right type and shape, made from a solution's own value.
 
-``tests/test_selfchecks.py`` runs each exercise's solution in a Jupyter kernel, then
+``tests/teaching/test_selfchecks.py`` runs each exercise's solution in a Jupyter kernel, then
 imports this module there and replaces each answer with every one of
 :func:`mutants`'s values in turn before running the cell's self-check again: each must
 fail.  Because the wrong answers are derived from the solution's value (a number off by

@@ -6,7 +6,7 @@ never by a tolerance (CONTRIBUTING, "Exact geometry").  What is left here guards
 floating-point *values*: a candidate that an exact certificate checks afterwards, a
 margin that keeps a pruning step a superset, a tie rule for values certified to a
 known relative accuracy, a stopping rule of an optimiser.  Each constant says what
-it guards, what it is relative to, and why its value; ``tests/test_tolerances.py``
+it guards, what it is relative to, and why its value; ``tests/library/test_tolerances.py``
 checks the relations between them.
 
 Not here: error *bounds* that are formulas of the unit roundoff (the filters of
@@ -173,7 +173,7 @@ GRAM_PINV_RCOND = 1e-10
 #: slivers of nearly flat input reach 1e30).  Two entry times whose exact values tie may differ by up to
 #: ``2 ENTRY_TIME_RTOL / (1 - ENTRY_TIME_RTOL)`` relative, so a guaranteed filter
 #: needs ``PERSISTENCE_ROUNDOFF >= 2 ENTRY_TIME_RTOL / (1 - ENTRY_TIME_RTOL)``
-#: (``tests/test_tolerances.py``); 2.5e-9 meets it with a margin.  A pair shorter
+#: (``tests/library/test_tolerances.py``); 2.5e-9 meets it with a margin.  A pair shorter
 #: than that cannot be told from a tie at the accuracy the entry times are certified
 #: to (on a protein, τ ~ 10 Å²: 2.5e-8 Å²).
 PERSISTENCE_ROUNDOFF = 2.5e-9

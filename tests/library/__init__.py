@@ -1,0 +1,1 @@
+"""Tests of the library, ``shapelab``: one module per library module, GUDHI comparisons in ``*_gudhi.py``."""
