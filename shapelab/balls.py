@@ -118,9 +118,10 @@ class Balls(BallsBase):
         return {"centers": self.centers, "radii": self.radii}
 
     def __setstate__(self, state):
-        object.__setattr__(self, "centers", state["centers"])
-        object.__setattr__(self, "radii", state["radii"])
-        object.__setattr__(self, "_derived", {})
+        # pickle and copy.deepcopy give back writeable arrays: validated and frozen again,
+        # so that an unpickled or deep-copied Balls is as immutable as any other (and what
+        # derived() keeps for it cannot go stale)
+        self.__init__(state["centers"], state["radii"])
 
     # ------------------------------------------------------------------ basics
     @property

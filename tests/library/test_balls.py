@@ -152,3 +152,24 @@ def test_bad_input_power_distance_and_filtration():
         power_distance([0, 0], np.zeros((2, 2)))
     with pytest.raises(TypeError, match="balls"):
         alpha_filtration([[0, 0], [1, 1]])
+
+
+@pytest.mark.parametrize("how", ["pickle", "deepcopy", "copy"])
+def test_a_copied_or_unpickled_balls_is_read_only_and_derives_afresh(how):
+    """Pickle and deepcopy gave back writeable centres and radii: writing into them after
+    the filtration was kept (Balls.derived) left it stale (issue 22, second look)."""
+    import copy
+    import pickle
+
+    from shapelab.filtration import as_filtration
+
+    b = Balls([[0.0, 0.0], [3.0, 0.0], [0.0, 3.0]], [1.0, 1.0, 1.0])
+    as_filtration(b, "test")
+    c = {"pickle": lambda x: pickle.loads(pickle.dumps(x)), "deepcopy": copy.deepcopy, "copy": copy.copy}[how](b)
+    assert not c.centers.flags.writeable and not c.radii.flags.writeable
+    with pytest.raises(ValueError, match="read-only"):
+        c.centers[0, 0] = 5.0
+    assert c._derived == {}
+    assert np.array_equal(c.centers, b.centers) and np.array_equal(c.radii, b.radii)
+    F = as_filtration(c, "test")
+    assert F.balls is c and as_filtration(c, "test") is F
