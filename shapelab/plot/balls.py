@@ -498,8 +498,9 @@ def filtration(F, *, tau=None, ax=None, cmap="cividis", show_disks=False, title=
 
     Parameters
     ----------
-    F : Filtration
-        ``alpha_filtration`` of 2D balls.
+    F : Filtration or Balls
+        ``alpha_filtration`` of 2D balls, or the balls (their filtration is built once
+        and kept with them).
     tau : float, optional
         Draw only the simplices present at this time (default: all of DT).
     ax : matplotlib Axes, optional
@@ -522,8 +523,10 @@ def filtration(F, *, tau=None, ax=None, cmap="cividis", show_disks=False, title=
     """
     from ..filtration import Filtration
 
+    if isinstance(F, Balls):
+        F = as_filtration(F, "plot.filtration")
     if not isinstance(F, Filtration):
-        raise TypeError(f"F must be a shapelab Filtration (alpha_filtration(balls)), got {type(F).__name__}")
+        raise TypeError(f"F must be a shapelab Filtration (alpha_filtration(balls)) or Balls, got {type(F).__name__}")
     _check_balls(F.balls, "F.balls", dim=2)
     t = np.inf if tau is None else as_tau(tau, finite=True)
     K = F.complex_at(t)
@@ -684,12 +687,13 @@ def complex3d(
 
     Parameters
     ----------
-    complex_or_filtration : Complex or Filtration
+    complex_or_filtration : Complex, Filtration or Balls
         With a Filtration, the complex at ``tau`` (default 0) is drawn with its
-        simplices shaded by entry time and a colourbar; a Complex is drawn in the
+        simplices shaded by entry time and a colourbar; Balls stand for their
+        filtration (built once and kept with them); a Complex is drawn in the
         course colours.
     tau : float, optional
-        Only with a Filtration.
+        Only with a Filtration or Balls.
     ax : 3D matplotlib Axes, optional
     show_balls : bool
         Also draw the balls grown to τ, translucent.
@@ -714,6 +718,8 @@ def complex3d(
 
     from ..filtration import Complex, Filtration
 
+    if isinstance(complex_or_filtration, Balls):
+        complex_or_filtration = as_filtration(complex_or_filtration, "plot.complex3d")
     if isinstance(complex_or_filtration, Filtration):
         t = 0.0 if tau is None else as_tau(tau, finite=True)
         K, shaded = complex_or_filtration.complex_at(t), True
@@ -723,7 +729,7 @@ def complex3d(
         K, shaded = complex_or_filtration, False
     else:
         raise TypeError(
-            f"complex_or_filtration must be a Complex or a Filtration, got {type(complex_or_filtration).__name__}"
+            f"complex_or_filtration must be a Complex, a Filtration or Balls, got {type(complex_or_filtration).__name__}"
         )
     balls = _check_balls(K.balls, "complex_or_filtration.balls", dim=3)
     c = balls.centers

@@ -20,6 +20,7 @@ from matplotlib.patches import Circle, Patch
 from matplotlib.ticker import MaxNLocator
 
 from .._toolkit.validate import as_finite_scalar, as_tau
+from ..balls import Balls
 from ..filtration import as_filtration
 from ._common import axes, grown_radii, set_3d_view
 from ._style import COLORS, PALETTE, SLIDE, new_figure, style
@@ -52,7 +53,9 @@ def _dim_label(k: int, d: int | None) -> str:
 
 
 def _pairs_of(obj, dim=None):
-    """Normalise a Filtration or a dict {k: (p, 2)} to (dict of float arrays, ambient d)."""
+    """Normalise a Filtration, Balls or a dict {k: (p, 2)} to (dict of float arrays, ambient d)."""
+    if isinstance(obj, Balls):  # the one input rule: the balls stand for their filtration
+        obj = as_filtration(obj, "pairs_or_filtration")
     if hasattr(obj, "persistence") and callable(obj.persistence):
         d = getattr(getattr(obj, "balls", None), "dim", None)
         P = obj.persistence()
@@ -60,7 +63,7 @@ def _pairs_of(obj, dim=None):
         P, d = obj, None
     else:
         raise TypeError(
-            "pairs_or_filtration must be a Filtration or a dict {k: (p, 2) array of (birth, death)}, "
+            "pairs_or_filtration must be a Filtration, Balls or a dict {k: (p, 2) array of (birth, death)}, "
             f"got {type(obj).__name__}"
         )
     out = {}
@@ -134,9 +137,10 @@ def persistence_diagram(
 
     Parameters
     ----------
-    pairs_or_filtration : Filtration or dict
+    pairs_or_filtration : Filtration, Balls or dict
         A :class:`~shapelab.Filtration` (its :meth:`persistence` is called: pairs
-        over :math:`\\mathbb{Z}/2`) or the dict ``{k: (p, 2) array}`` it returns (over
+        over :math:`\\mathbb{Z}/2`), :class:`~shapelab.Balls` (their filtration,
+        built once and kept with them) or the dict ``{k: (p, 2) array}`` it returns (over
         any field, ``F.persistence(field=p)``).  Deaths may be ``inf`` (drawn on a
         dashed "∞" line at the top).
     dims : int or sequence of int, optional
@@ -333,8 +337,9 @@ def betti_curve(F_or_curve, *, taus=None, tau=None, log=None, ax=None, title="Be
 
     Parameters
     ----------
-    F_or_curve : Filtration or (taus, curve)
-        A filtration (its :meth:`betti_curve` is evaluated at ``taus``) or a pair of
+    F_or_curve : Filtration, Balls or (taus, curve)
+        A filtration (its :meth:`betti_curve` is evaluated at ``taus``), the balls
+        (their filtration, built once and kept with them) or a pair of
         arrays ``taus`` (m,) and ``curve`` (m, d + 1) already computed.
     taus : array_like, optional
         Where to evaluate; default: every entry time of the filtration up to the
@@ -356,6 +361,8 @@ def betti_curve(F_or_curve, *, taus=None, tau=None, log=None, ax=None, title="Be
     shapelab.topology.betti_curve
         The numbers drawn.
     """
+    if isinstance(F_or_curve, Balls):
+        F_or_curve = as_filtration(F_or_curve, "plot.betti_curve")
     if isinstance(F_or_curve, tuple) and len(F_or_curve) == 2:
         t = np.asarray(F_or_curve[0], dtype=np.float64).reshape(-1)
         curve = np.asarray(F_or_curve[1])
@@ -382,7 +389,9 @@ def betti_curve(F_or_curve, *, taus=None, tau=None, log=None, ax=None, title="Be
             t = np.sort(np.asarray(taus, dtype=np.float64).reshape(-1))
         curve = np.asarray(F.betti_curve(t))
     else:
-        raise TypeError(f"F_or_curve must be a Filtration or a (taus, curve) pair, got {type(F_or_curve).__name__}")
+        raise TypeError(
+            f"F_or_curve must be a Filtration, Balls or a (taus, curve) pair, got {type(F_or_curve).__name__}"
+        )
     if not np.all(np.isfinite(t)):
         raise ValueError("taus must be finite")
     if tau is not None:

@@ -153,7 +153,7 @@ class PocketExplorer(StaticFallback, W.VBox):
 
 
 # --------------------------------------------------------------------------- persistence
-def persistence_explorer(filtration, *, threshold=0.0, threshold_range=None, steps=100, dims=None):
+def persistence_explorer(F, *, threshold=0.0, threshold_range=None, steps=100, dims=None):
     """Topological simplification with a slider (Notes §23.1, "big voids against small ones").
 
     Features whose persistence (death − birth) is below the threshold are what
@@ -163,9 +163,10 @@ def persistence_explorer(filtration, *, threshold=0.0, threshold_range=None, ste
 
     Parameters
     ----------
-    filtration : Filtration
-        An α-filtration (:func:`shapelab.alpha_filtration`); its pairs over
-        :math:`\\mathbb{Z}/2` (:meth:`~shapelab.Filtration.persistence`).
+    F : Filtration or Balls
+        An α-filtration (:func:`shapelab.alpha_filtration`), or the balls (their
+        filtration is built once and kept with them, as for :func:`shapelab.voids`);
+        its pairs over :math:`\\mathbb{Z}/2` (:meth:`~shapelab.Filtration.persistence`).
     threshold : float
         Initial persistence threshold, >= 0.
     threshold_range : (float, float), optional
@@ -193,16 +194,20 @@ def persistence_explorer(filtration, *, threshold=0.0, threshold_range=None, ste
            simplification", *Discrete Comput. Geom.* 28:511-533, 2002.
            doi:10.1007/s00454-002-2885-2
     """
-    from ..filtration import Filtration
+    from ..balls import Balls
+    from ..filtration import Filtration, as_filtration
 
-    if not isinstance(filtration, Filtration):
+    if isinstance(F, Balls):
+        F = as_filtration(F, "persistence_explorer")
+    if not isinstance(F, Filtration):
         raise TypeError(
-            f"filtration must be a shapelab Filtration (alpha_filtration(balls)), got {type(filtration).__name__}"
+            f"persistence_explorer: F must be a Filtration (shapelab.alpha_filtration(balls)) or a shapelab.Balls, "
+            f"got {type(F).__name__}"
         )
     threshold = as_finite_scalar(threshold, "threshold", nonnegative=True)
     if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 2:
         raise ValueError(f"steps must be an integer >= 2, got {steps!r}")
-    P = filtration.persistence()
+    P = F.persistence()
     if dims is None:  # the dimensions that have features (a 2D input has no H2)
         dims = tuple(k for k in sorted(P) if len(P[k])) or tuple(sorted(P))
     else:

@@ -115,7 +115,7 @@ def test_filtration_colourbar_and_order():
     (edges,) = colls(fig.axes[0], LineCollection)
     assert len(edges.get_segments()) == len(F.complex_at(0.0).simplices(1))
     with pytest.raises(TypeError, match="Filtration"):
-        plot.filtration(b)
+        plot.filtration(b.centers)  # Balls are accepted (the one input rule), an array is not
 
 
 def test_3d_views():
@@ -187,3 +187,21 @@ def test_lifting_and_method_comparison():
     assert len(left.get_lines()[0].get_xdata()) == 2  # NaN left out
     with pytest.raises(ValueError, match="values for"):
         method_comparison([1, 2], {"a": [1.0]})
+
+
+def test_filtration_and_complex3d_take_balls_too():
+    """The one input rule (issue 22): plot.filtration and plot.complex3d refused Balls."""
+    import matplotlib.pyplot as plt
+
+    from shapelab.datasets import fullerene_c60
+
+    rng = np.random.default_rng(5)
+    for fn, balls in (
+        (plot.filtration, Balls(rng.random((12, 2)) * 4, 0.5)),
+        (plot.complex3d, fullerene_c60()),
+    ):
+        a, b = fn(balls), fn(alpha_filtration(balls))
+        try:
+            assert [len(ax.get_children()) for ax in a.axes] == [len(ax.get_children()) for ax in b.axes]
+        finally:
+            plt.close(a), plt.close(b)

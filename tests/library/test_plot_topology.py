@@ -341,3 +341,17 @@ def test_pocket_gallery_has_an_overview_and_one_close_up_per_pocket():
         shapelab.plot.pocket_gallery(D.ring(6, radius=2.0, disk_radius=1.2))
     with pytest.raises(ValueError, match="no pocket"):
         shapelab.plot.pocket_gallery(shapelab.alpha_filtration(D.fullerene_c60()), pockets=[])
+
+
+@pytest.mark.parametrize("fn", [PT.persistence_diagram, PT.barcode, PT.betti_curve])
+def test_balls_stand_for_their_filtration(fn):
+    """The one input rule (issue 22): Balls or a Filtration alike; these refused Balls."""
+    import matplotlib.pyplot as plt
+
+    balls = D.fullerene_c60()
+    a, b = fn(balls), fn(shapelab.alpha_filtration(balls))
+    try:
+        assert [ax.get_title() for ax in a.axes] == [ax.get_title() for ax in b.axes]
+        assert [len(ax.get_children()) for ax in a.axes] == [len(ax.get_children()) for ax in b.axes]
+    finally:
+        plt.close(a), plt.close(b)

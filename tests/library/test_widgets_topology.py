@@ -57,3 +57,13 @@ def test_arguments_are_validated():
         persistence_explorer(F, threshold_range=(1.0, 0.5))
     with pytest.raises(ValueError, match="steps"):
         persistence_explorer(F, steps=1)
+
+
+def test_persistence_explorer_takes_balls_as_F():
+    """The one input rule (issue 22): the first parameter is F, Balls or a Filtration."""
+    import inspect
+
+    assert next(iter(inspect.signature(persistence_explorer).parameters)) == "F"
+    balls = Balls(np.random.default_rng(2).random((20, 2)) * 4, 0.4)
+    a, b = persistence_explorer(balls), persistence_explorer(alpha_filtration(balls))
+    assert a.kept() == b.kept() and a.status.value == b.status.value and a.image.value == b.image.value
