@@ -9,8 +9,13 @@ The layers, bottom to top (a module may import only from its own layer or below)
 3. presentation and programs: ``plot``, ``widgets``, ``check``, ``cli``.
 
 The test builds the graph of ``shapelab`` modules from every ``import`` statement in
-each file (module level or not) and fails on a cycle among different modules, or on an
-import from a lower layer into a higher one.
+each file (module level or not) and from every ``importlib.import_module`` or
+``__import__`` call with a literal name, and fails on a cycle among different modules,
+or on an import from a lower layer into a higher one.  A name imported from a package
+(``from shapelab import voids``) is an import of the module that the package's lazy
+export map (``_EXPORTS``) names; ``import shapelab`` itself is an import of the top
+layer (only ``__version__`` may be taken from it below).  A dynamic import (a name that
+is not a literal) is allowed only in the lazy-export helper ``_toolkit.lazy``.
 """
 
 from __future__ import annotations
@@ -42,26 +47,79 @@ def _resolve(current: str, is_package: bool, node: ast.ImportFrom) -> list[str]:
             parts = parts[:-1]
         parts = parts[: len(parts) - (node.level - 1)]
         base = ".".join(parts + ([node.module] if node.module else []))
-    # "from . import cavity_report" imports a module; "from .x import name" imports x
-    return [f"{base}.{a.name}" for a in node.names] + [base]
+    # "from . import cavity_report" imports a module (or a name the package exports);
+    # "from .x import name" imports x (and name, if it is a module).  The top package
+    # itself (lazy exports only) counts through the names taken from it.
+    return [f"{base}.{a.name}" for a in node.names] + ([base] if "." in base else [])
 
 
-def import_graph(root: Path = PKG) -> dict[str, set[str]]:
+def lazy_exports(root: Path = PKG) -> dict[str, str]:
+    """``{"shapelab.voids": "shapelab.cavities", ...}``: every package's ``_EXPORTS`` map."""
+    out = {}
+    for init in root.rglob("__init__.py"):
+        package = module_name(init, root)
+        for node in ast.walk(ast.parse(init.read_text(encoding="utf-8"))):
+            if (
+                isinstance(node, ast.Assign)
+                and any(isinstance(t, ast.Name) and t.id == "_EXPORTS" for t in node.targets)
+                and isinstance(node.value, ast.Dict)
+            ):
+                for k, v in zip(node.value.keys, node.value.values):
+                    if isinstance(k, ast.Constant) and isinstance(v, ast.Constant):
+                        out[f"{package}.{k.value}"] = f"{package}.{v.value}"
+    return out
+
+
+DYNAMIC_IMPORT_ALLOWED = {"shapelab._toolkit.lazy"}
+
+
+def _call_targets(current: str, is_package: bool, node: ast.Call) -> list[str] | None:
+    """What ``importlib.import_module(...)`` or ``__import__(...)`` imports: a list of
+    names, [] if the call is no import, None if the name is not a literal."""
+    f = node.func
+    name = f.attr if isinstance(f, ast.Attribute) else f.id if isinstance(f, ast.Name) else None
+    if name not in ("import_module", "__import__"):
+        return []
+    if not node.args or not (isinstance(node.args[0], ast.Constant) and isinstance(node.args[0].value, str)):
+        return None
+    target = node.args[0].value
+    if name == "import_module" and target.startswith("."):
+        level = len(target) - len(target.lstrip("."))
+        fake = ast.ImportFrom(module=target[level:] or None, names=[], level=level)
+        return _resolve(current, is_package, fake)
+    return [target]
+
+
+def import_graph(root: Path = PKG, dynamic: list | None = None) -> dict[str, set[str]]:
+    """The import graph of the package; ``dynamic`` collects (module, line) of imports
+    whose name is not a literal."""
     modules = {module_name(p, root): p for p in root.rglob("*.py")}
+    exports = lazy_exports(root)
     graph: dict[str, set[str]] = {m: set() for m in modules}
     for m, p in modules.items():
         tree = ast.parse(p.read_text(encoding="utf-8"))
+        is_package = p.name == "__init__.py"
         for node in ast.walk(tree):
             targets = []
             if isinstance(node, ast.Import):
                 targets = [a.name for a in node.names]
             elif isinstance(node, ast.ImportFrom):
-                targets = _resolve(m, p.name == "__init__.py", node)
+                targets = _resolve(m, is_package, node)
+                if len(node.names) and all(a.name == "__version__" for a in node.names):
+                    continue  # the version string, from the package itself
+            elif isinstance(node, ast.Call):
+                targets = _call_targets(m, is_package, node)
+                if targets is None:
+                    if dynamic is not None and m not in DYNAMIC_IMPORT_ALLOWED:
+                        dynamic.append((m, node.lineno))
+                    continue
             for t in targets:
+                # a name of a package's lazy export map is its module's
+                t = exports.get(t, t)
                 # the longest shapelab module that the target names
                 while t and t not in modules:
                     t = t.rpartition(".")[0]
-                if t and t != m and t.startswith("shapelab"):
+                if t and t != m and t.split(".")[0] == root.name:
                     graph[m].add(t)
     return graph
 
@@ -117,15 +175,19 @@ def test_no_import_cycle():
     assert not found, f"import cycles (imports inside functions count): {found}"
 
 
+def upward_imports(graph: dict[str, set[str]]) -> list[tuple[str, str]]:
+    return sorted((m, t) for m, ts in graph.items() for t in ts if layer(t) > layer(m))
+
+
 def test_no_upward_import():
-    g = import_graph()
-    bad = sorted(
-        (m, t)
-        for m, ts in g.items()
-        for t in ts
-        if layer(t) > layer(m) and t != "shapelab"  # "shapelab" itself: the version only
-    )
+    bad = upward_imports(import_graph())
     assert not bad, f"a lower layer imports a higher one: {bad}"
+
+
+def test_no_dynamic_import():
+    dynamic = []
+    import_graph(dynamic=dynamic)
+    assert not dynamic, f"imports whose module name is not a literal (the graph cannot see them): {dynamic}"
 
 
 def test_the_checks_can_fail(tmp_path):
@@ -143,3 +205,49 @@ def test_the_checks_can_fail(tmp_path):
 @pytest.mark.parametrize("module", ["shapelab.filtration", "shapelab.topology", "shapelab.cavities"])
 def test_graph_sees_function_level_imports(module):
     assert module in import_graph()
+
+
+@pytest.mark.parametrize(
+    "source, target",
+    [
+        ("from shapelab import voids\n", "shapelab.cavities"),  # a lazy export: its module
+        ("from .. import voids\n", "shapelab.cavities"),
+        ("import shapelab\n", "shapelab"),  # the top of the package
+        (
+            "def f():\n    import importlib\n    return importlib.import_module('shapelab.cavities')\n",
+            "shapelab.cavities",
+        ),
+        (
+            "def f():\n    from importlib import import_module\n    return import_module('..cavities', __package__)\n",
+            "shapelab.cavities",
+        ),
+        ("def f():\n    return __import__('shapelab.cavities')\n", "shapelab.cavities"),
+    ],
+)
+def test_every_form_of_import_is_seen(tmp_path, source, target):
+    """Forms the graph missed (issue 22, review): a name taken from the package's lazy
+    exports or the package itself was exempt, and importlib calls were not read."""
+    pkg = tmp_path / "shapelab"
+    (pkg / "_toolkit").mkdir(parents=True)
+    (pkg / "__init__.py").write_text('_EXPORTS = {"voids": "cavities"}\n__version__ = "0"\n')
+    (pkg / "_toolkit" / "__init__.py").write_text("")
+    (pkg / "_toolkit" / "validate.py").write_text(source)
+    (pkg / "cavities.py").write_text("from ._toolkit.validate import f\n")
+    g = import_graph(pkg)
+    assert upward_imports(g) == [("shapelab._toolkit.validate", target)]
+    if target == "shapelab.cavities":
+        assert cycles(g) == [["shapelab._toolkit.validate", "shapelab.cavities"]]
+
+
+def test_the_version_and_dynamic_imports(tmp_path):
+    pkg = tmp_path / "shapelab"
+    (pkg / "_toolkit").mkdir(parents=True)
+    (pkg / "__init__.py").write_text('__version__ = "0"\n')
+    (pkg / "_toolkit" / "__init__.py").write_text("")
+    (pkg / "_toolkit" / "validate.py").write_text(
+        "from shapelab import __version__\nimport importlib\n\ndef f(n):\n    return importlib.import_module(n)\n"
+    )
+    dynamic = []
+    g = import_graph(pkg, dynamic=dynamic)
+    assert g["shapelab._toolkit.validate"] == set()
+    assert dynamic == [("shapelab._toolkit.validate", 5)]
