@@ -696,4 +696,8 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
     return CavityReport(rows=rows, probe=probe, name=name, tau=float(tau), structure=structure)
 
 
-# ============================================================================= CLI
+# ============================================================ not a program
+if __name__ == "__main__":  # python -m shapelab.cavity_report: say where the command line is
+    import sys
+
+    sys.exit("shapelab.cavity_report is the report, not a program: run python -m shapelab report FILE")

@@ -246,3 +246,7 @@ def _run_report(args) -> int:
             file=sys.stderr,
         )
     return 0
+
+
+if __name__ == "__main__":  # python -m shapelab.cli ..., the same as python -m shapelab ...
+    sys.exit(main())

@@ -572,9 +572,31 @@ def test_import_changes_no_global_state():
         "assert warnings.filters == before, warnings.filters[:3]; "
         "assert 'shapelab.cli' not in sys.modules"
     )
+    code = (
+        "import os, logging, warnings, sys, numpy; env = dict(os.environ); "
+        "handlers, level = list(logging.root.handlers), logging.root.level; err = numpy.geterr(); " + code + "; "
+        "assert dict(os.environ) == env and numpy.geterr() == err; "
+        "assert logging.root.handlers == handlers and logging.root.level == level; "
+        "assert 'matplotlib' not in sys.modules"
+    )
     env = dict(os.environ, PYTHONPATH=str(ROOT))
     r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stderr
+
+
+@pytest.mark.parametrize(
+    "module, code, words",
+    [
+        ("shapelab.cli", 0, "usage: python -m shapelab"),
+        ("shapelab.cavity_report", 1, "python -m shapelab report FILE"),
+    ],
+)
+def test_running_a_module_is_never_a_silent_no_op(module, code, words):
+    """``python -m shapelab.cli --help`` printed nothing and ``python -m
+    shapelab.cavity_report FILE`` did nothing, both with status 0 (issue 22, review)."""
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    r = subprocess.run([sys.executable, "-m", module, "--help"], env=env, capture_output=True, text=True, timeout=120)
+    assert r.returncode == code and words in r.stdout + r.stderr, (r.returncode, r.stdout, r.stderr)
 
 
 def test_cli_needs_a_command(tmp_path, capsys):
