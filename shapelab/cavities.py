@@ -481,7 +481,7 @@ def voids(F, tau=0.0) -> tuple:
         ``alpha_filtration(balls)`` of 2D or 3D balls; what is derived from it (the
         merge tree of the complement) is kept on it, so asking again at another τ
         is cheap.  A :class:`~shapelab.Balls` is accepted too: its filtration is
-        then built for this call only.
+        built once and kept with the balls (:meth:`shapelab.Balls.derived`).
     tau : float, default 0.0
         Growth time: radii :math:`\\sqrt{r_i^2 + \\tau}`; balls with
         :math:`r_i^2 + \\tau < 0` do not exist yet.  ``±inf`` give no voids.

@@ -464,7 +464,7 @@ def discrete_flow(F, tau=0.0) -> DiscreteFlow:
     ----------
     F : Filtration
         ``alpha_filtration(balls)`` of 2D or 3D balls (a :class:`~shapelab.Balls` is
-        accepted too: its filtration is built for this call).  The flow's decisions
+        accepted too: its filtration is built once and kept with the balls).  The flow's decisions
         do not depend on τ and are kept on ``F``.
     tau : float, default 0.0
         The growth time of the complex (radii :math:`\\sqrt{r_i^2 + \\tau}`).  CASTp's
