@@ -39,7 +39,13 @@ def connected_time(tau_connected, F, *, atol: float = 2e-3) -> CheckResult:
     """Lesson 02: the growth time from which the union of disks is connected.
 
     The reference is the last merge of two components: the largest finite death of
-    the persistence pairs in dimension 0 (lesson 09)."""
+    the persistence pairs in dimension 0 (lesson 09).
+
+    See Also
+    --------
+    shapelab.topology.betti
+        β₀ at a growth time.
+    """
     h0 = np.asarray(F.persistence()[0], dtype=float)
     finite = h0[np.isfinite(h0[:, 1]), 1]
     expected = float(finite.max()) if finite.size else float(F.values(0).max())
@@ -50,7 +56,13 @@ def distinct_complexes(n_complexes, F, lo: float = 0.0, hi: float = 1.0) -> Chec
     """Lesson 03: how many distinct complexes :math:`K_\\tau` there are for τ in [lo, hi].
 
     The complexes grow by inclusion, so distinct complexes have distinct sizes: the
-    reference counts the sizes of the complexes at every entry time in the range."""
+    reference counts the sizes of the complexes at every entry time in the range.
+
+    See Also
+    --------
+    shapelab.alpha_filtration
+        The filtration whose complexes are counted.
+    """
     values = np.unique(np.r_[lo, np.concatenate([F.values(k) for k in range(F.dimension + 1)])])
     sizes = {len(F.complex_at(t)) for t in values[(values >= lo) & (values <= hi)]}
     return value("number of distinct complexes", n_complexes, len(sizes))
@@ -58,7 +70,13 @@ def distinct_complexes(n_complexes, F, lo: float = 0.0, hi: float = 1.0) -> Chec
 
 def standard_error_factor(shrink, balls, *, seed: int = 0) -> CheckResult:
     """Lesson 04: by what factor Monte Carlo's standard error falls with 100 times more
-    samples (measured on ``balls`` with 10⁴ and 10⁶ samples, to 5 %)."""
+    samples (measured on ``balls`` with 10⁴ and 10⁶ samples, to 5 %).
+
+    See Also
+    --------
+    shapelab.oracles.monte_carlo_union_measure
+        The estimate whose error shrinks.
+    """
     from ..oracles import monte_carlo_union_measure
 
     ratio = (
@@ -69,7 +87,13 @@ def standard_error_factor(shrink, balls, *, seed: int = 0) -> CheckResult:
 
 def neck_closing(neck_closes, F) -> CheckResult:
     """Lesson 07: when the neck between the two chambers of ``datasets.nested_pockets``
-    closes: the second pocket's ``closes_at``."""
+    closes: the second pocket's ``closes_at``.
+
+    See Also
+    --------
+    shapelab.pockets
+        The pocket whose neck closes.
+    """
     from ..cavities import pockets
 
     found = pockets(F, min_persistence=1e-9)
@@ -96,7 +120,13 @@ def torus_viewpoints(
     inside the tube) and the student's ``(#min, #saddles, #max)`` from each.
 
     Passes when the three viewpoints are one of each kind and every count equals the
-    library's (:func:`shapelab.critical_points`).  Nothing about the counts is printed."""
+    library's (:func:`shapelab.critical_points`).  Nothing about the counts is printed.
+
+    See Also
+    --------
+    shapelab.critical_points
+        The critical points seen from a viewpoint.
+    """
     from ..critical import critical_points
     from ..datasets import torus
 
@@ -133,7 +163,13 @@ def mouth_closing(student) -> CheckResult:
     Figure 23.2's flask and of the two-chamber flask, then of Figure 23.2's flask with
     radii from 0.9 to 1.1 times its own (seeded): the data sets' disks all have one
     radius, on which :math:`(d/2)^2 - r^2` is right, and the lesson's formula is for two
-    radii (Notes §23.1, the edge's entry time on the radical axis)."""
+    radii (Notes §23.1, the edge's entry time on the radical axis).
+
+    See Also
+    --------
+    shapelab.pockets
+        The pocket whose mouth closes.
+    """
     from ..balls import Balls
     from ..cavities import pockets
     from ..datasets import figure_23_2, nested_pockets
@@ -163,7 +199,13 @@ def flow_sinks(student) -> CheckResult:
     have centred triangles already in :math:`K_\\tau`, which are no sinks), after
     two edge cases: a lattice with right triangles (sinks: the circumcentre is on the
     hypotenuse) and a τ equal to a centred triangle's entry time (then in
-    :math:`K_\\tau`, no sink) (Notes §23.1)."""
+    :math:`K_\\tau`, no sink) (Notes §23.1).
+
+    See Also
+    --------
+    shapelab.discrete_flow
+        The flow whose sinks are checked.
+    """
     from ..balls import Balls
     from ..filtration import alpha_filtration
     from ..flow import discrete_flow
@@ -206,7 +248,13 @@ def flow_sinks(student) -> CheckResult:
 
 def radical_center(student) -> CheckResult:
     """Lesson 01: ``student(balls)`` returns the point with equal power distance from three
-    disks (their radical centre), checked against the vertex of their power diagram."""
+    disks (their radical centre), checked against the vertex of their power diagram.
+
+    See Also
+    --------
+    shapelab.power_diagram
+        The diagram whose vertex it is.
+    """
     from ..balls import Balls
     from ..power import power_diagram
     from ._runner import run_check
@@ -233,7 +281,13 @@ def radical_center(student) -> CheckResult:
 
 def void_count(student) -> CheckResult:
     """Lesson 06: ``student(F, tau)`` returns the number of voids from the Betti numbers
-    alone (:math:`\\beta_{d-1}` of :math:`K_\\tau`), checked against :func:`shapelab.voids`."""
+    alone (:math:`\\beta_{d-1}` of :math:`K_\\tau`), checked against :func:`shapelab.voids`.
+
+    See Also
+    --------
+    shapelab.voids
+        The voids counted.
+    """
     from ..cavities import voids
     from ..datasets import fullerene_c60, ring, swiss_cheese
     from ..filtration import alpha_filtration
@@ -255,7 +309,13 @@ def void_count(student) -> CheckResult:
 def ring_tunnel(student) -> CheckResult:
     """Lesson 08: ``student(n, R, r)`` returns ``(birth, death)`` of the tunnel of
     ``datasets.ring(n, radius=R, disk_radius=r, dim=3)``, checked against the most
-    persistent pair of :math:`H_1` of its α-filtration."""
+    persistent pair of :math:`H_1` of its α-filtration.
+
+    See Also
+    --------
+    shapelab.tunnels
+        The tunnel of the ring.
+    """
     from ..datasets import ring
     from ..filtration import alpha_filtration
     from ._runner import run_check
@@ -278,7 +338,13 @@ def ring_tunnel(student) -> CheckResult:
 def curve_pairs(student) -> CheckResult:
     """Lesson 09: ``student(f)`` returns the ``(birth, death)`` pairs (persistence > 0) of
     the sublevel sets of ``f`` along a path, checked against
-    :func:`shapelab.curve_persistence` (any order of the rows)."""
+    :func:`shapelab.curve_persistence` (any order of the rows).
+
+    See Also
+    --------
+    shapelab.curve_persistence
+        The pairs of a curve.
+    """
     from ..simplification import curve_persistence
     from ._runner import run_check
 
@@ -353,7 +419,13 @@ def euler_poincare(chis, betti_sums, F, taus) -> CheckResult:
 
 def most_exposed_residue(answer, structure, probe: float = 1.4) -> CheckResult:
     """Lesson 10: the residue (``"NAME NUMBER"``) with the largest solvent-accessible
-    area, the sum of its atoms' shares of the union's boundary with radii grown by ``probe``."""
+    area, the sum of its atoms' shares of the union's boundary with radii grown by ``probe``.
+
+    See Also
+    --------
+    shapelab.union_measure
+        The per-ball areas summed by residue.
+    """
     from ..balls import Balls
     from ..measure import union_measure
 
@@ -586,7 +658,13 @@ def void_components(counts, balls, taus) -> CheckResult:
 def buried_area(answer, receptor, ligand, probe: float = 0.0) -> CheckResult:
     """Lesson 16: the area buried when ``ligand`` binds ``receptor`` as given,
     :math:`|\\partial A| + |\\partial B| - |\\partial(A\\cup B)|` with radii grown by ``probe``
-    (to 1e-6 relative)."""
+    (to 1e-6 relative).
+
+    See Also
+    --------
+    shapelab.docking_score
+        The buried area of a pose.
+    """
     from ..balls import Balls
     from ..measure import union_measure
 

@@ -30,6 +30,11 @@ def power_distance(student_fn, *, quiet: bool = False) -> CheckResult:
     Cases: x at the centre (:math:`-r^2`), x on the sphere (0), a ball of radius 0
     (the squared distance), a point outside (the squared tangent length), 3D points,
     then random points in 2D and 3D.
+
+    See Also
+    --------
+    shapelab.power_distance
+        The reference.
     """
     from ..balls import Balls
     from ..balls import power_distance as lib
@@ -64,6 +69,11 @@ def orthogonal_radius(student_fn, *, quiet: bool = False) -> CheckResult:
 
     Cases: three points (radius 0: the circumradius squared), equal disks, disks that
     overlap around y (:math:`R^2 < 0`), unequal disks, then random triangles.
+
+    See Also
+    --------
+    shapelab.power_diagram
+        Where the orthogonal circle's centre is a vertex.
     """
     from ..balls import Balls
     from ..filtration import alpha_filtration
@@ -99,6 +109,11 @@ def union_area(student_fn, *, quiet: bool = False) -> CheckResult:
     Cases: disjoint, tangent from outside, overlapping, one inside the other, identical
     disks, a disk of radius 0, tangent from inside, then random pairs.  The library's answer is
     :func:`shapelab.union_measure`.
+
+    See Also
+    --------
+    shapelab.union_measure
+        The reference.
     """
     from ..balls import Balls
     from ..measure import union_measure
@@ -204,6 +219,11 @@ def attached_edge(student_fn, *, quiet: bool = False) -> CheckResult:
     ball that is not the centre nearest ``c``, the obtuse triangle lifted into 3D
     with a fourth ball, then random edges of random balls in 2D and 3D, one
     attached and one unattached edge in each dimension (none of them near a tie).
+
+    See Also
+    --------
+    shapelab.filtration.Filtration.attached
+        The reference.
     """
     from ..balls import Balls
     from ..filtration import alpha_filtration

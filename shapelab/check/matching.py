@@ -41,6 +41,11 @@ def directed_hausdorff(fn, *, quiet: bool = False) -> CheckResult:
 
     Includes a set A inside B, where h(A, B) = 0 but h(B, A) > 0: computing the
     symmetric distance (or swapping the roles) fails there.
+
+    See Also
+    --------
+    shapelab.directed_hausdorff
+        The reference.
     """
     from ..distance import directed_hausdorff as ref
 
@@ -56,7 +61,13 @@ def directed_hausdorff(fn, *, quiet: bool = False) -> CheckResult:
 
 
 def hausdorff(fn, *, quiet: bool = False) -> CheckResult:
-    """Check ``fn(A, B) -> float``, the Hausdorff distance H(A, B) of the notes (§23.2)."""
+    """Check ``fn(A, B) -> float``, the Hausdorff distance H(A, B) of the notes (§23.2).
+
+    See Also
+    --------
+    shapelab.hausdorff
+        The reference.
+    """
     from ..distance import hausdorff as ref
 
     return run_check(
@@ -103,6 +114,11 @@ def critical_points(fn, *, kind: str = "max", quiet: bool = False) -> CheckResul
         (``kind="min"``) of F along the polyline, sorted increasingly.
     kind : {"max", "min"}
         Minima include the feet of perpendiculars inside segments.
+
+    See Also
+    --------
+    shapelab.critical_points
+        The reference.
     """
     from ..critical import critical_points as ref
 

@@ -29,7 +29,13 @@ def _digest(part: str, number: int, letter: str) -> str:
 
 @dataclass(frozen=True)
 class Question:
-    """One multiple-choice question: its text, four options, the digest of the answer."""
+    """One multiple-choice question: its text, four options, the digest of the answer.
+
+    See Also
+    --------
+    quiz
+        Asks questions.
+    """
 
     text: str
     options: tuple
@@ -219,7 +225,13 @@ def _part(part) -> str:
 
 
 def quiz_markdown(part: str) -> str:
-    """The questions of ``part`` as Markdown (numbered, options a–d)."""
+    """The questions of ``part`` as Markdown (numbered, options a–d).
+
+    See Also
+    --------
+    quiz
+        Checks the answers.
+    """
     part = _part(part)
     lines = [f"**Quiz, {_TITLES[part]}.** Answer with a dict `{{number: letter}}`.", ""]
     for n, q in enumerate(QUIZZES[part], 1):
@@ -231,7 +243,13 @@ def quiz_markdown(part: str) -> str:
 
 
 def show_quiz(part: str):
-    """Display the questions of ``part`` (Markdown in a notebook, text elsewhere)."""
+    """Display the questions of ``part`` (Markdown in a notebook, text elsewhere).
+
+    See Also
+    --------
+    quiz
+        Checks the answers.
+    """
     text = quiz_markdown(part)
     try:
         from IPython.display import Markdown, display
@@ -257,6 +275,13 @@ def quiz(part: str, answers, *, quiet: bool = False) -> CheckResult:
     CheckResult
         Passed when every question is answered correctly.  The message names the
         questions that are unanswered or wrong, never the right letters.
+
+    See Also
+    --------
+    show_quiz
+        Shows a quiz without checking.
+    quiz_markdown
+        A quiz as Markdown.
     """
     part = _part(part)
     name = f"quiz, part {part}"

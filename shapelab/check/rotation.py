@@ -36,6 +36,11 @@ def quaternion_product(fn, *, quiet: bool = False) -> CheckResult:
     Starts with the table :math:`\\mathbf{ij} = \\mathbf k`, :math:`\\mathbf{ji} =
     -\\mathbf k`, ... (the notes print the :math:`\\mathbf k` component with the wrong
     sign, so copying it fails here), then random quaternions.
+
+    See Also
+    --------
+    shapelab.Quaternion
+        The reference product.
     """
     return run_check(
         "quaternion product", fn, _product_cases(), lambda q, r: qmul(q, r), allclose(1e-10, 1e-9), quiet=quiet
@@ -58,6 +63,11 @@ def rotation_matrix(fn, *, quiet: bool = False) -> CheckResult:
 
     The matrix :math:`M` with :math:`M r = q r q^*` (Notes §23.2, :math:`I_q`): the
     lower-right 3×3 block of :math:`\\bar Q^T Q`.
+
+    See Also
+    --------
+    shapelab.quaternion.qmatrix
+        The reference.
     """
     return run_check("rotation matrix", fn, _unit_cases(), lambda q: qmatrix(q), allclose(1e-10, 1e-9), quiet=quiet)
 
@@ -112,6 +122,11 @@ def optimal_rotation(fn, *, quiet: bool = False) -> CheckResult:
     Horn's solution of the notes: the eigenvector of :math:`A = \\sum_j\\bar R_j^TG_j`
     for the largest eigenvalue.  Compared up to sign (:math:`q` and :math:`-q` are the
     same rotation).  The sets given are centred and paired row by row.
+
+    See Also
+    --------
+    shapelab.optimal_rotation
+        The reference.
     """
     return run_check(
         "optimal rotation",
@@ -142,6 +157,11 @@ def centroid_alignment(fn, *, quiet: bool = False) -> CheckResult:
     The reference-point alignment of the notes (§23.2, "For the translation only
     case ... align their centroids"): :math:`t = \\bar g - \\bar r`.  The two sets may
     have different sizes.
+
+    See Also
+    --------
+    shapelab.register
+        The least-squares motion.
     """
     return run_check(
         "centroid alignment",

@@ -78,6 +78,11 @@ def euler_characteristic(student_fn, *, quiet: bool = False) -> CheckResult:
     :math:`\\chi = \\sum_k (-1)^k n_k`.  Cases: hand-made complexes, then dual complexes
     :math:`K_\\tau` of a ring of disks, Figure 23.1, Figure 23.2 and C60 (Notes §23.1),
     whose χ the library computes with :meth:`Complex.euler_characteristic`.
+
+    See Also
+    --------
+    shapelab.filtration.Complex.euler_characteristic
+        The reference.
     """
     cases = [(c,) for c in _hand_made()]
     lib = []
@@ -151,6 +156,11 @@ def betti_numbers(student_fn, *, quiet: bool = False) -> CheckResult:
     incremental idea of Delfinado & Edelsbrunner.  Cases: hand-made, then
     :math:`K_\\tau` of a ring, Figure 23.1 and Figure 23.2 (left) at several τ,
     compared with :meth:`Filtration.betti`.
+
+    See Also
+    --------
+    shapelab.topology.betti
+        The reference.
     """
     cases = []
     for c in _hand_made():
@@ -318,6 +328,13 @@ def boundary_reduction(student_fn, *, quiet: bool = False) -> CheckResult:
     α-filtrations in 2D and 3D and the course's Figure 23.1, a ring, C60 and the
     two-chamber flask, for which the pairs read off the reference's lowest ones are
     first compared with :meth:`Filtration.persistence` (finite and essential classes).
+
+    See Also
+    --------
+    shapelab.topology.reduce_boundary
+        The reference.
+    shapelab.filtration.Filtration.boundary_matrix
+        The matrix reduced.
     """
     from shapelab.topology import reduce_boundary
 
