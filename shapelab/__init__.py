@@ -58,6 +58,7 @@ _EXPORTS = {
     "voids": "cavities",
     "pockets": "cavities",
     "tunnels": "cavities",
+    "grooves": "cavities",
     "channel_profile": "cavities",
     "Void": "cavities",
     "Pocket": "cavities",

@@ -32,6 +32,7 @@ from .cavities import Pocket as Pocket
 from .cavities import Tunnel as Tunnel
 from .cavities import Void as Void
 from .cavities import channel_profile as channel_profile
+from .cavities import grooves as grooves
 from .cavities import pockets as pockets
 from .cavities import tunnels as tunnels
 from .cavities import voids as voids
@@ -115,6 +116,7 @@ __all__ = [
     "docking_score",
     "dual_complex",
     "flow_pockets",
+    "grooves",
     "hausdorff",
     "hausdorff_under_translation",
     "icp",

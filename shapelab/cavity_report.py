@@ -557,8 +557,8 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
         The voids.
     pockets
         The pockets.
-    read_pdb
-        Reads a structure as balls.
+    shapelab.io.read_structure
+        Reads a structure (PDB or mmCIF) as balls.
 
     Notes
     -----
