@@ -48,7 +48,7 @@ implementation, as in ``scipy.spatial``.
 
 from __future__ import annotations
 
-from ._pdb import MAX_PDB_BYTES, read_pdb
+from ._pdb import MAX_PDB_BYTES, element_from_name, read_pdb
 from ._radii import VDW_RADII, vdw_radius
 from ._read import detect_format, read_structure
 from ._selection import STANDARD_RESIDUES, WATER_RESIDUES
@@ -67,4 +67,5 @@ __all__ = [
     "write_pdb",
     "write_mmcif",
     "vdw_radius",
+    "element_from_name",
 ]

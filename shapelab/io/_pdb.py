@@ -38,6 +38,16 @@ def element_from_name(name: str, residue: str | None = None) -> str:
     names left-justified (``"CA  "``, ``"HE1 "``); in a polymer residue
     (:data:`STANDARD_RESIDUES`, given as ``residue``) the first letter is then the
     element, since those residues hold no calcium or helium.
+
+    See Also
+    --------
+    read_pdb : uses it when columns 77–78 are blank.
+    shapelab.trajectory.selection_radii : uses it for MD topologies without elements.
+
+    Examples
+    --------
+    >>> element_from_name(" CA "), element_from_name("CA  "), element_from_name("CA  ", "ALA")
+    ('C', 'Ca', 'C')
     """
     name4 = name.ljust(4)[:4]
     first, second = name4[0], name4[1]
