@@ -29,6 +29,7 @@ Modules, one per concept of the notes:
 ``shapelab.io``               :func:`read_structure` (PDB, mmCIF), :func:`read_pdb`
 ``shapelab.cavity_report``    :func:`report`: CASTp-style table of voids and pockets
 ``shapelab.batch``            :func:`report_batch`: many structures at once, in parallel, resumable
+``shapelab.trajectory``       :func:`trajectory_measures`: area, volume, cavities of MD frames (MDAnalysis)
 ``shapelab.cli``              ``python -m shapelab report FILE...``: the command line
 ``shapelab.datasets``         generated molecules and the inputs of the figures
 ``shapelab.plot``             one function per kind of figure, a shared style
@@ -98,6 +99,8 @@ _EXPORTS = {
     "report": "cavity_report",
     "CavityReport": "cavity_report",
     "report_batch": "batch",
+    "trajectory_measures": "trajectory",
+    "TrajectoryMeasures": "trajectory",
 }
 _SUBMODULES = {
     "balls",
@@ -122,6 +125,7 @@ _SUBMODULES = {
     "simplification",
     "cavity_report",
     "batch",
+    "trajectory",
     "cli",
 }
 

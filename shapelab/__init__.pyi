@@ -23,6 +23,7 @@ from . import quaternion as quaternion
 from . import registration as registration
 from . import simplification as simplification
 from . import topology as topology
+from . import trajectory as trajectory
 from . import widgets as widgets
 from .balls import Balls as Balls
 from .balls import power_distance as power_distance
@@ -78,6 +79,8 @@ from .registration import optimal_rotation as optimal_rotation
 from .registration import register as register
 from .simplification import curve_persistence as curve_persistence
 from .simplification import simplify as simplify
+from .trajectory import TrajectoryMeasures as TrajectoryMeasures
+from .trajectory import trajectory_measures as trajectory_measures
 
 __version__: str
 
@@ -100,6 +103,7 @@ __all__ = [
     "PowerDiagram",
     "Quaternion",
     "RigidMotion",
+    "TrajectoryMeasures",
     "TranslationMatch",
     "Tunnel",
     "UnionMeasure",
@@ -132,6 +136,7 @@ __all__ = [
     "report",
     "report_batch",
     "simplify",
+    "trajectory_measures",
     "tunnels",
     "union_measure",
     "voids",

@@ -74,6 +74,7 @@ DOCUMENTED = [
     "cli",
     "simplification",
     "topology",
+    "trajectory",
     "widgets.balls",
     "widgets.matching",
     "widgets.rotation",
