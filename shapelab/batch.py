@@ -34,7 +34,8 @@ Returning the same type whatever is installed keeps code that uses the result
 portable.
 
 Progress goes to standard error, never to standard output: a ``tqdm`` bar when tqdm
-is installed, otherwise one line ``k/n  PATH  status`` per structure.
+is installed and standard error is a terminal, otherwise one line ``k/n  PATH  status``
+per structure (what a log file, a notebook or a CI job can read).
 """
 
 from __future__ import annotations
@@ -394,15 +395,18 @@ def _init_worker() -> None:
 
 # ============================================================================ progress
 class _Progress:
-    """tqdm on stderr when it is installed, else one ``k/n`` line per structure."""
+    """tqdm on stderr when it is installed and stderr is a terminal, else one ``k/n``
+    line per structure."""
 
     def __init__(self, total: int, enabled: bool):
         self.total, self.done, self.enabled, self.bar = total, 0, enabled, None
         if enabled:
-            try:
-                from tqdm import tqdm
-            except ImportError:
-                tqdm = None
+            tqdm = None
+            if getattr(sys.stderr, "isatty", lambda: False)():
+                try:
+                    from tqdm import tqdm
+                except ImportError:
+                    pass
             if tqdm is not None:
                 self.bar = tqdm(total=total, unit="structure", file=sys.stderr, dynamic_ncols=True)
 
@@ -639,8 +643,9 @@ def report_batch(
         names the same file with the same SHA-256 digest, probe and reading
         options, and every file it lists exists.  Anything else is computed again.
     progress : bool, default True
-        Show progress on standard error: a tqdm bar if tqdm is installed, else one
-        ``k/n  PATH  status`` line per input (with the error of a failure).
+        Show progress on standard error: a tqdm bar if tqdm is installed and standard
+        error is a terminal, else one ``k/n  PATH  status`` line per input (with the
+        error of a failure).
     summary : str, default "shapelab_summary"
         File name (without extension) of the summary in ``out``.
     chain, model, hetatm, water, hydrogens, default_radius
