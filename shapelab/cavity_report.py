@@ -497,6 +497,20 @@ def _mouth_counts(mouths) -> list:
     return np.bincount(per, minlength=len(tris)).tolist()
 
 
+def _contacts_of(rows, first, by_cell):
+    """Indices, ascending, of the contacts in the (sorted, distinct) cell ``rows``:
+    the contacts sorted by cell are ``by_cell``, those of row ``r`` at
+    ``first[r]:first[r + 1]``.  Linear in the answer, not in all the contacts."""
+    import numpy as np
+
+    lo, hi = first[rows], first[rows + 1]
+    size = hi - lo
+    if not size.sum():
+        return np.zeros(0, np.int64)
+    at = np.repeat(lo - np.concatenate([[0], np.cumsum(size)[:-1]]), size) + np.arange(size.sum())
+    return np.sort(by_cell[at])
+
+
 def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> CavityReport:
     """Voids and pockets of a molecule, measured as CASTp does (Notes §23.1).
 
@@ -638,7 +652,6 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
     simp = np.asarray(F.simplices(3), dtype=np.int64)
     fs_sa = free_space(F, tau, simp[ids])
     fs_vdw = free_space(vdw, 0.0, simp[ids])
-    row_of = {int(c): k for k, c in enumerate(ids.tolist())}
     # every mouth triangle once: its free area and rim in the SA model
     mouths = [
         np.sort(np.asarray(f.mouth, dtype=np.int64).reshape(-1, 3), axis=1) for k, f, _, _ in feats if k == "pocket"
@@ -648,13 +661,20 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
     mouth_count = dict(zip((id(p) for p in P), _mouth_counts([p.mouth for p in P])))
     tri_row = {tuple(t): k for k, t in enumerate(tris.tolist())}
 
+    # the SA wall contacts grouped by cell row (stably, so each group keeps the
+    # contacts' order): a feature gathers its own instead of scanning all of them
+    by_cell = np.argsort(fs_sa.contact_cell, kind="stable")
+    first = np.searchsorted(fs_sa.contact_cell[by_cell], np.arange(len(ids) + 1))
+
     labelled = isinstance(structure, PDBStructure)
     raw = []
     for kind, f, birth, death in feats:
-        rows = np.array([row_of[int(c)] for c in f.cell_ids.tolist()], dtype=np.int64)
-        sel = np.isin(fs_sa.contact_cell, rows)
-        per_ball = np.bincount(fs_sa.contact_ball[sel], weights=fs_sa.contact_wall[sel], minlength=len(sa))
-        lining = np.flatnonzero(per_ball > LINING_AREA_RTOL * 4.0 * np.pi * sa.radii**2)
+        rows = np.searchsorted(ids, f.cell_ids).astype(np.int64)  # its rows of fs_sa, in its own order
+        sel = _contacts_of(np.unique(rows), first, by_cell)
+        # the wall area per lining candidate, summed in contact order as a bincount over all atoms would
+        balls, at = np.unique(fs_sa.contact_ball[sel], return_inverse=True)
+        per_ball = np.bincount(at.ravel(), weights=fs_sa.contact_wall[sel], minlength=len(balls))
+        lining = balls[per_ball > LINING_AREA_RTOL * 4.0 * np.pi * sa.radii[balls] ** 2]
         n_mouths, m_area, m_rim = 0, 0.0, 0.0
         if kind == "pocket":
             n_mouths = mouth_count[id(f)]

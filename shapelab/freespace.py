@@ -355,6 +355,8 @@ _REF = (np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]))
 _CHUNK = 1 << 21
 #: (cell, ball) pairs whose candidate planes are held at once
 _PAIRS = 4096
+#: cells whose candidate balls are gathered at once
+_CELLS = 2048
 
 
 def _clipped_balls(A, h, r, eps, boundary):
@@ -913,13 +915,19 @@ def _free_space(F, tau, cells, boundary):
         return FreeSpace(out, np.zeros(M), empty, empty, np.zeros(0))
     tree = cKDTree(C[live])
     rmax = float(R_all[live].max())
-    # (cell, ball) pairs: balls that reach the cell, and not beyond one of its facets
-    k, ball = _within(tree, live, o[good], scale[good] + rmax)
-    pm = good[k]
-    Z = C[ball] - o[pm]
-    R = R_all[ball]
-    near = (np.einsum("pd,pkd->pk", Z, As[pm]) - bs[pm]).max(1) < R
-    pm, ball, Z, R = pm[near], ball[near], Z[near], R[near]
+    # (cell, ball) pairs: balls that reach the cell, and not beyond one of its facets;
+    # a block of cells at a time, so that the candidates of all the cells (hundreds
+    # per cell, most beyond a facet) are never held at once
+    found = []
+    for s in range(0, good.size, _CELLS):
+        g = good[s : s + _CELLS]
+        k, ball = _within(tree, live, o[g], scale[g] + rmax)
+        pm = g[k]
+        Z = C[ball] - o[pm]
+        R = R_all[ball]
+        near = (np.einsum("pd,pkd->pk", Z, As[pm]) - bs[pm]).max(1) < R
+        found.append((pm[near], ball[near], Z[near], R[near]))
+    pm, ball, Z, R = (np.concatenate(x) for x in zip(*found))
     # power planes: only balls meeting B_i can cut B_i ∩ Π_i (a point of B_i closer
     # in power to z_j lies in B_j)
     start, count, other = _neighbours(F, tau, C, R_all, live, tree, rmax)

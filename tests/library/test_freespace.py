@@ -216,3 +216,18 @@ def test_pairs_held_a_slice_at_a_time_give_the_same_measure(monkeypatch):
     for a, b in zip(whole, sliced):
         assert np.array_equal(a.measure, b.measure) and np.array_equal(a.wall, b.wall)
         assert np.array_equal(a.contact_ball, b.contact_ball) and np.array_equal(a.contact_wall, b.contact_wall)
+
+
+def test_cells_gathered_a_block_at_a_time_give_the_same_measure(monkeypatch):
+    # the candidate balls of the cells are gathered for a block of cells at a time
+    rng = np.random.default_rng(12)
+    balls = sl.Balls(rng.uniform(0, 5, (60, 3)), rng.uniform(0.5, 1.4, 60))
+    F = sl.alpha_filtration(balls)
+    cells, tris = np.asarray(F.simplices(3))[:80], np.asarray(F.simplices(2))[:80]
+    whole = FS.free_space(F, 0.1, cells), FS.free_area(F, 0.1, tris), FS.free_space(balls, 0.1, cells)
+    monkeypatch.setattr(FS, "_CELLS", 3)
+    blocks = FS.free_space(F, 0.1, cells), FS.free_area(F, 0.1, tris), FS.free_space(balls, 0.1, cells)
+    for a, b in zip(whole, blocks):
+        assert np.array_equal(a.measure, b.measure) and np.array_equal(a.wall, b.wall)
+        assert np.array_equal(a.contact_cell, b.contact_cell) and np.array_equal(a.contact_ball, b.contact_ball)
+        assert np.array_equal(a.contact_wall, b.contact_wall)

@@ -131,6 +131,26 @@ def test_largest_void_volume_and_lining_by_flood_fill(t4l):
     assert big.lining_atom_names == tuple(s.atom_names[i] for i in big.lining_atoms)
 
 
+def test_lining_is_the_wall_over_all_atoms_of_the_cells(t4l):
+    # the definition, over every contact and every atom: the atoms whose SA wall area
+    # inside the feature's cells exceeds the tolerance (nested pockets share cells)
+    s, rep = t4l
+    sa = sl.Balls(s.balls.centers, s.balls.radii + 1.4)
+    F = sl.alpha_filtration(sa)
+    simp = np.asarray(F.simplices(3), dtype=np.int64)
+    feats = list(sl.voids(F, 0.0)) + list(sl.pockets(F, 0.0))
+    fs = sl.freespace.free_space(F, 0.0, simp)
+    tol = importlib.import_module("shapelab._toolkit.tolerances").LINING_AREA_RTOL
+    expected = set()
+    for f in feats:
+        inside = np.isin(fs.contact_cell, f.cell_ids)
+        per_atom = np.bincount(fs.contact_ball[inside], weights=fs.contact_wall[inside], minlength=len(sa))
+        lining = tuple(np.flatnonzero(per_atom > tol * 4.0 * np.pi * sa.radii**2).tolist())
+        expected.add((round(float(fs.measure[f.cell_ids].sum()), 6), lining))
+    assert {(round(r.volume_sa, 6), r.lining_atoms) for r in rep.rows} == expected
+    assert sum(len(r.lining_atoms) for r in rep.rows) > 100
+
+
 def test_vdw_model_measures_the_same_cells(t4l):
     s, rep = t4l
     for r in rep.rows:
