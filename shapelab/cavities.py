@@ -45,6 +45,7 @@ the exact power-cell decomposition for pockets.
 
 from __future__ import annotations
 
+from array import array
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Protocol, runtime_checkable
@@ -378,14 +379,16 @@ def _build_tree(F) -> _Tree:
     n = S.values[k].shape[0]
     N = n + 1
     u, v = S.cell_dual
-    node = list(range(N))
-    head = list(range(N))
-    tail = list(range(N))
-    nxt = [-1] * N
-    age = list(range(n, 0, -1)) + [0]  # reverse time: outside oldest, then last cells
-    kill_facet = [-1] * n
-    kill_node = [-1] * n
-    m_left, m_right, m_head, m_tail, m_facet = [], [], [], [], []
+    # machine integers (array 'q'), not lists of Python ints: a ribosome has a
+    # million cells, and a list holds about 36 bytes an entry to the array's 8
+    node = array("q", range(N))
+    head = array("q", range(N))
+    tail = array("q", range(N))
+    nxt = array("q", [-1]) * N
+    age = array("q", range(n, -1, -1))  # reverse time: outside oldest (0), then last cells
+    kill_facet = array("q", [-1]) * n
+    kill_node = array("q", [-1]) * n
+    m_left, m_right, m_head, m_tail, m_facet = (array("q") for _ in range(5))
 
     def merge(e, a, b, oldest):  # a keeps (older), b dies
         young = oldest[b]
@@ -404,7 +407,7 @@ def _build_tree(F) -> _Tree:
     root = n
     while parent[root] != root:
         root = parent[root]
-    order = []
+    order = array("q")
     i = head[root]
     while i != -1:
         order.append(i)
