@@ -19,9 +19,9 @@ import zlib
 import numpy as np
 
 from .._toolkit.validate import as_finite_scalar, as_positive_int
-from ._radii import atom_radii, radius_table
-from ._selection import names_arg, resolve_alternate_locations, select_atoms
-from ._structure import AtomRecord, PDBStructure, structure_from_records
+from ._radii import radius_table
+from ._selection import kept_structure, names_arg
+from ._structure import AtomRecord, PDBStructure
 
 __all__ = ["read_mmcif", "read_limited", "MMCIF_CHAIN_WIDTH", "MMCIF_RESIDUE_WIDTH"]
 
@@ -328,8 +328,13 @@ def read_mmcif(
         for k, i in enumerate(rows)
     ]
 
-    kept = select_atoms(
-        resolve_alternate_locations(recs),
+    return kept_structure(
+        recs,
+        tables=tables,
+        default_radius=default_radius,
+        probe=probe,
+        model=target,
+        where=f"{name!r}: _atom_site row",
         chains_wanted=chains_wanted,
         het_keep=het_keep,
         water=water,
@@ -337,8 +342,4 @@ def read_mmcif(
         path=path,
         chain=chain,
         hetatm=hetatm,
-        read=recs,
-    )
-    return structure_from_records(
-        kept, atom_radii(kept, tables, default_radius, where=f"{name!r}: _atom_site row"), probe, target
     )

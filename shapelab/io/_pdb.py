@@ -19,9 +19,9 @@ import zlib
 import numpy as np
 
 from .._toolkit.validate import as_finite_scalar, as_positive_int
-from ._radii import ELEMENT_SYMBOLS, atom_radii, radius_table
-from ._selection import STANDARD_RESIDUES, names_arg, resolve_alternate_locations, select_atoms
-from ._structure import AtomRecord, PDBStructure, structure_from_records
+from ._radii import ELEMENT_SYMBOLS, radius_table
+from ._selection import STANDARD_RESIDUES, kept_structure, names_arg
+from ._structure import AtomRecord, PDBStructure
 
 __all__ = ["MAX_PDB_BYTES", "read_pdb", "element_from_name"]
 
@@ -468,8 +468,12 @@ def read_pdb(
     if not recs:
         raise ValueError(f"{os.fspath(path)!r} holds no ATOM or HETATM records (before END/ENDMDL)")
 
-    kept = select_atoms(
-        resolve_alternate_locations(recs),
+    return kept_structure(
+        recs,
+        tables=tables,
+        default_radius=default_radius,
+        probe=probe,
+        model=target if models_seen else None,
         chains_wanted=chains_wanted,
         het_keep=het_keep,
         water=water,
@@ -477,8 +481,4 @@ def read_pdb(
         path=path,
         chain=chain,
         hetatm=hetatm,
-        read=recs,
-    )
-    return structure_from_records(
-        kept, atom_radii(kept, tables, default_radius), probe, target if models_seen else None
     )

@@ -10,7 +10,14 @@ from __future__ import annotations
 import math
 import os
 
-__all__ = ["WATER_RESIDUES", "STANDARD_RESIDUES", "names_arg", "resolve_alternate_locations", "select_atoms"]
+__all__ = [
+    "WATER_RESIDUES",
+    "STANDARD_RESIDUES",
+    "names_arg",
+    "resolve_alternate_locations",
+    "select_atoms",
+    "kept_structure",
+]
 
 #: Residue names that are water in PDB, AMBER, CHARMM and GROMACS files (``TIP`` is how
 #: CHARMM's ``TIP3`` reads: :func:`read_pdb` takes column 21 as part of the chain).
@@ -116,3 +123,15 @@ def select_atoms(records, *, chains_wanted, het_keep, water, hydrogens, path, ch
             f"chains present: {sorted({r.chain for r in read})})"
         )
     return kept
+
+
+def kept_structure(records, *, tables, default_radius, probe, model, where="line", **selection):
+    """What every reader does after parsing: keep one alternate location per atom, apply
+    the selection (:func:`select_atoms`'s keywords), give each kept atom its radius
+    (:func:`shapelab.io._radii.atom_radii`, ``where`` naming the place of an atom in the
+    file) and build the :class:`~shapelab.io._structure.PDBStructure`."""
+    from ._radii import atom_radii
+    from ._structure import structure_from_records
+
+    kept = select_atoms(resolve_alternate_locations(records), read=records, **selection)
+    return structure_from_records(kept, atom_radii(kept, tables, default_radius, where=where), probe, model)
