@@ -10,17 +10,16 @@ the PDB reader's.  BinaryCIF is refused: gemmi 0.7.5 has no BinaryCIF reader.
 
 from __future__ import annotations
 
-import gzip
 import math
 import os
 import re
-import zlib
 
 import numpy as np
 
 from .._toolkit.validate import as_finite_scalar, as_positive_int
 from ._radii import radius_table
 from ._selection import kept_structure, names_arg
+from ._source import chunks, too_large
 from ._structure import AtomRecord, PDBStructure
 
 __all__ = ["read_mmcif", "read_limited", "MMCIF_CHAIN_WIDTH", "MMCIF_RESIDUE_WIDTH"]
@@ -31,7 +30,6 @@ __all__ = ["read_mmcif", "read_limited", "MMCIF_CHAIN_WIDTH", "MMCIF_RESIDUE_WID
 MMCIF_CHAIN_WIDTH = 4
 MMCIF_RESIDUE_WIDTH = 5
 
-_CHUNK = 2**20
 _INT = re.compile(r"[+-]?[0-9]+")
 # a CIF number: optional sign, digits with an optional point, optional exponent, and an
 # optional standard uncertainty in parentheses (``12.345(6)``), which is dropped
@@ -56,28 +54,11 @@ def read_limited(path, max_bytes: int) -> bytes:
     """The bytes of a plain or gzip file (recognised by its first two bytes), refused
     with a ValueError as soon as more than ``max_bytes`` have come out of it (after
     decompression): a gzip bomb is never held whole."""
-    name = os.fspath(path)
-    with open(path, "rb") as raw:
-        gz = raw.read(2) == b"\x1f\x8b"
-        raw.seek(0)
-        fh = gzip.GzipFile(fileobj=raw, mode="rb") if gz else raw
-        parts, total = [], 0
-        while True:
-            try:
-                chunk = fh.read(min(_CHUNK, max_bytes + 1 - total))
-            except (OSError, EOFError, zlib.error) as e:
-                if not gz:
-                    raise
-                raise ValueError(f"{name!r} is not a readable gzip file: {e}") from None
-            if not chunk:
-                break
-            total += len(chunk)
-            if total > max_bytes:
-                what = "decompresses to" if gz else "holds"
-                raise ValueError(
-                    f"{name!r} {what} more than max_bytes={max_bytes} bytes; pass a larger max_bytes= to read it"
-                )
-            parts.append(chunk)
+    parts = []
+    for chunk, over in chunks(path, max_bytes):
+        if over:
+            raise too_large(path, max_bytes)
+        parts.append(chunk)
     return b"".join(parts)
 
 

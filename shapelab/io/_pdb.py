@@ -10,17 +10,16 @@ rows; which are kept (:mod:`shapelab.io._selection`) and their radii
 from __future__ import annotations
 
 import contextlib
-import gzip
 import math
 import os
 import re
-import zlib
 
 import numpy as np
 
 from .._toolkit.validate import as_finite_scalar, as_positive_int
 from ._radii import ELEMENT_SYMBOLS, radius_table
 from ._selection import STANDARD_RESIDUES, kept_structure, names_arg
+from ._source import chunks, too_large
 from ._structure import AtomRecord, PDBStructure
 
 __all__ = ["MAX_PDB_BYTES", "read_pdb", "element_from_name"]
@@ -109,7 +108,6 @@ def _optional_float(line: str, a: int, b: int, what: str, lineno: int) -> float:
 #: Default ``max_bytes`` of :func:`read_pdb`: 256 MiB of (decompressed) text, some
 #: 3 million ATOM records -- thirty times the 99,999 atoms a PDB file can number.
 MAX_PDB_BYTES = 256 * 2**20
-_CHUNK = 2**20  # bytes read (or decompressed) at a time
 _MAX_LINE = 2**16  # a PDB record has 80 columns; a longer "line" is not PDB text
 _EOL = re.compile(rb"\r\n|\r|\n")
 _BOM = b"\xef\xbb\xbf"
@@ -120,56 +118,37 @@ def _pdb_lines(path, max_bytes: int):
 
     Lines end with LF, CRLF or CR; a UTF-8 byte-order mark before the first line is
     dropped; text is decoded as Latin-1 (one character per byte, so that the PDB's
-    columns are byte columns).  At most ``_CHUNK`` bytes (plus one unfinished line of
+    columns are byte columns).  At most :data:`~shapelab.io._source.CHUNK` bytes (plus one unfinished line of
     at most ``_MAX_LINE``) are held at a time, and reading stops with a ValueError as
     soon as more than ``max_bytes`` bytes have come out of the file (after
     decompression): a gzip bomb is refused after ``max_bytes``, never held whole.
     """
     name = os.fspath(path)
-    with open(path, "rb") as raw:
-        gz = raw.read(2) == b"\x1f\x8b"
-        raw.seek(0)
-        fh = gzip.GzipFile(fileobj=raw, mode="rb") if gz else raw
-        total, lineno, pending, skip_lf = 0, 0, b"", False
-        while True:
-            try:
-                chunk = fh.read(min(_CHUNK, max_bytes + 1 - total))
-            except (OSError, EOFError, zlib.error) as e:
-                if not gz:
-                    raise
-                raise ValueError(f"{name!r} is not a readable gzip file: {e}") from None
-            if not chunk:
-                break
-            total += len(chunk)
-            over = total > max_bytes
-            if over:  # the lines that end within the limit are still read: END may be one
-                chunk = chunk[: len(chunk) - (total - max_bytes)]
-            if skip_lf and chunk[:1] == b"\n":  # the LF of a CRLF split between two chunks
-                chunk = chunk[1:]
-            data = pending + chunk
-            skip_lf = data[-1:] == b"\r"
-            parts = _EOL.split(data)
-            pending = parts.pop()
-            if len(pending) > _MAX_LINE:
-                raise ValueError(
-                    f"line {lineno + len(parts) + 1} of {name!r} is longer than {_MAX_LINE} characters: not PDB text"
-                )
-            for part in parts:
-                lineno += 1
-                if lineno == 1 and part.startswith(_BOM):
-                    part = part[len(_BOM) :]
-                yield lineno, part.decode("latin-1")
-            if over:
-                what = "decompresses to" if gz else "holds"
-                raise ValueError(
-                    f"{name!r} {what} more than max_bytes={max_bytes} bytes before its first END "
-                    f"(or the ENDMDL of the model read); pass a larger max_bytes= to read it"
-                )
-        if pending:
+    lineno, pending, skip_lf = 0, b"", False
+    for chunk, over in chunks(path, max_bytes):
+        # when over, the lines that end within the limit are still read: END may be one
+        if skip_lf and chunk[:1] == b"\n":  # the LF of a CRLF split between two chunks
+            chunk = chunk[1:]
+        data = pending + chunk
+        skip_lf = data[-1:] == b"\r"
+        parts = _EOL.split(data)
+        pending = parts.pop()
+        if len(pending) > _MAX_LINE:
+            raise ValueError(
+                f"line {lineno + len(parts) + 1} of {name!r} is longer than {_MAX_LINE} characters: not PDB text"
+            )
+        for part in parts:
             lineno += 1
-            if lineno == 1 and pending.startswith(_BOM):
-                pending = pending[len(_BOM) :]
-            yield lineno, pending.decode("latin-1")
+            if lineno == 1 and part.startswith(_BOM):
+                part = part[len(_BOM) :]
+            yield lineno, part.decode("latin-1")
+        if over:
+            raise too_large(path, max_bytes, " before its first END (or the ENDMDL of the model read)")
+    if pending:
+        lineno += 1
+        if lineno == 1 and pending.startswith(_BOM):
+            pending = pending[len(_BOM) :]
+        yield lineno, pending.decode("latin-1")
 
 
 def _check_text(line: str, lineno: int, rec: str, path) -> None:
