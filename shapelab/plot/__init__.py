@@ -10,6 +10,7 @@ the rest of the library.
 ``flow``          the discrete flow in 2D: arrows, sinks, pocket regions
 ``matching``      critical points, Hausdorff witnesses
 ``rotation``      point sets, ICP steps and convergence, rotations in 3D
+``batch``         a batch's summary, volumes along a trajectory
 ``viewer3d``      ``view3d``: an interactive 3Dmol.js view of a molecule and its
                   voids, pockets, mouths and tunnels (HTML, not a Figure), offline
 ================  ==============================================================
@@ -56,6 +57,9 @@ _EXPORTS = {
     "point_sets": "rotation",
     "two_stage": "rotation",
     "displacement": "rotation",
+    # batch.py: many structures, trajectories
+    "batch_summary": "batch",
+    "trajectory_volumes": "batch",
     # viewer3d.py: interactive, in the browser (3Dmol.js), not matplotlib
     "view3d": "viewer3d",
 }

@@ -15,6 +15,8 @@ from .balls import disks as disks
 from .balls import dual_complex as dual_complex
 from .balls import filtration as filtration
 from .balls import power_diagram as power_diagram
+from .batch import batch_summary as batch_summary
+from .batch import trajectory_volumes as trajectory_volumes
 from .flow import discrete_flow as discrete_flow
 from .matching import critical_points as critical_points
 from .matching import critical_surface as critical_surface
@@ -52,6 +54,7 @@ __all__ = [
     "thin_3d_ticks",
     "balls3d",
     "barcode",
+    "batch_summary",
     "betti_curve",
     "channel_profile",
     "complex3d",
@@ -77,6 +80,7 @@ __all__ = [
     "power_diagram",
     "rotation_axis",
     "stability",
+    "trajectory_volumes",
     "tunnels",
     "two_stage",
     "view3d",
