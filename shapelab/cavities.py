@@ -45,18 +45,15 @@ the exact power-cell decomposition for pockets.
 
 from __future__ import annotations
 
-from array import array
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Protocol, runtime_checkable
 
 import numpy as np
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
 
+from ._pockets import OutsideGraph, complement_labels, leaf_run, lining_of, merge_tree, simplex_sizes
 from ._toolkit import tolerances as tol
 from ._toolkit.derived import derived
-from ._toolkit.unionfind import elder_merges
 from ._toolkit.validate import (
     as_finite_scalar,
     as_tau,
@@ -274,12 +271,7 @@ class Pocket:
     @cached_property
     def mouth_size(self) -> float:
         """Total size of the mouth simplices: length in 2D, area in 3D."""
-        c = self.balls.centers[self.mouth]
-        if c.shape[0] == 0:
-            return 0.0
-        if c.shape[1] == 2:
-            return float(np.linalg.norm(c[:, 1] - c[:, 0], axis=1).sum())
-        return float(0.5 * np.linalg.norm(np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0]), axis=1).sum())
+        return float(simplex_sizes(self.balls.centers[self.mouth]).sum())
 
     def __repr__(self) -> str:
         return (
@@ -358,112 +350,6 @@ class Tunnel:
         )
 
 
-# ===================================================================== merge tree
-@dataclass(frozen=True)
-class _Tree:
-    n_cells: int
-    kill_value: np.ndarray  # (n_cells,) value of the facet that seals the void rooted at the cell
-    pos: np.ndarray  # (n_cells + 1,) position of every leaf in the final leaf order
-    order: np.ndarray  # leaf order: every subtree is a contiguous run
-    kill_node: np.ndarray  # (n_cells,) tree node of the component the cell roots when it dies
-    left: np.ndarray  # per merge: child node ids, ...
-    right: np.ndarray
-    value: np.ndarray  # ... the merge value,
-    lo: np.ndarray  # ... and its leaf run [lo, hi)
-    hi: np.ndarray
-
-
-def _build_tree(F) -> _Tree:
-    S = summary(F)
-    k = S.k
-    n = S.values[k].shape[0]
-    N = n + 1
-    u, v = S.cell_dual
-    # machine integers (array 'q'), not lists of Python ints: a ribosome has a
-    # million cells, and a list holds about 36 bytes an entry to the array's 8
-    node = array("q", range(N))
-    head = array("q", range(N))
-    tail = array("q", range(N))
-    nxt = array("q", [-1]) * N
-    age = array("q", range(n, -1, -1))  # reverse time: outside oldest (0), then last cells
-    kill_facet = array("q", [-1]) * n
-    kill_node = array("q", [-1]) * n
-    m_left, m_right, m_head, m_tail, m_facet = (array("q") for _ in range(5))
-
-    def merge(e, a, b, oldest):  # a keeps (older), b dies
-        young = oldest[b]
-        kill_facet[young] = e
-        kill_node[young] = node[b]
-        nxt[tail[a]] = head[b]
-        m_left.append(node[a])
-        m_right.append(node[b])
-        m_head.append(head[a])
-        m_tail.append(tail[b])
-        m_facet.append(e)
-        tail[a] = tail[b]
-        node[a] = N + len(m_left) - 1
-
-    parent, _ = elder_merges(N, u, v, S.pos_facets[::-1], age, merge)
-    root = n
-    while parent[root] != root:
-        root = parent[root]
-    order = array("q")
-    i = head[root]
-    while i != -1:
-        order.append(i)
-        i = nxt[i]
-    order = np.asarray(order, dtype=np.int64)
-    pos = np.empty(N, dtype=np.int64)
-    pos[order] = np.arange(order.shape[0])
-    kf = np.asarray(kill_facet, dtype=np.int64)
-    kill_value = np.where(kf >= 0, S.values[k - 1][np.maximum(kf, 0)], -np.inf) if k >= 1 else np.full(n, -np.inf)
-    mh = np.asarray(m_head, dtype=np.int64)
-    mt = np.asarray(m_tail, dtype=np.int64)
-    return _Tree(
-        n_cells=n,
-        kill_value=kill_value,
-        pos=pos,
-        order=order,
-        kill_node=np.asarray(kill_node, dtype=np.int64),
-        left=np.asarray(m_left, dtype=np.int64),
-        right=np.asarray(m_right, dtype=np.int64),
-        value=S.values[k - 1][np.asarray(m_facet, dtype=np.int64)] if m_facet else np.empty(0),
-        lo=pos[mh] if mh.size else mh,
-        hi=pos[mt] + 1 if mt.size else mt,
-    )
-
-
-def _tree(F) -> _Tree:
-    return derived(F, "cavities.merge_tree", _build_tree)
-
-
-def _run(T: _Tree, node: int):
-    """Leaf run [lo, hi) of a tree node (leaves are 0..n_cells, merges above)."""
-    N = T.n_cells + 1
-    if node < N:
-        p = int(T.pos[node])
-        return p, p + 1
-    m = node - N
-    return int(T.lo[m]), int(T.hi[m])
-
-
-def _complement_labels(F, S, tau: float):
-    """Labels of the components of the complement of K_tau (cells + outside node)."""
-    k = S.k
-    n = S.values[k].shape[0]
-    u, v = S.cell_dual
-    m = S.values[k - 1] > tau
-    g = coo_matrix((np.ones(int(m.sum()), dtype=np.int8), (u[m], v[m])), shape=(n + 1, n + 1))
-    _, lab = connected_components(g, directed=False)
-    free = np.append(S.values[k] > tau, True)
-    return lab, free
-
-
-def _lining(F, cells: np.ndarray, tau: float, vval: np.ndarray) -> np.ndarray:
-    verts = np.unique(cells)
-    return verts[vval[verts] <= tau]
-
-
 def _full_dim(balls, F) -> bool:
     return int(F.dimension) == balls.dim and len(F.values(balls.dim)) > 0
 
@@ -527,10 +413,10 @@ def voids(F, tau=0.0) -> tuple:
     if not _full_dim(balls, F):
         return ()
     S = summary(F)
-    T = _tree(F)
+    T = merge_tree(F)
     k = S.k
     n = S.values[k].shape[0]
-    lab, free = _complement_labels(F, S, tau)
+    lab, free = complement_labels(F, S, tau)
     cells = np.flatnonzero(free[:n] & (lab[:n] != lab[n]))
     if cells.size == 0:
         return ()
@@ -552,7 +438,7 @@ def voids(F, tau=0.0) -> tuple:
             Void(
                 cells=readonly(cv, np.int64),
                 cell_ids=readonly(cid, np.int64),
-                lining=readonly(_lining(F, cv, tau, vval), np.int64),
+                lining=readonly(lining_of(cv, tau, vval), np.int64),
                 born=float(T.kill_value[root]),
                 dies=float(S.values[k][root]),
                 volume=float(max(csum[e] - csum[s], 0.0)),
@@ -564,8 +450,8 @@ def voids(F, tau=0.0) -> tuple:
 
 
 # ======================================================================== pockets
-def pockets(F, tau=0.0, *, min_persistence=0.0) -> tuple:
-    """Pockets by the growth model of Notes §23.1 (Figure 23.2).
+def pockets(F, tau=0.0, *, min_persistence=0.0, method="growth") -> tuple:
+    """Pockets by the growth model of Notes §23.1 (Figure 23.2), or by the discrete flow.
 
     "If we grow the balls ... uniformly, the left pocket will produce a void in the life
     time of the filtration while the right pocket will not."  A pocket at ``tau`` is
@@ -582,12 +468,27 @@ def pockets(F, tau=0.0, *, min_persistence=0.0) -> tuple:
         Growth time at which the pockets are reported (mouths and volumes refer to it).
     min_persistence : float, default 0.0
         Keep pockets with ``fills_at - closes_at >= min_persistence`` (zero-length
-        classes never count).
+        classes never count in the growth model; a flow pocket of persistence 0, a
+        dent that drains now and fills without closing, is kept at 0.0).
+    method : {"growth", "flow"}, default "growth"
+        ``"growth"``: the notes' growth-model pockets (:class:`Pocket`).  ``"flow"``:
+        CASTp's pockets, the regions of the discrete flow on the same regular
+        triangulation that have a mouth (:func:`shapelab.flow_pockets` without its
+        voids), as :class:`shapelab.FlowPocket`.  Both kinds have the same
+        measured attributes (``cells``, ``cell_ids``, ``lining``, ``mouth``,
+        ``mouth_ids``, ``mouth_size``, ``volume``, ``closes_at``, ``fills_at``,
+        ``persistence``) and satisfy the :class:`Cavity` protocol.
 
     Returns
     -------
-    tuple of Pocket
-        Sorted by persistence ``fills_at - closes_at``, largest first.
+    tuple of Pocket or FlowPocket
+        Sorted by persistence ``fills_at - closes_at``, largest first (ties: earlier
+        ``closes_at``, then lower first cell row).
+
+    Raises
+    ------
+    ValueError
+        If ``method`` is not ``"growth"`` or ``"flow"``.
 
     See Also
     --------
@@ -613,14 +514,22 @@ def pockets(F, tau=0.0, *, min_persistence=0.0) -> tuple:
            cavities: measurement of binding site geometry and implications for ligand
            design", *Protein Sci.* 7(9):1884-1897, 1998. doi:10.1002/pro.5560070905
     """
+    if method not in ("growth", "flow"):
+        raise ValueError(f'pockets: method must be "growth" or "flow", got {method!r}')
     F = as_filtration(F, "pockets")
     balls = F.balls
     tau = as_tau(tau)
     mp = as_finite_scalar(min_persistence, "min_persistence", nonnegative=True)
     if not _full_dim(balls, F):
         return ()
+    if method == "flow":
+        from .flow import flow_pockets
+
+        kept = [p for p in flow_pockets(F, tau) if not p.is_void and p.persistence >= mp]
+        kept.sort(key=lambda p: (-p.persistence, p.closes_at, int(p.cell_ids[0])))
+        return tuple(kept)
     S = summary(F)
-    T = _tree(F)
+    T = merge_tree(F)
     k = S.k
     n = S.values[k].shape[0]
     N = n + 1
@@ -630,14 +539,13 @@ def pockets(F, tau=0.0, *, min_persistence=0.0) -> tuple:
     cand = cand[~is_roundoff(F, b[cand], cv[cand])]
     if cand.size == 0:
         return ()
-    lab, _ = _complement_labels(F, S, tau)
+    lab, _ = complement_labels(F, S, tau)
     cand = cand[lab[cand] == lab[n]]
     if cand.size == 0:
         return ()
     simp = np.asarray(F.simplices(k), dtype=np.int64)
     fsimp = np.asarray(F.simplices(k - 1), dtype=np.int64)
-    bnd = np.asarray(F.boundary(k), dtype=np.int64)
-    fval = S.values[k - 1]
+    outside = OutsideGraph(F, tau)
     vval = vertex_values(F, len(balls))
     out = []
     for r in cand.tolist():
@@ -645,13 +553,11 @@ def pockets(F, tau=0.0, *, min_persistence=0.0) -> tuple:
         node = int(T.kill_node[r])
         # merges at exactly the closing value happen at the same time: undo them
         while node >= N and T.value[node - N] <= bb:
-            lo, hi = _run(T, int(T.left[node - N]))
+            lo, hi = leaf_run(T, int(T.left[node - N]))
             node = int(T.left[node - N]) if lo <= T.pos[r] < hi else int(T.right[node - N])
-        lo, hi = _run(T, node)
+        lo, hi = leaf_run(T, node)
         cid = np.sort(T.order[lo:hi])
-        facets = bnd[cid].ravel()
-        uf, cnt = np.unique(facets, return_counts=True)
-        mouth = uf[(cnt == 1) & (fval[uf] > tau)]
+        mouth = outside.mouth(cid)
         cverts = simp[cid]
         out.append(
             Pocket(
@@ -659,7 +565,7 @@ def pockets(F, tau=0.0, *, min_persistence=0.0) -> tuple:
                 cell_ids=readonly(cid, np.int64),
                 mouth=readonly(fsimp[mouth].reshape(-1, k), np.int64),
                 mouth_ids=readonly(mouth, np.int64),
-                lining=readonly(_lining(F, cverts, tau, vval), np.int64),
+                lining=readonly(lining_of(cverts, tau, vval), np.int64),
                 closes_at=bb,
                 fills_at=float(cv[r]),
                 tau=tau,

@@ -95,17 +95,21 @@ not depend on τ and are kept on the filtration.
 from __future__ import annotations
 
 import numbers
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from fractions import Fraction
+from functools import cached_property
 
 import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import breadth_first_order, connected_components
 
+from ._pockets import lining_of, merge_tree, simplex_sizes
 from ._toolkit.derived import derived
 from ._toolkit.tolerances import FILTER_UNDERFLOW
 from ._toolkit.validate import as_tau, readonly
+from ._topology import is_roundoff
 from .filtration import as_filtration
+from .freespace import free_measure, vertex_values
 
 __all__ = ["DiscreteFlow", "FlowPocket", "discrete_flow", "flow_pockets", "flow_side_exact"]
 
@@ -131,16 +135,45 @@ class FlowPocket:
     mouth, mouth_ids : ndarray
         The open facets through which the region meets simplices that flow to
         infinity, or the outside: ball indices, shape (q, d), and rows of
-        ``F.simplices(d-1)``.  Empty for a void.
+        ``F.simplices(d-1)``.  Empty for a void.  These are exactly its openings to the
+        outside in the sense of :class:`shapelab.cavities.Pocket` (a simplex that
+        flows to :math:`\\infty` reaches it through open facets and simplices that
+        flow there too, never through the region), tested.
+    lining : ndarray, int
+        Balls lining the region: vertices of its cells whose balls exist at ``tau``
+        (as for :class:`~shapelab.cavities.Pocket`).
+    closes_at, fills_at : float
+        The pair ``(born, dies)`` of the most persistent growth-model class rooted in
+        the region: the :math:`H_{d-1}` class of the merge tree whose youngest cell (the
+        last to fill) is one of the region's cells.  For a pocket region that is the
+        most persistent growth-model pocket (:func:`shapelab.pockets`) whose void
+        fills last inside it; for a void, the void's own pair (:class:`Void`).  A
+        region of which no part is ever sealed off (a dent that drains now and fills
+        without closing) has ``closes_at = fills_at`` = the time its last cell fills,
+        and persistence 0.
     tau : float
         The growth time of the complex :math:`K_\\tau` the flow was computed on.
+    volume : float
+        Free space of its cells not covered by any ball grown to ``tau`` (area in 2D):
+        the same exact power-cell decomposition as ``Pocket.volume``.
+    mouth_size : float
+        Total size of the mouth facets (length in 2D, area in 3D), as ``Pocket.mouth_size``.
 
     See Also
     --------
     flow_pockets
         Produces them.
+    shapelab.pockets
+        ``pockets(F, tau, method="flow")`` lists the regions with a mouth beside the
+        growth model's pockets.
     shapelab.cavities.Pocket
         The growth model's pocket.
+
+    Notes
+    -----
+    A FlowPocket satisfies the :class:`shapelab.Cavity` protocol (``born``,
+    ``dies``, ``persistence``), so the report, the plots and the ranking take it as
+    they take a growth-model :class:`~shapelab.cavities.Pocket`.
 
     References
     ----------
@@ -155,11 +188,40 @@ class FlowPocket:
     mouth: np.ndarray
     mouth_ids: np.ndarray
     tau: float
+    lining: np.ndarray = field(default_factory=lambda: readonly(np.zeros(0, dtype=np.int64)))
+    closes_at: float = float("nan")
+    fills_at: float = float("nan")
+    balls: object = field(default=None, repr=False)
 
     @property
     def is_void(self) -> bool:
         """``True`` when the region has no mouth: a void (cavity), not a pocket."""
         return len(self.mouth_ids) == 0
+
+    @property
+    def born(self) -> float:
+        """``closes_at`` (the :class:`shapelab.Cavity` protocol)."""
+        return self.closes_at
+
+    @property
+    def dies(self) -> float:
+        """``fills_at`` (the :class:`shapelab.Cavity` protocol)."""
+        return self.fills_at
+
+    @property
+    def persistence(self) -> float:
+        """``fills_at - closes_at``: 0 for a region no part of which is ever sealed off."""
+        return self.fills_at - self.closes_at
+
+    @cached_property
+    def volume(self) -> float:
+        """Free space of the region at ``tau`` (exact power-cell decomposition, as ``Pocket.volume``)."""
+        return float(free_measure(self.balls, self.tau, self.cells).sum())
+
+    @cached_property
+    def mouth_size(self) -> float:
+        """Total size of the mouth facets: length in 2D, area in 3D."""
+        return float(simplex_sizes(self.balls.centers[self.mouth]).sum())
 
     def __repr__(self) -> str:
         kind = "void" if self.is_void else "pocket"
@@ -558,11 +620,15 @@ def discrete_flow(F, tau=0.0) -> DiscreteFlow:
         region[ids] = rank[inv]
         simp = np.asarray(F.simplices(d), dtype=np.int64)
         fsimp = np.asarray(F.simplices(d - 1), dtype=np.int64)
+        cv = np.asarray(F.values(d), dtype=np.float64)
+        kill = merge_tree(F).kill_value
+        vval = vertex_values(F, len(F.balls))
         for k in range(first.size):
             cid = np.flatnonzero(region == k)
             other = nb[cid]
             on_mouth = open_f[B[cid]] & ((other < 0) | (region[np.maximum(other, 0)] != k))
             mouth = np.unique(B[cid][on_mouth])
+            closes, fills = _region_pair(F, cid, cv, kill)
             pockets.append(
                 FlowPocket(
                     cells=readonly(simp[cid], np.int64),
@@ -571,6 +637,10 @@ def discrete_flow(F, tau=0.0) -> DiscreteFlow:
                     mouth=readonly(fsimp[mouth].reshape(-1, d), np.int64),
                     mouth_ids=readonly(mouth, np.int64),
                     tau=tau,
+                    lining=readonly(lining_of(simp[cid], tau, vval), np.int64),
+                    closes_at=closes,
+                    fills_at=fills,
+                    balls=F.balls,
                 )
             )
     return DiscreteFlow(
@@ -583,6 +653,20 @@ def discrete_flow(F, tau=0.0) -> DiscreteFlow:
         region=readonly(region),
         pockets=tuple(pockets),
     )
+
+
+def _region_pair(F, cid, cv, kill):
+    """(closes_at, fills_at) of a flow region: the most persistent merge-tree class
+    rooted at one of its cells (ties: the earlier birth, then the lower row)."""
+    pers = cv[cid] - kill[cid]
+    ok = (pers > 0) & ~is_roundoff(F, kill[cid], cv[cid])
+    if not ok.any():
+        last = float(cv[cid].max())
+        return last, last
+    c = cid[ok]
+    o = np.lexsort((c, kill[c], -(cv[c] - kill[c])))
+    r = int(c[o[0]])
+    return float(kill[r]), float(cv[r])
 
 
 def flow_pockets(F, tau=0.0) -> tuple:
