@@ -26,8 +26,11 @@ Where the computation lives
   the complement that is still connected to the outside at τ but is sealed off into a
   void at a later :math:`\\tau' > \\tau` (``closes_at``), filled at ``fills_at``.  Its
   cells are the cells of that void at the moment it closes; its *mouth* at τ is the
-  set of :math:`(d-1)`-simplices on the boundary of those cells that are not yet in
-  :math:`K_\\tau` -- the openings through which the pocket still talks to the outside.
+  set of :math:`(d-1)`-simplices not in :math:`K_\\tau` through which those cells open
+  to the outside: each has one side in the pocket and the other in the component of
+  :math:`\\infty` of the complement once the pocket's cells are removed.  A face on
+  the pocket's boundary that leads into a crevice of its own wall (free cells reachable
+  from the outside only through the pocket) is no opening (:func:`pockets`, Notes).
   A dent whose cells fill before its mouth closes never becomes a void and is no
   pocket (Figure 23.2, right).  Pockets nest: a pocket's cells can contain the cells
   of a pocket that closes later (the "pocket hierarchy").
@@ -112,7 +115,9 @@ class Cavity(Protocol):
     -----
     Voids and pockets also have a ``volume`` (free space, exact); a tunnel bounds no
     region and has none.  The discrete flow's :class:`shapelab.flow.FlowPocket` is a
-    region at one τ, with no birth or death, and is not a Cavity.
+    region at one τ; its ``born``/``dies`` are those of the most persistent class of
+    the growth model rooted in it (``pockets(F, tau, method="flow")``), so it is a
+    Cavity too.
 
     Examples
     --------
@@ -206,9 +211,13 @@ class Pocket:
         The Delaunay top simplices of the void the pocket becomes, at the moment it
         closes (ball indices, and rows of ``F.simplices(d)``).
     mouth, mouth_ids : ndarray
-        The :math:`(d-1)`-simplices on the boundary of the cells that are not in
-        :math:`K_\\tau`: the openings to the outside at ``tau`` (ball indices, shape
-        (q, d), and rows of ``F.simplices(d-1)``).
+        The openings to the outside at ``tau``: the :math:`(d-1)`-simplices not in
+        :math:`K_\\tau` with one side in the cells and the other in the outside
+        beyond them (the component of :math:`\\infty` of the complement without the
+        cells); not the faces into crevices of the pocket's wall (see
+        :func:`pockets`).  Ball indices, shape (q, d), and rows of ``F.simplices(d-1)``.
+    mouth_size : float
+        Total size of the mouth simplices: length in 2D, area in 3D.
     lining : ndarray, int
         Balls lining the pocket: vertices of its cells whose balls exist at ``tau``.
     closes_at : float
@@ -505,6 +514,30 @@ def pockets(F, tau=0.0, *, min_persistence=0.0, method="growth") -> tuple:
     part of the dent is the pocket is left open.  Here it is the part that gets sealed:
     the cells of the void at the moment it closes.  Nested pockets are all reported.
 
+    **Mouths** (Notes §23.1; CASTp's "mouth openings" [2]_, [3]_).  At ``tau`` the
+    pocket's cells :math:`R` are part of the outside component of the complement of
+    :math:`K_\\tau`.  Glue the free cells and :math:`\\infty` along the faces not in
+    :math:`K_\\tau` and delete :math:`R`: the component of :math:`\\infty` is the rest of
+    the outside, the other components are *crevices*, free cells that reach the outside
+    only through :math:`R`.  The mouth is the set of faces not in :math:`K_\\tau`
+    between :math:`R` and the rest of the outside: the cut that separates the pocket
+    from :math:`\\infty` (every path out leaves :math:`R` for the last time through a
+    mouth face), which is what CASTp calls the mouth: the openings through which a
+    probe in the pocket reaches the bulk solvent.  Two consequences, tested:
+
+    * a face into a crevice of the pocket's wall is no opening: Figure 23.2's flask
+      has one mouth edge, the neck, not the four notches of the chamber's wall whose
+      triangles are not yet in :math:`K_0`;
+    * the mouth need not be what seals the pocket.  In a two-chamber flask the inner
+      pocket (the upper chamber, sealed when the neck to the lower chamber closes) opens
+      to the outside through the flask's neck, as the outer pocket does; the neck to
+      the lower chamber leads into a dead end and is no mouth.  ``closes_at`` is when
+      the pocket becomes a void of its own, which is after its mouth has closed.
+
+    The discrete flow's pockets (``method="flow"``) have mouths by the same
+    definition: a simplex that flows to :math:`\\infty` reaches it without crossing
+    the region, so the flow's mouth (open faces to simplices that flow out) is this cut.
+
     References
     ----------
     .. [1] H. Edelsbrunner, M. Facello and J. Liang, "On the definition and the
@@ -513,6 +546,24 @@ def pockets(F, tau=0.0, *, min_persistence=0.0, method="growth") -> tuple:
     .. [2] J. Liang, H. Edelsbrunner and C. Woodward, "Anatomy of protein pockets and
            cavities: measurement of binding site geometry and implications for ligand
            design", *Protein Sci.* 7(9):1884-1897, 1998. doi:10.1002/pro.5560070905
+    .. [3] T. A. Binkowski, S. Naghibzadeh and J. Liang, "CASTp: Computed Atlas of
+           Surface Topography of proteins", *Nucleic Acids Res.* 31(13):3352-3355, 2003.
+           doi:10.1093/nar/gkg512
+
+    Examples
+    --------
+    Figure 23.2's flask: one pocket, its mouth the neck (the gap of width 2 at the top);
+    the discrete flow's pocket also takes in the notches of the chamber's wall, and has
+    the same mouth and the same free area:
+
+    >>> import shapelab as sl
+    >>> F = sl.alpha_filtration(sl.datasets.figure_23_2()[0])
+    >>> (p,) = sl.pockets(F)
+    >>> p
+    Pocket(cells=9, mouth=1, lining=11, closes_at=0.5775, fills_at=4.3275, tau=0)
+    >>> (q,) = sl.pockets(F, method="flow")
+    >>> len(q.cells), q.mouth_ids.tolist() == p.mouth_ids.tolist(), round(q.volume - p.volume, 12)
+    (13, True, 0.0)
     """
     if method not in ("growth", "flow"):
         raise ValueError(f'pockets: method must be "growth" or "flow", got {method!r}')

@@ -47,7 +47,14 @@ and 3D, from the α-filtration (:func:`shapelab.alpha_filtration`) at one growth
   the collections flowing into the same sink, merged when they share an open facet,
   as in [LEW98]_.  A region's *mouth* is the set of its open facets shared with
   simplices that flow to :math:`\\infty` or with the outside; a region without a
-  mouth is a *void* (a cavity).  These voids are exactly the voids of
+  mouth is a *void* (a cavity).  This is the growth model's definition of a mouth
+  (:func:`shapelab.pockets`, Notes): the faces through which the region opens to the
+  component of :math:`\\infty` once the region is removed, since a simplex that flows
+  to :math:`\\infty` gets there through open facets and simplices that flow there too,
+  never through the region.  Each region is measured as a growth-model pocket is
+  (:class:`FlowPocket`: volume, lining, mouth size, and the pair of the most
+  persistent growth-model class rooted in it), and ``shapelab.pockets(F, tau,
+  method="flow")`` lists the regions with a mouth beside the growth model's pockets.  These voids are exactly the voids of
   :func:`shapelab.voids` (tested): a component of the complement of
   :math:`K_\\tau` that does not reach the outside cannot flow out of itself.
 
