@@ -97,6 +97,33 @@ def parser() -> argparse.ArgumentParser:
         help="van der Waals radius (Å) of elements shapelab.io.VDW_RADII lacks "
         "(Bondi 1964 and Mantina et al. 2009 list none for most transition metals)",
     )
+    rank = ap.add_argument_group("which pockets, in which order (shapelab.report; one file)")
+    rank.add_argument(
+        "--rank",
+        choices=("none", "score"),
+        default="none",
+        help="none: every void and pocket, voids first, by volume (the default, CASTp's table); score: best "
+        "binding-site candidates first (shapelab.ranking.rank_score), small and short-lived ones dropped",
+    )
+    rank.add_argument(
+        "--method",
+        choices=("growth", "flow"),
+        default="growth",
+        help="pocket definition: the notes' growth model (default) or CASTp's discrete flow",
+    )
+    rank.add_argument(
+        "--min-persistence",
+        type=float,
+        metavar="P",
+        help="keep features with death - birth >= P (τ, Å²); default 0, or the ranking's default with --rank score",
+    )
+    rank.add_argument(
+        "--min-volume",
+        type=float,
+        metavar="V",
+        help="keep features with SA volume >= V (Å³); default 0, or the ranking's default with --rank score",
+    )
+    rank.add_argument("--top", type=int, metavar="K", help="keep the first K features only")
     many = ap.add_argument_group("many structures (shapelab.batch.report_batch)")
     many.add_argument(
         "-j",
@@ -132,7 +159,9 @@ def main(argv=None) -> int:
     ``--no-hetatm``/``--hetatm NAME``, ``--water``, ``--hydrogens`` and
     ``--default-radius``; checks the output directory
     (:func:`shapelab.cavity_report.check_output`); then computes
-    ``report(structure, probe)``, writes its files (the PDB file when the format can
+    ``report(structure, probe)`` (with ``--rank score``, ``--method flow``,
+    ``--min-persistence P``, ``--min-volume V`` or ``--top K``: those arguments of
+    :func:`shapelab.report`), writes its files (the PDB file when the format can
     hold it) and prints the Markdown table.  Exit status 2 with a one-line message on
     stderr, and no files, for an unreadable, malformed or empty file, an output
     directory that cannot be written, or a bad option -- all found before any cavity
@@ -171,6 +200,10 @@ def _is_batch(args) -> bool:
 def _run_batch(args) -> int:
     from .batch import report_batch
 
+    if _ranking_options(args):
+        print(f"error: {_ranking_options(args)} apply to one file; the batch reports every feature", file=sys.stderr)
+        return 2
+
     names = [h for h in (args.hetatm or []) if h is not True]
     try:
         summary = report_batch(
@@ -201,6 +234,18 @@ def _run_batch(args) -> int:
         file=sys.stderr,
     )
     return 1 if n["failed"] else 0
+
+
+def _ranking_options(args) -> str:
+    """The ranking and filter options given (other than their defaults), as their flags."""
+    given = [
+        ("--rank", args.rank != "none"),
+        ("--method", args.method != "growth"),
+        ("--min-persistence", args.min_persistence is not None),
+        ("--min-volume", args.min_volume is not None),
+        ("--top", args.top is not None),
+    ]
+    return ", ".join(flag for flag, on in given if on)
 
 
 def _run_report(args) -> int:
@@ -235,7 +280,16 @@ def _run_report(args) -> int:
     except (ValueError, TypeError, OSError) as e:
         return fail(e)
     try:
-        rep = cavity_report.report(s, args.probe, name=stem)
+        rep = cavity_report.report(
+            s,
+            args.probe,
+            name=stem,
+            rank=args.rank,
+            method=args.method,
+            min_persistence=args.min_persistence,
+            min_volume=args.min_volume,
+            top=args.top,
+        )
         paths = rep.write(args.out, stem)
     except (ValueError, TypeError, OSError) as e:
         return fail(e)

@@ -159,7 +159,9 @@ def torus_viewpoints(
 
 def mouth_closing(student) -> CheckResult:
     """Lesson 07: ``student(pocket, balls)`` returns the time at which the pocket's mouth
-    closes, from its mouth edges; checked against ``pocket.closes_at`` on the pockets of
+    closes, from its mouth edges; checked against the entry time in the filtration of
+    its last mouth edge (``pocket.closes_at`` for a pocket that is not nested; the
+    two-chamber flask's inner pocket becomes a hole of its own later) on the pockets of
     Figure 23.2's flask and of the two-chamber flask, then of Figure 23.2's flask with
     radii from 0.9 to 1.1 times its own (seeded): the data sets' disks all have one
     radius, on which :math:`(d/2)^2 - r^2` is right, and the lesson's formula is for two
@@ -178,15 +180,17 @@ def mouth_closing(student) -> CheckResult:
 
     flask = figure_23_2()[0]
     uneven = Balls(flask.centers, flask.radii * np.random.default_rng(0).uniform(0.9, 1.1, len(flask)))
-    cases = []
+    cases, closes = [], {}
     for balls in (flask, nested_pockets(), figure_23_2(disk_radius=0.6)[0], uneven):
-        for p in pockets(alpha_filtration(balls), 0.0, min_persistence=1e-9):
+        F = alpha_filtration(balls)
+        for p in pockets(F, 0.0, min_persistence=1e-9):
             cases.append((p, balls))
+            closes[id(p)] = float(np.max(np.asarray(F.values(1))[p.mouth_ids]))
     return run_check(
         "when a pocket's mouth closes",
         student,
         cases,
-        lambda p, b: p.closes_at,
+        lambda p, b: closes[id(p)],
         describe=lambda case: f"a pocket with {len(case[0].mouth)} mouth edges among {len(case[1])} disks",
     )
 
