@@ -28,6 +28,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ._toolkit.tolerances import LINING_AREA_RTOL
+from ._toolkit.validate import as_finite_scalar, as_positive_int
 
 __all__ = ["CavityRow", "CavityReport", "report", "check_output"]
 
@@ -73,6 +74,9 @@ class CavityRow:
     lining_insertion_codes : tuple of str
         The insertion code of each entry of ``lining_residues`` (``""`` for none);
         empty when built without them, which :meth:`residue_labels` reads as none.
+    score, buriedness, depth, openness : float or None
+        With ``report(..., rank="score")``: the ranking score and the features of
+        :class:`shapelab.ranking.PocketFeatures` it is made of; None otherwise.
 
     See Also
     --------
@@ -95,6 +99,10 @@ class CavityRow:
     lining_atom_names: tuple
     lining_residues: tuple
     lining_insertion_codes: tuple = ()
+    score: float | None = None
+    buriedness: float | None = None
+    depth: float | None = None
+    openness: float | None = None
 
     @property
     def persistence(self) -> float:
@@ -127,6 +135,7 @@ _COLUMNS = (
     "lining_residues",
     "lining_atoms",
 )
+_RANK_COLUMNS = ("score", "buriedness", "depth", "openness")
 
 
 @dataclass(frozen=True)
@@ -145,6 +154,10 @@ class CavityReport:
     structure : object
         The :class:`~shapelab.io.PDBStructure` or :class:`~shapelab.Balls` reported
         on (for the PDB output); not compared.
+    rank : str
+        ``"none"`` (rows in CASTp's order: voids first, each kind by SA volume) or
+        ``"score"`` (rows by :func:`shapelab.ranking.rank_score`, best first, with
+        the ranking's columns in the CSV and Markdown outputs).
 
     See Also
     --------
@@ -159,6 +172,7 @@ class CavityReport:
     name: str
     tau: float = 0.0
     structure: object = field(default=None, compare=False, repr=False)
+    rank: str = "none"
 
     def __len__(self) -> int:
         return len(self.rows)
@@ -177,8 +191,10 @@ class CavityReport:
     def _csv_text(self) -> str:
         buf = _stdio.StringIO()
         w = csv.writer(buf, lineterminator="\n")
-        w.writerow(_COLUMNS)
+        ranked = self.rank != "none"
+        w.writerow(_COLUMNS + (_RANK_COLUMNS if ranked else ()))
         for r in self.rows:
+            extra = [f"{getattr(r, c):.6f}" for c in _RANK_COLUMNS] if ranked else []
             w.writerow(
                 [
                     r.kind,
@@ -197,6 +213,7 @@ class CavityReport:
                     " ".join(r.residue_labels()),
                     " ".join(str(i) for i in r.lining_atoms),
                 ]
+                + extra
             )
         return buf.getvalue()
 
@@ -219,12 +236,21 @@ class CavityReport:
             "| birth | death | lining atoms | lining residues |",
             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|",
         ]
+        if self.rank != "none":
+            lines[2] += (
+                f"  Ranked by {self.rank} (shapelab.ranking.rank_score), best first; "
+                "score, buriedness (share of blocked directions), depth (Å) and openness last."
+            )
+            lines[4] += " score | buried | depth | open |"
+            lines[5] += "---:|---:|---:|---:|"
         for r in self.rows:
             lines.append(
                 f"| {r.kind} | {r.id} | {r.volume_sa:.2f} | {r.area_sa:.2f} | {r.volume_vdw:.2f} "
                 f"| {r.area_vdw:.2f} | {r.mouths} | {r.mouth_area:.2f} | {r.mouth_perimeter:.2f} "
                 f"| {r.birth:.3f} | {r.death:.3f} | {len(r.lining_atoms)} | {' '.join(r.residue_labels())} |"
             )
+            if self.rank != "none":
+                lines[-1] += f" {r.score:.3f} | {r.buriedness:.2f} | {r.depth:.1f} | {r.openness:.2f} |"
         return "\n".join(lines) + "\n"
 
     def _marks(self):
@@ -511,7 +537,18 @@ def _contacts_of(rows, first, by_cell):
     return np.sort(by_cell[at])
 
 
-def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> CavityReport:
+def report(
+    structure,
+    probe=1.4,
+    *,
+    tau=0.0,
+    min_persistence=None,
+    name=None,
+    rank="none",
+    min_volume=None,
+    top=None,
+    method="growth",
+) -> CavityReport:
     """Voids and pockets of a molecule, measured as CASTp does (Notes §23.1).
 
     The cavities are found in the solvent-accessible (SA) model, balls of radius
@@ -548,10 +585,26 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
     tau : float, default 0.0
         Growth time of the SA model at which cavities are found and measured (the
         vdW model is always measured as given).
-    min_persistence : float, default 0.0
-        Keep features with ``death - birth >= min_persistence``.
+    min_persistence : float, optional
+        Keep features with ``death - birth >= min_persistence``.  Default 0 with
+        ``rank="none"``, :data:`shapelab.ranking.DEFAULT_MIN_PERSISTENCE` with
+        ``rank="score"``.
     name : str, optional
         Name shown in the outputs (default ``"structure"``).
+    rank : {"none", "score"}, default "none"
+        ``"none"``: every feature, in CASTp's order (voids first, each kind by SA
+        volume, largest first), as before rankings existed.  ``"score"``: voids and
+        pockets together, best first by :func:`shapelab.ranking.rank_score` (what
+        predicts a binding site), with its filters' defaults and four more columns
+        (score, buriedness, depth, openness); ids follow the rank, 1 the best.
+    min_volume : float, optional
+        Keep features with SA volume ``>= min_volume`` (Å³).  Default 0 with
+        ``rank="none"``, :data:`shapelab.ranking.DEFAULT_MIN_VOLUME` with ``rank="score"``.
+    top : int, optional
+        Keep at most this many features, the first in the report's order (default all).
+    method : {"growth", "flow"}, default "growth"
+        The pocket definition (:func:`shapelab.pockets`): the notes' growth model or
+        CASTp's discrete flow.  Both are measured, filtered and ranked alike.
 
     Returns
     -------
@@ -563,7 +616,9 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
         ``probe`` is not a real number, or ``structure`` is neither a
         PDBStructure nor Balls.
     ValueError
-        ``probe`` negative or not finite; balls not 3-dimensional.
+        ``probe`` negative or not finite; balls not 3-dimensional; ``rank`` not
+        ``"none"`` or ``"score"``; ``method`` not ``"growth"`` or ``"flow"``; a
+        filter negative or not finite, ``top`` below 1.
 
     See Also
     --------
@@ -573,9 +628,17 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
         The pockets.
     shapelab.io.read_structure
         Reads a structure (PDB or mmCIF) as balls.
+    shapelab.ranking.rank_score
+        The score of ``rank="score"``.
 
     Notes
     -----
+    *Which pocket is the site.*  A protein has hundreds of pockets, most of them
+    dents between a few atoms.  ``rank="score"`` orders them by
+    :func:`shapelab.ranking.rank_score` and drops the smallest and least
+    persistent by default; its defaults were chosen on the development split of
+    the pocket benchmark only (``benchmarks/results/pocket_ranking_dev.md``).
+
     *Same as CASTp.*  Cavities are regions of empty Delaunay cells of the SA model:
     CASTp's voids are exactly the bounded components of the complement of the SA
     union found through the α-shape; SA volumes and areas are of the space a probe
@@ -624,7 +687,20 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
     from .filtration import alpha_filtration
     from .freespace import free_area, free_space
     from .io import PDBStructure
+    from .ranking import DEFAULT_MIN_PERSISTENCE, DEFAULT_MIN_VOLUME, pocket_features, rank_order, rank_score
 
+    if method not in ("growth", "flow"):
+        raise ValueError(f"method must be 'growth' or 'flow', got {method!r}")
+    if rank not in ("none", "score"):
+        raise ValueError(f"rank must be 'none' or 'score', got {rank!r}")
+    if min_persistence is None:
+        min_persistence = 0.0 if rank == "none" else DEFAULT_MIN_PERSISTENCE
+    if min_volume is None:
+        min_volume = 0.0 if rank == "none" else DEFAULT_MIN_VOLUME
+    min_persistence = as_finite_scalar(min_persistence, "min_persistence", nonnegative=True)
+    min_volume = as_finite_scalar(min_volume, "min_volume", nonnegative=True)
+    if top is not None:
+        top = as_positive_int(top, "top")
     if isinstance(probe, (bool, np.bool_)) or not isinstance(probe, (int, float, np.integer, np.floating)):
         raise TypeError(f"probe must be a real number (Å), got {type(probe).__name__}")
     probe = float(probe)
@@ -645,7 +721,7 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
     sa = Balls(balls.centers, vdw.radii + probe)
     F = alpha_filtration(sa)
     V = [v for v in find_voids(F, tau) if v.persistence >= min_persistence]
-    P = list(find_pockets(F, tau, min_persistence=min_persistence))
+    P = list(find_pockets(F, tau, min_persistence=min_persistence, method=method))
     feats = [("void", v, v.born, v.dies) for v in V] + [("pocket", p, p.closes_at, p.fills_at) for p in P]
 
     ids = np.unique(np.concatenate([f.cell_ids for _, f, _, _ in feats])) if feats else np.zeros(0, np.int64)
@@ -711,9 +787,34 @@ def report(structure, probe=1.4, *, tau=0.0, min_persistence=0.0, name=None) -> 
                 lining_insertion_codes=codes,
             )
         )
-    raw.sort(key=lambda d: (d["kind"] != "void", -d["volume_sa"]))
+    if rank == "none":
+        raw.sort(key=lambda d: (d["kind"] != "void", -d["volume_sa"]))
+        if min_volume > 0:
+            raw = [d for d in raw if d["volume_sa"] >= min_volume]
+        raw = raw[:top]
+    else:
+        feat = pocket_features(
+            vdw,
+            [d["lining_atoms"] for d in raw],
+            volume=[d["volume_sa"] for d in raw],
+            area=[d["area_sa"] for d in raw],
+            mouth_area=[d["mouth_area"] for d in raw],
+            persistence=[d["death"] - d["birth"] for d in raw],
+        )
+        score = rank_score(feat)
+        order = rank_order(feat, min_persistence=0.0, min_volume=min_volume, top=top)
+        raw = [
+            dict(
+                raw[k],
+                score=float(score[k]),
+                buriedness=float(feat.buriedness[k]),
+                depth=float(feat.depth[k]),
+                openness=float(feat.openness[k]),
+            )
+            for k in order.tolist()
+        ]
     rows = tuple(CavityRow(id=k + 1, **d) for k, d in enumerate(raw))
-    return CavityReport(rows=rows, probe=probe, name=name, tau=float(tau), structure=structure)
+    return CavityReport(rows=rows, probe=probe, name=name, tau=float(tau), structure=structure, rank=rank)
 
 
 # ============================================================ not a program
