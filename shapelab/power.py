@@ -23,9 +23,14 @@ Implementation notes
   a floating-point filter, then Python integers on the input's own binary values
   where the filter cannot decide; ties broken by Simulation of Simplicity on the
   heights, by input order): a tiling of the hull, every interior facet locally
-  regular, every ball left out hidden.  Where the certificate fails (co-spherical
-  cages, grids, lattices with round-off noise, nearly flat simplices) the exact
-  incremental algorithm of :mod:`shapelab.exact.incremental` computes the triangulation.
+  regular, every ball left out hidden.  Where the certificate fails, the failure is
+  repaired *locally* (:func:`shapelab.exact.certify.repair`): the simplices that fail
+  and their neighbourhood are re-triangulated by the exact incremental algorithm of
+  :mod:`shapelab.exact.incremental` on their points alone, stitched in, and the whole
+  is certified again (rounded coordinates, exact translates in a water box, a grid
+  patch).  Where the failures are everywhere (co-spherical cages, grids, lattices
+  with round-off noise) or the repair does not certify, the exact incremental
+  algorithm computes the whole triangulation.
   Either way the result is the unique regular triangulation of the perturbed input:
   the same on every CPU, BLAS and Qhull build.  :func:`triangulation_report` says
   which road was taken.
@@ -84,7 +89,7 @@ from ._toolkit.validate import (
     default_bbox,
 )
 from .balls import Balls
-from .exact.certify import certify, facet_adjacency
+from .exact.certify import certify, facet_adjacency, repair
 from .exact.incremental import incremental_triangulation
 from .exact.predicates import WeightedPoints, affine_basis, det, projection_axes
 
@@ -298,14 +303,20 @@ class TriangulationReport:
     Attributes
     ----------
     method : str
-        ``"qhull"`` (Qhull's lower hull passed the exact certificate) or
-        ``"incremental"`` (it did not, or Qhull failed, and the exact incremental
-        algorithm of :mod:`shapelab.exact.incremental` computed it).
+        ``"qhull"`` (Qhull's lower hull passed the exact certificate),
+        ``"repaired"`` (it did not; the simplices that failed and their neighbourhood
+        were re-triangulated exactly, :func:`shapelab.exact.certify.repair`, and the
+        result passed the certificate) or ``"incremental"`` (the local repair did not
+        certify either, or Qhull failed, and the exact incremental algorithm of
+        :mod:`shapelab.exact.incremental` computed the whole triangulation).
     reason : str
-        Why Qhull's answer was rejected ("" if it was not).
+        Why Qhull's answer was rejected ("" if it was not); for ``"incremental"``
+        after a failed repair it ends with "the local repair did not certify".
     counts : dict
         Tests decided by the floating-point filter and exactly, ties broken by
-        Simulation of Simplicity.
+        Simulation of Simplicity; after a repair also ``attempts``,
+        ``cavity_simplices`` and ``cavity_points`` (the size of the re-triangulated
+        region).
 
     See Also
     --------
@@ -341,6 +352,12 @@ def _certified(balls: Balls, fr: _Frame):
             if cert.ok:
                 return simp.astype(np.int32), cert.neighbors, TriangulationReport("qhull", "", dict(P.stats))
             reason = cert.reason
+            fixed = repair(P, simp, nbr, order=perm)
+            if fixed is not None:
+                simp, cert, info = fixed
+                counts = {**P.stats, **info}
+                return simp.astype(np.int32), cert.neighbors, TriangulationReport("repaired", reason, counts)
+            reason += "; the local repair did not certify"
     order = np.argsort(fr.x[:, 0], kind="stable") if fr.k == 1 else morton_order(fr.x, min_n=0)
     simp = incremental_triangulation(P, order).astype(np.int32)
     nbr, _ = facet_adjacency(simp)

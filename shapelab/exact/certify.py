@@ -35,9 +35,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._toolkit.tolerances import COVER_PREFILTER
+from .incremental import incremental_triangulation
 from .predicates import WeightedPoints, det
 
-__all__ = ["Certificate", "certify", "facet_adjacency"]
+__all__ = ["Certificate", "certify", "facet_adjacency", "failing_simplices", "repair"]
 
 
 @dataclass(frozen=True)
@@ -401,3 +402,402 @@ def _count_cover(P: WeightedPoints, simp, s) -> int:
                 break
         count += inside
     return count
+
+
+# ----------------------------------------------------------------------------------
+# Local repair
+# ----------------------------------------------------------------------------------
+# Local repair of a candidate regular triangulation (Notes §23.1).
+#
+# Where Qhull's floating-point lower hull fails its exact certificate
+# (:mod:`shapelab.exact.certify`), the failure is usually *local*: a few flat
+# tetrahedra where Qhull triangulated a merged facet of exactly co-planar or
+# co-spherical centres (coordinates rounded to 0.001 Å), a few facets that are not
+# locally regular under Simulation of Simplicity.  Instead of recomputing the whole
+# triangulation with the exact incremental algorithm, :func:`repair` re-triangulates
+# only a *cavity* around the failures:
+#
+# 1. :func:`failing_simplices` marks the simplices that break a local condition of the
+#    certificate: zero volume, a facet in more than two simplices, two simplices on the
+#    same side of their common facet, a facet that is not locally regular, a boundary
+#    facet that is not convex, a ball left out that is not hidden (or lies outside);
+# 2. the cavity is these simplices, then with their neighbours across a facet, then
+#    grown by one ring of vertex stars per further attempt;
+# 3. the regular triangulation of the cavity's vertices (and of the balls left out that
+#    lie in it) is computed by the exact incremental algorithm
+#    (:func:`shapelab.exact.incremental.incremental_triangulation`) with the *same*
+#    predicates and the same symbolic perturbation as the global one;
+# 4. its simplices inside the cavity (a flood fill from the cavity's boundary facets,
+#    each of which must appear in it) replace the cavity;
+# 5. the stitched triangulation is certified again, whole.
+#
+# Because the final certificate is the same complete, exact test, a repaired answer
+# that passes it *is* the unique regular triangulation of the perturbed input: the one
+# the whole-input exact road computes.  If no attempt certifies, :func:`repair` returns
+# ``None`` and the caller falls back to the whole-input exact road.
+
+
+def failing_simplices(P: WeightedPoints, simp: np.ndarray, order=None, neighbors=None):
+    """The simplices of a candidate triangulation that break a local condition of
+    the certificate (Notes §23.1).
+
+    Parameters
+    ----------
+    P : WeightedPoints
+        The weighted centres and their exact predicates.
+    simp : ndarray of int, shape (m, k+1)
+        Candidate top simplices, vertices ascending in each row.
+    order : array of int, optional
+        A spatially coherent order of the points (speeds up locating the balls left
+        out).
+    neighbors : ndarray of int, shape (m, k+1), optional
+        A neighbour relation that came with the candidate (Qhull's); used, after the
+        check of :func:`certify`, instead of sorting the facets.
+
+    Returns
+    -------
+    bad : ndarray of bool, shape (m,)
+        Simplices with zero volume, with a facet in more than two simplices, on the
+        same side of a common facet as their neighbour, across a facet that is not
+        locally regular, owning a boundary facet that is not convex, or containing
+        (or next to) a ball left out that is not hidden.
+    nbr : ndarray of int32, shape (m, k+1)
+        The facet adjacency of ``simp`` (:func:`facet_adjacency`).
+    pos : ndarray of int32, shape (m, k+1)
+        For an interior facet, its column in the neighbour's row (else -1).
+
+    See Also
+    --------
+    repair
+        Re-triangulates the neighbourhood of these simplices.
+    shapelab.exact.certify.certify
+        The complete check; a candidate with no failing simplex can still fail it
+        (a boundary that is not closed, a double cover).
+    """
+    simp = np.asarray(simp, dtype=np.int64)
+    m, w = simp.shape
+    k = w - 1
+    given = None if neighbors is None or k < 1 or m == 0 else _verified_neighbors(simp, neighbors)
+    nbr, pos = given if given is not None else facet_adjacency(simp)
+    bad = np.zeros(m, dtype=bool)
+    if m == 0 or k < 1:
+        return bad, nbr, pos
+    bad |= np.any(nbr == -2, axis=1)
+    s = P.orient(simp).astype(np.int64)
+    bad |= s == 0
+    t1, i1 = np.nonzero(nbr >= 0)
+    keep = t1 < nbr[t1, i1]
+    t1, i1 = t1[keep], i1[keep]
+    t2, i2 = nbr[t1, i1].astype(np.int64), pos[t1, i1].astype(np.int64)
+    par = lambda i: 1 - 2 * (i % 2)  # noqa: E731
+    good = (s[t1] != 0) & (s[t2] != 0)
+    over = good & (s[t1] * par(i1) != -s[t2] * par(i2))
+    bad[t1[over]] = True
+    bad[t2[over]] = True
+    g = np.flatnonzero(good & ~over)
+    if g.size:
+        rows = np.concatenate([simp[t1[g]], simp[t2[g], i2[g]][:, None]], axis=1)
+        pw = P.power(rows).astype(np.int64) * s[t1[g]]
+        nr = g[pw <= 0]
+        bad[t1[nr]] = True
+        bad[t2[nr]] = True
+    # boundary facets: convex at every ridge (only where both facets' simplices are sane)
+    bt, bi = np.nonzero(nbr == -1)
+    if k >= 2 and bt.size:
+        cols = np.array([[c for c in range(w) if c != i] for i in range(w)])
+        F = np.take_along_axis(simp[bt], cols[bi], axis=1)
+        apex = simp[bt, bi]
+        rc = [[c for c in range(k) if c != j] for j in range(k)]
+        R = np.concatenate([F[:, c] for c in rc])
+        own = np.tile(np.arange(F.shape[0]), k)
+        extra = np.concatenate([F[:, j] for j in range(k)])
+        ordr, inv, cnt = _group(_row_keys(R, P.n))
+        # ridges in other than two boundary facets: their simplices are bad
+        odd = cnt[inv] != 2
+        bad[bt[own[odd]]] = True
+        pairs = np.flatnonzero(cnt == 2)
+        if pairs.size:
+            starts = np.searchsorted(inv[ordr], pairs)
+            a, b = ordr[starts], ordr[starts + 1]
+            f1, u1, v2 = own[a], extra[a], extra[b]
+            a1 = apex[f1]
+            o_in = P.orient(np.c_[F[f1], a1]).astype(np.int64)
+            o_v = P.orient(np.c_[F[f1], v2]).astype(np.int64)
+            nc = (o_v == -o_in) | (o_in == 0)
+            flat = np.flatnonzero((o_v == 0) & (o_in != 0))
+            if flat.size:  # co-planar neighbours must not fold over each other
+                ridge = R[a[flat]]
+                ou = P.orient(np.c_[ridge, a1[flat], u1[flat]]).astype(np.int64)
+                ov = P.orient(np.c_[ridge, a1[flat], v2[flat]]).astype(np.int64)
+                nc[flat[ou * ov >= 0]] = True
+            bad[bt[f1[nc]]] = True
+            bad[bt[own[b][nc]]] = True
+    # balls left out: inside and hidden
+    present = np.zeros(P.n, dtype=bool)
+    present[simp.ravel()] = True
+    q = np.flatnonzero(~present)
+    if q.size:
+        ok = ~bad & (s != 0)
+        sane = np.flatnonzero(ok)
+        start = _start_simplices(P, simp, q, order)
+        loc = np.full(q.size, -1, dtype=np.int64)
+        if sane.size:
+            # walk in the sane part only (the walk needs consistent orientations)
+            sub = simp[sane]
+            remap = np.full(m, -1, dtype=np.int64)
+            remap[sane] = np.arange(sane.size)
+            nb2 = np.where(nbr >= 0, remap[np.maximum(nbr, 0)], -1)[sane].astype(np.int32)
+            st = remap[start]
+            okst = st >= 0
+            if okst.any():
+                loc[okst] = sane[_locate_safe(P, sub, nb2, s[sane], q[okst], st[okst])]
+        inside = loc >= 0
+        if inside.any():
+            li = loc[inside]
+            hp = P.power(np.c_[simp[li], q[inside]]).astype(np.int64) * s[li]
+            bad[li[hp <= 0]] = True
+        # not located (outside, or walked into a failure): the simplices at its start
+        bad[start[~inside]] = True
+    return bad, nbr, pos
+
+
+def _locate_safe(P, simp, nbr, s, q, start):
+    out = _locate(P, simp, nbr, s, q, start)
+    return np.where(out >= 0, out, -1)
+
+
+def _grow(simp: np.ndarray, nbr: np.ndarray, mask: np.ndarray, n: int, attempt: int) -> np.ndarray:
+    """The cavity of attempt 0, 1, 2, ...: the ``mask`` simplices, then with their
+    facet neighbours, then grown by the stars of the vertices of the previous one."""
+    out = mask.copy()
+    if attempt == 0:
+        return out
+    nb = nbr[out]
+    out[nb[nb >= 0]] = True
+    for _ in range(attempt - 1):
+        vm = np.zeros(n, dtype=bool)
+        vm[simp[out].ravel()] = True
+        out = np.any(vm[simp], axis=1)
+    return out
+
+
+def _inside_part(P, simp, nbr, pos, cav, comp, local):
+    """The simplices of ``local`` (the regular triangulation of the points of the
+    cavity component ``comp``, simplex ids) that lie in it, and its links across the
+    component's boundary facets ``(seed, seed column, kept simplex, kept column)``;
+    ``None`` if a boundary facet is not a facet of ``local`` or the flood fill from
+    the boundary leaks out of the component."""
+    m, w = local.shape
+    if m == 0:
+        return None
+    lnbr, lpos = facet_adjacency(local)
+    cn = nbr[comp].astype(np.int64)
+    r, cc = np.nonzero((cn >= 0) & ~cav[np.maximum(cn, 0)])
+    ct = comp[r]
+    if ct.size == 0:
+        z = np.zeros(0, dtype=np.int64)
+        return np.arange(m), z, z, z, z
+    kt = nbr[ct, cc].astype(np.int64)
+    kc = pos[ct, cc].astype(np.int64)
+    cols = np.array([[c for c in range(w) if c != i] for i in range(w)])
+    F = np.take_along_axis(simp[ct], cols[cc], axis=1)
+    lf = np.concatenate([local[:, c] for c in cols])
+    keys_l = _row_keys(lf, P.n)
+    keys_f = _row_keys(F, P.n)
+    srt = np.argsort(keys_l, kind="stable")
+    ks = keys_l[srt]
+    a = np.minimum(np.searchsorted(ks, keys_f), ks.size - 1)
+    if not np.all(ks[a] == keys_f):
+        return None
+    t_a, c_a = srt[a] % m, srt[a] // m
+    # the local simplex on the cavity's side of the facet (the side of its apex)
+    o_cav = P.orient(np.c_[F, simp[ct, cc]]).astype(np.int64)
+    o_a = P.orient(np.c_[F, local[t_a, c_a]]).astype(np.int64)
+    other = lnbr[t_a, c_a].astype(np.int64)
+    opos = lpos[t_a, c_a].astype(np.int64)
+    same = o_a == o_cav
+    seed = np.where(same, t_a, other)
+    sc = np.where(same, c_a, opos)
+    outside = np.where(same, other, t_a)
+    if np.any(seed < 0) or np.any(o_cav == 0):
+        return None
+    blocked = np.zeros((m, w), dtype=bool)
+    blocked[seed, sc] = True
+    inside = np.zeros(m, dtype=bool)
+    stack = np.unique(seed).tolist()
+    inside[stack] = True
+    L = lnbr.tolist()
+    B = blocked.tolist()
+    while stack:
+        t = stack.pop()
+        row, brow = L[t], B[t]
+        for j in range(w):
+            u = row[j]
+            if u >= 0 and not brow[j] and not inside[u]:
+                inside[u] = True
+                stack.append(u)
+    outside = outside[outside >= 0]
+    if inside[outside].any():
+        return None
+    return np.flatnonzero(inside), seed, sc, kt, kc
+
+
+def _assemble(simp, nbr, cav, parts):
+    """The kept simplices and the inside parts of the cavity's components'
+    triangulations, with their neighbour relation."""
+    kept = np.flatnonzero(~cav)
+    nk = kept.size
+    old_id = np.full(simp.shape[0], -1, dtype=np.int64)
+    old_id[kept] = np.arange(nk)
+    kn = nbr[kept].astype(np.int64)
+    rows, nbrs = [simp[kept].astype(np.int64)], [np.where(kn >= 0, old_id[np.maximum(kn, 0)], -1)]
+    links = []
+    off = nk
+    for local, (ins, seed, sc, kt, kc) in parts:
+        lnbr = facet_adjacency(local)[0]
+        loc_id = np.full(local.shape[0], -1, dtype=np.int64)
+        loc_id[ins] = off + np.arange(ins.size)
+        ln = lnbr[ins].astype(np.int64)
+        rows.append(local[ins])
+        nbrs.append(np.where(ln >= 0, loc_id[np.maximum(ln, 0)], -1))
+        links.append((loc_id[seed], sc, old_id[kt], kc))
+        off += ins.size
+    new = np.concatenate(rows)
+    nn = np.concatenate(nbrs)
+    for a, ac, b, bc in links:  # across the cavity's boundary
+        nn[b, bc] = a
+        nn[a, ac] = b
+    return new, nn.astype(np.int32)
+
+
+def _components(simp, mask, n):
+    """The simplices of ``mask`` grouped by connected component (sharing a vertex)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    ids = np.flatnonzero(mask)
+    w = simp.shape[1]
+    rows = np.repeat(np.arange(ids.size), w)
+    g = coo_matrix((np.ones(rows.size), (rows, simp[ids].ravel())), shape=(ids.size, n)).tocsr()
+    nc, lab = connected_components(g @ g.T, directed=False)
+    order = np.argsort(lab, kind="stable")
+    cuts = np.flatnonzero(np.diff(lab[order])) + 1
+    return np.split(ids[order], cuts)
+
+
+def repair(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None, attempts: int = 4, max_fraction=0.25):
+    """Repair a candidate regular triangulation locally (Notes §23.1).
+
+    Parameters
+    ----------
+    P : WeightedPoints
+        The weighted centres and their exact predicates.
+    simp : ndarray of int, shape (m, k+1)
+        The candidate (Qhull's lower hull), vertices ascending in each row.
+    neighbors : ndarray of int, shape (m, k+1), optional
+        Qhull's neighbour relation of the candidate (checked before use).
+    order : array of int, optional
+        A spatially coherent order of all points (Morton), for the insertions and the
+        point location.
+    attempts : int
+        Cavities tried: the failing simplices, then with their facet neighbours, then
+        grown by one ring of vertex stars at a time.
+    max_fraction : float
+        Give up (return ``None``) when a cavity holds more than this fraction of the
+        points: re-triangulating most of the input locally costs as much as the whole.
+
+    Returns
+    -------
+    (simp, certificate, info) or None
+        The certified triangulation, its :class:`~shapelab.exact.certify.Certificate`
+        and a dict (``attempts``, ``cavity_simplices``, ``cavity_points``); ``None``
+        if no attempt certifies (the caller then runs the whole-input exact road).
+
+    See Also
+    --------
+    failing_simplices
+        Where the cavity starts.
+    shapelab.exact.incremental.incremental_triangulation
+        Re-triangulates the cavity, and the whole input if this fails.
+    shapelab.exact.certify.certify
+        Decides whether the repaired triangulation is the regular one.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner and N. R. Shah, "Incremental topological flipping works for
+           regular triangulations", *Algorithmica* 15:223-241, 1996.
+           doi:10.1007/BF01975867
+    .. [2] H. Edelsbrunner and E. P. Mücke, "Simulation of Simplicity: a technique to
+           cope with degenerate cases in geometric algorithms", *ACM Trans. Graph.*
+           9(1):66-104, 1990. doi:10.1145/77635.77639
+    """
+    simp = np.asarray(simp, dtype=np.int64)
+    m, w = simp.shape
+    if m == 0 or w < 2:
+        return None
+    bad, nbr, pos = failing_simplices(P, simp, order, neighbors)
+    if not bad.any():
+        return None  # nothing local to repair: the failure is global
+    n = P.n
+    present = np.zeros(n, dtype=bool)
+    present[simp.ravel()] = True
+    missing = np.flatnonzero(~present)
+    rank = None
+    if order is not None and len(order) == n:
+        rank = np.empty(n, dtype=np.int64)
+        rank[np.asarray(order)] = np.arange(n)
+    cav = bad.copy()
+    grow = bad.copy()
+    done: dict = {}
+    for attempt in range(attempts):
+        if attempt:
+            cav |= _grow(simp, nbr, grow, n, 1 if attempt == 1 else 2)
+        vm = np.zeros(n, dtype=bool)
+        vm[simp[cav].ravel()] = True
+        if np.all(cav) or np.count_nonzero(vm) > max_fraction * n:
+            return None  # not local: the whole-input road is as fast
+        near = _missing_near(P, simp, missing) if missing.size else None
+        parts, grow = [], np.zeros(m, dtype=bool)
+        npts = 0
+        for comp in _components(simp, cav, n):
+            key = comp.tobytes()
+            if key not in done:
+                pts = np.unique(simp[comp])
+                if near is not None:
+                    vc = np.zeros(n, dtype=bool)
+                    vc[pts] = True
+                    pts = np.union1d(pts, missing[vc[near]])
+                pts = pts[np.argsort(rank[pts], kind="stable")] if rank is not None else pts
+                try:
+                    local = incremental_triangulation(P, pts)
+                    part = _inside_part(P, simp, nbr, pos, cav, comp, local)
+                except ValueError:  # the component's points are flat
+                    part = None
+                done[key] = (local, part, pts.size) if part is not None else None
+            got = done[key]
+            if got is None:
+                grow[comp] = True
+            else:
+                parts.append(got[:2])
+                npts += got[2]
+        if grow.any():
+            continue
+        new, nn = _assemble(simp, nbr, cav, parts)
+        cert = certify(P, new, nn, order=order)
+        if cert.ok:
+            info = {"attempts": attempt + 1, "cavity_simplices": int(cav.sum()), "cavity_points": int(npts)}
+            return new, cert, info
+        grow = cav.copy()
+    return None
+
+
+def _missing_near(P, simp, missing):
+    """The nearest vertex of ``simp`` to each ball left out: a ball left out takes
+    part in the re-triangulation of the cavity that holds its nearest vertex."""
+    from scipy.spatial import cKDTree
+
+    present = np.zeros(P.n, dtype=bool)
+    present[simp.ravel()] = True
+    verts = np.flatnonzero(present)
+    _, j = cKDTree(P.u[verts]).query(P.u[missing])
+    return verts[j]
