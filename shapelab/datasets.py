@@ -18,6 +18,7 @@ in arbitrary units for the 2D figure inputs.
 :func:`mixed_dent`     2D: a dent that is a pocket for one growth model only
 :func:`example_pdb`    path of the shipped example PDB file (the globule)
 :func:`structure`      a shipped *real* protein structure by name (see below)
+:func:`trajectory_files`  a shipped MD trajectory: topology and coordinates files
 ====================  =========================================================
 
 Real structures
@@ -74,6 +75,7 @@ __all__ = [
     "StructureInfo",
     "structure",
     "structure_path",
+    "trajectory_files",
     "noisy_sphere",
     "blob_curve",
     "ellipse_curve",
@@ -1043,6 +1045,66 @@ def structure(name: str, **kwargs):
     options = dict(STRUCTURES[name.strip().lower()].read)
     options.update(kwargs)
     return read_pdb(path, **options)
+
+
+def trajectory_files(name: str = "adk-dims") -> tuple[Path, Path]:
+    """The files of a shipped molecular-dynamics trajectory: (topology, trajectory) paths.
+
+    One trajectory is shipped, ``"adk-dims"``: adenylate kinase of *E. coli* going from
+    its closed to its open conformation along a DIMS transition path (dynamic importance
+    sampling, a biased simulation that is pushed towards the target, not equilibrium
+    dynamics; Beckstein et al. 2009).  It is every 4th of the 98 frames of
+    ``adk_dims.dcd`` of MDAnalysisTests 2.11.0 (shipped frame *i* is source frame 4*i*),
+    heavy atoms only (1656), coordinates as the source stores them: a gzipped PDB
+    topology (elements added) and a DCD.  How it was made and the sha256 of the source
+    and shipped files: ``STRUCTURES.json["trajectories"]`` (``course/fetch_trajectories.py``).
+    Read it with :func:`shapelab.trajectory_measures` (Notes §23.1), which needs MDAnalysis.
+
+    Parameters
+    ----------
+    name : str, default "adk-dims"
+        The trajectory.
+
+    Returns
+    -------
+    tuple of Path
+        The topology (``.pdb.gz``) and the trajectory (``.dcd``).
+
+    Raises
+    ------
+    TypeError
+        ``name`` is not a str.
+    ValueError
+        No shipped trajectory has that name.
+
+    See Also
+    --------
+    shapelab.trajectory_measures
+        Measures it frame by frame.
+    structure
+        The shipped single structures (``"1ake"`` closed, ``"4ake"`` open).
+
+    References
+    ----------
+    .. [1] O. Beckstein, E. J. Denning, J. R. Perilla, T. B. Woolf, "Zipping and unzipping of
+       adenylate kinase: atomistic insights into the ensemble of open↔closed transitions",
+       *J. Mol. Biol.* **394**, 160–176 (2009), doi:10.1016/j.jmb.2009.09.009.
+
+    Examples
+    --------
+    >>> top, traj = trajectory_files("adk-dims")
+    >>> top.name, traj.name
+    ('adk_dims_heavy.pdb.gz', 'adk_dims_heavy.dcd')
+    """
+    if not isinstance(name, str):
+        raise TypeError(f"name must be a str, got {type(name).__name__}")
+    text = resources.files("shapelab").joinpath("data", "STRUCTURES.json").read_text(encoding="utf-8")
+    found = {e["name"]: e for e in json.loads(text).get("trajectories", [])}
+    entry = found.get(name.strip().lower())
+    if entry is None:
+        raise ValueError(f"no shipped trajectory {name!r}; choose one of {sorted(found)}")
+    data = resources.files("shapelab").joinpath("data")
+    return tuple(Path(str(data.joinpath(entry["files"][k]))) for k in ("topology", "trajectory"))
 
 
 def noisy_sphere(n: int, *, noise: float = 0.01, center=(0.0, 0.0, 0.0), seed=0) -> np.ndarray:

@@ -552,6 +552,122 @@ def test_adenylate_kinase_two_conformations_pair_atom_by_atom():
     assert np.abs(a.balls.centers - b.balls.centers).max() > 10.0
 
 
+def _trajectory_entry():
+    raw = _json.loads(_resources.files("shapelab").joinpath("data", "STRUCTURES.json").read_text())
+    (entry,) = [e for e in raw["trajectories"] if e["name"] == "adk-dims"]
+    return entry
+
+
+def _dcd_by_numpy(data):
+    """An independent reading of a DCD (CHARMM's Fortran-record layout, little-endian):
+    the header's frame count, istart, nsavc, and the float32 x, y, z records of every
+    frame, as an array (frames, atoms, 3); a frame's unit-cell record (six float64, when
+    the header's flag is set) must hold no box (MDAnalysis writes zeros for none)."""
+
+    def records(buf):
+        at = 0
+        while at < len(buf):
+            n = int(np.frombuffer(buf, "<i4", 1, at)[0])
+            yield buf[at + 4 : at + 4 + n]
+            assert int(np.frombuffer(buf, "<i4", 1, at + 4 + n)[0]) == n
+            at += n + 8
+
+    recs = list(records(data))
+    head = recs[0]
+    assert head[:4] == b"CORD"
+    icntrl = np.frombuffer(head, "<i4", 20, 4)
+    n_atoms = int(np.frombuffer(recs[2], "<i4", 1)[0])
+    per = 4 if icntrl[10] else 3
+    assert len(recs) == 3 + per * icntrl[0]
+    frames = []
+    for i in range(icntrl[0]):
+        rec = recs[3 + per * i : 3 + per * (i + 1)]
+        if per == 4:
+            assert len(rec[0]) == 48 and not np.frombuffer(rec[0], "<f8")[[0, 2, 5]].any()
+        xyz = [np.frombuffer(r, "<f4") for r in rec[per - 3 :]]
+        assert all(len(c) == n_atoms for c in xyz)
+        frames.append(np.stack(xyz, axis=1))
+    frames = np.stack(frames)
+    return int(icntrl[0]), int(icntrl[1]), int(icntrl[2]), frames
+
+
+def test_shipped_trajectory_hashes_and_numpy_reading():
+    e = _trajectory_entry()
+    top, traj = D.trajectory_files("adk-dims")
+    assert (top.name, traj.name) == (e["files"]["topology"], e["files"]["trajectory"])
+    for key, path in (("topology", top), ("trajectory", traj)):
+        assert _hashlib.sha256(path.read_bytes()).hexdigest() == e["sha256"][key]
+        assert path.stat().st_size == e["size"][key]
+    assert all(len(h) == 64 for h in e["sha256_source"].values())
+    assert e["source"]["package"] == "MDAnalysisTests" and e["source"]["version"] == "2.11.0"
+    n, istart, nsavc, xyz = _dcd_by_numpy(traj.read_bytes())
+    assert n == e["n_frames"] == len(range(*e["frames"])) == 25 and xyz.shape == (25, e["atoms"], 3)
+    assert istart * 4 == nsavc  # the first frame's time is a quarter of the step: source frame 0 at 1 ps, dt 4 ps
+    # the topology holds the first frame (to the PDB's 3 decimals), heavy atoms only, elements given
+    pdb = _slice_records(_gzip.decompress(top.read_bytes()).decode("latin-1"), hydrogens=True)
+    assert len(pdb) == e["atoms"] == 1656
+    assert np.abs(np.array([p[:3] for p in pdb]) - xyz[0]).max() <= 0.0005 + 1e-6
+    lines = [ln for ln in _gzip.decompress(top.read_bytes()).decode().splitlines() if ln.startswith("ATOM")]
+    assert {ln[76:78].strip() for ln in lines} == {"C", "N", "O", "S"}
+    # the same atoms, in the same order, as the shipped 1ake and 4ake (heavy atoms of the same CHARMM model)
+    assert [ln[12:16].strip() for ln in lines] == D.structure("1ake").atom_names.tolist()
+    # closed to open: the first frame is near 1ake, the last near 4ake (C-alpha RMSD after a Kabsch fit)
+    ca = np.array([ln[12:16].strip() == "CA" for ln in lines])
+
+    def rmsd(a, b):
+        a, b = a - a.mean(0), b - b.mean(0)
+        u, s, vt = np.linalg.svd(a.T @ b)
+        d = np.sign(np.linalg.det(u @ vt))
+        return np.sqrt(max(((a**2).sum() + (b**2).sum() - 2 * (s[0] + s[1] + d * s[2])) / len(a), 0.0))
+
+    closed, opened = (D.structure(k).balls.centers[D.structure(k).atom_names == "CA"] for k in ("1ake", "4ake"))
+    assert rmsd(xyz[0][ca].astype(float), closed) < 1.0 < rmsd(xyz[0][ca].astype(float), opened) - 5.0
+    assert rmsd(xyz[-1][ca].astype(float), opened) < 1.0 < rmsd(xyz[-1][ca].astype(float), closed) - 5.0
+
+
+def test_shipped_trajectory_read_by_mdanalysis_equals_the_source_frames():
+    mda = pytest.importorskip("MDAnalysis")
+    import tarfile
+    import warnings
+    from pathlib import Path
+
+    e = _trajectory_entry()
+    top, traj = D.trajectory_files()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)  # the DCD reader announces a change in 3.0
+        u = mda.Universe(str(top), str(traj))
+        assert len(u.atoms) == 1656 and len(u.trajectory) == 25
+        _, _, _, xyz = _dcd_by_numpy(traj.read_bytes())
+        for i, ts in enumerate(u.trajectory):
+            assert np.array_equal(u.atoms.positions, xyz[i])
+            assert ts.time == pytest.approx(1.0 + 4.0 * i, abs=1e-4)
+        archive = Path(__file__).resolve().parents[2] / ".cache" / "corpus" / "archives" / e["source"]["archive"]
+        if not archive.exists():
+            pytest.skip(f"the corpus archive {archive.name} is not fetched (python -m course.fetch_corpus)")
+        with tarfile.open(archive) as tar, __import__("tempfile").TemporaryDirectory() as tmp:
+            paths = []
+            for key in ("topology", "trajectory"):
+                data = tar.extractfile("mdanalysistests-2.11.0/" + e["source"][key]).read()
+                assert _hashlib.sha256(data).hexdigest() == e["sha256_source"][key]
+                paths.append(Path(tmp) / Path(e["source"][key]).name)
+                paths[-1].write_bytes(data)
+            src = mda.Universe(*map(str, paths))
+            heavy = src.select_atoms(e["select"])
+            assert heavy.names.tolist() == u.atoms.names.tolist()
+            assert len(src.trajectory) == 98
+            for i, f in enumerate(range(*e["frames"])):
+                src.trajectory[f]
+                assert np.array_equal(heavy.positions, xyz[i])  # bit for bit: float32 copied, not rounded
+
+
+def test_trajectory_files_bad_input():
+    with pytest.raises(ValueError, match="no shipped trajectory"):
+        D.trajectory_files("adk")
+    with pytest.raises(TypeError, match="name"):
+        D.trajectory_files(4)
+    assert D.trajectory_files(" ADK-DIMS ") == D.trajectory_files()
+
+
 def test_l99a_ligand_sits_inside_the_receptor():
     rec, lig = D.structure("t4l-l99a"), D.structure("t4l-l99a-ligand")
     assert len(lig) == 8 and set(lig.elements.tolist()) == {"C"}
