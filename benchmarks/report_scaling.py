@@ -19,7 +19,9 @@ table says how many).  The load average is read before and after each rung (the
 machine is shared).  The exponent ``k`` of ``time ~ N^k`` is fitted by least squares
 on log–log axes over the assembly rungs (:func:`benchmarks.scaling.fit_exponent`).
 ``--ours-from DIR`` runs our side from another checkout (e.g. a worktree of an
-older commit) to measure a before/after.
+older commit) to measure a before/after.  The figure also draws Voronota-LT's exact
+area and volume of the same balls (one thread) from ``measure_peers.json`` where
+:mod:`benchmarks.measure_peers` has written it; ``--replot`` redraws the figure alone.
 """
 
 from __future__ import annotations
@@ -98,7 +100,13 @@ def main(argv=None) -> int:
     ap.add_argument("--ours-from", default=None, help="run our side from this checkout")
     ap.add_argument("--only", nargs="*", default=None, help="labels of the rungs to run")
     ap.add_argument("--worker", nargs=3, help=argparse.SUPPRESS)
+    ap.add_argument(
+        "--replot", action="store_true", help="only redraw the figure from --out's JSON (and measure_peers.json)"
+    )
     args = ap.parse_args(argv)
+    if args.replot:
+        _plot(json.loads(args.out.read_text(encoding="utf-8")), args.out.with_suffix(".png"))
+        return 0
     if args.worker:
         _worker(*args.worker, args.ours_from)
         return 0
@@ -164,12 +172,42 @@ def _plot(doc, path: Path) -> None:
                 mfc="none",
                 label=f"{name}, single structures",
             )
+    _voronota_curve(axes[0], path.parent / "measure_peers.json")
     axes[0].set(xlabel="heavy atoms", ylabel="wall time (s)", title="time")
     axes[1].set(xlabel="heavy atoms", ylabel="peak memory of the call (MiB)", title="peak memory")
     for ax in axes:
         ax.legend(fontsize=8)
     fig.suptitle("cavity report against atoms (rotated copies of 1hvr; 1hvr, 1fmo, 3mht, ribosome 4v8r)", fontsize=10)
     fig.savefig(path)
+
+
+def _voronota_curve(ax, peers: Path) -> None:
+    """Voronota-LT's exact area and volume of the same balls against atoms, from
+    :mod:`benchmarks.measure_peers` (same rungs, one thread; median wall time), the
+    anchor of issue 24: what an exact SASA and volume cost, without the cavities."""
+    if not peers.exists():
+        return
+    doc = json.loads(peers.read_text(encoding="utf-8"))
+    if "voronotalt" not in doc.get("sides", ()):
+        return
+    from shapelab.plot._style import PALETTE
+
+    asm = [r for r in doc["rows"] if r["kind"] == "assembly"]
+    one = [r for r in doc["rows"] if r["kind"] != "assembly"]
+    k = doc["exponents"]["voronotalt"]["time"]
+    label = "Voronota-LT area + volume, assemblies" + (f" (N^{k:.2f})" if k is not None else "")
+    color = PALETTE[2]
+    ax.loglog(
+        [r["n"] for r in asm], [max(r["voronotalt"]["seconds"], 1e-3) for r in asm], "o--", color=color, label=label
+    )
+    ax.loglog(
+        [r["n"] for r in one],
+        [max(r["voronotalt"]["seconds"], 1e-3) for r in one],
+        "s",
+        color=color,
+        mfc="none",
+        label="Voronota-LT, single structures (measure_peers.json)",
+    )
 
 
 def _table(doc) -> str:
