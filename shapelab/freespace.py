@@ -829,6 +829,48 @@ def free_space(F, tau, cells) -> FreeSpace:
     return _free_space(F, tau, cells, True)
 
 
+def _threads(n_tasks: int) -> int:
+    """Threads for the slices of (cell, ball) pairs: the CPUs this process may use
+    (``SHAPELAB_THREADS`` in the environment overrides it; 1 runs them in the calling
+    thread), never more than there are slices, and 1 when called from a thread other
+    than the main one (a Dask worker's or a caller's own pool: no pools in pools)."""
+    import os
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        return 1
+    env = os.environ.get("SHAPELAB_THREADS", "").strip()
+    if env:
+        try:
+            n = int(env)
+        except ValueError:
+            raise ValueError(f"SHAPELAB_THREADS must be a positive integer, got {env!r}") from None
+        if n < 1:
+            raise ValueError(f"SHAPELAB_THREADS must be a positive integer, got {env!r}")
+    else:
+        n = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+    return max(1, min(n, n_tasks))
+
+
+def _each(fn, starts) -> None:
+    """``fn(s)`` for every start of a slice, in threads where there are several CPUs.
+
+    Each call writes its own slice of the outputs and computes it exactly as alone
+    (the slices are the same whatever the thread count), so the results are the same
+    bit for bit; NumPy releases the GIL in its array loops, where the time goes."""
+    starts = list(starts)
+    n = _threads(len(starts))
+    if n == 1:
+        for s in starts:
+            fn(s)
+        return
+    from concurrent.futures import ThreadPoolExecutor
+
+    with ThreadPoolExecutor(max_workers=n) as pool:
+        for _ in pool.map(fn, starts):  # re-raises a slice's error
+            pass
+
+
 def _balls_of(F, who):
     """``(balls, F)``: the balls, and the filtration when one was given (else None)."""
     if isinstance(F, Balls):
@@ -933,7 +975,8 @@ def _free_space(F, tau, cells, boundary):
     start, count, other = _neighbours(F, tau, C, R_all, live, tree, rmax)
     covered = np.zeros(pm.size)
     wall_p = np.zeros(pm.size)
-    for s in range(0, pm.size, _PAIRS):  # the pairs' candidate planes, a slice at a time
+
+    def measure_slice(s):  # the pairs' candidate planes, a slice at a time
         sl = slice(s, s + _PAIRS)
         b = ball[sl]
         pos, row = _ragged(start[b], count[b])
@@ -942,6 +985,8 @@ def _free_space(F, tau, cells, boundary):
         Rj = R_all[j]
         beaten = (Rj > R[sl][row]) | ((Rj == R[sl][row]) & (j < b[row]))
         covered[sl], wall_p[sl] = _measure_pairs(X, As, bs, scale, pm[sl], Z[sl], R[sl], row, D, Rj, beaten, boundary)
+
+    _each(measure_slice, range(0, pm.size, _PAIRS))
     out -= np.bincount(pm, weights=covered, minlength=M)
     wall = np.bincount(pm, weights=wall_p, minlength=M) if boundary else np.zeros(M)
     if not boundary:
@@ -1040,7 +1085,8 @@ def free_area(F, tau, triangles) -> FreeSpace:
     start, count, other = _neighbours(F, tau, C, np.sqrt(np.maximum(w, 0.0)), live, tree, rmax)
     covered = np.zeros(pm.size)
     wall_p = np.zeros(pm.size)
-    for s in range(0, pm.size, _PAIRS):  # the pairs' candidate lines, a slice at a time
+
+    def measure_slice(s):  # the pairs' candidate lines, a slice at a time
         sl = slice(s, s + _PAIRS)
         b, cell = ball[sl], pm[sl]
         pos, row = _ragged(start[b], count[b])
@@ -1053,6 +1099,8 @@ def free_area(F, tau, triangles) -> FreeSpace:
         Rj = np.sqrt(rho2j[keep])
         beaten = (Rj > R[sl][row]) | ((Rj == R[sl][row]) & (j < b[row]))
         covered[sl], wall_p[sl] = _measure_pairs(X, As, bs, scale, cell, Z[sl], R[sl], row, D, Rj, beaten, True)
+
+    _each(measure_slice, range(0, pm.size, _PAIRS))
     out -= np.bincount(pm, weights=covered, minlength=M)
     wall = np.bincount(pm, weights=wall_p, minlength=M)
     hit = np.flatnonzero(wall_p > 0)

@@ -231,3 +231,40 @@ def test_cells_gathered_a_block_at_a_time_give_the_same_measure(monkeypatch):
         assert np.array_equal(a.measure, b.measure) and np.array_equal(a.wall, b.wall)
         assert np.array_equal(a.contact_cell, b.contact_cell) and np.array_equal(a.contact_ball, b.contact_ball)
         assert np.array_equal(a.contact_wall, b.contact_wall)
+
+
+def test_slices_in_threads_give_the_same_bits(monkeypatch):
+    # the slices of (cell, ball) pairs run in threads (SHAPELAB_THREADS, default: the
+    # CPUs): each slice is computed as alone, so any thread count gives the same bits
+    rng = np.random.default_rng(13)
+    balls = sl.Balls(rng.uniform(0, 5, (60, 3)), rng.uniform(0.5, 1.4, 60))
+    F = sl.alpha_filtration(balls)
+    cells, tris = np.asarray(F.simplices(3))[:80], np.asarray(F.simplices(2))[:80]
+    monkeypatch.setattr(FS, "_PAIRS", 5)  # many slices
+    runs = []
+    for threads in ("1", "3"):
+        monkeypatch.setenv("SHAPELAB_THREADS", threads)
+        runs.append((FS.free_space(F, 0.1, cells), FS.free_area(F, 0.1, tris), FS.free_space(balls, 0.1, cells)))
+    assert FS._threads(100) == 3 and FS._threads(2) == 2  # threads were used, capped by the slices
+    for a, b in zip(*runs):
+        assert np.array_equal(a.measure, b.measure) and np.array_equal(a.wall, b.wall)
+        assert np.array_equal(a.contact_cell, b.contact_cell) and np.array_equal(a.contact_ball, b.contact_ball)
+        assert np.array_equal(a.contact_wall, b.contact_wall)
+
+
+@pytest.mark.parametrize("value", ["0", "-2", "two"])
+def test_bad_thread_count_is_named(monkeypatch, value):
+    monkeypatch.setenv("SHAPELAB_THREADS", value)
+    with pytest.raises(ValueError, match="SHAPELAB_THREADS"):
+        FS._threads(4)
+
+
+def test_no_threads_inside_a_worker_thread(monkeypatch):
+    import threading
+
+    monkeypatch.setenv("SHAPELAB_THREADS", "4")
+    seen = []
+    t = threading.Thread(target=lambda: seen.append(FS._threads(10)))
+    t.start()
+    t.join()
+    assert seen == [1] and FS._threads(10) == 4
