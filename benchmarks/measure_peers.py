@@ -2,6 +2,7 @@
 items 1 and 4; issue 24's scaling curves with Voronota-LT).
 
 ``python -m benchmarks.measure_peers [--out FILE] [--only LABEL ...] [--sides S ...] [--repeats R]``
+``python -m benchmarks.measure_peers --profile 9360 99840`` (the stages of ``union_measure``)
 
 Rungs: the same as :mod:`benchmarks.report_scaling`: assemblies of 1, 4, 16, 64 and
 128 rotated copies of 1hvr (1,560 to 199,680 heavy atoms), the shipped proteins 1hvr,
@@ -127,6 +128,59 @@ def _call(side: str, s):
     raise ValueError(f"side: unknown {side!r}")
 
 
+#: the stages of ``union_measure`` and the functions whose cumulative time they are
+#: (``minus``: a nested stage counted separately)
+STAGES = (
+    ("Qhull on the lifted points (power._qhull_facets)", ("_qhull_facets",), ()),
+    ("certificate of the triangulation (power._certified minus the hull)", ("_certified",), ("_lower_hull",)),
+    ("lower hull extraction (power._hull_once minus Qhull)", ("_hull_once",), ("_qhull_facets",)),
+    ("faces (filtration._facets_from_neighbours, _unique_facets)", ("_facets_from_neighbours", "_unique_facets"), ()),
+    ("entry times: certified orthospheres (filtration._orthospheres_certified)", ("_orthospheres_certified",), ()),
+    ("short inclusion-exclusion formula (measure.measure_from_simplices)", ("measure_from_simplices",), ()),
+)
+
+
+def profile_stages(atoms: int) -> dict:
+    """CPU time of each stage of ``union_measure`` on the SA balls of an assembly of
+    ``atoms`` heavy atoms (cProfile with ``time.process_time`` as its clock, so that
+    other work on the machine does not count), after one untimed call."""
+    import cProfile
+    import pstats
+
+    from shapelab import union_measure
+
+    balls = _load("assembly", str(atoms)).balls
+    union_measure(balls)
+    pr = cProfile.Profile(time.process_time)
+    pr.enable()
+    union_measure(balls)
+    pr.disable()
+    st = pstats.Stats(pr).stats
+
+    def cum(names):
+        return sum(v[3] for (_, _, fn), v in st.items() if fn in names)
+
+    total = cum(("union_measure",))
+    stages = {name: cum(plus) - cum(minus) for name, plus, minus in STAGES}
+    stages["rest (propagation, selection, frame)"] = total - sum(stages.values())
+    return {"atoms": len(balls), "total_cpu_s": total, "stages": stages}
+
+
+def profile_table(profiles: list[dict]) -> str:
+    head = "| stage | " + " | ".join(f"{p['atoms']:,} atoms: CPU s (share)" for p in profiles) + " |"
+    lines = [head, "|---|" + "---:|" * len(profiles)]
+    for name in profiles[0]["stages"]:
+        lines.append(
+            f"| {name} | "
+            + " | ".join(
+                f"{p['stages'][name]:.3f} ({100 * p['stages'][name] / p['total_cpu_s']:.0f} %)" for p in profiles
+            )
+            + " |"
+        )
+    lines.append("| **total** `union_measure` | " + " | ".join(f"**{p['total_cpu_s']:.3f}**" for p in profiles) + " |")
+    return "\n".join(lines)
+
+
 def _worker(side: str, kind: str, arg: str, repeats: int, dump: str) -> None:
     import numpy as np
 
@@ -179,7 +233,13 @@ def main(argv=None) -> int:
     ap.add_argument("--sides", nargs="*", default=list(SIDES), choices=SIDES)
     ap.add_argument("--repeats", type=int, default=5)
     ap.add_argument("--worker", nargs=5, help=argparse.SUPPRESS)
+    ap.add_argument(
+        "--profile", type=int, nargs="+", metavar="ATOMS", help="only profile union_measure's stages at these sizes"
+    )
     args = ap.parse_args(argv)
+    if args.profile:
+        print(profile_table([profile_stages(a) for a in args.profile]))
+        return 0
     if args.worker:
         side, kind, arg, reps, dump = args.worker
         _worker(side, kind, arg, int(reps), dump)
