@@ -108,6 +108,9 @@ __all__ = [
     "structure_ids",
     "centres_from_lining",
     "evaluate",
+    "METHODS",
+    "run",
+    "main",
     "build_manifest",
 ]
 
@@ -656,3 +659,311 @@ def build_manifest(git_dirs: dict, corpus_root: Path) -> dict:
     }
     MANIFEST.write_text(json.dumps(manifest, indent=1) + "\n")
     return manifest
+
+
+# ================================================================ the methods
+def _lining_centres(structure, rows) -> list:
+    xyz = structure.balls.centers
+    return [xyz[list(r.lining_atoms)].mean(axis=0) for r in rows if r.kind == "pocket" and len(r.lining_atoms)]
+
+
+def shapelab_growth(path) -> list:
+    """shapelab's report pockets (growth model, Notes §23.1) in the library's default order."""
+    import shapelab
+    from shapelab import cavity_report
+
+    s = shapelab.read_structure(path, hetatm=False)
+    return _lining_centres(s, cavity_report.report(s, 1.4).rows)
+
+
+def shapelab_flow(path) -> list:
+    """shapelab's report pockets by the discrete flow (``method="flow"``), default order."""
+    import shapelab
+    from shapelab import cavity_report
+
+    s = shapelab.read_structure(path, hetatm=False)
+    return _lining_centres(s, cavity_report.report(s, 1.4, method="flow").rows)
+
+
+def _flow_available() -> str | None:
+    import inspect
+
+    from shapelab import cavity_report
+
+    if "method" not in inspect.signature(cavity_report.report).parameters:
+        return "shapelab.cavity_report.report has no method= (the flow method is not in this checkout)"
+    return None
+
+
+def fpocket_rs_pockets(path) -> list:
+    """fpocket's algorithm (fpocket-rs, default parameters), in its score order; centre =
+    centroid of the pocket's alpha-sphere centres."""
+    import fpocket_rs
+
+    out = fpocket_rs.detect_pockets(path)
+    pockets = sorted(out["pockets"], key=lambda p: p["rank"])
+    return [np.asarray(p["alpha_spheres"], dtype=np.float64)[:, :3].mean(axis=0) for p in pockets]
+
+
+def pocketeer_pockets(path) -> list:
+    """pocketeer (default parameters), in its score order; centre = its pocket centroid
+    (of the alpha-sphere centres)."""
+    import pocketeer
+
+    return [np.asarray(p.centroid, dtype=np.float64) for p in pocketeer.find_pockets(pocketeer.load_structure(path))]
+
+
+def pykvfinder_pockets(path) -> list:
+    """pyKVFinder (default parameters, one thread): cavities by volume, largest first
+    (it has no score); centre = centroid of the cavity's grid points."""
+    import logging
+
+    import pyKVFinder
+
+    logging.getLogger().setLevel(logging.ERROR)  # per-atom radius warnings
+    atomic = pyKVFinder.read_pdb(path)
+    vertices = pyKVFinder.get_vertices(atomic)
+    ncav, cavities = pyKVFinder.detect(atomic, vertices, nthreads=1, verbose=False)
+    if ncav == 0:
+        return []
+    step = 0.6  # pyKVFinder's default grid spacing, as passed (by default) to detect
+    p1, p2, p3, p4 = (np.asarray(v, dtype=np.float64) for v in vertices)
+    axes = [(q - p1) / np.linalg.norm(q - p1) for q in (p2, p3, p4)]
+    out = []
+    for label in range(2, ncav + 2):
+        idx = np.argwhere(cavities == label)
+        if len(idx) == 0:
+            continue
+        xyz = p1 + step * (idx[:, [0]] * axes[0] + idx[:, [1]] * axes[1] + idx[:, [2]] * axes[2])
+        out.append((len(idx), xyz.mean(axis=0)))
+    out.sort(key=lambda t: -t[0])
+    return [c for _, c in out]
+
+
+#: name -> (callable, what it is, availability check returning None or why not)
+METHODS = {
+    "shapelab": (shapelab_growth, "shapelab report, growth model (default order)", lambda: None),
+    "shapelab-flow": (shapelab_flow, "shapelab report, discrete flow (default order)", _flow_available),
+    "fpocket-rs": (fpocket_rs_pockets, "fpocket-rs (fpocket's algorithm)", lambda: _importable("fpocket_rs")),
+    "pocketeer": (pocketeer_pockets, "pocketeer", lambda: _importable("pocketeer")),
+    "pyKVFinder": (pykvfinder_pockets, "pyKVFinder (by volume)", lambda: _importable("pyKVFinder")),
+}
+OURS = ("shapelab", "shapelab-flow")
+
+
+def _importable(name: str) -> str | None:
+    import importlib
+
+    try:
+        importlib.import_module(name)
+    except Exception as err:  # pragma: no cover - a peer not installed
+        return f"{name} does not import ({type(err).__name__}: {err}); pip install -e '.[bench]'"
+    return None
+
+
+def _version(name: str) -> str:
+    from importlib import metadata
+
+    try:
+        return metadata.version(name)
+    except metadata.PackageNotFoundError:
+        return "?"
+
+
+VERSIONS = {
+    "shapelab": "shapelab",
+    "shapelab-flow": "shapelab",
+    "fpocket-rs": "fpocket-rs",
+    "pocketeer": "pocketeer",
+    "pyKVFinder": "pyKVFinder",
+}
+
+
+# ================================================================ results
+def _fmt_pct(x) -> str:
+    return "—" if x is None or x != x else f"{100 * x:.0f} %"
+
+
+def _table(results: dict) -> str:
+    head = (
+        "| method | split | structures | sites | top-N | top-(N+2) | median pockets | mean pockets "
+        "| median s/structure | failed |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n"
+    )
+    lines = []
+    for name, res in results.items():
+        if "skipped" in res:
+            lines.append(f"| {name} | — | — | — | — | — | — | — | — | not run: {res['skipped']} |")
+            continue
+        for split in ("dev", "test", "all"):
+            p = res["splits"][split]
+            lines.append(
+                f"| {name} | {split} | {p['structures']} | {p['sites']} | {_fmt_pct(p['top_n'])} "
+                f"| {_fmt_pct(p['top_n2'])} | {p['median_pockets']:g} | {p['mean_pockets']:.1f} "
+                f"| {p['median_seconds']:.2f} | {p['failed']} |"
+            )
+    return head + "\n".join(lines) + "\n"
+
+
+def _figure(results: dict, machine: str, path: Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 2, figsize=(13.33, 7.5), sharey=True)
+    colours = ["#0072B2", "#56B4E9", "#D55E00", "#009E73", "#CC79A7", "#E69F00"]
+    for (name, res), c in zip(results.items(), colours):
+        if "skipped" in res:
+            continue
+        p = res["splits"]["all"]
+        ks = np.arange(1, MAX_RANK + 1)
+        style = "-" if name in OURS else "--"
+        axes[0].plot(ks, 100 * np.array(p["top_k"]), style, marker="o", color=c, lw=2.5, label=name)
+        axes[1].plot(
+            np.arange(0, MAX_RANK + 1),
+            100 * np.array(p["top_n_plus_k"]),
+            style,
+            marker="o",
+            color=c,
+            lw=2.5,
+            label=name,
+        )
+    axes[0].set(xlabel="k (first k pockets)", ylabel="ligand sites found (DCA ≤ 4 Å), %", title="top-k recall")
+    axes[1].set(xlabel="k (first N + k pockets, N = sites of the structure)", title="top-(N+k) recall")
+    for ax in axes:
+        ax.grid(alpha=0.3)
+        ax.set_ylim(0, 100)
+        ax.tick_params(labelsize=13)
+        ax.xaxis.label.set_size(14)
+        ax.yaxis.label.set_size(14)
+        ax.title.set_size(16)
+    axes[1].legend(fontsize=13, loc="lower right")
+    n = next((r["splits"]["all"] for r in results.values() if "splits" in r), {"structures": 0, "sites": 0})
+    fig.suptitle(
+        f"Does the pocket find the ligand? {n['structures']} holo complexes, {n['sites']} sites, all splits",
+        fontsize=17,
+    )
+    fig.text(0.5, 0.01, machine, ha="center", fontsize=8, wrap=True)
+    fig.tight_layout(rect=(0, 0.04, 1, 0.95))
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def _split_results(res: dict) -> dict:
+    recs = res["structures"]
+    return {s: _summary([r for r in recs if s == "all" or r["split"] == s]) for s in ("dev", "test", "all")}
+
+
+def _markdown(results: dict, info: dict, machine: str, command: str) -> str:
+    m = load_manifest()
+    misses = []
+    for name in OURS:
+        res = results.get(name, {})
+        for r in res.get("structures", []):
+            if r["split"] == "test" and r["found_n2"] < r["n_sites"]:
+                misses.append(
+                    f"{r['id']} ({name}: {r['found_n2']}/{r['n_sites']} in top-(N+2), {r['n_pockets']} pockets)"
+                )
+    lines = [
+        "# Does the pocket define the binding site?  DCA recall on holo complexes",
+        "",
+        f"`{command}` (benchmarks/pocket_sites.py), {time.strftime('%Y-%m-%d')}.",
+        "",
+        machine,
+        "",
+        f"{len(m['structures'])} public PDB entries with bound ligands ({m['split']['dev']} dev, "
+        f"{m['split']['test']} test, split fixed by seed {m['split']['seed']} before any result), "
+        f"{sum(e['n_sites'] for e in m['structures'])} ligand sites, shipped in benchmarks/data/pockets/ "
+        "(provenance and sha256 in manifest.json). Every method reads the same protein-only file (first model, "
+        "ATOM records only, no hydrogens, first alternate location).",
+        "",
+        "**Ligand rule**: HETATM groups (bonded groups joined) with at least 6 heavy atoms, touching the protein "
+        "(4 Å), not water, ions, buffers or crystallisation additives, lipids or detergents, glycans, nor modified "
+        "residues (MODRES, polymer entity, or peptide-bonded); ligands within 4 Å of each other are one site; N = "
+        "sites of the structure. **Found**: a pocket centre within 4 Å of any heavy atom of the site "
+        "(DCA, P2Rank/LIGYSIS) among the first N (N+2) pockets; recall pooled over sites. Pocket centre: "
+        "shapelab, centroid of the lining atoms; fpocket-rs and pocketeer, centroid of the alpha-sphere centres; "
+        "pyKVFinder, centroid of the cavity's grid points.",
+        "",
+        "Time: one call per structure (reading the file included), wall clock, methods run one after the "
+        "other in one process on a shared 2-core machine; median over structures.",
+        "",
+        _table(results),
+        "Versions: " + ", ".join(f"{n} {_version(VERSIONS[n])}" for n in results if "skipped" not in results[n]) + ".",
+        "",
+        "![recall against rank](pocket_sites.png)",
+        "",
+    ]
+    if misses:
+        lines += ["Test-set structures where ours missed a site in the top N + 2: " + "; ".join(misses) + ".", ""]
+    return "\n".join(lines)
+
+
+def run(methods: list[str], split: str = "all", *, ids=None, keep_previous: bool = True, progress: bool = True) -> dict:
+    """Run ``methods`` on a split, merge with the previous results of other methods, write results."""
+    from benchmarks.harness import machine as machine_info
+    from benchmarks.harness import machine_line
+
+    info = machine_info()
+    machine = machine_line(info)
+    print(machine, file=sys.stderr)
+    RESULTS.mkdir(parents=True, exist_ok=True)
+    out_json = RESULTS / "pocket_sites.json"
+    results: dict = {}
+    if keep_previous and out_json.exists():
+        prev = json.loads(out_json.read_text())
+        results = {k: v for k, v in prev.get("methods", {}).items() if k not in methods}
+    for name in methods:
+        fn, what, check = METHODS[name]
+        why = check()
+        if why:
+            print(f"{name}: skipped: {why}", file=sys.stderr)
+            results[name] = {"what": what, "skipped": why}
+            continue
+        print(f"{name}: {what}", file=sys.stderr)
+        res = evaluate(fn, split, ids=ids, progress=progress)
+        results[name] = {"what": what, "version": _version(VERSIONS[name]), "structures": res["structures"]}
+        results[name]["splits"] = _split_results(results[name])
+        _write(results, info, machine)
+    order = [n for n in METHODS if n in results]
+    results = {n: results[n] for n in order}
+    _write(results, info, machine)
+    return results
+
+
+def _write(results: dict, info: dict, machine: str) -> None:
+    command = "python -m benchmarks pocket_sites"
+    (RESULTS / "pocket_sites.json").write_text(
+        json.dumps({"machine": info, "methods": results}, indent=1, default=float) + "\n"
+    )
+    (RESULTS / "pocket_sites.md").write_text(_markdown(results, info, machine, command))
+    _figure(results, machine, RESULTS / "pocket_sites.png")
+
+
+def main(argv=None) -> int:
+    import argparse
+
+    ap = argparse.ArgumentParser(prog="python -m benchmarks.pocket_sites", description=__doc__.split("\n\n")[0])
+    ap.add_argument("--methods", default=",".join(METHODS), help=f"comma-separated, of {', '.join(METHODS)}")
+    ap.add_argument("--split", default="all", choices=("dev", "test", "all"))
+    ap.add_argument("--ids", default=None, help="comma-separated ids (a smoke run)")
+    ap.add_argument("--quiet", action="store_true", help="no line per structure")
+    ap.add_argument("--build-data", action="store_true", help="(maintainers) rebuild the data set and manifest")
+    ap.add_argument("--git", action="append", default=[], help="owner/name=GIT_DIR for --build-data")
+    args = ap.parse_args(argv)
+    if args.build_data:
+        dirs = dict(g.split("=", 1) for g in args.git)
+        build_manifest(dirs, ROOT.parent)
+        return 0
+    methods = [m.strip() for m in args.methods.split(",") if m.strip()]
+    unknown = [m for m in methods if m not in METHODS]
+    if unknown:
+        print(f"unknown method(s): {', '.join(unknown)}; known: {', '.join(METHODS)}", file=sys.stderr)
+        return 2
+    ids = args.ids.split(",") if args.ids else None
+    run(methods, args.split, ids=ids, progress=not args.quiet)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
