@@ -67,7 +67,9 @@ a list of 3-vectors (M may be 0); :func:`centres_from_lining` turns lining-atom 
 arrays and coordinates into centres.  ``python -m benchmarks.pocket_sites`` runs every
 method and writes ``benchmarks/results/pocket_sites.{md,json,png}``;
 ``--methods shapelab`` (or ``shapelab,shapelab-flow``) re-runs ours only and keeps the
-peers' rows of the last results; ``--split dev`` evaluates one split.
+peers' rows of the last results; ``--split dev`` evaluates one split; ``--out DIR``
+writes elsewhere and ``--render A.json B.json`` merges results files into the table
+and figure.
 
 References
 ----------
@@ -89,6 +91,7 @@ from __future__ import annotations
 import gzip
 import hashlib
 import json
+import os
 import statistics
 import sys
 import tempfile
@@ -843,8 +846,10 @@ def _figure(results: dict, machine: str, path: Path) -> None:
         f"Does the pocket find the ligand? {n['structures']} holo complexes, {n['sites']} sites, all splits",
         fontsize=17,
     )
-    fig.text(0.5, 0.01, machine, ha="center", fontsize=8, wrap=True)
-    fig.tight_layout(rect=(0, 0.04, 1, 0.95))
+    import textwrap
+
+    fig.text(0.5, 0.01, "\n".join(textwrap.wrap(machine, 170)), ha="center", va="bottom", fontsize=10)
+    fig.tight_layout(rect=(0, 0.07, 1, 0.95))
     fig.savefig(path, dpi=100)
     plt.close(fig)
 
@@ -885,8 +890,10 @@ def _markdown(results: dict, info: dict, machine: str, command: str) -> str:
         "shapelab, centroid of the lining atoms; fpocket-rs and pocketeer, centroid of the alpha-sphere centres; "
         "pyKVFinder, centroid of the cavity's grid points.",
         "",
-        "Time: one call per structure (reading the file included), wall clock, methods run one after the "
-        "other in one process on a shared 2-core machine; median over structures.",
+        "Time: one call per structure (reading the file included), wall clock, one run (not a median of "
+        "repeats: 86 structures x 5 methods), median over structures; the machine was shared with other "
+        f"work (load average {info.get('load_average_at_start', '?')} on {info.get('cpus', '?')} CPUs at the "
+        "start), so the times are indicative, comparable only within this table. No peak memory is measured.",
         "",
         _table(results),
         "Versions: " + ", ".join(f"{n} {_version(VERSIONS[n])}" for n in results if "skipped" not in results[n]) + ".",
@@ -906,6 +913,7 @@ def run(methods: list[str], split: str = "all", *, ids=None, keep_previous: bool
 
     info = machine_info()
     machine = machine_line(info)
+    info["load_average_at_start"] = [round(x, 2) for x in os.getloadavg()]
     print(machine, file=sys.stderr)
     RESULTS.mkdir(parents=True, exist_ok=True)
     out_json = RESULTS / "pocket_sites.json"
@@ -931,6 +939,21 @@ def run(methods: list[str], split: str = "all", *, ids=None, keep_previous: bool
     return results
 
 
+def render(paths) -> dict:
+    """Merge the methods of results JSON files (later files win) and write the table and figure."""
+    from benchmarks.harness import machine_line
+
+    results, info = {}, None
+    for p in paths:
+        d = json.loads(Path(p).read_text())
+        info = d["machine"]
+        results.update(d["methods"])
+    results = {n: results[n] for n in METHODS if n in results}
+    RESULTS.mkdir(parents=True, exist_ok=True)
+    _write(results, info, machine_line(info))
+    return results
+
+
 def _write(results: dict, info: dict, machine: str) -> None:
     command = "python -m benchmarks pocket_sites"
     (RESULTS / "pocket_sites.json").write_text(
@@ -947,6 +970,10 @@ def main(argv=None) -> int:
     ap.add_argument("--methods", default=",".join(METHODS), help=f"comma-separated, of {', '.join(METHODS)}")
     ap.add_argument("--split", default="all", choices=("dev", "test", "all"))
     ap.add_argument("--ids", default=None, help="comma-separated ids (a smoke run)")
+    ap.add_argument("--out", default=None, help="write the results into this directory instead")
+    ap.add_argument(
+        "--render", nargs="*", metavar="JSON", help="write the table and figure from results JSON files (merged)"
+    )
     ap.add_argument("--quiet", action="store_true", help="no line per structure")
     ap.add_argument("--build-data", action="store_true", help="(maintainers) rebuild the data set and manifest")
     ap.add_argument("--git", action="append", default=[], help="owner/name=GIT_DIR for --build-data")
@@ -954,6 +981,12 @@ def main(argv=None) -> int:
     if args.build_data:
         dirs = dict(g.split("=", 1) for g in args.git)
         build_manifest(dirs, ROOT.parent)
+        return 0
+    global RESULTS
+    if args.out:
+        RESULTS = Path(args.out)
+    if args.render is not None:
+        render(args.render or [RESULTS / "pocket_sites.json"])
         return 0
     methods = [m.strip() for m in args.methods.split(",") if m.strip()]
     unknown = [m for m in methods if m not in METHODS]
