@@ -746,6 +746,7 @@ def repair(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None, atte
     if order is not None and len(order) == n:
         rank = np.empty(n, dtype=np.int64)
         rank[np.asarray(order)] = np.arange(n)
+    near = _missing_near(P, simp, missing) if missing.size else None
     cav = bad.copy()
     grow = bad.copy()
     done: dict = {}
@@ -756,7 +757,6 @@ def repair(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None, atte
         vm[simp[cav].ravel()] = True
         if np.all(cav) or np.count_nonzero(vm) > max_fraction * n:
             return None  # not local: the whole-input road is as fast
-        near = _missing_near(P, simp, missing) if missing.size else None
         parts, grow = [], np.zeros(m, dtype=bool)
         npts = 0
         for comp in _components(simp, cav, n):
