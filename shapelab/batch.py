@@ -13,6 +13,12 @@ batch.  It is the library behind ``python -m shapelab report PATH PATH ...``
   (:class:`concurrent.futures.ProcessPoolExecutor`, started with ``spawn``), each of
   which imports shapelab once, in its initializer, and then reports on structure
   after structure.
+* **On a Dask cluster**: ``client=`` (a :class:`dask.distributed.Client`) or
+  ``scheduler="tcp://HOST:PORT"`` sends the same tasks to Dask's workers instead
+  (``pip install "shapelab[dask]"``; dask is imported only then).  The inputs travel
+  to the workers as bytes and the reports come back: only this process reads the
+  inputs and writes into the output directory, so the workers need shapelab
+  installed and nothing else -- no shared file system.
 * **Failures carry on**: a file that cannot be read, is malformed, or fails in the
   computation gets a row of status ``"failed"`` with its error message; the others
   are reported as usual.
@@ -323,6 +329,54 @@ def _empty_row(label: str, stem: str | None) -> dict:
     return row
 
 
+def _ok(row: dict, structure, rep) -> None:
+    """Fill a row with the counts of a computed report."""
+    voids = [r.volume_sa for r in rep.voids]
+    pockets = [r.volume_sa for r in rep.pockets]
+    row.update(
+        status="ok",
+        atoms=len(structure),
+        voids=len(voids),
+        pockets=len(pockets),
+        largest_void_volume=max(voids) if voids else None,
+        largest_pocket_volume=max(pockets) if pockets else None,
+    )
+
+
+def _failed(row: dict, e: BaseException, path, shown=None) -> None:
+    """Record a failure in a row: the error's first line, without the file's name in
+    front (the row names its file already); ``shown`` is the path to name instead of
+    ``path`` where the message names the file elsewhere (a worker's local copy)."""
+    msg = error_message(e)
+    if shown is not None and os.fspath(path) != shown:
+        msg = msg.replace(os.fspath(path), shown)
+        path = shown
+    for prefix in (f"{os.fspath(path)!r}: ", f"{os.fspath(path)}: "):
+        if msg.startswith(prefix):
+            msg = msg[len(prefix) :]
+    row.update(status="failed", error=msg)
+    for k in ("atoms", "voids", "pockets", "largest_void_volume", "largest_pocket_volume"):
+        row[k] = None
+
+
+def _store(task: dict, sha: str, row: dict, rep, *, check: bool = True) -> None:
+    """Write a computed report's files into the output directory, then its done marker
+    (``check``: first :func:`shapelab.cavity_report.check_output`, unless done already)."""
+    from . import cavity_report
+
+    out, stem = Path(task["out"]), task["stem"]
+    if check:
+        cavity_report.check_output(rep.structure, out, stem)
+    written = rep.write(out, stem)
+    marker = dict(
+        _marker_key(task, sha),
+        version=_MARKER_VERSION,
+        files=[p.name for p in written],
+        row={k: row[k] for k in ("atoms", "voids", "pockets", "largest_void_volume", "largest_pocket_volume")},
+    )
+    _write_atomic(_marker_path(out, stem), json.dumps(marker, indent=1, sort_keys=True) + "\n")
+
+
 def _run_one(task: dict) -> dict:
     """Report on one structure (in a worker or in the calling process): read, check
     the output, compute, write the files, then the done marker."""
@@ -337,34 +391,43 @@ def _run_one(task: dict) -> dict:
         s = read_structure_file(task["path"], **task["options"])
         cavity_report.check_output(s, out, stem)
         rep = cavity_report.report(s, task["probe"], name=stem)
-        written = rep.write(out, stem)
-        voids = [r.volume_sa for r in rep.voids]
-        pockets = [r.volume_sa for r in rep.pockets]
-        row.update(
-            status="ok",
-            atoms=len(s),
-            voids=len(voids),
-            pockets=len(pockets),
-            largest_void_volume=max(voids) if voids else None,
-            largest_pocket_volume=max(pockets) if pockets else None,
-        )
-        marker = dict(
-            _marker_key(task, sha),
-            version=_MARKER_VERSION,
-            files=[p.name for p in written],
-            row={k: row[k] for k in ("atoms", "voids", "pockets", "largest_void_volume", "largest_pocket_volume")},
-        )
-        _write_atomic(_marker_path(out, stem), json.dumps(marker, indent=1, sort_keys=True) + "\n")
+        _ok(row, s, rep)
+        _store(task, sha, row, rep, check=False)
     except Exception as e:  # any failure of one structure is recorded; the batch carries on
-        msg = error_message(e)
-        for prefix in (f"{os.fspath(task['path'])!r}: ", f"{os.fspath(task['path'])}: "):
-            if msg.startswith(prefix):  # the row names its file already
-                msg = msg[len(prefix) :]
-        row.update(status="failed", error=msg)
-        for k in ("atoms", "voids", "pockets", "largest_void_volume", "largest_pocket_volume"):
-            row[k] = None
+        _failed(row, e, task["path"])
     row["seconds"] = time.perf_counter() - t0
     return row
+
+
+def _remote_one(task: dict, data: bytes) -> tuple:
+    """A Dask worker's task: the report of one structure from its file's bytes.
+
+    The worker needs neither the input file nor the output directory: it reads a
+    private copy of the bytes (under the file's own name) and returns the row and the
+    report (None if it failed), which the client writes (:func:`_store`).  Messages
+    name the original path, as :func:`_run_one` does.
+    """
+    from . import cavity_report
+
+    t0 = time.perf_counter()
+    stem = task["stem"]
+    row = _empty_row(task["label"], stem)
+    rep = None
+    with tempfile.TemporaryDirectory(prefix="shapelab_batch_") as d:
+        copy = Path(d, "in")
+        copy.mkdir()
+        copy = copy / Path(task["path"]).name
+        copy.write_bytes(data)
+        try:
+            s = read_structure_file(copy, **task["options"])
+            cavity_report.check_output(s, d, stem)  # what does not depend on the directory: the mmCIF labels
+            rep = cavity_report.report(s, task["probe"], name=stem)
+            _ok(row, s, rep)
+        except Exception as e:  # recorded, as in _run_one
+            rep = None
+            _failed(row, e, copy, shown=task["path"])
+    row["seconds"] = time.perf_counter() - t0
+    return row, rep
 
 
 def _complete(task: dict) -> dict | None:
@@ -596,6 +659,70 @@ def _pool_rows(tasks: list, jobs: int, on_row) -> dict:
     return rows
 
 
+def _dask_rows(tasks: list, client, on_row) -> dict:
+    """Run ``tasks`` on a Dask cluster; {task index: row}.  The client reads each input
+    and sends its bytes; a worker computes the report and returns it; the client
+    writes the files and the marker, as :func:`_run_one` does.  At most twice as
+    many tasks as the cluster has threads are in flight (the inputs' bytes and the
+    reports are held for those only)."""
+    import uuid
+
+    from ._toolkit.cluster import cluster_threads, distributed_module
+
+    distributed = distributed_module("report_batch")
+    rows, futures = {}, {}
+    queue = iter(range(len(tasks)))
+
+    def submit() -> bool:
+        for i in queue:
+            t, t0 = tasks[i], time.perf_counter()
+            try:
+                _marker_path(Path(t["out"]), t["stem"]).unlink(missing_ok=True)  # no marker while the files change
+                data = Path(t["path"]).read_bytes()
+            except OSError as e:  # as _run_one's _sha256 fails
+                rows[i] = _empty_row(t["label"], t["stem"])
+                _failed(rows[i], e, t["path"])
+                rows[i]["seconds"] = time.perf_counter() - t0
+                on_row(rows[i])
+                continue
+            key = f"shapelab-report-{t['stem']}-{uuid.uuid4().hex}"
+            f = client.submit(_remote_one, t, data, key=key, pure=False)
+            futures[f] = (i, hashlib.sha256(data).hexdigest())
+            done.add(f)
+            return True
+        return False
+
+    done = distributed.as_completed(loop=client.loop)
+    for _ in range(2 * cluster_threads(client)):
+        if not submit():
+            break
+    try:
+        for f in done:
+            i, sha = futures.pop(f)
+            t = tasks[i]
+            try:
+                row, rep = f.result()
+            except distributed.KilledWorker:  # the scheduler gave up after workers died on it
+                row, rep = _empty_row(t["label"], t["stem"]), None
+                row.update(error="the worker process died while reporting on this structure", seconds=0.0)
+            if rep is not None:
+                t0 = time.perf_counter()
+                try:
+                    _store(t, sha, row, rep)
+                except Exception as e:  # the output directory, as in _run_one
+                    _failed(row, e, t["path"])
+                row["seconds"] += time.perf_counter() - t0
+            rows[i] = row
+            on_row(row)
+            del rep
+            while len(futures) < 2 * cluster_threads(client) and submit():
+                pass
+    except BaseException:
+        client.cancel(list(futures))
+        raise
+    return rows
+
+
 def report_batch(
     paths,
     *,
@@ -611,6 +738,8 @@ def report_batch(
     water=False,
     hydrogens=False,
     default_radius=None,
+    client=None,
+    scheduler=None,
 ) -> BatchSummary:
     """The cavity reports of many structures, written as for one, and one summary table.
 
@@ -651,6 +780,18 @@ def report_batch(
     chain, model, hetatm, water, hydrogens, default_radius
         How each file is read, as in :func:`shapelab.io.read_pdb` (and its
         defaults).
+    client : dask.distributed.Client, optional
+        Run the structures on this Dask cluster instead of local processes (``jobs``
+        must then be 1).  This process reads each input and sends its bytes to a
+        worker; the worker computes the report and sends it back; this process
+        writes the files and the done marker, in ``out``.  Workers need shapelab
+        (and ``dask[distributed]``) installed, but neither the inputs nor ``out``.
+        The files, the summary (but its ``seconds``), the markers, the progress and
+        the failures are those of a local run.  The client is left open.
+    scheduler : str, optional
+        The address of a Dask scheduler (``"tcp://HOST:8786"``): connect to it, run as
+        with ``client``, and disconnect at the end.  Dask is optional:
+        ``pip install "shapelab[dask]"``.
 
     Returns
     -------
@@ -666,7 +807,12 @@ def report_batch(
     FileNotFoundError, PermissionError
         ``out`` is not an existing, writable directory (before any structure is read).
     ValueError, TypeError
-        A bad ``probe``, ``jobs``, ``summary`` or entry of ``paths``.
+        A bad ``probe``, ``jobs``, ``summary``, ``client`` or ``scheduler`` or entry of
+        ``paths``; ``client`` and ``scheduler`` both, or either with ``jobs`` > 1.
+    ImportError
+        ``client`` or ``scheduler`` without dask.distributed installed.
+    OSError
+        No scheduler answers at ``scheduler`` (Dask's connect timeout, 30 s by default).
 
     See Also
     --------
@@ -687,11 +833,24 @@ def report_batch(
     and its marker last, so a batch interrupted at any point leaves every structure
     either complete or without a marker; ``resume=True`` then finishes the batch.
 
+    On a Dask cluster, a task whose worker dies is given to another worker by the
+    scheduler, up to ``distributed.scheduler.allowed-failures`` times (3 by default);
+    then its row says the worker died, as in a local run.  At most twice as many
+    structures as the cluster has threads are in flight at once, so that the inputs
+    and reports held in memory stay bounded whatever the size of the batch.  Dask's
+    nanny starts workers with ``MALLOC_TRIM_THRESHOLD_=65536``, which about triples the
+    CPU time of a report (glibc unmaps the many mid-sized arrays at once); set
+    ``distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_`` to null in the
+    workers' Dask configuration (README, "On a Dask cluster").
+
     References
     ----------
     .. [1] J. Liang, H. Edelsbrunner and C. Woodward, "Anatomy of protein pockets and
        cavities: measurement of binding site geometry and implications for ligand
        design", *Protein Science* 7 (1998) 1884–1897, doi:10.1002/pro.5560070905
+    .. [2] M. Rocklin, "Dask: Parallel Computation with Blocked algorithms and Task
+       Scheduling", *Proc. 14th Python in Science Conf.* (SciPy 2015), 126–132,
+       doi:10.25080/Majora-7b98e3ed-013
 
     Examples
     --------
@@ -715,6 +874,14 @@ def report_batch(
     options = dict(
         chain=chain, model=model, hetatm=hetatm, water=water, hydrogens=hydrogens, default_radius=default_radius
     )
+    from ._toolkit.cluster import cluster_client
+
+    with cluster_client(client, scheduler, jobs, "report_batch") as cluster:
+        return _batch(paths, out, probe, jobs, resume, progress, summary, options, cluster)
+
+
+def _batch(paths, out, probe, jobs, resume, progress, summary, options, cluster) -> BatchSummary:
+    """The body of :func:`report_batch`, its arguments checked; ``cluster`` a Dask client or None."""
     inputs = expand_paths(paths)
     out = _check_out(out)
 
@@ -747,7 +914,11 @@ def report_batch(
                 bar.update(done)
             else:
                 todo.append((t, k))
-        if jobs == 1 or len(todo) <= 1:
+        if cluster is not None:
+            got = _dask_rows([t for t, _ in todo], cluster, bar.update) if todo else {}
+            for i, (_, k) in enumerate(todo):
+                rows[k] = got[i]
+        elif jobs == 1 or len(todo) <= 1:
             for t, k in todo:
                 rows[k] = _run_one(t)
                 bar.update(rows[k])

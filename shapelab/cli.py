@@ -25,7 +25,10 @@ per task:
     ``.parquet`` when pyarrow is installed) in ``DIR``.  Nothing goes to stdout.  A
     file that fails is named with its error on stderr and in the summary, and the
     batch carries on; the exit status is then 1.  Status 2 stays for a bad option or
-    an output directory that cannot be written.
+    an output directory that cannot be written.  ``--scheduler tcp://HOST:PORT`` runs
+    the same batch on a Dask cluster (``pip install "shapelab[dask]"``), with the same
+    files, summary, progress and exit status; ``--figure PATH`` also draws the summary
+    (:func:`shapelab.plot.batch_summary`).
 
 The library modules read no arguments and change no global state when imported; only
 this module is a program.
@@ -147,6 +150,18 @@ def parser() -> argparse.ArgumentParser:
         help="summary file name in DIR, without extension (default shapelab_summary): NAME.csv, and "
         "NAME.parquet when pyarrow is installed",
     )
+    many.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="run the structures on the Dask cluster whose scheduler is at ADDRESS (tcp://HOST:PORT) instead of "
+        "local processes; the same files, summary and exit status (pip install shapelab[dask])",
+    )
+    many.add_argument(
+        "--figure",
+        metavar="PATH",
+        help="also draw the summary (largest pocket and void per structure, failed files named) to PATH "
+        "(.png, .svg or .pdf; shapelab.plot.batch_summary)",
+    )
     return top
 
 
@@ -167,11 +182,13 @@ def main(argv=None) -> int:
     directory that cannot be written, or a bad option -- all found before any cavity
     is computed.  If no PDB file is written, one line on stderr says why.
 
-    With several paths, a folder, a glob pattern or ``--resume``, ``report`` runs
-    :func:`shapelab.batch.report_batch` (``--jobs``, ``--resume``, ``--no-progress``,
-    ``--summary``): nothing on stdout, progress and each failure on stderr, exit
-    status 1 if any input failed, 2 for a bad option or an output directory that
-    cannot be written.
+    With several paths, a folder, a glob pattern, ``--resume``, ``--scheduler`` or
+    ``--figure``, ``report`` runs :func:`shapelab.batch.report_batch` (``--jobs``,
+    ``--resume``, ``--no-progress``, ``--summary``, ``--scheduler`` for a Dask
+    cluster) and, with ``--figure PATH``, draws its summary
+    (:func:`shapelab.plot.batch_summary`): nothing on stdout, progress and each
+    failure on stderr, exit status 1 if any input failed, 2 for a bad option or an
+    output directory that cannot be written.
 
     See Also
     --------
@@ -190,8 +207,9 @@ def main(argv=None) -> int:
 
 
 def _is_batch(args) -> bool:
-    """More than one FILE, a folder, a glob pattern that is not a file's name, or --resume."""
-    if len(args.file) > 1 or args.resume:
+    """More than one FILE, a folder, a glob pattern that is not a file's name, --resume,
+    --scheduler or --figure."""
+    if len(args.file) > 1 or args.resume or args.scheduler is not None or args.figure is not None:
         return True
     p = Path(args.file[0])
     return p.is_dir() or (not p.exists() and glob.has_magic(args.file[0]))
@@ -205,6 +223,17 @@ def _run_batch(args) -> int:
         return 2
 
     names = [h for h in (args.hetatm or []) if h is not True]
+    if args.jobs != 1 and args.scheduler is not None:
+        print(
+            "error: --jobs is for local worker processes; with --scheduler the cluster's workers run the structures",
+            file=sys.stderr,
+        )
+        return 2
+    if args.figure is not None:
+        problem = _figure_problem(args.figure)
+        if problem:
+            print(f"error: --figure {args.figure}: {problem}", file=sys.stderr)
+            return 2
     try:
         summary = report_batch(
             args.file,
@@ -220,20 +249,45 @@ def _run_batch(args) -> int:
             water=args.water,
             hydrogens=args.hydrogens,
             default_radius=args.default_radius,
+            scheduler=args.scheduler,
         )
-    except (ValueError, TypeError, OSError) as e:
+    except (ValueError, TypeError, OSError, ImportError) as e:
         print(f"error: {str(e).splitlines()[0] if str(e) else type(e).__name__}", file=sys.stderr)
         return 2
+    files = [str(p) for p in summary.files]
+    if args.figure is not None:
+        from .plot import batch_summary
+
+        try:
+            batch_summary(summary).savefig(args.figure)
+            files.append(args.figure)
+        except OSError as e:  # the batch's files are written; only the figure is missing
+            print(f"error: --figure {args.figure}: {e}", file=sys.stderr)
+            return 2
     for row in summary.failed:
         hint = " (on the command line: --default-radius R)" if "default_radius=" in row["error"] else ""
         print(f"error: {row['path']}: {row['error']}{hint}", file=sys.stderr)
     n = summary.counts()
     print(
         f"{len(summary)} structures: {n['ok']} ok, {n['skipped']} skipped, {n['failed']} failed; "
-        f"summary: {', '.join(str(p) for p in summary.files)}",
+        f"summary: {', '.join(files)}",
         file=sys.stderr,
     )
     return 1 if n["failed"] else 0
+
+
+def _figure_problem(path) -> str | None:
+    """Why the summary figure cannot be written to ``path`` (checked before the batch runs), or None."""
+    from matplotlib.figure import Figure
+
+    kinds = Figure().canvas.get_supported_filetypes()
+    suffix = Path(path).suffix.lower().lstrip(".")
+    if suffix not in kinds:
+        return f"the name must end in one of .png, .svg, .pdf (or {', '.join('.' + k for k in sorted(kinds))})"
+    parent = Path(path).parent
+    if not parent.is_dir():
+        return f"folder {str(parent)!r} does not exist"
+    return None
 
 
 def _ranking_options(args) -> str:

@@ -411,6 +411,8 @@ def trajectory_measures(
     min_persistence=0.0,
     default_radius=None,
     progress=True,
+    client=None,
+    scheduler=None,
 ) -> TrajectoryMeasures:
     """Area, volume, voids and pockets of every frame of an MD trajectory (Notes §23.1).
 
@@ -447,6 +449,16 @@ def trajectory_measures(
         Radius for an element without a van der Waals radius (see :func:`selection_radii`).
     progress : bool, default True
         Report progress on standard error (a tqdm bar when tqdm is installed).
+    client : dask.distributed.Client, optional
+        Measure the blocks of frames on this Dask cluster instead of local processes
+        (``jobs`` must then be 1): a few blocks per worker thread, each opening the
+        trajectory anew on its worker, so the workers must read ``topology`` and
+        ``trajectory`` at the same paths (a shared file system; a Universe given is
+        pickled, and MDAnalysis pickles file-based Universes by their file names).
+        The result is that of ``jobs=1``.  The client is left open.
+    scheduler : str, optional
+        The address of a Dask scheduler (``"tcp://HOST:8786"``): connect, run as with
+        ``client``, disconnect.  Dask is optional: ``pip install "shapelab[dask]"``.
 
     Returns
     -------
@@ -457,12 +469,14 @@ def trajectory_measures(
     Raises
     ------
     ImportError
-        MDAnalysis is not installed (``pip install "shapelab[md]"``).
+        MDAnalysis is not installed (``pip install "shapelab[md]"``), or dask.distributed
+        for ``client``/``scheduler`` (``pip install "shapelab[dask]"``).
     TypeError
         An argument of the wrong type (named in the message).
     ValueError
         ``probe`` negative, ``step``/``jobs`` below 1, ``min_overlap`` outside (0, 1],
-        a selection with fewer than 4 atoms, an atom without a radius.
+        a selection with fewer than 4 atoms, an atom without a radius; ``client`` and
+        ``scheduler`` both, or either with ``jobs`` > 1.
 
     See Also
     --------
@@ -517,6 +531,42 @@ def trajectory_measures(
     ):
         raise TypeError(f"trajectory must be a path, a list of paths or None, got {type(trajectory).__name__}")
 
+    from ._toolkit.cluster import cluster_client
+
+    with cluster_client(client, scheduler, jobs, "trajectory_measures") as cluster:
+        return _measure(
+            topology,
+            trajectory,
+            select,
+            probe,
+            start,
+            stop,
+            step,
+            jobs,
+            min_overlap,
+            min_persistence,
+            default_radius,
+            progress,
+            cluster,
+        )
+
+
+def _measure(
+    topology,
+    trajectory,
+    select,
+    probe,
+    start,
+    stop,
+    step,
+    jobs,
+    min_overlap,
+    min_persistence,
+    default_radius,
+    progress,
+    cluster,
+) -> TrajectoryMeasures:
+    """The body of :func:`trajectory_measures`, its arguments checked; ``cluster`` a Dask client or None."""
     u = _open(topology, trajectory)
     atoms = u.select_atoms(select)
     if len(atoms) < 4:
@@ -526,7 +576,24 @@ def trajectory_measures(
     bar = _Progress(len(frames), bool(progress))
     rows: list = []
     try:
-        if jobs == 1 or len(frames) <= 1:
+        if cluster is not None:
+            from ._toolkit.cluster import cluster_threads, distributed_module
+
+            distributed = distributed_module("trajectory_measures")
+            n = min(4 * cluster_threads(cluster), len(frames))
+            blocks = [b.tolist() for b in np.array_split(np.asarray(frames), n)] if frames else []
+            args = (topology, trajectory, select, default_radius)
+            futs = [cluster.submit(_worker_block, *args, b, probe, min_persistence, pure=False) for b in blocks]
+            try:
+                for fut in distributed.as_completed(futs, loop=cluster.loop):
+                    got = fut.result()
+                    rows += got
+                    bar.update(len(got))
+            except BaseException:
+                cluster.cancel(futs)
+                raise
+            rows.sort(key=lambda r: r["frame"])
+        elif jobs == 1 or len(frames) <= 1:
             for f in frames:
                 rows += _measure_frames(u, atoms, radii, [f], probe, min_persistence)
                 bar.update()

@@ -1,0 +1,265 @@
+"""shapelab.batch on a Dask cluster: ``report_batch(client=...)`` and ``--scheduler ADDRESS``.
+
+The oracle is the local batch (``jobs=1``, itself tested against the single-file command
+line in test_batch.py): on a two-worker ``distributed.LocalCluster`` on loopback the
+same shipped structures and one malformed file give the same files, byte for byte (done
+markers included), and the same summary but for its ``seconds`` column.  Resuming on the
+cluster is checked by the statuses and by the untouched files of skipped structures.
+Every test is bounded by an alarm and every subprocess by a timeout, so that a cluster
+that does not answer fails the test instead of hanging CI.  Skips without dask.distributed
+(the optional extra ``shapelab[dask]``).
+"""
+
+from __future__ import annotations
+
+import filecmp
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from shapelab.batch import SUMMARY_COLUMNS, report_batch
+from shapelab.datasets import structure_path
+
+dask = pytest.importorskip("dask", reason='dask is not installed (pip install "shapelab[dask]")')
+distributed = pytest.importorskip(
+    "distributed", reason='dask.distributed is not installed (pip install "shapelab[dask]")'
+)
+
+ROOT = Path(__file__).resolve().parents[2]
+DATA = structure_path("1hvr").parent
+SHIPPED = ["globule.pdb", "1grm_single.pdb.gz", "1hvr.pdb.gz"]
+BAD = "ATOM      1  CA  ALA A   1      1.000   xyz     3.000  1.00  0.00           C\n"
+LIMIT = 120  # seconds for any one test: far above what it takes, far below a hung CI job
+
+
+@pytest.fixture(autouse=True)
+def alarm():
+    """Fail, instead of hanging, a test that waits on a cluster that never answers."""
+
+    def fire(signum, frame):
+        raise TimeoutError(f"the test took more than {LIMIT} s: is the Dask cluster answering?")
+
+    old = signal.signal(signal.SIGALRM, fire)
+    signal.alarm(LIMIT)
+    yield
+    signal.alarm(0)
+    signal.signal(signal.SIGALRM, old)
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    # Dask's nanny starts its workers with MALLOC_TRIM_THRESHOLD_=65536, which makes glibc
+    # return the library's mid-sized arrays to the system at once: about 3x the CPU time
+    # (page faults).  Unset, as the README says for real clusters ("On a Dask cluster").
+    with dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
+        c = distributed.LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
+        )
+    with c, distributed.Client(c, timeout=60, set_as_default=False) as client:  # not the default client
+        yield c, client
+
+
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory):
+    """Three shipped structures and one malformed file."""
+    d = tmp_path_factory.mktemp("inputs")
+    for name in SHIPPED:
+        shutil.copy(DATA / name, d / name)
+    (d / "bad.pdb").write_text(BAD)
+    return d
+
+
+@pytest.fixture(scope="module")
+def local(folder, tmp_path_factory):
+    out = tmp_path_factory.mktemp("local")
+    return out, report_batch(folder, out=out, progress=False)
+
+
+@pytest.fixture(scope="module")
+def on_cluster(folder, cluster, tmp_path_factory):
+    out = tmp_path_factory.mktemp("dask")
+    return out, report_batch(folder, out=out, client=cluster[1], progress=False)
+
+
+def without_seconds(summary):
+    return [{k: r[k] for k in SUMMARY_COLUMNS if k != "seconds"} for r in summary]
+
+
+def summary_lines(path):
+    """The summary CSV's lines without the seconds column (the last one)."""
+    lines = Path(path).read_text().splitlines()
+    assert lines[0].endswith(",seconds")
+    return [line.rsplit(",", 1)[0] for line in lines]
+
+
+def assert_same_files(a: Path, b: Path, names=None):
+    names = sorted(p.name for p in a.iterdir() if p.name != "shapelab_summary.csv") if names is None else names
+    assert names, "nothing to compare"
+    match, mismatch, errors = filecmp.cmpfiles(a, b, names, shallow=False)
+    assert (mismatch, errors) == ([], []), f"differ: {mismatch}, missing: {errors}"
+    return names
+
+
+def test_cluster_writes_what_a_local_batch_writes(local, on_cluster):
+    (a, sa), (b, sb) = local, on_cluster
+    names = assert_same_files(a, b)
+    # four files and a marker per structure that reports; nothing for the malformed one
+    assert {n.split("_cavities")[0] for n in names} == {"globule", "1grm_single", "1hvr"}
+    assert len(names) == 15 and not any(n.startswith("bad") for n in names)
+    assert sorted(p.name for p in a.iterdir()) == sorted(p.name for p in b.iterdir())
+    assert summary_lines(a / "shapelab_summary.csv") == summary_lines(b / "shapelab_summary.csv")
+    assert without_seconds(sa) == without_seconds(sb)
+    assert [(Path(r["path"]).name, r["status"]) for r in sb] == [
+        ("1grm_single.pdb.gz", "ok"),
+        ("1hvr.pdb.gz", "ok"),
+        ("bad.pdb", "failed"),
+        ("globule.pdb", "ok"),
+    ]
+    # the worker read a private copy, but the error reads as the local one (no temporary path)
+    assert sb.failed[0]["error"] == "line 1: could not read y from columns 39-46: 'xyz'"
+    assert all(r["seconds"] >= 0 for r in sb)
+
+
+def test_resume_on_the_cluster(local, on_cluster, folder, cluster, tmp_path):
+    out = tmp_path / "out"
+    shutil.copytree(on_cluster[0], out)
+    (out / "1hvr_cavities.done.json").unlink()  # interrupted after its files, before its marker
+    (out / "globule_cavities.md").unlink()  # a listed file lost: not complete either
+    kept = {p.name: p.stat().st_mtime_ns for p in out.iterdir() if p.name.startswith("1grm_single")}
+    summary = report_batch(folder, out=out, resume=True, client=cluster[1], progress=False)
+    assert [(Path(r["path"]).name, r["status"]) for r in summary] == [
+        ("1grm_single.pdb.gz", "skipped"),
+        ("1hvr.pdb.gz", "ok"),
+        ("bad.pdb", "failed"),
+        ("globule.pdb", "ok"),
+    ]
+    assert {n: (out / n).stat().st_mtime_ns for n in kept} == kept  # skipped: not rewritten
+    assert_same_files(local[0], out)  # and everything is as a local batch wrote it
+    again = report_batch(folder, out=out, resume=True, client=cluster[1], progress=False)
+    assert again.counts() == {"ok": 0, "failed": 1, "skipped": 3}
+    # the local batch accepts the cluster's markers, and the other way round
+    assert report_batch(folder, out=out, resume=True, progress=False).counts()["skipped"] == 3
+
+
+def test_progress_lines_as_the_local_batch(folder, cluster, tmp_path, capsys):
+    paths = [folder / "1grm_single.pdb.gz", folder / "bad.pdb", folder / "missing.pdb"]
+    report_batch(paths, out=tmp_path, client=cluster[1])
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    lines = captured.err.splitlines()
+    assert lines[0] == f"1/3  {folder / 'missing.pdb'}  failed: no such file or directory"  # known at once
+    assert sorted(line.split("  ")[0] for line in lines[1:]) == ["2/3", "3/3"]
+    assert sorted(line.split("  ", 1)[1] for line in lines[1:]) == [
+        f"{folder / '1grm_single.pdb.gz'}  ok",
+        f"{folder / 'bad.pdb'}  failed: line 1: could not read y from columns 39-46: 'xyz'",
+    ]
+
+
+def test_command_line_with_scheduler_and_figure(local, folder, cluster, tmp_path):
+    out = tmp_path / "cli"
+    out.mkdir()
+    res = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "shapelab",
+            "report",
+            str(folder),
+            "--out",
+            str(out),
+            "--scheduler",
+            cluster[0].scheduler_address,
+            "--figure",
+            str(out / "summary.png"),
+        ],
+        env=dict(os.environ, PYTHONPATH=str(ROOT)),
+        capture_output=True,
+        text=True,
+        timeout=LIMIT - 10,
+    )
+    assert res.returncode == 1, res.stderr  # one input failed
+    assert res.stdout == ""
+    assert f"error: {folder / 'bad.pdb'}: line 1: could not read y" in res.stderr
+    assert "4 structures: 3 ok, 0 skipped, 1 failed" in res.stderr
+    assert str(out / "summary.png") in res.stderr.splitlines()[-1]
+    assert (out / "summary.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert_same_files(local[0], out, sorted(p.name for p in local[0].iterdir() if p.name != "shapelab_summary.csv"))
+    assert summary_lines(local[0] / "shapelab_summary.csv") == summary_lines(out / "shapelab_summary.csv")
+
+
+def test_command_line_refuses_jobs_with_scheduler_and_a_bad_figure(folder, tmp_path, capsys):
+    from shapelab import cli
+
+    assert cli.main(["report", str(folder), "--out", str(tmp_path), "--jobs", "2", "--scheduler", "tcp://x:1"]) == 2
+    assert "--jobs" in capsys.readouterr().err
+    assert cli.main(["report", str(folder), "--out", str(tmp_path), "--figure", str(tmp_path / "s.xyz")]) == 2
+    assert ".png" in capsys.readouterr().err
+    assert cli.main(["report", str(folder), "--out", str(tmp_path), "--figure", str(tmp_path / "no" / "s.png")]) == 2
+    assert "does not exist" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []  # refused before anything ran
+
+
+def test_bad_client_arguments(folder, cluster, tmp_path):
+    client = cluster[1]
+    with pytest.raises(ValueError, match="not both"):
+        report_batch(folder, out=tmp_path, client=client, scheduler=cluster[0].scheduler_address)
+    with pytest.raises(ValueError, match="jobs=2"):
+        report_batch(folder, out=tmp_path, client=client, jobs=2)
+    with pytest.raises(TypeError, match="client must be a dask.distributed.Client"):
+        report_batch(folder, out=tmp_path, client="tcp://127.0.0.1:1")
+    with pytest.raises(TypeError, match="scheduler"):
+        report_batch(folder, out=tmp_path, scheduler=8786)
+    assert list(tmp_path.iterdir()) == []
+
+
+def clients(cluster):
+    return cluster[1].run_on_scheduler(lambda dask_scheduler: len(dask_scheduler.clients))
+
+
+def test_scheduler_address_connects_and_disconnects(folder, cluster, tmp_path):
+    before = clients(cluster)
+    summary = report_batch(
+        [folder / "globule.pdb"], out=tmp_path, scheduler=cluster[0].scheduler_address, progress=False
+    )
+    assert summary["status"] == ["ok"]
+    for _ in range(100):  # the scheduler hears of the closed client soon after it closes
+        if clients(cluster) == before:
+            break
+        time.sleep(0.1)
+    assert clients(cluster) == before  # the batch's own client is closed
+
+
+def test_without_dask_the_error_names_the_extra(folder, tmp_path, monkeypatch, capsys):
+    monkeypatch.setitem(sys.modules, "distributed", None)  # import distributed now fails
+    with pytest.raises(ImportError, match=r"pip install \"shapelab\[dask\]\""):
+        report_batch(folder, out=tmp_path, scheduler="tcp://127.0.0.1:1")
+    from shapelab import cli
+
+    assert cli.main(["report", str(folder), "--out", str(tmp_path), "--scheduler", "tcp://127.0.0.1:1"]) == 2
+    assert 'pip install "shapelab[dask]"' in capsys.readouterr().err
+
+
+def test_local_batches_never_import_dask(tmp_path):
+    code = (
+        "import sys, shapelab, shapelab.batch, shapelab.cli\n"
+        "from shapelab.batch import report_batch\n"
+        "from shapelab.datasets import structure_path\n"
+        f"s = report_batch([structure_path('1grm')], out={str(tmp_path)!r}, progress=False)\n"
+        "assert s['status'] == ['ok'], s.rows\n"
+        "print(sorted(m for m in sys.modules if m.split('.')[0] in ('dask', 'distributed')))\n"
+    )
+    res = subprocess.run(
+        [sys.executable, "-c", code],
+        env=dict(os.environ, PYTHONPATH=str(ROOT)),
+        capture_output=True,
+        text=True,
+        timeout=LIMIT - 10,
+    )
+    assert res.returncode == 0, res.stderr
+    assert res.stdout.strip() == "[]"
