@@ -440,10 +440,10 @@ def evaluate(list_pockets, split: str = "dev", *, ids=None, progress: bool = Fal
         ``seconds`` (one call, wall clock), ``site_ranks`` (first rank within 4 Å, or
         None), ``found_n``, ``found_n2``, ``error``.
     """
-    m = load_manifest()
-    entries = [e for e in m["structures"] if split == "all" or e["split"] == split]
     if split not in ("dev", "test", "all"):
         raise ValueError(f"split must be 'dev', 'test' or 'all', got {split!r}")
+    m = load_manifest()
+    entries = [e for e in m["structures"] if split == "all" or e["split"] == split]
     if ids is not None:
         entries = [e for e in entries if e["id"] in set(ids)]
     records = []
@@ -789,19 +789,19 @@ def _fmt_pct(x) -> str:
 
 def _table(results: dict) -> str:
     head = (
-        "| method | split | structures | sites | top-N | top-(N+2) | median pockets | mean pockets "
-        "| median s/structure | failed |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n"
+        "| method | split | structures | sites | top-N | top-(N+2) | any rank | median pockets | mean pockets "
+        "| median s/structure | failed |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n"
     )
     lines = []
     for name, res in results.items():
         if "skipped" in res:
-            lines.append(f"| {name} | — | — | — | — | — | — | — | — | not run: {res['skipped']} |")
+            lines.append(f"| {name} | — | — | — | — | — | — | — | — | — | not run: {res['skipped']} |")
             continue
         for split in ("dev", "test", "all"):
             p = res["splits"][split]
             lines.append(
                 f"| {name} | {split} | {p['structures']} | {p['sites']} | {_fmt_pct(p['top_n'])} "
-                f"| {_fmt_pct(p['top_n2'])} | {p['median_pockets']:g} | {p['mean_pockets']:.1f} "
+                f"| {_fmt_pct(p['top_n2'])} | {_fmt_pct(p['any_rank'])} | {p['median_pockets']:g} | {p['mean_pockets']:.1f} "
                 f"| {p['median_seconds']:.2f} | {p['failed']} |"
             )
     return head + "\n".join(lines) + "\n"
