@@ -327,12 +327,15 @@ def main(argv=None) -> int:
             load0 = os.getloadavg()[0]
             doc[part] = steps[part]()
             doc["load"][part] = f"{load0:.2f} / {os.getloadavg()[0]:.2f}"
-    args.out.parent.mkdir(parents=True, exist_ok=True)
-    args.out.with_suffix(".json").write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")
-    text = _markdown(doc)
-    args.out.write_text(text, encoding="utf-8")
-    print(text)
+            _save(doc, args.out)  # after each part: an interrupted run keeps what it measured
+    print(_markdown(doc))
     return 0
+
+
+def _save(doc, out: Path) -> None:
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.with_suffix(".json").write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")
+    out.write_text(_markdown(doc), encoding="utf-8")
 
 
 if __name__ == "__main__":
