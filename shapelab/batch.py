@@ -745,9 +745,8 @@ def report_batch(
 
     Finds the structure files of ``paths`` (:func:`expand_paths`: files, folders
     searched recursively, glob patterns), reads each as the command line reads one
-    (:func:`shapelab.io.read_pdb` for PDB files; ``shapelab.io.read_structure`` for
-    ``.cif``/``.bcif`` where it exists, else the input fails with ``mmCIF not
-    supported``), computes ``shapelab.report(structure, probe, name=stem)`` (Notes
+    (:func:`shapelab.io.read_structure`: PDB or mmCIF, plain or gzip, decided by the
+    content), computes ``shapelab.report(structure, probe, name=stem)`` (Notes
     §23.1) and writes its files into ``out`` exactly as ``python -m shapelab report
     FILE`` does (:meth:`shapelab.cavity_report.CavityReport.write`), then a done
     marker ``<stem>_cavities.done.json``.  A failing input is recorded and the batch

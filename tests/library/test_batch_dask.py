@@ -147,6 +147,42 @@ def test_resume_on_the_cluster(local, on_cluster, folder, cluster, tmp_path):
     assert report_batch(folder, out=out, resume=True, progress=False).counts()["skipped"] == 3
 
 
+def _spy_on_reads():
+    """On a worker: record every path shapelab.io.read_structure is given."""
+    import shapelab.io as sio
+
+    real = sio.read_structure
+    seen = []
+
+    def spy(path, **kw):
+        seen.append(str(path))
+        return real(path, **kw)
+
+    spy.real, spy.seen = real, seen
+    sio.read_structure = spy
+
+
+def _stop_spying():
+    import shapelab.io as sio
+
+    seen = sio.read_structure.seen
+    sio.read_structure = sio.read_structure.real
+    return seen
+
+
+def test_workers_read_a_copy_of_the_bytes_not_the_input(folder, cluster, tmp_path):
+    client = cluster[1]
+    client.run(_spy_on_reads)
+    try:
+        summary = report_batch([folder / "1grm_single.pdb.gz"], out=tmp_path, client=client, progress=False)
+    finally:
+        seen = [p for paths in client.run(_stop_spying).values() for p in paths]
+    assert summary["status"] == ["ok"]
+    assert len(seen) == 1 and seen[0].endswith("/1grm_single.pdb.gz")  # under its own name ...
+    assert not seen[0].startswith(str(folder))  # ... in the worker's temporary folder, not the input
+    assert not Path(seen[0]).exists()  # removed once read
+
+
 def test_progress_lines_as_the_local_batch(folder, cluster, tmp_path, capsys):
     paths = [folder / "1grm_single.pdb.gz", folder / "bad.pdb", folder / "missing.pdb"]
     report_batch(paths, out=tmp_path, client=cluster[1])
