@@ -194,7 +194,18 @@ def main(argv=None) -> int:
     )
     out = Path(args.out)
     out.with_suffix(".json").write_text(
-        json.dumps({"rule": RULE, "ids": ids, "best": best, "flow": flow, "rows": rows}, indent=1)
+        json.dumps(
+            {
+                "rule": RULE,
+                "ids": ids,
+                "best": best,
+                "flow": flow,
+                "best_per_score": per_score,
+                "unfiltered": unfiltered,
+                "candidates": len(rows),
+            },
+            indent=1,
+        )
     )
     pct = lambda x: f"{100 * x:.1f} %"  # noqa: E731
     lines = [

@@ -75,7 +75,7 @@ def _name(r) -> str:
     return str(stem)
 
 
-def batch_summary(summary, *, log=None, max_labels=40, ax=None, title=None):
+def batch_summary(summary, *, log=None, max_labels=25, ax=None, title=None):
     """The summary of a batch as a figure: largest pocket and void of each structure.
 
     One row per structure, sorted by the volume of its largest pocket (largest at the
@@ -96,8 +96,9 @@ def batch_summary(summary, *, log=None, max_labels=40, ax=None, title=None):
     log : bool, optional
         A logarithmic volume axis; default: when the positive volumes span more than
         two decades.
-    max_labels : int, default 40
-        The most structures drawn as named bars.
+    max_labels : int, default 25
+        The most structures drawn as named bars (25 keep an 11-point label per row
+        on a 16:9 slide).
     ax : matplotlib.axes.Axes, optional
     title : str, optional
         Default: "Largest pocket and void per structure" and the counts.
@@ -155,7 +156,7 @@ def batch_summary(summary, *, log=None, max_labels=40, ax=None, title=None):
     counts = f"{len(good)} reported, {len(failed)} failed" if failed else f"{len(good)} structures"
     if title is None:
         title = f"Largest pocket and void per structure ({counts})"
-    size = (SLIDE[0], min(SLIDE[1], max(2.5, 0.8 + 0.22 * n))) if n <= max_labels else SLIDE
+    size = (SLIDE[0], min(SLIDE[1], max(3.2, 0.9 + 0.3 * n))) if n <= max_labels else SLIDE
     fig, ax = axes(ax, size=size)
     with style():
         if n <= max_labels:

@@ -83,7 +83,7 @@ def test_log_axis_when_volumes_span_decades_and_rank_plot_for_many():
     rows.append(row("broken", "failed"))
     fig = shapelab.plot.batch_summary(rows, max_labels=100)
     assert fig.axes[0].get_xscale() == "log"
-    fig = shapelab.plot.batch_summary(rows)  # 61 > 40: a rank plot
+    fig = shapelab.plot.batch_summary(rows)  # 61 > 25: a rank plot
     ax = fig.axes[0]
     assert ax.get_yscale() == "log" and "60 reported, 1 failed" in ax.get_title()
     pockets, voids = (ln.get_ydata() for ln in ax.lines)
@@ -91,6 +91,19 @@ def test_log_axis_when_volumes_span_decades_and_rank_plot_for_many():
     assert len(voids) == 20 and np.all(voids == 5.0)
     assert np.array_equal(ax.lines[0].get_xdata(), np.arange(1, 61))
     fig.savefig(io.BytesIO(), format="png")
+
+
+@pytest.mark.parametrize("n", [1, 7, 25])
+def test_names_do_not_overlap_at_slide_size(n):
+    rows = [row(f"structure_{k:02d}", pocket=10.0 + k) for k in range(n - 1)] + [row("broken", "failed")]
+    fig = shapelab.plot.batch_summary(rows)
+    w, h = fig.get_size_inches()
+    assert w == shapelab.plot.SLIDE[0] and h <= shapelab.plot.SLIDE[1]
+    fig.canvas.draw()
+    boxes = sorted((t.get_window_extent() for t in fig.axes[0].get_yticklabels()), key=lambda b: b.y0)
+    assert len(boxes) == n
+    assert all(a.y1 <= b.y0 for a, b in zip(boxes, boxes[1:]))  # no two names overlap
+    assert all(t.get_fontsize() >= 10 for t in fig.axes[0].get_yticklabels())
 
 
 def test_batch_summary_refuses_bad_input():
