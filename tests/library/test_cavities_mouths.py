@@ -264,6 +264,34 @@ def test_flow_pockets_measured_like_growth_pockets(seed, d, n):
         assert [q.persistence for q in listed] == sorted((q.persistence for q in listed), reverse=True)
 
 
+@pytest.mark.parametrize(("seed", "d", "n"), [(s, 2, 40) for s in range(3)] + [(s, 3, 45) for s in range(2)])
+def test_growth_pocket_lies_in_one_flow_pocket_at_exact_entry_times(seed, d, n):
+    """Every face on the boundary of a growth pocket's cells R enters K no later than
+    ``closes_at`` (else its other side would be in R), and every cell of R later, so
+    no cell of R attaches a boundary face: the flow cannot leave R, and R (connected
+    through free faces) lies in one flow pocket, whose most persistent class is at
+    least R's.  Checked at τ equal to entry times of faces and cells (the quantiles of
+    the other tests fall between them), where ``value <= tau`` decides membership."""
+    F = sl.alpha_filtration(_random_balls(seed, d, n))
+    values = np.unique(np.r_[np.asarray(F.values(d - 1)), np.asarray(F.values(d))])
+    values = values[np.isfinite(values) & (values > 0)]
+    taus = [0.0, *np.random.default_rng(seed).choice(values, 6, replace=False).tolist()]
+    checked = 0
+    for tau in taus:
+        flow = sl.discrete_flow(F, tau)
+        for p in sl.pockets(F, tau):
+            (home,) = set(flow.region[p.cell_ids].tolist())
+            assert home >= 0
+            q = flow.pockets[home]
+            assert not q.is_void
+            assert q.persistence >= p.persistence
+            assert p.mouth_ids.tolist() == _mouth_oracle(F, tau, p.cell_ids)
+            checked += 1
+        for q in sl.pockets(F, tau, method="flow"):
+            assert q.mouth_ids.tolist() == _mouth_oracle(F, tau, q.cell_ids)
+    assert checked > 0
+
+
 def test_flow_void_pair_is_the_voids():
     t = np.linspace(0, 2 * np.pi, 12, endpoint=False)
     F = sl.alpha_filtration(sl.Balls(3 * np.c_[np.cos(t), np.sin(t)], 0.9))
