@@ -449,7 +449,19 @@ def _closes_at(v, ns):
         d = np.linalg.norm(balls.centers[j] - balls.centers[i], axis=1)
         return float(np.max((d / 2) ** 2 - balls.radii[i] ** 2))
 
-    return [*_generic(v), ("the equal-radii formula (d/2)² − r²", equal_radii)]
+    def first_to_close(pocket, balls):  # the smallest of the mouth edges' times, not the largest
+        i, j = np.asarray(pocket.mouth).T
+        z, r = balls.centers, balls.radii
+        d = np.linalg.norm(z[j] - z[i], axis=1)
+        t = (d**2 + r[i] ** 2 - r[j] ** 2) / (2 * d)
+        return float(np.min(t**2 - r[i] ** 2))
+
+    return [
+        *_generic(v),
+        ("the equal-radii formula (d/2)² − r²", equal_radii),
+        ("the mouth edge that closes first", first_to_close),
+        ("the pocket's closes_at (a nested pocket's is its neck's)", lambda pocket, balls: pocket.closes_at),
+    ]
 
 
 def _flow_sinks(v, ns):

@@ -165,7 +165,10 @@ def mouth_closing(student) -> CheckResult:
     Figure 23.2's flask and of the two-chamber flask, then of Figure 23.2's flask with
     radii from 0.9 to 1.1 times its own (seeded): the data sets' disks all have one
     radius, on which :math:`(d/2)^2 - r^2` is right, and the lesson's formula is for two
-    radii (Notes §23.1, the edge's entry time on the radical axis).
+    radii (Notes §23.1, the edge's entry time on the radical axis); last, a ring with a
+    small disk in its gap, whose two mouth edges close at different times (every
+    other case has one mouth edge, on which the first, the smallest or the mean of the
+    edges' times is right too).
 
     See Also
     --------
@@ -181,7 +184,10 @@ def mouth_closing(student) -> CheckResult:
     flask = figure_23_2()[0]
     uneven = Balls(flask.centers, flask.radii * np.random.default_rng(0).uniform(0.9, 1.1, len(flask)))
     cases, closes = [], {}
-    for balls in (flask, nested_pockets(), figure_23_2(disk_radius=0.6)[0], uneven):
+    # a ring of twelve places, one left empty, and a small disk in the gap off its middle
+    t = np.deg2rad(np.r_[np.arange(30.0, 331.0, 30.0), 6.0])
+    gapped = Balls(3 * np.c_[np.cos(t), np.sin(t)], np.r_[np.full(11, 0.9), 0.3])
+    for balls in (flask, nested_pockets(), figure_23_2(disk_radius=0.6)[0], uneven, gapped):
         F = alpha_filtration(balls)
         for p in pockets(F, 0.0, min_persistence=1e-9):
             cases.append((p, balls))

@@ -90,6 +90,20 @@ def test_mouth_closing_refuses_the_equal_radii_formula(capsys):
     assert "✗" in capsys.readouterr().out
 
 
+def test_mouth_closing_refuses_the_first_mouth_edge_to_close(capsys):
+    # every case once had a single mouth edge, so the smallest (or the mean, or the
+    # first) of the edges' times passed: the gapped ring's two edges tell them apart
+    def first_to_close(pocket, balls):
+        i, j = np.asarray(pocket.mouth).T
+        z, r = balls.centers, balls.radii
+        d = np.linalg.norm(z[j] - z[i], axis=1)
+        t = (d**2 + r[i] ** 2 - r[j] ** 2) / (2 * d)
+        return float(np.min(t**2 - r[i] ** 2))
+
+    assert not check.mouth_closing(first_to_close)
+    assert "✗" in capsys.readouterr().out
+
+
 # ---- lesson 17: the most spread-out class, with its per-class values -------------------
 #: four classes of two shapes each; within-class distances 0.3, 0.1, 0.5, 0.2 (the cube
 #: is the most spread out); between classes 1.0
