@@ -477,8 +477,9 @@ def pockets(F, tau=0.0, *, min_persistence=0.0, method="growth") -> tuple:
         Growth time at which the pockets are reported (mouths and volumes refer to it).
     min_persistence : float, default 0.0
         Keep pockets with ``fills_at - closes_at >= min_persistence`` (zero-length
-        classes never count in the growth model; a flow pocket of persistence 0, a
-        dent that drains now and fills without closing, is kept at 0.0).
+        classes never count in the growth model; a flow pocket of persistence 0, whose
+        classes all have zero length up to round-off, is kept at 0.0: see
+        :class:`shapelab.FlowPocket`).
     method : {"growth", "flow"}, default "growth"
         ``"growth"``: the notes' growth-model pockets (:class:`Pocket`).  ``"flow"``:
         CASTp's pockets, the regions of the discrete flow on the same regular

@@ -302,6 +302,27 @@ def test_flow_void_pair_is_the_voids():
     assert sl.pockets(F, method="flow") == ()
 
 
+def test_flow_pocket_persistence_is_zero_only_at_a_tie():
+    """A sink's facets all enter K strictly before it (its orthocentre lies beyond none
+    of them), so it roots a class of positive length: an acute triangle of three disks
+    is a flow pocket with the growth model's pair.  A right triangle's circumcentre lies
+    on its hypotenuse, which enters with it: a flow pocket of persistence 0, and no
+    growth-model pocket.  On generic input every flow pocket has positive persistence."""
+    acute = sl.alpha_filtration(sl.Balls(np.array([[0.0, 0.0], [3.0, 0.0], [1.2, 2.5]]), 1.0))
+    (q,) = sl.pockets(acute, method="flow")
+    (p,) = sl.pockets(acute)
+    assert q.persistence > 0 and (q.closes_at, q.fills_at) == (p.closes_at, p.fills_at)
+    right = sl.alpha_filtration(sl.Balls(np.array([[0.0, 0.0], [3.0, 0.0], [0.0, 3.0]]), 1.0))
+    (q,) = sl.pockets(right, method="flow")
+    assert q.persistence == 0 and q.closes_at == q.fills_at == pytest.approx(4.5 - 1.0)
+    assert len(q.mouth) == 3 and sl.pockets(right) == ()
+    assert sl.pockets(right, method="flow", min_persistence=1e-12) == ()
+    for seed, d, n in [(0, 2, 40), (1, 2, 40), (0, 3, 45), (1, 3, 45)]:
+        F = sl.alpha_filtration(_random_balls(seed, d, n))
+        for tau in _taus(F, 3):
+            assert all(q.persistence > 0 for q in sl.pockets(F, tau, method="flow"))
+
+
 def test_method_is_validated():
     F = sl.alpha_filtration(datasets.figure_23_2()[0])
     with pytest.raises(ValueError, match="method"):
