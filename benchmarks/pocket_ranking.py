@@ -3,8 +3,8 @@
 ``python -m benchmarks.pocket_ranking`` reads the development structures of the pocket
 benchmark (:mod:`benchmarks.pocket_sites`: same ligand rule, same protein-only files,
 same DCA criterion, pocket centre = centroid of the lining atoms), computes every
-cavity of each once (``shapelab.report(s, 1.4)``: voids and growth-model pockets, all
-of them) and its features (:func:`shapelab.ranking.pocket_features`), and then scores
+cavity of each once (``shapelab.report(s, 1.4, rank="none")``: voids and growth-model
+pockets, all of them) and its features (:func:`shapelab.ranking.pocket_features`), and then scores
 candidate rankings and filters on these cached features: top-N and top-(N+2) DCA
 recall and the median number of cavities listed per structure.  It writes
 ``benchmarks/results/pocket_ranking_dev.{md,json}``.
@@ -56,7 +56,7 @@ def _cache(ids, progress=True, method="growth") -> list[dict]:
             prot = ps.protein_only_pdb(src, Path(tmp) / f"{sid}.pdb")
             s = sl.read_structure(str(prot), hetatm=False)
             t0 = time.perf_counter()
-            rep = sl.report(s, 1.4, method=method)
+            rep = sl.report(s, 1.4, method=method, rank="none")  # every cavity, unfiltered
             t1 = time.perf_counter() - t0
             vdw = sl.Balls(s.balls.centers, s.balls.radii - s.probe)
             rows = rep.rows
@@ -217,7 +217,7 @@ def main(argv=None) -> int:
         "",
         f"Development split of `benchmarks/data/pockets/manifest.json`: {len(ids)} structures, "
         f"{baseline['sites']} ligand sites (ids: {', '.join(ids)}).  The test split was not read.",
-        "Every cavity of `shapelab.report(s, 1.4)` (voids and growth-model pockets) on the protein-only file; "
+        'Every cavity of `shapelab.report(s, 1.4, rank="none")` (voids and growth-model pockets) on the protein-only file; '
         "centre = centroid of the lining atoms; a site is found at rank k when one of the first k centres lies "
         "within 4 Å of a ligand heavy atom (DCA); N = sites of the structure.",
         "",

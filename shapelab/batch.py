@@ -303,6 +303,7 @@ def _marker_key(task: dict, sha: str) -> dict:
         "sha256": sha,
         "probe": task["probe"],
         "options": _jsonable(task["options"]),
+        "report": task["report"],
     }
 
 
@@ -390,7 +391,7 @@ def _run_one(task: dict) -> dict:
         sha = _sha256(task["path"])
         s = read_structure_file(task["path"], **task["options"])
         cavity_report.check_output(s, out, stem)
-        rep = cavity_report.report(s, task["probe"], name=stem)
+        rep = cavity_report.report(s, task["probe"], name=stem, **task["report"])
         _ok(row, s, rep)
         _store(task, sha, row, rep, check=False)
     except Exception as e:  # any failure of one structure is recorded; the batch carries on
@@ -421,7 +422,7 @@ def _remote_one(task: dict, data: bytes) -> tuple:
         try:
             s = read_structure_file(copy, **task["options"])
             cavity_report.check_output(s, d, stem)  # what does not depend on the directory: the mmCIF labels
-            rep = cavity_report.report(s, task["probe"], name=stem)
+            rep = cavity_report.report(s, task["probe"], name=stem, **task["report"])
             _ok(row, s, rep)
         except Exception as e:  # recorded, as in _run_one
             rep = None
@@ -740,15 +741,21 @@ def report_batch(
     default_radius=None,
     client=None,
     scheduler=None,
+    rank="score",
+    method="growth",
+    min_persistence=None,
+    min_volume=None,
+    top=None,
 ) -> BatchSummary:
     """The cavity reports of many structures, written as for one, and one summary table.
 
     Finds the structure files of ``paths`` (:func:`expand_paths`: files, folders
     searched recursively, glob patterns), reads each as the command line reads one
     (:func:`shapelab.io.read_structure`: PDB or mmCIF, plain or gzip, decided by the
-    content), computes ``shapelab.report(structure, probe, name=stem)`` (Notes
-    §23.1) and writes its files into ``out`` exactly as ``python -m shapelab report
-    FILE`` does (:meth:`shapelab.cavity_report.CavityReport.write`), then a done
+    content), computes ``shapelab.report(structure, probe, name=stem, rank=rank, ...)``
+    (Notes §23.1; ranked by default, as one file's report) and writes its files into
+    ``out`` exactly as ``python -m shapelab report FILE`` does
+    (:meth:`shapelab.cavity_report.CavityReport.write`), then a done
     marker ``<stem>_cavities.done.json``.  A failing input is recorded and the batch
     carries on.  Finally it writes ``<summary>.csv`` (and ``<summary>.parquet`` when
     pyarrow is installed) into ``out`` and returns the summary.
@@ -791,6 +798,12 @@ def report_batch(
         The address of a Dask scheduler (``"tcp://HOST:8786"``): connect to it, run as
         with ``client``, and disconnect at the end.  Dask is optional:
         ``pip install "shapelab[dask]"``.
+    rank, method, min_persistence, min_volume, top
+        Passed to :func:`shapelab.report` for every structure (default: ranked, best
+        binding-site candidates first, cavities under 10 Å³ dropped; ``rank="none"``
+        for every cavity in CASTp's order).  The summary counts the cavities listed.
+        A done marker records them: ``resume`` recomputes a structure reported with
+        other ranking options.
 
     Returns
     -------
@@ -873,13 +886,26 @@ def report_batch(
     options = dict(
         chain=chain, model=model, hetatm=hetatm, water=water, hydrogens=hydrogens, default_radius=default_radius
     )
+    if rank not in ("score", "none"):
+        raise ValueError(f"rank must be 'score' or 'none', got {rank!r}")
+    if method not in ("growth", "flow"):
+        raise ValueError(f"method must be 'growth' or 'flow', got {method!r}")
+    ranking = dict(
+        rank=rank,
+        method=method,
+        min_persistence=None
+        if min_persistence is None
+        else as_finite_scalar(min_persistence, "min_persistence", nonnegative=True),
+        min_volume=None if min_volume is None else as_finite_scalar(min_volume, "min_volume", nonnegative=True),
+        top=None if top is None else as_positive_int(top, "top"),
+    )
     from ._toolkit.cluster import cluster_client
 
     with cluster_client(client, scheduler, jobs, "report_batch") as cluster:
-        return _batch(paths, out, probe, jobs, resume, progress, summary, options, cluster)
+        return _batch(paths, out, probe, jobs, resume, progress, summary, options, cluster, ranking)
 
 
-def _batch(paths, out, probe, jobs, resume, progress, summary, options, cluster) -> BatchSummary:
+def _batch(paths, out, probe, jobs, resume, progress, summary, options, cluster, ranking=None) -> BatchSummary:
     """The body of :func:`report_batch`, its arguments checked; ``cluster`` a Dask client or None."""
     inputs = expand_paths(paths)
     out = _check_out(out)
@@ -896,7 +922,15 @@ def _batch(paths, out, probe, jobs, resume, progress, summary, options, cluster)
             continue
         owner[stem] = label
         tasks.append(
-            dict(label=label, path=os.fspath(path), stem=stem, out=os.fspath(out), probe=probe, options=options)
+            dict(
+                label=label,
+                path=os.fspath(path),
+                stem=stem,
+                out=os.fspath(out),
+                probe=probe,
+                options=options,
+                report=dict(ranking or {}),
+            )
         )
         where.append(k)
 

@@ -48,11 +48,21 @@ def test_options_round_trip_to_the_library(hvr, tmp_path, capsys, args, kw):
     assert (tmp_path / "1hvr_cavities.md").read_text() == lib.to_markdown()
 
 
-def test_no_option_is_the_old_table(hvr, tmp_path, capsys):
-    """Without ranking options the CLI prints report(structure, probe)'s table, as before."""
+def test_no_option_is_the_ranked_default_and_rank_none_the_old_table(hvr, tmp_path, capsys):
+    """Without ranking options the CLI prints report(structure, probe)'s table, which is
+    the ranking (rank="score", small cavities dropped and counted); --rank none prints
+    the unfiltered table in CASTp's order."""
     path, s = hvr
     assert cli.main(["report", str(path), "--no-hetatm", "--out", str(tmp_path)]) == 0
-    assert capsys.readouterr().out == sl.report(s, 1.4, name="1hvr").to_markdown()
+    out = capsys.readouterr().out
+    ranked = sl.report(s, 1.4, name="1hvr", rank="score")
+    assert out == sl.report(s, 1.4, name="1hvr").to_markdown() == ranked.to_markdown()
+    every = sl.report(s, 1.4, name="1hvr", rank="none")
+    assert f"{len(ranked.rows)} of {len(every.rows)} cavities listed" in out
+    assert len(ranked.rows) < len(every.rows)
+    assert cli.main(["report", str(path), "--no-hetatm", "--out", str(tmp_path), "--rank", "none"]) == 0
+    old = capsys.readouterr().out
+    assert old == every.to_markdown() and "filtered out" not in old
 
 
 @pytest.mark.parametrize(
@@ -80,9 +90,17 @@ def test_bad_choices_are_refused_by_the_parser(hvr, tmp_path, capsys):
     assert "invalid choice" in capsys.readouterr().err
 
 
-def test_the_batch_refuses_ranking_options(tmp_path, capsys):
-    src = structure_path("1grm")
-    rc = cli.main(["report", str(src), str(src), "--out", str(tmp_path), "--rank", "score", "--top", "2"])
-    err = capsys.readouterr().err
-    assert rc == 2 and "--rank, --top apply to one file" in err
-    assert list(tmp_path.iterdir()) == []
+@pytest.mark.parametrize(
+    "args, kw",
+    [([], {}), (["--rank", "none"], dict(rank="none")), (["--top", "2"], dict(top=2))],
+)
+def test_the_batch_passes_ranking_options_to_each_report(tmp_path, capsys, args, kw):
+    """Each structure's files in a batch are those of report(..., **options) called directly."""
+    srcs = [structure_path("1grm"), structure_path("1hvr").parent / "globule.pdb"]
+    rc = cli.main(["report", *map(str, srcs), "--out", str(tmp_path), "--no-progress", *args])
+    assert rc == 0, capsys.readouterr().err
+    for src in srcs:
+        stem = src.name.split(".")[0]
+        lib = sl.report(sl.read_structure(src), 1.4, name=stem, **kw)
+        assert (tmp_path / f"{stem}_cavities.md").read_text() == lib.to_markdown()
+        assert (tmp_path / f"{stem}_cavities.csv").read_text() == lib._csv_text()

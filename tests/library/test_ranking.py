@@ -195,14 +195,41 @@ def test_report_filters_are_monotone_on_a_protein(hvr):
 
 def test_rank_none_is_the_old_table(hvr):
     """rank="none" with its default filters is the report as it was: every row, voids
-    first, each kind by volume, and the CSV and Markdown without the ranking's columns."""
-    old = sl.report(hvr, 1.4)
+    first, each kind by volume, and the CSV and Markdown without the ranking's columns
+    or the line on ranking and filters."""
+    old = sl.report(hvr, 1.4, rank="none")
     same = sl.report(hvr, 1.4, rank="none", method="growth", min_persistence=0.0, min_volume=0.0)
     assert old._csv_text() == same._csv_text() and old.to_markdown() == same.to_markdown()
     assert old._csv_text().splitlines()[0].endswith("lining_residues,lining_atoms")
     kinds = [r.kind for r in old.rows]
     assert kinds == sorted(kinds, key=lambda k: k != "void")
     assert all(r.score is None for r in old.rows)
+    assert old.found == len(old.rows) and "filtered out" not in old.to_markdown()
+    assert old.to_markdown().splitlines()[4].startswith("| kind |")  # title, blank, counts, blank, table
+
+
+def test_the_default_is_the_ranking_and_says_what_it_dropped(hvr):
+    """The default report is rank="score" with the ranking's default filters; its
+    Markdown names the order and the filter, and counts what was left out against
+    the unfiltered table (rank="none": every cavity)."""
+    from shapelab.ranking import DEFAULT_MIN_PERSISTENCE, DEFAULT_MIN_VOLUME
+
+    default = sl.report(hvr, 1.4)
+    explicit = sl.report(hvr, 1.4, rank="score", min_volume=DEFAULT_MIN_VOLUME, min_persistence=DEFAULT_MIN_PERSISTENCE)
+    assert default.rank == "score" and default.to_markdown() == explicit.to_markdown()
+    every = sl.report(hvr, 1.4, rank="none")
+    assert default.found == len(every.rows)
+    small = [r for r in every.rows if r.volume_sa < DEFAULT_MIN_VOLUME]
+    assert small and len(default.rows) == len(every.rows) - len(small)
+    assert all(r.volume_sa >= DEFAULT_MIN_VOLUME for r in default.rows)
+    line = default.to_markdown().splitlines()[4]
+    assert line.startswith("Ranked best first by shapelab.ranking.rank_score")
+    assert f"kept SA volume ≥ {DEFAULT_MIN_VOLUME:g} Å³" in line
+    assert f": {len(default.rows)} of {len(every.rows)} cavities listed, {len(small)} filtered out" in line
+    # rank="none" with a filter says so too
+    some = sl.report(hvr, 1.4, rank="none", min_volume=DEFAULT_MIN_VOLUME)
+    assert [r.volume_sa for r in some.rows] == [r.volume_sa for r in every.rows if r.volume_sa >= DEFAULT_MIN_VOLUME]
+    assert f"{len(small)} filtered out" in some.to_markdown().splitlines()[4]
 
 
 def test_ranked_outputs_have_the_ranking_columns(hvr):
@@ -214,7 +241,8 @@ def test_ranked_outputs_have_the_ranking_columns(hvr):
     header = next(k for k, line in enumerate(md) if line.startswith("| kind"))
     ncol = md[header].count("|")
     assert all(line.count("|") == ncol for line in md[header:])  # no residue label holds a "|"
-    assert "Ranked by score" in rep.to_markdown()
+    assert "Ranked best first by shapelab.ranking.rank_score" in rep.to_markdown()
+    assert "kept SA volume ≥ 10 Å³, the first 5:" in rep.to_markdown()
 
 
 @pytest.mark.parametrize("method", ["growth", "flow"])
@@ -223,7 +251,7 @@ def test_both_pocket_definitions_rank_alike(hvr, method):
     every pocket of pockets(F, method=...), rank="score" orders them by the score."""
     F = sl.alpha_filtration(sl.Balls(hvr.balls.centers, hvr.balls.radii - hvr.probe + 1.4))  # the SA model
     n_pockets = len(sl.pockets(F, 0.0, method=method))
-    assert len(sl.report(hvr, 1.4, method=method).pockets) == n_pockets
+    assert len(sl.report(hvr, 1.4, method=method, rank="none").pockets) == n_pockets
     rep = sl.report(hvr, 1.4, method=method, rank="score", min_volume=0, min_persistence=0)
     assert len(rep.pockets) == n_pockets
     scores = [r.score for r in rep.rows]

@@ -205,7 +205,7 @@ def test_every_cavity_volume_against_sampling_its_cells(name):
     F = sl.alpha_filtration(sa)
     feats = list(sl.voids(F, 0.0)) + list(sl.pockets(F, 0.0))
     assert feats
-    rep = sl.report(s, probe=1.4)
+    rep = sl.report(s, probe=1.4, rank="none")  # every cavity, unfiltered
     rng = np.random.default_rng(7)
     n = 3000
     got = {"sa": [], "vdw": []}
