@@ -46,13 +46,77 @@ def cluster_client(client, scheduler, jobs: int, what: str):
     if client is not None:
         if not isinstance(client, distributed.Client):
             raise TypeError(f"client must be a dask.distributed.Client, got {type(client).__name__}")
+        _check_workers(client, what)
         yield client
         return
+    _check_scheduler(distributed, scheduler)
     own = distributed.Client(scheduler, set_as_default=False)
     try:
+        _check_workers(own, what)
         yield own
     finally:
         own.close()
+
+
+def _check_scheduler(distributed, address: str) -> None:
+    """An OSError, within Dask's connect timeout, unless a Dask *scheduler* answers at ``address``.
+
+    ``distributed.Client`` given an address where something else answers (a web server,
+    the dashboard's port, a worker) fails with a MemoryError or a TypeError, and then
+    its half-started client waits twice the timeout (60 s) before the process can end.
+    One ``identity`` call on a fresh event loop, in a thread of its own (so that a
+    notebook's running loop is left alone), tells first.
+    """
+    import asyncio
+    from concurrent.futures import ThreadPoolExecutor
+
+    import dask
+
+    limit = dask.utils.parse_timedelta(dask.config.get("distributed.comm.timeouts.connect"), "s")
+
+    async def identity():
+        async with distributed.rpc(address) as scheduler:
+            return await scheduler.identity()
+
+    def ask():
+        return asyncio.run(asyncio.wait_for(identity(), limit + 5))
+
+    try:
+        with ThreadPoolExecutor(1) as thread:
+            kind = thread.submit(ask).result().get("type")
+    except Exception as e:  # refused (after the timeout), unreachable, or not Dask's protocol
+        msg = str(e).splitlines()[0] if str(e).strip() else type(e).__name__
+        if isinstance(e, MemoryError):
+            msg = "it does not speak Dask's protocol"
+        raise OSError(f"no Dask scheduler answers at {address!r} ({msg})") from None
+    if kind != "Scheduler":
+        raise OSError(f"no Dask scheduler answers at {address!r} (a Dask {kind} does: give its scheduler's address)")
+
+
+def _check_workers(client, what: str) -> None:
+    """An ImportError unless every worker the cluster has now imports shapelab, the
+    same version as here.
+
+    A worker that cannot unpickle a task (``shapelab.batch`` missing) closes its
+    connection and ends, and the tasks then wait for workers forever: asked first,
+    the workers say so.  The question itself, ``eval`` of one expression, needs
+    nothing but Python on the worker.  Workers that join later are not asked.
+    """
+    import shapelab
+
+    try:
+        found = client.run(eval, "__import__('shapelab').__version__")
+    except Exception as e:  # a worker's ImportError, as the worker raised it
+        msg = str(e).splitlines()[0] if str(e).strip() else type(e).__name__
+        raise ImportError(
+            f"{what}: a worker of the Dask cluster cannot import shapelab ({msg}); install shapelab "
+            f"{shapelab.__version__} where the workers run"
+        ) from None
+    other = sorted(f"{worker} has {version}" for worker, version in found.items() if version != shapelab.__version__)
+    if other:
+        raise ImportError(
+            f"{what}: the Dask workers need shapelab {shapelab.__version__}, as here, but {', '.join(other)}"
+        )
 
 
 def cluster_threads(client) -> int:

@@ -271,6 +271,59 @@ def test_scheduler_address_connects_and_disconnects(folder, cluster, tmp_path):
     assert clients(cluster) == before  # the batch's own client is closed
 
 
+def test_an_address_where_no_scheduler_answers(folder, cluster, tmp_path):
+    """Something else at the address (a web server, a worker): an OSError naming it, not
+    Distributed's MemoryError or TypeError followed by a minute's wait for the half-made client."""
+    import socket
+    import threading
+
+    server = socket.create_server(("127.0.0.1", 0))
+    port = server.getsockname()[1]
+
+    def http():
+        with server:
+            while True:
+                try:
+                    conn, _ = server.accept()
+                except OSError:
+                    return
+                with conn:
+                    conn.recv(100)
+                    conn.sendall(b"HTTP/1.1 400 Bad Request\r\nContent-Length: 0\r\n\r\n")
+
+    threading.Thread(target=http, daemon=True).start()
+    try:
+        with pytest.raises(OSError, match=f"no Dask scheduler answers at 'tcp://127.0.0.1:{port}'.*protocol"):
+            report_batch(folder, out=tmp_path, scheduler=f"tcp://127.0.0.1:{port}", progress=False)
+    finally:
+        server.close()
+    worker = sorted(cluster[1].scheduler_info()["workers"])[0]
+    with pytest.raises(OSError, match="a Dask Worker does: give its scheduler's address"):
+        report_batch(folder, out=tmp_path, scheduler=worker, progress=False)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_workers_without_shapelab_are_named_before_anything_is_sent(folder, cluster, tmp_path):
+    """A worker that cannot unpickle a task ends, and the batch would wait for workers forever."""
+    client = cluster[1]
+    hide = "import sys; sys.saved_shapelab = sys.modules.get('shapelab'); sys.modules['shapelab'] = None"
+    show = "import sys; sys.modules.pop('shapelab'); sys.saved_shapelab and sys.modules.update(shapelab=sys.saved_shapelab)"
+    client.run(exec, hide, {})
+    try:
+        with pytest.raises(ImportError, match="a worker of the Dask cluster cannot import shapelab"):
+            report_batch(folder, out=tmp_path, client=client, progress=False)
+    finally:
+        client.run(exec, show, {})
+    client.run(exec, "import shapelab; shapelab.saved_version = shapelab.__version__; shapelab.__version__ = '0.0'", {})
+    try:
+        with pytest.raises(ImportError, match=r"need shapelab .*, as here, but tcp://127\.0\.0\.1:\d+ has 0\.0"):
+            report_batch(folder, out=tmp_path, client=client, progress=False)
+    finally:
+        client.run(exec, "import shapelab; shapelab.__version__ = shapelab.saved_version", {})
+    assert list(tmp_path.iterdir()) == []
+    assert report_batch([folder / "bad.pdb"], out=tmp_path, client=client, progress=False)["status"] == ["failed"]
+
+
 def test_without_dask_the_error_names_the_extra(folder, tmp_path, monkeypatch, capsys):
     monkeypatch.setitem(sys.modules, "distributed", None)  # import distributed now fails
     with pytest.raises(ImportError, match=r"pip install \"shapelab\[dask\]\""):
