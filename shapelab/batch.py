@@ -89,6 +89,7 @@ SUMMARY_COLUMNS = (
 )
 
 _MARKER_VERSION = 1
+_LARGE_GRAPH = "distributed.admin.large-graph-warning-threshold"
 _MMCIF = (".cif", ".mmcif", ".bcif")
 
 
@@ -452,7 +453,10 @@ def _complete(task: dict) -> dict | None:
 
 
 def _init_worker() -> None:
-    """A worker's initializer: import what every report needs, once per process."""
+    """A worker's initializer: import what every report needs, once per process, and
+    one thread for the free space unless ``SHAPELAB_THREADS`` says otherwise (the
+    workers already share out the CPUs: a pool in each would oversubscribe them)."""
+    os.environ.setdefault("SHAPELAB_THREADS", "1")
     import shapelab.cavity_report  # noqa: F401
     import shapelab.io  # noqa: F401
 
@@ -671,6 +675,12 @@ def _dask_rows(tasks: list, client, on_row) -> dict:
     from ._toolkit.cluster import cluster_threads, distributed_module
 
     distributed = distributed_module("report_batch")
+    import dask
+    from dask.utils import parse_bytes
+
+    def _size_limit(v) -> int:
+        return parse_bytes(v) if isinstance(v, str) else int(v or 0)
+
     rows, futures = {}, {}
     queue = iter(range(len(tasks)))
 
@@ -687,7 +697,12 @@ def _dask_rows(tasks: list, client, on_row) -> dict:
                 on_row(rows[i])
                 continue
             key = f"shapelab-report-{t['stem']}-{uuid.uuid4().hex}"
-            f = client.submit(_remote_one, t, data, key=key, pure=False)
+            # The bytes travel inside the task, so that the scheduler can give it to another
+            # worker if this one dies (a scattered copy would die with its worker): no
+            # "Sending large graph" warning for an input of more than 10 MB, then.
+            size = max(len(data) + 2**20, _size_limit(dask.config.get(_LARGE_GRAPH, 0)))
+            with dask.config.set({_LARGE_GRAPH: size}):
+                f = client.submit(_remote_one, t, data, key=key, pure=False)
             futures[f] = (i, hashlib.sha256(data).hexdigest())
             done.add(f)
             return True

@@ -558,10 +558,13 @@ def _clip_chunk2(A, h, r, eps, idx, boundary):
 
 
 def _dot(a, b):
-    """Row-wise dot products of (n, d) arrays: bit for bit ``(a * b).sum(1)`` (NumPy's
-    sum adds the columns in order onto +0.0), without its slow reduction over short
-    rows (several times faster at d = 3)."""
+    """Row-wise dot products of (n, d) arrays: bit for bit ``(a * b).sum(1)`` (for
+    2 <= d < 8 NumPy's sum adds the columns in order onto +0.0), without its slow
+    reduction over short rows (several times faster at d = 3).  Other d go to NumPy's
+    sum itself (from 8 columns on it sums pairwise, in another order)."""
     c = a * b
+    if not 2 <= c.shape[1] < 8:
+        return c.sum(1)
     out = c[:, 0] + c[:, 1]
     for i in range(2, c.shape[1]):
         out += c[:, i]

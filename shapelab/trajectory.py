@@ -305,6 +305,12 @@ def _measure_frames(u, atoms, radii, frames, probe, min_persistence) -> list:
     return out
 
 
+def _init_worker() -> None:
+    """A worker process's initializer: one thread for the free space unless
+    ``SHAPELAB_THREADS`` says otherwise (the workers already share out the CPUs)."""
+    os.environ.setdefault("SHAPELAB_THREADS", "1")
+
+
 def _worker_block(topology, trajectory, select, default_radius, frames, probe, min_persistence) -> list:
     """One worker's task: open the trajectory in this process, measure a block of frames."""
     u = _open(topology, trajectory)
@@ -604,7 +610,9 @@ def _measure(
             # a few blocks per worker, so that progress moves; each block opens the trajectory anew
             blocks = [b.tolist() for b in np.array_split(np.asarray(frames), min(4 * jobs, len(frames)))]
             args = (topology, trajectory, select, default_radius)
-            with ProcessPoolExecutor(max_workers=min(jobs, len(blocks)), mp_context=mp.get_context("spawn")) as pool:
+            with ProcessPoolExecutor(
+                max_workers=min(jobs, len(blocks)), mp_context=mp.get_context("spawn"), initializer=_init_worker
+            ) as pool:
                 futs = [pool.submit(_worker_block, *args, b, probe, min_persistence) for b in blocks]
                 for fut in as_completed(futs):
                     got = fut.result()

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import shapelab as sl
@@ -268,3 +268,114 @@ def test_no_threads_inside_a_worker_thread(monkeypatch):
     t.start()
     t.join()
     assert seen == [1] and FS._threads(10) == 4
+
+
+_SPECIAL = [0.0, -0.0, np.nan, np.inf, -np.inf, 5e-324, -5e-324, 2.2e-308, 1e308, -1e308, 1.0, -1.0, 1e-160, 0.1]
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    n=st.integers(0, 40),
+    d=st.integers(1, 12),
+    layout=st.sampled_from(["C", "F", "strided"]),
+    seed=st.integers(0, 2**32 - 1),
+    special=st.booleans(),
+)
+def test_row_dot_is_numpys_row_sum_bit_for_bit(n, d, layout, seed, special):
+    # _dot claims the bits of (a * b).sum(1): signed zeros, NaN, inf, subnormals,
+    # any layout; from 8 columns on NumPy sums pairwise (it used to differ there, and
+    # it failed on one column)
+    rng = np.random.default_rng(seed)
+    if special:
+        a = np.array(_SPECIAL)[rng.integers(0, len(_SPECIAL), (n, 2 * d))]
+        b = np.array(_SPECIAL)[rng.integers(0, len(_SPECIAL), (n, 2 * d))]
+    else:
+        a = rng.normal(size=(n, 2 * d)) * 10.0 ** rng.integers(-8, 8, (n, 2 * d))
+        b = rng.normal(size=(n, 2 * d))
+    if layout == "strided":
+        a, b = a[:, ::2], b[:, ::2]
+    else:
+        a, b = a[:, :d], b[:, :d]
+        if layout == "F":
+            a, b = np.asfortranarray(a), np.asfortranarray(b)
+    with np.errstate(all="ignore"):
+        got, ref = FS._dot(a, b), (a * b).sum(1)
+    assert got.shape == ref.shape
+    assert np.array_equal(np.isnan(got), np.isnan(ref))
+    ok = ~np.isnan(ref)
+    assert np.array_equal(got[ok].view(np.int64), ref[ok].view(np.int64))  # the bits, -0.0 included
+
+
+@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(
+    seed=st.integers(0, 2**32 - 1),
+    n=st.integers(8, 30),
+    kind=st.sampled_from(["random", "grid", "duplicates", "rounded"]),
+    tau=st.sampled_from([0.0, 0.3]),
+)
+def test_thread_counts_give_the_same_bits_on_random_and_degenerate_input(monkeypatch, seed, n, kind, tau):
+    rng = np.random.default_rng(seed)
+    if kind == "grid":  # lattice points, equal radii: many cospherical sets
+        x = rng.choice(np.stack(np.meshgrid(*[np.arange(4.0)] * 3), -1).reshape(-1, 3), n, replace=False)
+        r = np.full(n, 0.8)
+    else:
+        x = rng.uniform(0, 5, (n, 3))
+        r = rng.uniform(0.5, 1.4, n)
+        if kind == "duplicates":
+            x[n // 2 :] = x[: n - n // 2]
+        elif kind == "rounded":
+            x = np.round(x, 1)
+    balls = sl.Balls(x, r)
+    F = sl.alpha_filtration(balls)
+    cells, tris = np.asarray(F.simplices(3)), np.asarray(F.simplices(2))
+    monkeypatch.setattr(FS, "_PAIRS", 7)  # many slices
+    runs = []
+    for threads in ("1", "2", "7"):
+        monkeypatch.setenv("SHAPELAB_THREADS", threads)
+        runs.append((FS.free_space(F, tau, cells), FS.free_area(F, tau, tris), FS.free_space(balls, tau, cells)))
+    for a, *others in zip(*runs):
+        for b in others:
+            for f in ("measure", "wall", "contact_cell", "contact_ball", "contact_wall"):
+                assert np.asarray(getattr(a, f)).tobytes() == np.asarray(getattr(b, f)).tobytes()
+
+
+def test_an_error_in_a_thread_reaches_the_caller(monkeypatch):
+    rng = np.random.default_rng(5)
+    balls = sl.Balls(rng.uniform(0, 5, (40, 3)), rng.uniform(0.5, 1.4, 40))
+    F = sl.alpha_filtration(balls)
+    cells = np.asarray(F.simplices(3))
+    monkeypatch.setattr(FS, "_PAIRS", 5)
+    monkeypatch.setenv("SHAPELAB_THREADS", "3")
+    real, calls = FS._measure_pairs, []
+
+    def flaky(*args):
+        calls.append(1)
+        if len(calls) == 4:
+            raise FloatingPointError("slice 4")
+        return real(*args)
+
+    monkeypatch.setattr(FS, "_measure_pairs", flaky)
+    with pytest.raises(FloatingPointError, match="slice 4"):
+        FS.free_space(F, 0.0, cells)
+
+
+@pytest.mark.parametrize("value", ["100000000", " 2 "])
+def test_huge_or_padded_thread_counts_are_capped_by_the_slices(monkeypatch, value):
+    monkeypatch.setenv("SHAPELAB_THREADS", value)
+    assert FS._threads(3) == min(3, int(value))
+
+
+@pytest.mark.parametrize("module", ["shapelab.batch", "shapelab.trajectory"])
+def test_worker_processes_use_one_thread_unless_told(monkeypatch, module):
+    # batch and trajectory workers already share out the CPUs: a thread pool in each
+    # would oversubscribe them; an explicit SHAPELAB_THREADS is kept
+    import importlib
+    import os
+
+    init = importlib.import_module(module)._init_worker
+    monkeypatch.delenv("SHAPELAB_THREADS", raising=False)
+    init()
+    assert os.environ["SHAPELAB_THREADS"] == "1" and FS._threads(10) == 1
+    monkeypatch.setenv("SHAPELAB_THREADS", "2")
+    init()
+    assert os.environ["SHAPELAB_THREADS"] == "2"
