@@ -206,19 +206,27 @@ class OutsideGraph:
                 xs = by[s:e]
                 np.add.at(size, pred[xs], size[xs])
         self.tin, self.size = tin, size
+        # membership of the region asked about, set and cleared by each call: one
+        # allocation for all the pockets, not n + 1 bytes per pocket
+        self._in_region = np.zeros(n + 1, dtype=bool)
 
     def mouth(self, cell_ids) -> np.ndarray:
         """Rows of ``F.simplices(d-1)`` of the mouth of the region ``cell_ids``, ascending."""
         cid = np.asarray(cell_ids, dtype=np.int64)
         if cid.size == 0:
             return np.zeros(0, dtype=np.int64)
+        self._in_region[cid] = True
+        try:
+            return self._mouth(cid, self._in_region)
+        finally:
+            self._in_region[cid] = False
+
+    def _mouth(self, cid, inR) -> np.ndarray:
         faces = self.bnd[cid].ravel()
         uf, cnt = np.unique(faces, return_counts=True)
         uf = uf[(cnt == 1) & (self.fval[uf] > self.tau)]
         if uf.size == 0:
             return uf
-        inR = np.zeros(self.n + 1, dtype=bool)
-        inR[cid] = True
         other = np.where(inR[self.u[uf]], self.v[uf], self.u[uf])
         # the union of R's subtrees as disjoint preorder intervals
         st = self.tin[cid]
