@@ -271,6 +271,25 @@ def test_scheduler_address_connects_and_disconnects(folder, cluster, tmp_path):
     assert clients(cluster) == before  # the batch's own client is closed
 
 
+def test_a_large_input_travels_without_dask_warning(cluster, tmp_path):
+    """An input of more than Dask's 10 MB large-graph threshold: sent in its task (so that
+    another worker can retry it) without a warning per file, and failed as locally."""
+    import warnings
+
+    big = tmp_path / "in" / "remarks.pdb"
+    big.parent.mkdir()
+    big.write_bytes((b"REMARK 999 " + b"x" * 68 + b"\n") * 140_000)  # 11.2 MB, no atoms
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    local = report_batch([big], out=tmp_path / "a", progress=False)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        remote = report_batch([big], out=tmp_path / "b", client=cluster[1], progress=False)
+    assert [str(w.message).splitlines()[0] for w in caught if "large graph" in str(w.message)] == []
+    assert without_seconds(remote) == without_seconds(local)
+    assert remote["status"] == ["failed"] and "no ATOM or HETATM records" in remote[0]["error"]
+
+
 def test_an_address_where_no_scheduler_answers(folder, cluster, tmp_path):
     """Something else at the address (a web server, a worker): an OSError naming it, not
     Distributed's MemoryError or TypeError followed by a minute's wait for the half-made client."""
