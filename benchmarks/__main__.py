@@ -14,4 +14,7 @@ if not any(a in ("--list", "--worker", "-h", "--help") for a in _args) and all(
     from benchmarks import pocket_sites
 
     status = pocket_sites.main([]) or status
+    from benchmarks import user_wait  # what a user waits for (issue 25, item 3)
+
+    status = user_wait.main([]) or status
 sys.exit(status)
