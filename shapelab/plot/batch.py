@@ -83,7 +83,8 @@ def batch_summary(summary, *, log=None, max_labels=25, ax=None, title=None):
     volume (Å³, ``V SA`` of :func:`shapelab.report`) of its largest pocket and of its
     largest void (Notes §23.1).  A structure without a pocket or void has no bar of that
     kind.  Failed files come last, named in vermillion with a ✗ and "failed" (their
-    error is in the summary's ``error`` column).  With more than ``max_labels``
+    error is in the summary's ``error`` column).  With no structure reported (an empty
+    summary, or every file failed) the axes say so, without a legend.  With more than ``max_labels``
     structures, names no longer fit a slide: the figure becomes a rank plot (volume
     against rank, each kind sorted on its own) and the failed files are counted in the
     title instead.
@@ -191,7 +192,8 @@ def batch_summary(summary, *, log=None, max_labels=25, ax=None, title=None):
             ax.tick_params(axis="y", length=0)
             if log:
                 ax.set_xscale("log")
-            ax.legend(loc="lower right")
+            if good:
+                ax.legend(loc="lower right")
         else:
             for k, (label, col) in enumerate((("largest pocket", _POCKET), ("largest void", _VOID))):
                 v = np.sort([g[1 + k] for g in good if g[1 + k] is not None])[::-1]
@@ -200,7 +202,13 @@ def batch_summary(summary, *, log=None, max_labels=25, ax=None, title=None):
             ax.set_ylabel("volume V SA (Å³)")
             if log:
                 ax.set_yscale("log")
-            ax.legend(loc="upper right")
+            if good:
+                ax.legend(loc="upper right")
+        if not good:  # nothing to measure: no empty legend, no axis around 0
+            ax.text(0.5, 0.5, "no structure reported", transform=ax.transAxes, ha="center", va="center")
+            ax.set_xticks([])
+            if n > max_labels:
+                ax.set_yticks([])
         ax.set_title(title)
     return fig
 

@@ -106,6 +106,27 @@ def test_names_do_not_overlap_at_slide_size(n):
     assert all(t.get_fontsize() >= 10 for t in fig.axes[0].get_yticklabels())
 
 
+@pytest.mark.parametrize(
+    "rows", [[], [row("x", "failed"), row("y", "failed")], [row(f"f{i}", "failed") for i in range(30)]]
+)
+def test_nothing_reported_is_said_without_an_empty_legend(rows):
+    ax = shapelab.plot.batch_summary(rows).axes[0]
+    assert ax.get_legend() is None  # its swatches were both blue, for bars never drawn
+    assert [t.get_text() for t in ax.texts if t.get_text() == "no structure reported"] == ["no structure reported"]
+    assert list(ax.get_xticks()) == []
+    assert [t.get_text() for t in ax.get_yticklabels()] == ([] if len(rows) > 25 else [r["stem"] for r in rows[::-1]])
+
+
+def test_nan_volumes_are_no_bar():
+    nan = float("nan")
+    rows = [row("a", pocket=nan, void=nan), row("b", pocket=5000.0, void=nan), row("c", pocket=3.0)]
+    ax = shapelab.plot.batch_summary(rows).axes[0]
+    assert [t.get_text() for t in ax.get_yticklabels()] == ["a", "c", "b"]
+    assert all(np.isfinite(w) for _, w, _ in bars(ax))
+    assert sorted(w for _, w, _ in bars(ax) if w > 0) == [3.0, 5000.0]
+    assert ax.get_xscale() == "log" and ax.get_legend() is not None
+
+
 def test_batch_summary_refuses_bad_input():
     with pytest.raises(TypeError, match="summary"):
         shapelab.plot.batch_summary(42)
