@@ -58,9 +58,7 @@ BATCH_SIZE = 100
 _CELLS = r"""
 import json, sys, time
 t_start = time.perf_counter()
-import matplotlib
-matplotlib.use("Agg")
-from IPython.display import display
+from IPython.display import display  # a kernel has IPython; matplotlib comes with the cells (MPLBACKEND=Agg)
 ns = {"display": display, "__name__": "__main__"}
 times = []
 for src in json.loads(sys.argv[1]):
@@ -228,8 +226,9 @@ def _markdown(doc) -> str:
     L = [
         "# What a user waits for (issue 25, item 3)",
         "",
-        f"`python -m benchmarks.user_wait` (run {doc['when']} UTC, shapelab commit {doc['commit']}; raw numbers in "
-        "`user_wait.json`).  Every time is the median of fresh processes, timed from outside "
+        "`python -m benchmarks.user_wait` (run "
+        + "; ".join(f"{part} {r['when']} UTC at shapelab commit {r['commit']}" for part, r in doc["runs"].items())
+        + "; raw numbers in `user_wait.json`).  Every time is the median of fresh processes, timed from outside "
         "(interpreter start to exit).",
         "",
         doc["machine"],
@@ -314,7 +313,11 @@ def main(argv=None) -> int:
         "commit": commit.stdout.strip() or "?",
         "repeats": args.repeats,
         "load": {},
+        "runs": {},
     }
+    notes = ""
+    if set(args.only) != set(PARTS):  # a partial run updates its parts and keeps the others (and the notes)
+        doc, notes = _previous(args.out, doc, args.only)
     steps = {
         "lessons": lambda: lessons(args.repeats, {n.zfill(2) for n in args.lessons} if args.lessons else None),
         "cli": lambda: cli(args.repeats),
@@ -327,15 +330,41 @@ def main(argv=None) -> int:
             load0 = os.getloadavg()[0]
             doc[part] = steps[part]()
             doc["load"][part] = f"{load0:.2f} / {os.getloadavg()[0]:.2f}"
-            _save(doc, args.out)  # after each part: an interrupted run keeps what it measured
+            doc["runs"][part] = {"when": time.strftime("%Y-%m-%d %H:%M", time.gmtime()), "commit": doc["commit"]}
+            _save(doc, args.out, notes)  # after each part: an interrupted run keeps what it measured
     print(_markdown(doc))
     return 0
 
 
-def _save(doc, out: Path) -> None:
+#: where the hand-written notes of a results file begin (kept by a partial run)
+NOTES = "\n## Notes"
+
+
+def _previous(out: Path, doc: dict, only) -> tuple[dict, str]:
+    """``doc`` with the parts of the previous results that this run does not measure
+    (their load and when/commit kept), and the previous file's hand-written notes."""
+    old_json, notes = out.with_suffix(".json"), ""
+    if old_json.exists():
+        old = json.loads(old_json.read_text(encoding="utf-8"))
+        for part in PARTS:
+            if part in old and part not in only:
+                doc[part] = old[part]
+                doc["load"][part] = old.get("load", {}).get(part, "?")
+                doc["runs"][part] = old.get("runs", {}).get(part) or {
+                    "when": old.get("when", "?"),
+                    "commit": old.get("commit", "?"),
+                }
+    if out.exists():
+        text = out.read_text(encoding="utf-8")
+        if NOTES in text:
+            notes = text[text.index(NOTES) :]
+    return doc, notes
+
+
+def _save(doc, out: Path, notes: str = "") -> None:
     out.parent.mkdir(parents=True, exist_ok=True)
     out.with_suffix(".json").write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")
-    out.write_text(_markdown(doc), encoding="utf-8")
+    out.write_text(_markdown(doc) + notes, encoding="utf-8")
 
 
 if __name__ == "__main__":

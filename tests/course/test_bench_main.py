@@ -37,3 +37,35 @@ def test_make_bench_runs_the_user_wait_part(monkeypatch, calls, argv, expected):
         runpy.run_module("benchmarks", run_name="__main__")
     assert stop.value.code == 0
     assert calls == expected
+
+
+def test_a_partial_user_wait_run_keeps_the_other_parts_and_the_notes(tmp_path):
+    # `python -m benchmarks.user_wait --only cli` used to rewrite the results with the
+    # CLI part alone, dropping the lessons, the import profile and the notes
+    import json
+
+    from benchmarks import user_wait as uw
+
+    out = tmp_path / "user_wait.md"
+    lesson = {"lesson": "00_start_here", "runs": 5, "error": None, "wall_s": 1.0, "import_cell_s": 0.3}
+    old = {
+        "when": "2026-01-01 00:00",
+        "commit": "abc1234",
+        "load": {"lessons": "1.00 / 1.00", "cli": "2.00 / 2.00"},
+        "lessons": [lesson | {"first_call_s": 0.01}],
+        "cli": {"command": "old", "runs": 5, "wall_s": 9.0, "all_s": [9.0] * 5},
+    }
+    out.with_suffix(".json").write_text(json.dumps(old), encoding="utf-8")
+    out.write_text("# tables\n\n## Notes on this run\n\nwritten by hand\n", encoding="utf-8")
+    doc = {"machine": "m", "when": "2026-02-02 00:00", "commit": "def5678", "repeats": 5, "load": {}, "runs": {}}
+    doc, notes = uw._previous(out, doc, ["cli"])
+    assert doc["lessons"] == old["lessons"] and "cli" not in doc  # cli is re-measured
+    assert doc["runs"] == {"lessons": {"when": "2026-01-01 00:00", "commit": "abc1234"}}
+    assert notes == "\n## Notes on this run\n\nwritten by hand\n"
+    doc["cli"] = {"command": "new", "runs": 5, "wall_s": 1.5, "all_s": [1.5] * 5}
+    doc["load"]["cli"], doc["runs"]["cli"] = "3.00 / 3.00", {"when": "2026-02-02 00:00", "commit": "def5678"}
+    uw._save(doc, out, notes)
+    text = out.read_text(encoding="utf-8")
+    assert "00_start_here" in text and "**1.50 s**" in text and text.endswith("written by hand\n")
+    assert "lessons 2026-01-01 00:00 UTC at shapelab commit abc1234" in text
+    assert "cli 2026-02-02 00:00 UTC at shapelab commit def5678" in text
