@@ -173,7 +173,7 @@ def _plot(doc, path: Path) -> None:
                 label=f"{name}, single structures",
             )
     _voronota_curve(axes[0], path.parent / "measure_peers.json")
-    axes[0].set(xlabel="heavy atoms", ylabel="wall time (s)", title="time")
+    axes[0].set(xlabel="heavy atoms", ylabel="time (s): wall; Voronota-LT: CPU", title="time")
     axes[1].set(xlabel="heavy atoms", ylabel="peak memory of the call (MiB)", title="peak memory")
     for ax in axes:
         ax.legend(fontsize=8)
@@ -183,7 +183,7 @@ def _plot(doc, path: Path) -> None:
 
 def _voronota_curve(ax, peers: Path) -> None:
     """Voronota-LT's exact area and volume of the same balls against atoms, from
-    :mod:`benchmarks.measure_peers` (same rungs, one thread; median wall time), the
+    :mod:`benchmarks.measure_peers` (same rungs, one thread; median of 5), the
     anchor of issue 24: what an exact SASA and volume cost, without the cavities.  Its
     CPU time is drawn (the wall time of a run on a shared machine is inflated by the
     load; for one thread the two agree on an idle machine)."""
