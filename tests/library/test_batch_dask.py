@@ -290,6 +290,46 @@ def test_a_large_input_travels_without_dask_warning(cluster, tmp_path):
     assert remote["status"] == ["failed"] and "no ATOM or HETATM records" in remote[0]["error"]
 
 
+class _DieOn(distributed.WorkerPlugin):
+    """On every worker, present and to come: a report on a structure named ``die_here``
+    ends the worker's process (as a segfault or the kernel's OOM killer would)."""
+
+    name = "shapelab-test-die-on"
+
+    def setup(self, worker):
+        import shapelab.cavity_report as cr
+
+        real = getattr(cr.report, "real", cr.report)
+
+        def report(s, probe, name=None, **kw):
+            if name == "die_here":
+                os._exit(9)
+            return real(s, probe, name=name, **kw)
+
+        report.real = real
+        cr.report = report
+
+
+def test_a_structure_that_kills_every_worker_is_named_and_the_batch_finishes(folder, cluster, tmp_path):
+    client = cluster[1]
+    (tmp_path / "in").mkdir()
+    shutil.copy(DATA / "globule.pdb", tmp_path / "in" / "die_here.pdb")
+    client.register_plugin(_DieOn())
+    try:
+        summary = report_batch(
+            [tmp_path / "in" / "die_here.pdb", folder / "1grm_single.pdb.gz"],
+            out=tmp_path,
+            client=client,
+            progress=False,
+        )
+    finally:
+        client.unregister_worker_plugin(_DieOn.name)
+    assert summary["status"] == ["failed", "ok"]  # retried on the restarted workers, then given up
+    assert summary[0]["error"] == "the worker process died while reporting on this structure"
+    assert not any(p.name.startswith("die_here") for p in tmp_path.iterdir())
+    client.wait_for_workers(2, timeout=60)  # the nannies restarted them
+
+
 def test_an_address_where_no_scheduler_answers(folder, cluster, tmp_path):
     """Something else at the address (a web server, a worker): an OSError naming it, not
     Distributed's MemoryError or TypeError followed by a minute's wait for the half-made client."""
