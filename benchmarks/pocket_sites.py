@@ -840,7 +840,7 @@ def _figure(results: dict, machine: str, path: Path) -> None:
         ax.xaxis.label.set_size(14)
         ax.yaxis.label.set_size(14)
         ax.title.set_size(16)
-    axes[1].legend(fontsize=13, loc="lower right")
+    axes[1].legend(fontsize=13, loc="upper left", ncol=2)
     n = next((r["splits"]["all"] for r in results.values() if "splits" in r), {"structures": 0, "sites": 0})
     fig.suptitle(
         f"Does the pocket find the ligand? {n['structures']} holo complexes, {n['sites']} sites, all splits",
@@ -947,7 +947,17 @@ def render(paths) -> dict:
     for p in paths:
         d = json.loads(Path(p).read_text())
         info = d["machine"]
-        results.update(d["methods"])
+        for name, res in d["methods"].items():
+            if name in results and "structures" in results[name] and "structures" in res:
+                # the same method run on parts of the data set: join the structures
+                done = {r["id"] for r in res["structures"]}
+                res = dict(res, structures=[r for r in results[name]["structures"] if r["id"] not in done])
+                res["structures"] += d["methods"][name]["structures"]
+            results[name] = res
+    for res in results.values():
+        if "structures" in res:
+            res["structures"].sort(key=lambda r: r["id"])
+            res["splits"] = _split_results(res)
     results = {n: results[n] for n in METHODS if n in results}
     RESULTS.mkdir(parents=True, exist_ok=True)
     _write(results, info, machine_line(info))
