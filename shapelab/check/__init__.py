@@ -54,6 +54,7 @@ _EXPORTS = {
     "pocket_residues": "answers",
     "void_radii": "answers",
     "void_components": "answers",
+    "first_site_rank": "answers",
     # quizzes.py: the end-of-part quizzes
     "quiz": "quizzes",
     "show_quiz": "quizzes",

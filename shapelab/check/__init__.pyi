@@ -10,6 +10,7 @@ from .answers import connected_time as connected_time
 from .answers import curve_pairs as curve_pairs
 from .answers import distinct_complexes as distinct_complexes
 from .answers import euler_poincare as euler_poincare
+from .answers import first_site_rank as first_site_rank
 from .answers import flow_sinks as flow_sinks
 from .answers import most_exposed_residue as most_exposed_residue
 from .answers import most_spread_class as most_spread_class
@@ -60,6 +61,7 @@ __all__ = [
     "dual_edge",
     "euler_characteristic",
     "euler_poincare",
+    "first_site_rank",
     "flow_sinks",
     "hausdorff",
     "most_exposed_residue",

@@ -32,6 +32,7 @@ __all__ = [
     "buried_area",
     "most_spread_class",
     "rips_union_gap",
+    "first_site_rank",
 ]
 
 
@@ -794,3 +795,65 @@ def rips_union_gap(gap, points, *, max_edge_length: float = 1.6, rtol: float = 1
     if not np.all(np.isfinite(rips)):
         raise ValueError(f"max_edge_length={max_edge_length!r} leaves a loop of the Rips filtration alive")
     return value("the H1 bottleneck distance, Rips against α (in ρ)", gap, bottleneck_distance(alpha, rips), rtol=rtol)
+
+
+def first_site_rank(
+    answer, structure, ligand, *, method: str = "growth", probe: float = 1.4, dca: float = 4.0
+) -> CheckResult:
+    """Lesson 18: the rank of the first cavity of the default ranked report whose centre
+    lies within ``dca`` Å of a ligand atom (the DCA criterion), or 0 when none does.
+
+    The reference is ``shapelab.report(structure, probe, method=method)`` in its default
+    order (``rank="score"``); a cavity's centre is the centroid of its lining atoms, and
+    ranks count from 1 (the row's ``id``).
+
+    Parameters
+    ----------
+    answer : int
+        The student's rank.
+    structure : shapelab.io.PDBStructure or Balls
+        The protein, read without its ligand.
+    ligand : array_like, shape (m, 3)
+        The ligand's heavy-atom centres.
+    method : {"growth", "flow"}, default "growth"
+        The pocket definition of the report.
+    probe : float, default 1.4
+        The report's probe radius (Å).
+    dca : float, default 4.0
+        The distance (Å) from the centre to the nearest ligand atom that counts as a hit.
+
+    Returns
+    -------
+    CheckResult
+        Passed when the rank is right; a wrong rank is called too large or too small,
+        never given.
+
+    See Also
+    --------
+    shapelab.report : the ranked table of cavities.
+    shapelab.ranking.rank_score : the default order.
+
+    References
+    ----------
+    .. [1] Lecture notes, §23.1 (a pocket "often defines a docking site").
+    .. [2] R. Krivák and D. Hoksza, "P2Rank: machine learning based tool for rapid and
+       accurate prediction of ligand binding sites from protein structure",
+       *J. Cheminform.* 10:39, 2018 (the DCA criterion).
+    """
+    from ..cavity_report import report
+
+    rows = report(structure, probe, method=method).rows
+    atoms = structure.balls.centers if hasattr(structure, "balls") else structure.centers
+    L = np.asarray(ligand, dtype=float).reshape(-1, 3)
+    expected = 0
+    for k, row in enumerate(rows, start=1):
+        centre = atoms[np.asarray(row.lining_atoms, dtype=int)].mean(axis=0)
+        if np.min(np.linalg.norm(L - centre, axis=1)) <= dca:
+            expected = k
+            break
+    if isinstance(answer, (bool, np.bool_)) or not isinstance(answer, (int, np.integer)):
+        return _fail(
+            "the rank of the first cavity at the ligand",
+            f"expected a whole number (a rank), got a {type(answer).__name__}",
+        )
+    return value("the rank of the first cavity at the ligand (ranks count from 1)", int(answer), expected)
