@@ -208,7 +208,8 @@ def main(argv=None) -> int:
     with ``--figure PATH``, draws its summary
     (:func:`shapelab.plot.batch_summary`): nothing on stdout, progress and each
     failure on stderr, exit status 1 if any input failed, 2 for a bad option or an
-    output directory that cannot be written.
+    output directory that cannot be written, 130 when interrupted (Ctrl-C; the
+    structures finished are complete, and ``--resume`` finishes the batch).
 
     See Also
     --------
@@ -275,6 +276,9 @@ def _run_batch(args) -> int:
     except (ValueError, TypeError, OSError, ImportError) as e:
         print(f"error: {str(e).splitlines()[0] if str(e) else type(e).__name__}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:  # Ctrl-C: the finished structures are complete, the others have no marker
+        print("interrupted: the structures finished are kept; run again with --resume to finish", file=sys.stderr)
+        return 130
     files = [str(p) for p in summary.files]
     if args.figure is not None:
         from .plot import batch_summary

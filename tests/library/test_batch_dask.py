@@ -383,6 +383,19 @@ def test_workers_without_shapelab_are_named_before_anything_is_sent(folder, clus
     assert report_batch([folder / "bad.pdb"], out=tmp_path, client=client, progress=False)["status"] == ["failed"]
 
 
+def test_ctrl_c_says_how_to_finish(folder, tmp_path, monkeypatch, capsys):
+    from shapelab import batch, cli
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(batch, "report_batch", interrupted)
+    assert cli.main(["report", str(folder), "--out", str(tmp_path), "--scheduler", "tcp://127.0.0.1:1"]) == 130
+    assert capsys.readouterr().err == (
+        "interrupted: the structures finished are kept; run again with --resume to finish\n"
+    )
+
+
 def test_without_dask_the_error_names_the_extra(folder, tmp_path, monkeypatch, capsys):
     monkeypatch.setitem(sys.modules, "distributed", None)  # import distributed now fails
     with pytest.raises(ImportError, match=r"pip install \"shapelab\[dask\]\""):
