@@ -248,6 +248,15 @@ def _class_spreads(v, ns):
     ]
 
 
+def _first_site_rank(v, ns):
+    """Lesson 18: the flow's first rank at the ligand; wrong ranks a student may give: the
+    growth model's (the table above the exercise), the first *row* of the flow's table,
+    a 0-based index, one too many."""
+    growth = next(r.id for r in ns["t4l_growth"].rows if ns["distance_to_ligand"](r, ns["t4l"], ns["xylene"]) <= 4.0)
+    wrong = [("the growth model's rank", int(growth)), ("the first row, wherever it is", 1), ("a 0-based index", v - 1)]
+    return [(label, w) for label, w in wrong if w != v] + [("one too many", v + 1)]
+
+
 def _rips_gap(v, ns):
     import gudhi
 
@@ -609,6 +618,7 @@ OVERRIDES = {
     "17_shape_classification:most_spread": _most_spread,
     "17_shape_classification:spread": _class_spreads,
     "17_shape_classification:rips_gap": _rips_gap,
+    "18_binding_sites:first_rank": _first_site_rank,
 }
 
 
