@@ -89,7 +89,6 @@ SUMMARY_COLUMNS = (
 )
 
 _MARKER_VERSION = 1
-_LARGE_GRAPH = "distributed.admin.large-graph-warning-threshold"
 _MMCIF = (".cif", ".mmcif", ".bcif")
 
 
@@ -672,15 +671,10 @@ def _dask_rows(tasks: list, client, on_row) -> dict:
     reports are held for those only)."""
     import uuid
 
-    from ._toolkit.cluster import cluster_threads, distributed_module
+    from ._toolkit.cluster import cancelled_error, cluster_threads, distributed_module, submit_with_bytes
 
     distributed = distributed_module("report_batch")
-    import dask
-    from dask.utils import parse_bytes
-
-    def _size_limit(v) -> int:
-        return parse_bytes(v) if isinstance(v, str) else int(v or 0)
-
+    cancelled = cancelled_error(distributed)
     rows, futures = {}, {}
     queue = iter(range(len(tasks)))
 
@@ -698,11 +692,8 @@ def _dask_rows(tasks: list, client, on_row) -> dict:
                 continue
             key = f"shapelab-report-{t['stem']}-{uuid.uuid4().hex}"
             # The bytes travel inside the task, so that the scheduler can give it to another
-            # worker if this one dies (a scattered copy would die with its worker): no
-            # "Sending large graph" warning for an input of more than 10 MB, then.
-            size = max(len(data) + 2**20, _size_limit(dask.config.get(_LARGE_GRAPH, 0)))
-            with dask.config.set({_LARGE_GRAPH: size}):
-                f = client.submit(_remote_one, t, data, key=key, pure=False)
+            # worker if this one dies (a scattered copy would die with its worker).
+            f = submit_with_bytes(client, _remote_one, t, data, key=key, pure=False)
             futures[f] = (i, hashlib.sha256(data).hexdigest())
             done.add(f)
             return True
@@ -721,6 +712,16 @@ def _dask_rows(tasks: list, client, on_row) -> dict:
             except distributed.KilledWorker:  # the scheduler gave up after workers died on it
                 row, rep = _empty_row(t["label"], t["stem"]), None
                 row.update(error="the worker process died while reporting on this structure", seconds=0.0)
+            except cancelled as e:  # the scheduler lost, or the task cancelled by someone else
+                reason = getattr(e, "reason", None) or "cancelled"
+                raise OSError(
+                    f"the Dask cluster dropped the report on {t['label']} ({reason}); the structures finished "
+                    "are complete: run the batch again with resume=True (--resume) to finish it"
+                ) from None
+            except Exception as e:  # raised on the worker outside the report (its temporary folder, ...)
+                row, rep = _empty_row(t["label"], t["stem"]), None
+                _failed(row, e, t["path"])
+                row["seconds"] = 0.0
             if rep is not None:
                 t0 = time.perf_counter()
                 try:
@@ -734,7 +735,10 @@ def _dask_rows(tasks: list, client, on_row) -> dict:
             while len(futures) < 2 * cluster_threads(client) and submit():
                 pass
     except BaseException:
-        client.cancel(list(futures))
+        try:
+            client.cancel(list(futures))
+        except Exception:  # the scheduler is gone: nothing left to cancel
+            pass
         raise
     return rows
 
@@ -837,9 +841,14 @@ def report_batch(
         A bad ``probe``, ``jobs``, ``summary``, ``client`` or ``scheduler`` or entry of
         ``paths``; ``client`` and ``scheduler`` both, or either with ``jobs`` > 1.
     ImportError
-        ``client`` or ``scheduler`` without dask.distributed installed.
+        ``client`` or ``scheduler`` without dask.distributed installed, or a worker of
+        the cluster without shapelab (or with another version of it), before anything
+        is sent.
     OSError
-        No scheduler answers at ``scheduler`` (Dask's connect timeout, 30 s by default).
+        No scheduler answers at ``scheduler`` (Dask's connect timeout, 30 s by default,
+        whatever answers there instead), or the cluster drops the batch's tasks (the
+        scheduler lost mid-batch): the structures finished are complete, and
+        ``resume=True`` finishes the batch.
 
     See Also
     --------

@@ -9,7 +9,14 @@ from __future__ import annotations
 
 from contextlib import contextmanager
 
-__all__ = ["DASK_HINT", "distributed_module", "cluster_client", "cluster_threads"]
+__all__ = [
+    "DASK_HINT",
+    "distributed_module",
+    "cluster_client",
+    "cluster_threads",
+    "submit_with_bytes",
+    "cancelled_error",
+]
 
 DASK_HINT = 'pip install "shapelab[dask]" (or pip install "dask[distributed]")'
 
@@ -123,3 +130,24 @@ def cluster_threads(client) -> int:
     """The worker threads the cluster has now (at least 1, so that a cluster still
     starting its workers gets work queued)."""
     return max(1, sum(client.nthreads().values()))
+
+
+def submit_with_bytes(client, fn, *args, **kwargs):
+    """``client.submit(fn, *args, **kwargs)`` whose arguments hold an input's bytes on
+    purpose (in the task, the scheduler can give it to another worker if the first one
+    dies): without Dask's "Sending large graph" warning for each input over 10 MB."""
+    import dask
+    from dask.utils import parse_bytes
+
+    key = "distributed.admin.large-graph-warning-threshold"
+    limit = dask.config.get(key, 0)
+    limit = parse_bytes(limit) if isinstance(limit, str) else int(limit or 0)
+    size = sum(len(a) for a in args if isinstance(a, (bytes, bytearray, memoryview)))
+    with dask.config.set({key: max(limit, size + 2**20)}):
+        return client.submit(fn, *args, **kwargs)
+
+
+def cancelled_error(distributed):
+    """The exception a future's ``result()`` raises when its task was cancelled (the
+    scheduler lost, or someone cancelled it): not an ``Exception`` subclass."""
+    return getattr(distributed, "FutureCancelledError", None) or distributed.client.FutureCancelledError

@@ -330,6 +330,27 @@ def test_a_structure_that_kills_every_worker_is_named_and_the_batch_finishes(fol
     client.wait_for_workers(2, timeout=60)  # the nannies restarted them
 
 
+def test_a_worker_that_cannot_write_its_temporary_copy_fails_the_file_not_the_batch(folder, cluster, tmp_path):
+    client = cluster[1]
+    full = (
+        "import shapelab.batch as b, tempfile\n"
+        "def full(*a, **k):\n"
+        "    raise OSError(28, 'No space left on device')\n"
+        "b.tempfile = type('T', (), {'TemporaryDirectory': staticmethod(full)})\n"
+    )
+    client.run(exec, full, {})
+    try:
+        summary = report_batch(
+            [folder / "globule.pdb", folder / "missing.pdb"], out=tmp_path, client=client, progress=False
+        )
+    finally:
+        client.run(exec, "import shapelab.batch as b, tempfile; b.tempfile = tempfile", {})
+    assert summary["status"] == ["failed", "failed"]
+    assert summary[0]["error"] == "[Errno 28] No space left on device"
+    assert summary[1]["error"] == "no such file or directory"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["shapelab_summary.csv"]
+
+
 def test_an_address_where_no_scheduler_answers(folder, cluster, tmp_path):
     """Something else at the address (a web server, a worker): an OSError naming it, not
     Distributed's MemoryError or TypeError followed by a minute's wait for the half-made client."""
