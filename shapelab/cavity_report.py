@@ -623,8 +623,9 @@ def report(
         :func:`shapelab.ranking.rank_score` (what predicts a binding site), cavities
         under :data:`~shapelab.ranking.DEFAULT_MIN_VOLUME` dropped, and four more
         columns (score, buriedness, depth, openness); ids follow the rank, 1 the
-        best.  ``"none"``: every feature, in CASTp's order (voids first, each kind by
-        SA volume, largest first), the table of the report before rankings existed,
+        best (equal scores: the larger SA volume first, then CASTp's order).
+        ``"none"``: every feature, in CASTp's order (voids first, each kind by SA
+        volume, largest first), the table of the report before rankings existed,
         byte for byte.  The Markdown says in one line how the rows are ranked and
         filtered, and how many cavities were filtered out.
     min_volume : float, optional
@@ -831,12 +832,16 @@ def report(
                 lining_insertion_codes=codes,
             )
         )
+    # CASTp's order (voids first, each kind by SA volume; a stable sort), the order of
+    # rank="none" and the last tie-break of rank="score" (after the score, then volume)
+    raw.sort(key=lambda d: (d["kind"] != "void", -d["volume_sa"]))
+    if min_volume > 0:
+        raw = [d for d in raw if d["volume_sa"] >= min_volume]
     if rank == "none":
-        raw.sort(key=lambda d: (d["kind"] != "void", -d["volume_sa"]))
-        if min_volume > 0:
-            raw = [d for d in raw if d["volume_sa"] >= min_volume]
         raw = raw[:top]
     else:
+        # the features of the cavities the filters keep only: the rays cost
+        # O(cavities x atoms within reach), and most cavities are under min_volume
         feat = pocket_features(
             vdw,
             [d["lining_atoms"] for d in raw],
@@ -846,7 +851,7 @@ def report(
             persistence=[d["death"] - d["birth"] for d in raw],
         )
         score = rank_score(feat)
-        order = rank_order(feat, min_persistence=0.0, min_volume=min_volume, top=top)
+        order = rank_order(feat, min_persistence=0.0, min_volume=0.0, top=top)  # filtered above
         raw = [
             dict(
                 raw[k],

@@ -32,6 +32,7 @@ only (``benchmarks/results/pocket_ranking_dev.md``).
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -62,13 +63,24 @@ DEFAULT_REACH = 15.0
 N_DIRECTIONS = 60
 
 
+@functools.lru_cache(maxsize=8)
 def _directions(n: int) -> np.ndarray:
-    """``n`` nearly uniform unit vectors (the Fibonacci sphere), deterministic."""
-    k = np.arange(n, dtype=np.float64) + 0.5
-    z = 1.0 - 2.0 * k / n
-    phi = k * math.pi * (3.0 - math.sqrt(5.0))
-    s = np.sqrt(1.0 - z * z)
-    return np.column_stack([s * np.cos(phi), s * np.sin(phi), z])
+    """``n`` nearly uniform unit vectors (the Fibonacci sphere), the same bits on every machine.
+
+    Built from IEEE operations (``+ - * /`` and square roots, correctly rounded) and
+    the C library's ``cos``/``sin`` per angle (:mod:`math`), not NumPy's vectorised
+    ones, whose SIMD variants may differ in the last bit from one CPU to another.
+    """
+    golden = math.pi * (3.0 - math.sqrt(5.0))
+    out = np.empty((n, 3))
+    for i in range(n):
+        k = i + 0.5
+        z = 1.0 - 2.0 * k / n
+        phi = k * golden
+        s = math.sqrt(1.0 - z * z)
+        out[i] = (s * math.cos(phi), s * math.sin(phi), z)
+    out.setflags(write=False)
+    return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -87,7 +99,10 @@ class PocketFeatures:
         ``mouth_area / (mouth_area + area)``: the open share of the boundary (0 for a void).
     buriedness : ndarray, shape (m,)
         Fraction of the :data:`N_DIRECTIONS` ray directions from the centre blocked by a
-        van der Waals ball within ``reach`` Å.
+        van der Waals ball within ``reach`` Å (a ray that only grazes a ball is not
+        blocked).  The directions and the ray test are computed by correctly rounded
+        operations in a fixed order, without BLAS, so that a grazing ray is decided
+        alike on every machine.
     depth : ndarray, shape (m,)
         Distance (Å) from the centre to the boundary of the convex hull of the atom
         centres (0 outside the hull, or for balls without a 3D hull).
@@ -164,8 +179,14 @@ def _buriedness(centers: np.ndarray, radii: np.ndarray, query: np.ndarray, reach
             continue
         v = centers[near] - pt
         r2 = radii[near, None] ** 2
-        t = v @ dirs.T  # (k, n_dir): where along each ray the ball's centre projects
-        gap = r2 - ((v * v).sum(axis=1)[:, None] - t * t)  # r^2 - squared distance to the ray's line
+        # (k, n_dir): where along each ray the ball's centre projects.  Written out as
+        # elementwise products and sums, not ``v @ dirs.T``: a BLAS matrix product may
+        # fuse or reorder them (FMA, blocking) differently from one library or CPU to
+        # another, and a ray that grazes a ball would then be blocked on one machine
+        # and not on another.  These operations are correctly rounded in a fixed order.
+        t = v[:, 0, None] * dirs[:, 0] + v[:, 1, None] * dirs[:, 1] + v[:, 2, None] * dirs[:, 2]
+        vv = v[:, 0] * v[:, 0] + v[:, 1] * v[:, 1] + v[:, 2] * v[:, 2]
+        gap = r2 - (vv[:, None] - t * t)  # r^2 - squared distance to the ray's line; 0 = grazing, not blocked
         half = np.sqrt(np.maximum(gap, 0.0))
         hit = (gap > 0) & (t + half > 0) & (t - half < reach)  # the chord meets [0, reach]
         out[q] = hit.any(axis=0).mean()

@@ -286,3 +286,114 @@ def test_pocket_features_validates():
         R.pocket_features(b, [[0]], volume=[1], area=[1], mouth_area=[0], persistence=[0], reach=0)
     with pytest.raises(TypeError, match="features"):
         R.rank_score([1, 2])
+
+
+# --------------------------------------------------------- the same bits everywhere
+def _buriedness_in_python_floats(centers, radii, pt, reach, dirs):
+    """The ray test of pocket_features in plain Python floats, one operation at a time
+    in the documented order (each correctly rounded: the same bits on every machine)."""
+    blocked = 0
+    for d in dirs.tolist():
+        hit = False
+        for c, r in zip(centers.tolist(), radii.tolist()):
+            v = [c[0] - pt[0], c[1] - pt[1], c[2] - pt[2]]
+            if v[0] * v[0] + v[1] * v[1] + v[2] * v[2] > (reach + max(radii.tolist())) ** 2:
+                continue
+            t = v[0] * d[0] + v[1] * d[1] + v[2] * d[2]
+            vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2]
+            gap = r * r - (vv - t * t)
+            half = gap**0.5 if gap > 0 else 0.0
+            if gap > 0 and t + half > 0 and t - half < reach:
+                hit = True
+                break
+        blocked += hit
+    return blocked / len(dirs)
+
+
+def test_the_directions_are_unit_vectors_built_without_numpy_trigonometry():
+    import math
+
+    d = R._directions(R.N_DIRECTIONS)
+    assert d.shape == (60, 3) and not d.flags.writeable
+    np.testing.assert_allclose(np.linalg.norm(d, axis=1), 1.0, atol=1e-15)
+    golden = math.pi * (3.0 - math.sqrt(5.0))
+    for i in (0, 17, 59):
+        k = i + 0.5
+        z = 1.0 - 2.0 * k / 60
+        s = math.sqrt(1.0 - z * z)
+        assert d[i].tolist() == [s * math.cos(k * golden), s * math.sin(k * golden), z]
+
+
+def test_grazing_rays_are_decided_as_in_plain_ieee_arithmetic():
+    """Balls placed so that a ray only grazes them (their centre at distance r from the
+    ray's line, to rounding): whether each is blocked depends on the last bits, and
+    pocket_features decides exactly as the same formula in Python floats, operation by
+    operation -- not as a BLAS matrix product, whose fused or reordered sums vary
+    between libraries and CPUs (with ``v @ dirs.T`` this machine's OpenBLAS decided
+    several of these 60 rays the other way)."""
+    rng = np.random.default_rng(0)
+    dirs = R._directions(R.N_DIRECTIONS)
+    pt = np.array([0.25, -0.5, 0.75])
+    centers, radii = [], []
+    for j in range(R.N_DIRECTIONS):  # one small ball grazing each ray (too small to block another)
+        d = dirs[j]
+        u = np.cross(d, rng.normal(size=3))
+        u /= np.linalg.norm(u)
+        r = float(rng.uniform(0.05, 0.2))
+        centers.append(pt + rng.uniform(2.0, 9.0) * d + r * u)
+        radii.append(r)
+    centers, radii = np.array(centers), np.array(radii)
+    # lining: two tiny far-away balls whose centroid is pt
+    lin = np.array([pt + [0, 0, 80.0], pt - [0, 0, 80.0]])
+    balls = sl.Balls(np.vstack([centers, lin]), np.concatenate([radii, [1e-3, 1e-3]]))
+    f = _features(balls, [[len(centers), len(centers) + 1]], reach=10.0)
+    np.testing.assert_array_equal(f.center[0], pt)
+    expect = _buriedness_in_python_floats(balls.centers, balls.radii, pt.tolist(), 10.0, dirs)
+    assert f.buriedness[0] == expect
+    assert 0.2 < expect < 0.8  # about half of the grazing balls block their ray: the test decides something
+
+
+def test_ties_are_broken_by_volume_then_by_index():
+    z = np.zeros(4)
+    f = R.PocketFeatures(
+        np.zeros((4, 3)), np.array([20.0, 20.0, 20.0, 30.0]), z, z, z, z, np.array([0.5, 0.5, 0.5, 0.0]), z, z
+    )
+    # scores: three equal, one 0; equal score and volume: the earlier index first
+    assert R.rank_order(f, min_volume=0).tolist() == [0, 1, 2, 3]
+    g = R.PocketFeatures(
+        np.zeros((3, 3)), np.array([5.0, 7.0, 7.0]), *[np.zeros(3)] * 4, np.zeros(3), *[np.zeros(3)] * 2
+    )
+    assert R.rank_order(g, min_volume=0).tolist() == [1, 2, 0]  # all score 0: larger volume first
+
+
+# ------------------------------------------------- a void, a flat dent, end to end
+def test_a_void_is_blocked_in_every_direction():
+    """A spherical chamber sealed inside a block of balls is a void: the report lists it
+    as a void (not a pocket) and first, every ray from its centre meets the wall
+    (buriedness 1), it has no mouth (openness 0), and its depth is the distance from
+    its centre to the nearest face of the block (the hull of the atom centres)."""
+    n = 10
+    g = np.arange(n, dtype=np.float64)
+    P = np.stack(np.meshgrid(g, g, g, indexing="ij"), -1).reshape(-1, 3)
+    chamber = np.array([4.5, 4.5, 3.5])
+    carved = np.linalg.norm(P - chamber, axis=1) < 2.2
+    P = P + np.random.default_rng(3).normal(scale=0.02, size=P.shape)
+    balls = sl.Balls(P[~carved], 0.9)
+    rep = sl.report(balls, 0.0, rank="score", min_volume=0)
+    assert len(rep.voids) == 1 and rep.rows[0].kind == "void" and rep.rows[0].id == 1
+    v = rep.rows[0]
+    centre = balls.centers[list(v.lining_atoms)].mean(axis=0)
+    assert np.linalg.norm(centre - chamber) < 0.3
+    assert v.buriedness == 1.0 and v.openness == 0.0 and v.mouths == 0
+    assert abs(v.depth - (centre[2] - balls.centers[:, 2].min())) < 0.15  # the bottom face is the nearest
+
+
+def test_a_flat_dent_is_shallow(flask_block):
+    """The dent cut into the top face of the block: its lining centroid lies just below
+    that face, and its depth is the distance to it (the nearest face of the hull)."""
+    balls, _, _, dent = flask_block
+    f = _features(balls, [dent])
+    c = balls.centers[dent].mean(axis=0)
+    top = balls.centers[:, 2].max()
+    assert f.depth[0] == pytest.approx(top - c[2], abs=0.15)
+    assert f.depth[0] < 1.5 and f.buriedness[0] < 1.0
