@@ -887,7 +887,7 @@ def _each(fn, starts) -> None:
     from concurrent.futures import ThreadPoolExecutor
 
     with ThreadPoolExecutor(max_workers=n) as pool:
-        for _ in pool.map(fn, starts):  # re-raises a slice's error
+        for _ in pool.map(fn, starts):  # re-raises a slice's error (map cancels the slices not started)
             pass
 
 

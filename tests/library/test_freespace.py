@@ -357,6 +357,11 @@ def test_an_error_in_a_thread_reaches_the_caller(monkeypatch):
     monkeypatch.setattr(FS, "_measure_pairs", flaky)
     with pytest.raises(FloatingPointError, match="slice 4"):
         FS.free_space(F, 0.0, cells)
+    # the slices not yet started are dropped, not computed before the error is raised
+    started, total = len(calls), []
+    monkeypatch.setattr(FS, "_measure_pairs", lambda *a: total.append(1) or real(*a))
+    FS.free_space(F, 0.0, cells)
+    assert started < len(total) - 10
 
 
 @pytest.mark.parametrize("value", ["100000000", " 2 "])
