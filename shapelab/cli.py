@@ -327,12 +327,9 @@ def _run_report(args) -> int:
 
     names = [h for h in (args.hetatm or []) if h is not True]
     hetatm = False if args.no_hetatm else (set(names) if names else True)
-    stem = Path(args.file).name
-    for suffix in (".gz", ".pdb", ".ent", ".cif", ".mmcif"):
-        if stem.lower().endswith(suffix):
-            stem = stem[: -len(suffix)]
-    if stem in ("", ".", ".."):  # "..pdb": no name a file could be written under
-        stem = "structure"
+    from .batch import output_stem
+
+    stem = output_stem(args.file)  # the batch's names: "..pdb" gives "structure", 1abc.bcif.gz "1abc"
     try:
         s = read_structure(
             args.file,

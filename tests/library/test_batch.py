@@ -423,3 +423,26 @@ def test_no_marker_survives_files_it_does_not_describe(tmp_path, monkeypatch):
     monkeypatch.undo()
     assert report_batch(src, out=out, resume=True, progress=False)["status"] == ["ok"]
     assert "probe 1.4 Å" in (out / "a_cavities.md").read_text()
+
+
+def test_one_file_and_a_batch_name_a_bcif_file_alike(tmp_path):
+    # the single-file command line kept ".bcif" in the name (x.bcif_cavities.*), the batch did not
+    import gzip
+
+    from shapelab import cli
+
+    src = tmp_path / "x.bcif.gz"  # the reader decides by the content: here gzip'd PDB text
+    tiny_pdb(tmp_path / "x.pdb")
+    src.write_bytes(gzip.compress((tmp_path / "x.pdb").read_bytes()))
+    (tmp_path / "one").mkdir()
+    (tmp_path / "many").mkdir()
+    with contextlib.redirect_stdout(io.StringIO()):
+        assert cli.main(["report", str(src), "--out", str(tmp_path / "one"), "--rank", "none"]) == 0
+    report_batch([src], out=tmp_path / "many", rank="none", progress=False)
+    one = sorted(p.name for p in (tmp_path / "one").iterdir())
+    assert one == sorted(
+        p.name
+        for p in (tmp_path / "many").iterdir()
+        if p.suffix in (".csv", ".md", ".cif", ".pdb") and "summary" not in p.name
+    )
+    assert one[0].startswith("x_cavities.")
