@@ -315,9 +315,10 @@ def rank_score(features: PocketFeatures) -> np.ndarray:
     (:data:`DEFAULT_MIN_VOLUME`), ``min_persistence`` 0, voids and pockets
     together: top-N 60.7 %, top-(N + 2) 75.4 %, median 14 listed (the report's
     own order, voids first then by volume, all cavities: 13.1 % and 13.1 %,
-    median 189.5 listed).  The runner-up ``buriedness * log(1 + volume)`` at
-    10 Å is one site behind (73.8 %): the difference is within the noise of 61
-    sites.  The command and the full table: ``python -m benchmarks.pocket_ranking``,
+    median 189.5 listed).  The runner-up ``buriedness * log(1 + volume *
+    persistence)`` at 8 Å ties at 75.4 % top-(N + 2) and loses on top-N (52.5 %);
+    ``buriedness * log(1 + volume)`` at 10 Å is one site behind (73.8 %): these
+    differences are within the noise of 61 sites.  The command and the full table: ``python -m benchmarks.pocket_ranking``,
     ``benchmarks/results/pocket_ranking_dev.md``; the test split is measured by
     ``python -m benchmarks.pocket_sites``.
 
