@@ -461,6 +461,15 @@ def _init_worker() -> None:
 
 
 # ============================================================================ progress
+def _columns(stream) -> int:
+    """The width of the terminal ``stream`` is, 0 if unknown: a terminal without a size
+    (``script``, some CI runners) gets the lines, where tqdm would draw a bar of no width."""
+    try:
+        return os.get_terminal_size(stream.fileno()).columns
+    except (AttributeError, OSError, ValueError):
+        return 0
+
+
 class _Progress:
     """tqdm on stderr when it is installed and stderr is a terminal, else one ``k/n``
     line per structure."""
@@ -469,7 +478,7 @@ class _Progress:
         self.total, self.done, self.enabled, self.bar = total, 0, enabled, None
         if enabled:
             tqdm = None
-            if getattr(sys.stderr, "isatty", lambda: False)():
+            if getattr(sys.stderr, "isatty", lambda: False)() and _columns(sys.stderr) > 0:
                 try:
                     from tqdm import tqdm
                 except ImportError:

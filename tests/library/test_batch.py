@@ -446,3 +446,25 @@ def test_one_file_and_a_batch_name_a_bcif_file_alike(tmp_path):
         if p.suffix in (".csv", ".md", ".cif", ".pdb") and "summary" not in p.name
     )
     assert one[0].startswith("x_cavities.")
+
+
+def test_progress_on_a_terminal_without_a_size_is_lines(monkeypatch):
+    # tqdm on a terminal of 0 columns (script, some CI runners) drew nothing at all
+    import fcntl
+    import importlib.util
+    import pty
+    import struct
+    import termios
+
+    batch = importlib.import_module("shapelab.batch")
+    master, slave = pty.openpty()
+    with os.fdopen(slave, "w") as tty:
+        fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 0, 0, 0, 0))
+        monkeypatch.setattr(sys, "stderr", tty)
+        assert batch._Progress(3, True).bar is None
+        if importlib.util.find_spec("tqdm") is not None:
+            fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 80, 0, 0))
+            bar = batch._Progress(3, True)
+            assert bar.bar is not None
+            bar.close()
+    os.close(master)
