@@ -236,3 +236,42 @@ def test_void_components_wrong_counts_say_where_and_how(two_cages, answer, hints
     assert not check.void_components(answer, two_cages, TWO_TAUS)
     out = capsys.readouterr().out
     assert "✗" in out and all(h in out for h in hints) and not any(a in out for a in absent), out
+
+
+# ---- check.first_site_rank (lesson 18): the reference is the report's own order -----------
+@pytest.fixture(scope="module")
+def t4l_and_xylene():
+    from shapelab.datasets import structure
+
+    return structure("t4l-l99a"), structure("t4l-l99a-ligand").balls.centers
+
+
+def test_first_site_rank_is_the_void_in_the_growth_model_second_in_the_flow(t4l_and_xylene, capsys):
+    # independent of the check's loop: the L99A void (lesson 10) holds p-xylene; every atom
+    # of the ligand lies within 4 Å of the void's lining centroid or not, by brute force
+    import shapelab as sl
+
+    t4l, xylene = t4l_and_xylene
+    void = sl.report(t4l, 1.4, rank="none").voids[0]
+    centre = t4l.balls.centers[list(void.lining_atoms)].mean(axis=0)
+    assert np.min(np.linalg.norm(xylene - centre, axis=1)) <= 4.0
+    assert check.first_site_rank(1, t4l, xylene)
+    assert check.first_site_rank(2, t4l, xylene, method="flow")
+    for wrong in (0, 1, 3):
+        assert not check.first_site_rank(wrong, t4l, xylene, method="flow")
+    out = capsys.readouterr().out
+    assert "too small" in out and "too large" in out
+
+
+@pytest.mark.parametrize("answer", [None, 2.0, True, "2", [2]])
+def test_first_site_rank_refuses_what_is_not_a_whole_number(t4l_and_xylene, answer, capsys):
+    t4l, xylene = t4l_and_xylene
+    assert not check.first_site_rank(answer, t4l, xylene, method="flow")
+    assert "whole number" in capsys.readouterr().out
+
+
+def test_first_site_rank_is_zero_when_no_cavity_is_near(t4l_and_xylene):
+    t4l, xylene = t4l_and_xylene
+    far = xylene + 1000.0
+    assert check.first_site_rank(0, t4l, far)
+    assert not check.first_site_rank(1, t4l, far)
