@@ -849,9 +849,14 @@ def free_space(F, tau, cells) -> FreeSpace:
     return _free_space(F, tau, cells, True)
 
 
+# the default thread count stops here, so that memory stays bounded on many-core machines
+# (each thread holds one slice's temporaries); SHAPELAB_THREADS may ask for more
+_DEFAULT_THREADS_CAP = 4
+
+
 def _threads(n_tasks: int) -> int:
-    """Threads for the slices of (cell, ball) pairs: the CPUs this process may use
-    (``SHAPELAB_THREADS`` in the environment overrides it; 1 runs them in the calling
+    """Threads for the slices of (cell, ball) pairs: the CPUs this process may use, at
+    most four by default (``SHAPELAB_THREADS`` in the environment overrides it; 1 runs them in the calling
     thread), never more than there are slices, and 1 when called from a thread other
     than the main one (a Dask worker's or a caller's own pool: no pools in pools)."""
     import os
@@ -869,6 +874,7 @@ def _threads(n_tasks: int) -> int:
             raise ValueError(f"SHAPELAB_THREADS must be a positive integer, got {env!r}")
     else:
         n = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+        n = min(n, _DEFAULT_THREADS_CAP)  # each thread holds a slice's temporaries (~8 MiB)
     return max(1, min(n, n_tasks))
 
 

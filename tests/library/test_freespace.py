@@ -384,3 +384,17 @@ def test_worker_processes_use_one_thread_unless_told(monkeypatch, module):
     monkeypatch.setenv("SHAPELAB_THREADS", "2")
     init()
     assert os.environ["SHAPELAB_THREADS"] == "2"
+
+
+def test_default_threads_are_capped_on_many_core_machines(monkeypatch):
+    # memory grows with the threads (one slice's temporaries each): without SHAPELAB_THREADS
+    # a 64-CPU machine gets the cap, a 2-CPU machine its 2, and the variable may ask for more
+    import os
+
+    monkeypatch.delenv("SHAPELAB_THREADS", raising=False)
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: set(range(64)), raising=False)
+    assert FS._threads(1000) == FS._DEFAULT_THREADS_CAP == 4
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0, 1}, raising=False)
+    assert FS._threads(1000) == 2
+    monkeypatch.setenv("SHAPELAB_THREADS", "16")
+    assert FS._threads(1000) == 16
