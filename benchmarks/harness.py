@@ -215,6 +215,9 @@ def _run_side(case: Case, side: str, rep: int, params: dict | None = None) -> di
         cmd += ["--params", json.dumps(params)]
     root = Path(__file__).resolve().parent.parent
     env = dict(os.environ, PYTHONPATH=str(root) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    # one thread against the peers' one thread (freesasa, zsasa, Voronota-LT are run single-threaded):
+    # shapelab's free-space slices would otherwise use every CPU; SHAPELAB_THREADS=2 make bench gives 2-core figures
+    env.setdefault("SHAPELAB_THREADS", "1")
     out = subprocess.run(cmd, capture_output=True, text=True, cwd=root, env=env)
     if out.returncode != 0:
         raise RuntimeError(f"benchmark {case.name} ({side}) failed:\n{out.stderr[-2000:]}")
