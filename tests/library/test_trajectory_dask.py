@@ -45,11 +45,21 @@ def cluster():
     # Dask's nanny starts its workers with MALLOC_TRIM_THRESHOLD_=65536, which makes glibc
     # return the library's mid-sized arrays to the system at once: about 3x the CPU time
     # (page faults).  Unset, as the README says for real clusters ("On a Dask cluster").
-    with dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
-        c = distributed.LocalCluster(
-            n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
-        )
-    with c, distributed.Client(c, timeout=60, set_as_default=False) as client:  # not the default client
+    def fire(signum, frame):  # the function-scoped alarm is not armed yet: a cluster that never starts
+        raise TimeoutError(f"the LocalCluster did not start within {LIMIT} s")
+
+    old = signal.signal(signal.SIGALRM, fire)
+    signal.alarm(LIMIT)
+    try:
+        with dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
+            c = distributed.LocalCluster(
+                n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
+            )
+        client = distributed.Client(c, timeout=60, set_as_default=False)  # not the default client
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, old)
+    with c, client:
         yield c, client
 
 
