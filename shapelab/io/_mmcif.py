@@ -5,7 +5,8 @@ gemmi's CIF parser (:func:`gemmi.cif.read_string`) turns the text into a documen
 the ``_atom_site`` table of its data block is read here, column by column, into
 :class:`~shapelab.io._structure.AtomRecord` rows, which then go through the same
 selection (:mod:`shapelab.io._selection`) and radii (:mod:`shapelab.io._radii`) as
-the PDB reader's.  BinaryCIF is refused: gemmi 0.7.5 has no BinaryCIF reader.
+the PDB reader's.  BinaryCIF, which gemmi 0.7.5 does not read, has its own reader
+(:mod:`shapelab.io._bcif`, biotite's decoder) that follows the same rules.
 """
 
 from __future__ import annotations
@@ -22,7 +23,14 @@ from ._selection import kept_structure, names_arg
 from ._source import chunks, too_large
 from ._structure import AtomRecord, PDBStructure
 
-__all__ = ["read_mmcif", "read_limited", "MMCIF_CHAIN_WIDTH", "MMCIF_RESIDUE_WIDTH"]
+__all__ = [
+    "read_mmcif",
+    "read_limited",
+    "reader_options",
+    "REQUIRED_ITEMS",
+    "MMCIF_CHAIN_WIDTH",
+    "MMCIF_RESIDUE_WIDTH",
+]
 
 #: Widest ``chain=`` name accepted for mmCIF (``auth_asym_id`` of the PDB's large
 #: entries reaches 4 characters) and widest ``hetatm=`` residue name (the wwPDB's
@@ -37,8 +45,8 @@ _NUMBER = re.compile(r"([+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)(?
 
 # the _atom_site items a table must have: each coordinate, the element, and for the atom,
 # residue, chain and residue number the auth_ item the PDB's own tools show or, in a file
-# without it, the label_ item
-_REQUIRED = (
+# without it, the label_ item (the BinaryCIF reader, shapelab.io._bcif, requires the same)
+REQUIRED_ITEMS = (
     ("Cartn_x",),
     ("Cartn_y",),
     ("Cartn_z",),
@@ -158,24 +166,9 @@ def _parse(path, text: str):
         raise ValueError(f"{os.fspath(path)!r} is not a readable mmCIF file: {msg}") from None
 
 
-def read_mmcif(
-    path,
-    *,
-    probe=0.0,
-    default_radius=None,
-    model=None,
-    chain=None,
-    hetatm=True,
-    water=False,
-    hydrogens=False,
-    radii=None,
-    max_bytes=256 * 2**20,
-) -> PDBStructure:
-    """Read the ``_atom_site`` table of an mmCIF file (plain or gzip) as balls.
-
-    The keywords are those of :func:`~shapelab.io.read_structure`, which documents
-    them; this is its mmCIF branch.
-    """
+def reader_options(path, probe, default_radius, model, chain, hetatm, water, hydrogens, radii, max_bytes) -> dict:
+    """The keywords of :func:`read_mmcif` (and of the BinaryCIF reader) checked and
+    normalised: TypeError or ValueError naming the argument and the value received."""
     if isinstance(path, (bytes, bytearray)) or not isinstance(path, (str, os.PathLike)):
         raise TypeError(f"path must be a str or os.PathLike, got {type(path).__name__}")
     probe = as_finite_scalar(probe, "probe", nonnegative=True)
@@ -195,6 +188,44 @@ def read_mmcif(
             raise TypeError(f"{fname} must be a bool, got {type(flag).__name__}")
     tables = radius_table(radii)
     max_bytes = as_positive_int(max_bytes, "max_bytes")
+
+    return dict(
+        probe=probe,
+        default_radius=default_radius,
+        model=model,
+        chains_wanted=chains_wanted,
+        het_keep=het_keep,
+        tables=tables,
+        max_bytes=max_bytes,
+    )
+
+
+def read_mmcif(
+    path,
+    *,
+    probe=0.0,
+    default_radius=None,
+    model=None,
+    chain=None,
+    hetatm=True,
+    water=False,
+    hydrogens=False,
+    radii=None,
+    max_bytes=256 * 2**20,
+) -> PDBStructure:
+    """Read the ``_atom_site`` table of an mmCIF file (plain or gzip) as balls.
+
+    The keywords are those of :func:`~shapelab.io.read_structure`, which documents
+    them; this is its mmCIF branch.
+    """
+    opts = reader_options(path, probe, default_radius, model, chain, hetatm, water, hydrogens, radii, max_bytes)
+    probe, default_radius, model = opts["probe"], opts["default_radius"], opts["model"]
+    chains_wanted, het_keep, tables, max_bytes = (
+        opts["chains_wanted"],
+        opts["het_keep"],
+        opts["tables"],
+        opts["max_bytes"],
+    )
 
     import gemmi
 
@@ -216,7 +247,7 @@ def read_mmcif(
         raise ValueError(f"{name!r} has no _atom_site table (data blocks: {[b.name for b in doc]})")
     block = blocks[0]
     present = {t.lower() for t in block.find_mmcif_category("_atom_site.").tags}  # CIF tags ignore case
-    for items in _REQUIRED:
+    for items in REQUIRED_ITEMS:
         if not any(f"_atom_site.{t}".lower() in present for t in items):
             raise ValueError(
                 f"{name!r}: the _atom_site table has no _atom_site.{' or _atom_site.'.join(items)} column "

@@ -4,7 +4,8 @@
 The format is recognised from the file's first bytes (after gzip decompression),
 the extension deciding only what the content leaves open; the PDB branch is
 :func:`~shapelab.io.read_pdb`, the mmCIF branch :func:`~shapelab.io._mmcif.read_mmcif`
-(gemmi's CIF parser), and both feed the same selection and radii.
+(gemmi's CIF parser), the BinaryCIF branch :func:`~shapelab.io._bcif.read_bcif`
+(biotite's BinaryCIF decoder, optional), and all three feed the same selection and radii.
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ import gzip
 import os
 import zlib
 
+from ._bcif import read_bcif
 from ._mmcif import read_mmcif
 from ._pdb import MAX_PDB_BYTES, read_pdb
 from ._structure import PDBStructure
@@ -73,9 +75,10 @@ def detect_format(path) -> str:
     ----------
     .. [1] wwPDB, *PDBx/mmCIF Dictionary*, https://mmcif.wwpdb.org (the ``data_``
        block of an mmCIF file).
-    .. [2] D. Sehnal, S. Bittrich, J. D. Westbrook, S. K. Burley and A. S. Rose,
-       "BinaryCIF and CIFTools -- Lightweight, efficient and extensible macromolecular
-       data management", *PLoS Comput. Biol.* **16**(10), e1008247 (2020).
+    .. [2] D. Sehnal, S. Bittrich, S. Velankar, J. Koča, R. Svobodová, S. K. Burley
+       and A. S. Rose, "BinaryCIF and CIFTools -- Lightweight, efficient and extensible
+       macromolecular data management", *PLoS Comput. Biol.* **16**(10), e1008247
+       (2020), doi:10.1371/journal.pcbi.1008247.
 
     Examples
     --------
@@ -110,16 +113,19 @@ def read_structure(
     max_bytes=MAX_PDB_BYTES,
     format=None,
 ) -> PDBStructure:
-    """Read the atoms of a PDB or mmCIF file as balls (Notes §23.1: a molecule is a
-    union of balls).
+    """Read the atoms of a PDB, mmCIF or BinaryCIF file as balls (Notes §23.1: a
+    molecule is a union of balls).
 
     One entry point for what the PDB distributes: PDB files (plain or gzip, hybrid-36
     residue numbers past 9999), read by :func:`read_pdb`'s strict fixed-column
-    parser, and PDBx/mmCIF files (plain or gzip), the PDB's archive format since 2014
+    parser; PDBx/mmCIF files (plain or gzip), the PDB's archive format since 2014
     and the only one for entries of more than 99,999 atoms or 62 chains, parsed by
-    gemmi.  Both give :class:`~shapelab.io._structure.AtomRecord` rows to the same
-    selection (model, chains, HETATM, water, hydrogens, alternate locations) and the
-    same radii, so one entry read from either format gives the same balls.
+    gemmi; and BinaryCIF files (plain or gzip), the same categories and columns
+    encoded as MessagePack, which the RCSB and PDBe serve, decoded by biotite (an
+    optional dependency: ``pip install "shapelab[bcif]"``).  All three give
+    :class:`~shapelab.io._structure.AtomRecord` rows to the same selection (model,
+    chains, HETATM, water, hydrogens, alternate locations) and the same radii, so one
+    entry read from any format gives the same balls.
 
     Parameters
     ----------
@@ -131,25 +137,25 @@ def read_structure(
         optionally ``.gz``) decides only for a file whose content says nothing
         (empty or blank).
     probe, default_radius, hetatm, water, hydrogens, radii, max_bytes
-        As in :func:`read_pdb`.  For mmCIF, ``max_bytes`` bounds the whole
-        (decompressed) file, which is held in memory while gemmi parses it, and
+        As in :func:`read_pdb`.  For mmCIF and BinaryCIF, ``max_bytes`` bounds the
+        whole (decompressed) file, which is held in memory while it is parsed, and
         ``hetatm`` names may have up to 5 characters (the wwPDB's extended CCD
         identifiers).
     model : int, optional
         The model read: the MODEL serial of a PDB file, ``pdbx_PDB_model_num`` of an
-        mmCIF one.  Default: the first model in the file.
+        mmCIF or BinaryCIF one.  Default: the first model in the file.
     chain : str or collection of str, optional
         Keep only these chains: columns 21–22 of a PDB file, ``auth_asym_id``
-        (up to 4 characters) of an mmCIF file.
+        (up to 4 characters) of an mmCIF or BinaryCIF file.
     format : {None, "pdb", "mmcif", "bcif"}, optional
-        Force a reader instead of recognising the format (``"bcif"`` is refused,
-        see Raises).
+        Force a reader instead of recognising the format.
 
     Returns
     -------
     PDBStructure
-        The atoms of the model read, in file order.  For mmCIF, ``model`` is the
-        ``pdbx_PDB_model_num`` read (1 if the table has no such column).
+        The atoms of the model read, in file order.  For mmCIF and BinaryCIF,
+        ``model`` is the ``pdbx_PDB_model_num`` read (1 if the table has no such
+        column).
 
     Raises
     ------
@@ -161,11 +167,17 @@ def read_structure(
         chain or residue-number columns; a value that is not what its item needs
         (a coordinate that is not a number or is ``?``, a residue number that is not
         an integer, ``group_PDB`` other than ATOM or HETATM, ...), named as
-        ``"_atom_site row N (id I), _atom_site.ITEM"``; an absent model.  A
-        BinaryCIF file: gemmi 0.7.5, the installed parser, has no BinaryCIF reader,
-        so it is refused with a message saying so.  Every message names the file.
-        Nothing is returned in part: any error in the model read fails the whole
-        call.
+        ``"_atom_site row N (id I), _atom_site.ITEM"``; an absent model.  For
+        BinaryCIF: an empty file, an unreadable gzip stream, bytes that are not a
+        MessagePack map of ``dataBlocks``, no ``atom_site`` category or a required
+        column missing (as for mmCIF), a column that cannot be decoded or whose
+        length is not the category's row count (``"atom_site.ITEM (data block
+        B)"``), and the same per-value errors as mmCIF, named as ``"atom_site row N
+        (id I), atom_site.ITEM"``.  Every message names the file.  Nothing is
+        returned in part: any error in the model read fails the whole call.
+    ImportError
+        A BinaryCIF file when biotite is not installed; the message says
+        ``pip install "shapelab[bcif]"``.
     FileNotFoundError, IsADirectoryError
         If ``path`` cannot be opened.
 
@@ -181,6 +193,10 @@ def read_structure(
         gemmi's own reader of both formats (it builds a model hierarchy; here only
         gemmi's CIF parser is used, and the ``_atom_site`` table is read by the
         rules above).
+    biotite.structure.io.pdbx.BinaryCIFFile
+        biotite's BinaryCIF file, whose per-column decoding the BinaryCIF branch uses
+        (``biotite.structure.io.pdbx.get_structure`` builds biotite's own atom
+        array; here the ``atom_site`` columns are read by the rules above).
 
     Notes
     -----
@@ -205,10 +221,13 @@ def read_structure(
     * A file cut short inside a row is a CIF syntax error; one cut exactly at the
       end of a row is indistinguishable from a shorter table (as a PDB file cut
       before its ``END``).
-    * BinaryCIF (``.bcif``, the MessagePack encoding of mmCIF that RCSB's ModelServer
-      serves) is recognised and refused: gemmi has no BinaryCIF reader in version
-      0.7.5, and no MessagePack decoder is a dependency.  Fetch the text mmCIF
-      (``https://files.rcsb.org/download/XXXX.cif.gz``) instead.
+    * BinaryCIF (``.bcif``, the MessagePack encoding of mmCIF [4]_ that the RCSB's
+      ModelServer and PDBe serve) holds the same ``atom_site`` columns as typed,
+      encoded arrays (delta, run-length, integer packing, fixed point, string
+      tables); biotite [5]_ decodes each column (gemmi 0.7.5 has no BinaryCIF
+      reader), and the columns are read by the same rules: a ``.`` or ``?`` value is
+      the column's mask, and coordinates come out at the file's precision (its
+      fixed-point factor, usually 1000: the same floats as the text mmCIF's).
 
     References
     ----------
@@ -219,6 +238,13 @@ def read_structure(
     .. [3] J. D. Westbrook and P. M. D. Fitzgerald, "The PDB format, mmCIF formats,
        and other data formats", in *Structural Bioinformatics*, P. E. Bourne and
        H. Weissig (eds.), Wiley (2003).
+    .. [4] D. Sehnal, S. Bittrich, S. Velankar, J. Koča, R. Svobodová, S. K. Burley
+       and A. S. Rose, "BinaryCIF and CIFTools -- Lightweight, efficient and extensible
+       macromolecular data management", *PLoS Comput. Biol.* **16**(10), e1008247
+       (2020), doi:10.1371/journal.pcbi.1008247.
+    .. [5] P. Kunzmann and K. Hamacher, "Biotite: a unifying open source computational
+       biology framework in Python", *BMC Bioinformatics* **19**, 346 (2018),
+       doi:10.1186/s12859-018-2367-z.
 
     Examples
     --------
@@ -255,18 +281,11 @@ def read_structure(
         radii=radii,
         max_bytes=max_bytes,
     )
-    if fmt != "bcif":
-        reader = read_pdb if fmt == "pdb" else read_mmcif
-        try:
-            return reader(path, **kwargs)
-        except ValueError as e:  # every message names the file ("line N: ..." of read_pdb too)
-            name = os.fspath(path)
-            if name in str(e):
-                raise
-            raise ValueError(f"{name!r}: {e}") from None
-    import gemmi
-
-    raise ValueError(
-        f"{os.fspath(path)!r} is BinaryCIF: gemmi {gemmi.__version__}, shapelab's mmCIF parser, has no "
-        f"BinaryCIF reader; read the entry's text mmCIF instead (https://files.rcsb.org/download/<ID>.cif.gz)"
-    )
+    reader = {"pdb": read_pdb, "mmcif": read_mmcif, "bcif": read_bcif}[fmt]
+    try:
+        return reader(path, **kwargs)
+    except ValueError as e:  # every message names the file ("line N: ..." of read_pdb too)
+        name = os.fspath(path)
+        if name in str(e):
+            raise
+        raise ValueError(f"{name!r}: {e}") from None

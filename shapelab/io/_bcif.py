@@ -1,0 +1,279 @@
+"""The BinaryCIF reader: the ``atom_site`` category of a BinaryCIF file, decoded by
+biotite (Notes §23.1).
+
+BinaryCIF is mmCIF's categories and columns, each column a typed array encoded (delta,
+run-length, integer packing, fixed point, string tables) and the whole a MessagePack
+map.  biotite's :class:`biotite.structure.io.pdbx.BinaryCIFFile` decodes it, column by
+column; the ``atom_site`` columns are then read by the rules of the mmCIF reader
+(:mod:`shapelab.io._mmcif`: ``auth_*`` labels, ``label_alt_id``, ``pdbx_PDB_model_num``,
+...) into the same :class:`~shapelab.io._structure.AtomRecord` rows, which go through
+the same selection and radii.  biotite is optional (``pip install "shapelab[bcif]"``)
+and imported only when a BinaryCIF file is read.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+import re
+
+import numpy as np
+
+from ._mmcif import REQUIRED_ITEMS, read_limited, reader_options
+from ._selection import kept_structure
+from ._structure import AtomRecord, PDBStructure
+
+__all__ = ["read_bcif", "INSTALL_HINT"]
+
+#: What to run when biotite, the BinaryCIF decoder, is not installed.
+INSTALL_HINT = 'pip install "shapelab[bcif]"'
+
+_INT = re.compile(r"[+-]?[0-9]+")
+_PRESENT = 0  # biotite's MaskValue.PRESENT; 1 is "." (inapplicable), 2 is "?" (unknown)
+
+
+def _biotite_pdbx():
+    try:
+        import biotite.structure.io.pdbx as pdbx
+    except ImportError as e:
+        raise ImportError(f"reading BinaryCIF needs biotite, which is not installed ({e}): {INSTALL_HINT}") from None
+    return pdbx
+
+
+class _Columns:
+    """The ``atom_site`` columns of one data block, decoded on demand; every error names
+    the file, the category and the column (and the row, for a value)."""
+
+    def __init__(self, name, category, block_name, n):
+        self.name, self.category, self.block_name, self.n = name, category, block_name, n
+        self.present = {k.lower(): k for k in category.keys()}  # CIF names ignore case
+        self.ids = None
+
+    def has(self, item):
+        return item.lower() in self.present
+
+    def where(self, item, row=None):
+        if row is None:
+            return f"{self.name!r}: atom_site.{item} (data block {self.block_name})"
+        ident = "" if self.ids is None else f" (id {self.ids[row]})"
+        return f"{self.name!r}: atom_site row {row + 1}{ident}, atom_site.{item}"
+
+    def decoded(self, item):
+        """``(values, mask)``: the column's array and its mask (None if all present)."""
+        key = self.present[item.lower()]
+        try:
+            column = self.category[key]
+            values = column.as_array()
+            mask = None if column.mask is None else np.asarray(column.mask.array)
+        except Exception as e:  # a malformed encoding: biotite raises what numpy or msgpack raise
+            raise ValueError(f"{self.where(item)} cannot be decoded: {type(e).__name__}: {e}") from None
+        values = np.asarray(values)
+        if self.n is None and values.ndim == 1:
+            return values, mask
+        if values.ndim != 1 or len(values) != self.n or (mask is not None and mask.shape != (self.n,)):
+            got = values.shape if mask is None or mask.shape == values.shape else f"{values.shape}, mask {mask.shape}"
+            raise ValueError(
+                f"{self.where(item)} has {got} values where the category has {self.n} rows (atom_site.Cartn_x)"
+            )
+        if mask is not None and (mask == _PRESENT).all():
+            mask = None
+        return values, mask
+
+    def numbers(self, item, rows, *, required):
+        values, mask = self.decoded(item)
+        values, mask = values[rows], None if mask is None else mask[rows]
+        if values.dtype.kind in "iuf":
+            out = values.astype(np.float64)
+        else:  # numbers written as strings: each must read as one (with an optional uncertainty)
+            out = np.empty(len(values))
+            for k, v in enumerate(values):
+                if mask is not None and mask[k] != _PRESENT:
+                    out[k] = np.nan
+                    continue
+                try:
+                    out[k] = float(re.sub(r"\([0-9]+\)$", "", str(v)))
+                except ValueError:
+                    raise ValueError(f"{self.where(item, rows[k])} is not a number: {str(v)!r}") from None
+        if mask is not None:
+            absent = mask != _PRESENT
+            if required and absent.any():
+                k = int(np.flatnonzero(absent)[0])
+                what = "." if mask[k] == 1 else "?"
+                raise ValueError(f"{self.where(item, rows[k])} is {what!r} (unknown): a number is required")
+            out[absent] = np.nan
+        bad = ~np.isfinite(out) & (np.ones(len(out), bool) if mask is None else mask == _PRESENT)
+        if bad.any():
+            k = int(np.flatnonzero(bad)[0])
+            raise ValueError(f"{self.where(item, rows[k])} must be finite, got {values[k]!r}")
+        return out.tolist()
+
+    def integers(self, item, rows):
+        values, mask = self.decoded(item)
+        values, mask = values[rows], None if mask is None else mask[rows]
+        if mask is not None:
+            k = int(np.flatnonzero(mask != _PRESENT)[0])
+            what = "." if mask[k] == 1 else "?"
+            raise ValueError(f"{self.where(item, rows[k])} is not an integer: {what!r}")
+        if values.dtype.kind in "iu":
+            return values.astype(np.int64).tolist()
+        out = []
+        for k, v in enumerate(values):
+            t = str(v)
+            if values.dtype.kind == "f" and np.isfinite(v) and v == int(v):
+                t = str(int(v))
+            if not _INT.fullmatch(t):
+                raise ValueError(f"{self.where(item, rows[k])} is not an integer: {t!r}")
+            out.append(int(t))
+        return out
+
+    def labels(self, item, rows):
+        values, mask = self.decoded(item)
+        values = values[rows].astype(str)
+        if mask is not None:
+            values[mask[rows] != _PRESENT] = ""
+        out = values.tolist()
+        joined = "".join(out)
+        if not (joined.isascii() and joined.isprintable()):
+            for k, t in enumerate(out):
+                if not (t.isascii() and t.isprintable()):
+                    raise ValueError(f"{self.where(item, rows[k])} is not printable ASCII: {t!r}")
+        return out
+
+
+def read_bcif(
+    path,
+    *,
+    probe=0.0,
+    default_radius=None,
+    model=None,
+    chain=None,
+    hetatm=True,
+    water=False,
+    hydrogens=False,
+    radii=None,
+    max_bytes=256 * 2**20,
+) -> PDBStructure:
+    """Read the ``atom_site`` category of a BinaryCIF file (plain or gzip) as balls.
+
+    The keywords are those of :func:`~shapelab.io.read_structure`, which documents
+    them; this is its BinaryCIF branch.  The columns are decoded by biotite's
+    :class:`~biotite.structure.io.pdbx.BinaryCIFFile` and read by the mmCIF reader's
+    rules, so a BinaryCIF file and the text mmCIF of the same entry give the same atoms.
+    """
+    opts = reader_options(path, probe, default_radius, model, chain, hetatm, water, hydrogens, radii, max_bytes)
+    pdbx = _biotite_pdbx()
+    name = os.fspath(path)
+    data = read_limited(path, opts["max_bytes"])
+    if not data:
+        raise ValueError(f"{name!r} is empty: no BinaryCIF data blocks and no atom_site category")
+    try:
+        doc = pdbx.BinaryCIFFile.read(io.BytesIO(data))
+        block_names = list(doc.keys())
+    except Exception as e:  # msgpack's errors (ExtraData, FormatError, ...) or a map without dataBlocks
+        raise ValueError(
+            f"{name!r} is not a readable BinaryCIF file (a MessagePack map of dataBlocks): {type(e).__name__}: {e}"
+        ) from None
+    category = block_name = None
+    for bname in block_names:
+        try:
+            block = doc[bname]
+            if "atom_site" in block.keys():
+                category, block_name = block["atom_site"], bname
+                break
+        except Exception as e:
+            raise ValueError(
+                f"{name!r}: data block {bname!r} is not readable BinaryCIF: {type(e).__name__}: {e}"
+            ) from None
+    if category is None:
+        raise ValueError(f"{name!r} has no atom_site category (data blocks: {block_names})")
+    present = {k.lower() for k in category.keys()}
+    for items in REQUIRED_ITEMS:
+        if not any(t.lower() in present for t in items):
+            raise ValueError(
+                f"{name!r}: the atom_site category has no atom_site.{' or atom_site.'.join(items)} column "
+                f"(data block {block_name})"
+            )
+    cols = _Columns(name, category, block_name, None)
+    n = len(cols.decoded("Cartn_x")[0])  # the category's row count: every column read must match it
+    if n == 0:
+        raise ValueError(f"{name!r}: the atom_site category has no rows")
+    cols.n = n
+    if cols.has("id"):
+        ids, _ = cols.decoded("id")
+        cols.ids = ids.astype(str).tolist()
+
+    def first(*items):
+        return next(it for it in items if cols.has(it))
+
+    everything = np.arange(n)
+    if cols.has("pdbx_PDB_model_num"):
+        row_model = cols.integers("pdbx_PDB_model_num", everything)
+        models_seen = list(dict.fromkeys(row_model))
+    else:
+        row_model, models_seen = None, [1]
+    target = models_seen[0] if opts["model"] is None else opts["model"]
+    if target not in models_seen:
+        raise ValueError(f"{name!r} has no model {target} (pdbx_PDB_model_num holds: {models_seen})")
+    rows = everything if row_model is None else np.flatnonzero(np.asarray(row_model) == target)
+    m = len(rows)
+
+    x = cols.numbers("Cartn_x", rows, required=True)
+    y = cols.numbers("Cartn_y", rows, required=True)
+    z = cols.numbers("Cartn_z", rows, required=True)
+    occ = cols.numbers("occupancy", rows, required=False) if cols.has("occupancy") else [np.nan] * m
+    bf = cols.numbers("B_iso_or_equiv", rows, required=False) if cols.has("B_iso_or_equiv") else [np.nan] * m
+    sq_item = first("auth_seq_id", "label_seq_id")
+    num = cols.integers(sq_item, rows)
+    at_item = first("auth_atom_id", "label_atom_id")
+    atom = cols.labels(at_item, rows)
+    resn = cols.labels(first("auth_comp_id", "label_comp_id"), rows)
+    ch = cols.labels(first("auth_asym_id", "label_asym_id"), rows)
+    icode = cols.labels("pdbx_PDB_ins_code", rows) if cols.has("pdbx_PDB_ins_code") else [""] * m
+    alt = cols.labels("label_alt_id", rows) if cols.has("label_alt_id") else [""] * m
+    group = cols.labels("group_PDB", rows) if cols.has("group_PDB") else ["ATOM"] * m
+    elem = cols.labels("type_symbol", rows)
+    symbols = {}  # each distinct type_symbol checked and normalised once
+    for k, i in enumerate(rows):
+        if group[k] not in ("ATOM", "HETATM"):
+            raise ValueError(f"{cols.where('group_PDB', i)} is neither ATOM nor HETATM: {group[k]!r}")
+        if not atom[k]:
+            raise ValueError(f"{cols.where(at_item, i)} is empty: every atom needs a name")
+        e = elem[k]
+        if e not in symbols:
+            if not (e.isascii() and e.isalpha() and len(e) <= 2):
+                raise ValueError(f"{cols.where('type_symbol', i)} is not an element symbol: {e!r}")
+            symbols[e] = e[0].upper() + e[1:].lower()
+    recs = [
+        AtomRecord(
+            int(i) + 1,
+            group[k] == "HETATM",
+            alt[k],
+            atom[k],
+            resn[k],
+            ch[k],
+            num[k],
+            icode[k],
+            x[k],
+            y[k],
+            z[k],
+            occ[k],
+            bf[k],
+            symbols[elem[k]],
+        )
+        for k, i in enumerate(rows)
+    ]
+    return kept_structure(
+        recs,
+        tables=opts["tables"],
+        default_radius=opts["default_radius"],
+        probe=opts["probe"],
+        model=target,
+        where=f"{name!r}: atom_site row",
+        chains_wanted=opts["chains_wanted"],
+        het_keep=opts["het_keep"],
+        water=water,
+        hydrogens=hydrogens,
+        path=path,
+        chain=chain,
+        hetatm=hetatm,
+    )
