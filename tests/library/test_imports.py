@@ -8,6 +8,7 @@ mmCIF, trajectories, clusters, progress bars, the peers.
 
 from __future__ import annotations
 
+import importlib.util
 import json
 import os
 import subprocess
@@ -26,6 +27,7 @@ HEAVY = (
     "scipy.sparse",
     "matplotlib",
     "gemmi",
+    "biotite",
     "ipywidgets",
     "IPython",
     "MDAnalysis",
@@ -76,6 +78,21 @@ def test_geometry_imports_no_optional_package(code):
     """The computations need numpy and scipy, never figures, widgets, gemmi, MDAnalysis,
     dask, tqdm or the peers: those come with the calls that use them."""
     assert _loaded(code) & set(OPTIONAL) == set()
+
+
+def test_pdb_and_mmcif_never_import_biotite():
+    """biotite (the optional BinaryCIF decoder, ``shapelab[bcif]``) comes only with a
+    BinaryCIF file: reading PDB and mmCIF files, detecting any format, never imports it."""
+    data = ROOT / "tests" / "data"
+    code = (
+        "import shapelab as sl\n"
+        f"sl.read_structure({str(data / '1fbl.cif.gz')!r})\n"
+        "sl.read_structure(sl.datasets.structure_path('1hvr'))\n"
+        f"sl.io.detect_format({str(data / '1fbl.bcif')!r})"
+    )
+    assert "biotite" not in _loaded(code)
+    if importlib.util.find_spec("biotite") is not None:  # the check can fail: a BinaryCIF file does import it
+        assert "biotite" in _loaded(f"import shapelab as sl\nsl.read_structure({str(data / '1fbl.bcif')!r})")
 
 
 def test_the_probe_can_fail():
