@@ -263,11 +263,18 @@ def test_first_site_rank_is_the_void_in_the_growth_model_second_in_the_flow(t4l_
     assert "too small" in out and "too large" in out
 
 
-@pytest.mark.parametrize("answer", [None, 2.0, True, "2", [2]])
+@pytest.mark.parametrize("answer", [None, 2.0, np.float64(2.0), True, np.bool_(True), "2", [2]])
 def test_first_site_rank_refuses_what_is_not_a_whole_number(t4l_and_xylene, answer, capsys):
     t4l, xylene = t4l_and_xylene
     assert not check.first_site_rank(answer, t4l, xylene, method="flow")
     assert "whole number" in capsys.readouterr().out
+
+
+def test_first_site_rank_takes_a_numpy_integer(t4l_and_xylene, capsys):
+    # a rank computed with NumPy (np.flatnonzero(d <= 4)[0] + 1) is an np.int64: accepted
+    t4l, xylene = t4l_and_xylene
+    assert check.first_site_rank(np.int64(2), t4l, xylene, method="flow")
+    assert "✓" in capsys.readouterr().out
 
 
 def test_first_site_rank_is_zero_when_no_cavity_is_near(t4l_and_xylene):
