@@ -3,7 +3,8 @@
 Issue 23, item 4 (Notes §23.1: a pocket "often defines a docking site for the modeled
 protein").  Public PDB entries with bound ligands, shipped gzip-compressed in
 ``benchmarks/data/pockets/`` with their provenance and sha256 in ``manifest.json``,
-are read **without their HETATM records**; every method lists its pockets in its own
+are read **without their HETATM records** (except the modified residues of the chains,
+such as MSE); every method lists its pockets in its own
 rank order on the same protein-only file, and we count how many ligand sites are
 found among the first N and N + 2 pockets (N = the number of ligand sites of the
 structure): the DCA criterion of P2Rank (Krivák & Hoksza 2018) and LIGYSIS (Utgés &
@@ -33,10 +34,13 @@ From the first model, alternate locations reduced to the first, hydrogens droppe
 
 Structures with no site are dropped (when the manifest is built).
 
-Pocket centres: for shapelab, the centroid of the pocket's lining atoms (the report's
-``lining_atoms``); for the peers, their own centre (fpocket-rs and pocketeer: the
-centroid of the pocket's alpha-sphere centres; pyKVFinder: the centroid of the
-cavity's grid points), in their own rank order (fpocket's score, pocketeer's score,
+Pocket centres: for shapelab, the centroid of the cavity's lining atoms (the report's
+``lining_atoms``) of every row the report lists at its defaults (``rank="score"``,
+``min_volume`` 10 Å³: voids and pockets ranked together, as a user reads them; the
+records also keep ``site_ranks_pockets_only``, the ranks with the voids left out);
+for the peers, their own centre (fpocket-rs and pocketeer: the centroid of the
+pocket's alpha-sphere centres; pyKVFinder: the centroid of the cavity's grid
+points), in their own rank order (fpocket's score, pocketeer's score,
 pyKVFinder's cavities by volume, largest first: it has no score).
 
 Splits
@@ -298,7 +302,7 @@ def read_sites(path) -> dict:
         for r in ch:
             heavy = [a for a in r if a.element.name not in ("H", "D")]
             xyz = np.array([[a.pos.x, a.pos.y, a.pos.z] for a in heavy], dtype=np.float64).reshape(-1, 3)
-            if r.het_flag == "H":
+            if r.het_flag == "H" and r.entity_type != gemmi.EntityType.Polymer:
                 if r.entity_type == gemmi.EntityType.Branched:  # mmCIF oligosaccharides: glycans
                     continue
                 het.append(
@@ -330,13 +334,20 @@ def read_sites(path) -> dict:
 
 
 def protein_only_pdb(path, out) -> Path:
-    """Write the protein-only input every method reads: the first model's ATOM records
-    (no HETATM, no hydrogens, first alternate location), as a minimal PDB file."""
+    """Write the protein-only input every method reads: the first model's polymer
+    residues as ATOM records (modified residues of the chain, such as MSE or TPO, which
+    the PDB writes as HETATM, are kept and written as ATOM; every other HETATM group is
+    dropped), no hydrogens, first alternate location, as a minimal PDB file."""
+    import gemmi
+
     st = _read_gemmi(path)
     for ch in st[0]:
         for i in range(len(ch) - 1, -1, -1):
             if ch[i].het_flag == "H":
-                del ch[i]
+                if ch[i].entity_type == gemmi.EntityType.Polymer:
+                    ch[i].het_flag = "A"  # a modified residue of the chain (MSE, TPO, CSO...): keep it
+                else:
+                    del ch[i]
     st.remove_empty_chains()
     if any(len(ch.name) > 1 for ch in st[0]):
         st.shorten_chain_names()
@@ -462,6 +473,11 @@ def evaluate(list_pockets, split: str = "dev", *, ids=None, progress: bool = Fal
             rec["seconds"] = time.perf_counter() - t0
             rec["n_pockets"] = len(centres)
             rec["site_ranks"] = _site_ranks(centres, [s["xyz"] for s in info["sites"]])
+            kinds = _ROW_KINDS.pop(str(prot), None)
+            if kinds is not None and len(kinds) == len(centres):  # ours: voids and pockets listed
+                pockets = np.array([k == "pocket" for k in kinds], dtype=bool)
+                rec["n_voids"] = int((~pockets).sum())
+                rec["site_ranks_pockets_only"] = _site_ranks(centres[pockets], [s["xyz"] for s in info["sites"]])
             n = rec["n_sites"]
             rec["found_n"] = sum(1 for k in rec["site_ranks"] if k is not None and k <= n)
             rec["found_n2"] = sum(1 for k in rec["site_ranks"] if k is not None and k <= n + 2)
@@ -665,27 +681,39 @@ def build_manifest(git_dirs: dict, corpus_root: Path) -> dict:
 
 
 # ================================================================ the methods
-def _lining_centres(structure, rows) -> list:
+#: path -> the kinds ("void"/"pocket") of the rows our last call listed, read by evaluate
+_ROW_KINDS: dict = {}
+
+
+def _lining_centres(structure, rows, path) -> list:
+    """Every row the report lists (voids and pockets: the default ranking orders both
+    together, and a user reads both), in the report's order; centre = centroid of the
+    lining atoms.  The row kinds go to :data:`_ROW_KINDS` so that :func:`evaluate` can
+    also record the pockets-only ranks (the measure before the ranking)."""
     xyz = structure.balls.centers
-    return [xyz[list(r.lining_atoms)].mean(axis=0) for r in rows if r.kind == "pocket" and len(r.lining_atoms)]
+    rows = [r for r in rows if len(r.lining_atoms)]
+    _ROW_KINDS[str(path)] = [r.kind for r in rows]
+    return [xyz[list(r.lining_atoms)].mean(axis=0) for r in rows]
 
 
 def shapelab_growth(path) -> list:
-    """shapelab's report pockets (growth model, Notes §23.1) in the library's default order."""
+    """shapelab's report (growth model, Notes §23.1) at its defaults: every listed cavity
+    (voids and pockets) in the library's default order (``rank="score"``, min_volume 10 Å³)."""
     import shapelab
     from shapelab import cavity_report
 
     s = shapelab.read_structure(path, hetatm=False)
-    return _lining_centres(s, cavity_report.report(s, 1.4).rows)
+    return _lining_centres(s, cavity_report.report(s, 1.4).rows, path)
 
 
 def shapelab_flow(path) -> list:
-    """shapelab's report pockets by the discrete flow (``method="flow"``), default order."""
+    """shapelab's report by the discrete flow (``method="flow"``) at its defaults: every
+    listed cavity in the library's default order."""
     import shapelab
     from shapelab import cavity_report
 
     s = shapelab.read_structure(path, hetatm=False)
-    return _lining_centres(s, cavity_report.report(s, 1.4, method="flow").rows)
+    return _lining_centres(s, cavity_report.report(s, 1.4, method="flow").rows, path)
 
 
 def _flow_available() -> str | None:
@@ -700,11 +728,26 @@ def _flow_available() -> str | None:
 
 def fpocket_rs_pockets(path) -> list:
     """fpocket's algorithm (fpocket-rs, default parameters), in its score order; centre =
-    centroid of the pocket's alpha-sphere centres."""
+    centroid of the pocket's alpha-sphere centres.  That order is fpocket-rs's, not
+    fpocket's: its score falls with pocket size (see :func:`fpocket_rs_drug_pockets`)."""
     import fpocket_rs
 
     out = fpocket_rs.detect_pockets(path)
     pockets = sorted(out["pockets"], key=lambda p: p["rank"])
+    return [np.asarray(p["alpha_spheres"], dtype=np.float64)[:, :3].mean(axis=0) for p in pockets]
+
+
+def fpocket_rs_drug_pockets(path) -> list:
+    """fpocket-rs (default parameters) ordered by its druggability score, highest first
+    (ties: its rank).  fpocket-rs's own ``score`` falls with pocket size (the largest
+    pockets come last; on 1hvr it ranks the protease's active site 7th of 7, where
+    fpocket's C binary ranks it first), while its README reports ``drug_score``
+    within 0.03 of the C binary's: this row shows fpocket's algorithm with an order
+    that is not broken.  Centre as :func:`fpocket_rs_pockets`."""
+    import fpocket_rs
+
+    out = fpocket_rs.detect_pockets(path)
+    pockets = sorted(out["pockets"], key=lambda p: (-p["drug_score"], p["rank"]))
     return [np.asarray(p["alpha_spheres"], dtype=np.float64)[:, :3].mean(axis=0) for p in pockets]
 
 
@@ -745,22 +788,32 @@ def pykvfinder_pockets(path) -> list:
 
 #: name -> (callable, what it is, availability check returning None or why not)
 METHODS = {
-    "shapelab": (shapelab_growth, "shapelab report, growth model (default order)", lambda: None),
-    "shapelab-flow": (shapelab_flow, "shapelab report, discrete flow (default order)", _flow_available),
-    "fpocket-rs": (fpocket_rs_pockets, "fpocket-rs (fpocket's algorithm)", lambda: _importable("fpocket_rs")),
+    "shapelab": (shapelab_growth, "shapelab report, growth (default ranking)", lambda: None),
+    "shapelab-flow": (shapelab_flow, "shapelab report, flow (default ranking)", _flow_available),
+    "fpocket-rs": (fpocket_rs_pockets, "fpocket-rs, in its own score order", lambda: _importable("fpocket_rs")),
+    "fpocket-rs-drug": (
+        fpocket_rs_drug_pockets,
+        "fpocket-rs ordered by its drug_score",
+        lambda: _importable("fpocket_rs"),
+    ),
     "pocketeer": (pocketeer_pockets, "pocketeer", lambda: _importable("pocketeer")),
-    "pyKVFinder": (pykvfinder_pockets, "pyKVFinder (by volume)", lambda: _importable("pyKVFinder")),
+    "pyKVFinder": (
+        pykvfinder_pockets,
+        "pyKVFinder (by volume)",
+        # not in the bench extra: pyKVFinder 0.9.6 caps matplotlib below 3.11
+        lambda: _importable("pyKVFinder", "pip install --no-deps -c requirements/constraints.txt pyKVFinder==0.9.6"),
+    ),
 }
 OURS = ("shapelab", "shapelab-flow")
 
 
-def _importable(name: str) -> str | None:
+def _importable(name: str, how: str = "pip install -e '.[bench]'") -> str | None:
     import importlib
 
     try:
         importlib.import_module(name)
     except Exception as err:  # pragma: no cover - a peer not installed
-        return f"{name} does not import ({type(err).__name__}: {err}); pip install -e '.[bench]'"
+        return f"{name} does not import ({type(err).__name__}: {err}); {how}"
     return None
 
 
@@ -777,6 +830,7 @@ VERSIONS = {
     "shapelab": "shapelab",
     "shapelab-flow": "shapelab",
     "fpocket-rs": "fpocket-rs",
+    "fpocket-rs-drug": "fpocket-rs",
     "pocketeer": "pocketeer",
     "pyKVFinder": "pyKVFinder",
 }
@@ -818,7 +872,7 @@ def _figure(results: dict, machine: str, path: Path) -> None:
     for (name, res), c in zip(results.items(), colours):
         if "skipped" in res:
             continue
-        p = res["splits"]["all"]
+        p = res["splits"]["test"]  # the split the ranking never saw
         ks = np.arange(1, MAX_RANK + 1)
         style = "-" if name in OURS else "--"
         axes[0].plot(ks, 100 * np.array(p["top_k"]), style, marker="o", color=c, lw=2.5, label=name)
@@ -841,9 +895,9 @@ def _figure(results: dict, machine: str, path: Path) -> None:
         ax.yaxis.label.set_size(14)
         ax.title.set_size(16)
     axes[1].legend(fontsize=13, loc="upper left", ncol=2)
-    n = next((r["splits"]["all"] for r in results.values() if "splits" in r), {"structures": 0, "sites": 0})
+    n = next((r["splits"]["test"] for r in results.values() if "splits" in r), {"structures": 0, "sites": 0})
     fig.suptitle(
-        f"Does the pocket find the ligand? {n['structures']} holo complexes, {n['sites']} sites, all splits",
+        f"Does the pocket find the ligand? Test split: {n['structures']} holo complexes, {n['sites']} sites",
         fontsize=17,
     )
     import textwrap
@@ -880,25 +934,27 @@ def _markdown(results: dict, info: dict, machine: str, command: str) -> str:
         f"{m['split']['test']} test, split fixed by seed {m['split']['seed']} before any result), "
         f"{sum(e['n_sites'] for e in m['structures'])} ligand sites, shipped in benchmarks/data/pockets/ "
         "(provenance and sha256 in manifest.json). Every method reads the same protein-only file (first model, "
-        "ATOM records only, no hydrogens, first alternate location).",
+        "polymer residues only, modified residues such as MSE kept as ATOM records, no hydrogens, first "
+        "alternate location); peptides and nucleic acids written as ATOM chains stay in that file.",
         "",
         "**Ligand rule**: HETATM groups (bonded groups joined) with at least 6 heavy atoms, touching the protein "
         "(4 Å), not water, ions, buffers or crystallisation additives, lipids or detergents, glycans, nor modified "
         "residues (MODRES, polymer entity, or peptide-bonded); ligands within 4 Å of each other are one site; N = "
         "sites of the structure. **Found**: a pocket centre within 4 Å of any heavy atom of the site "
         "(DCA, P2Rank/LIGYSIS) among the first N (N+2) pockets; recall pooled over sites. Pocket centre: "
-        "shapelab, centroid of the lining atoms; fpocket-rs and pocketeer, centroid of the alpha-sphere centres; "
+        "shapelab, centroid of the lining atoms of every cavity its report lists at the defaults (rank='score', "
+        "min_volume 10 Å³; voids and pockets ranked together), in that order; fpocket-rs and pocketeer, centroid of the alpha-sphere centres; "
         "pyKVFinder, centroid of the cavity's grid points.",
         "",
         "Time: one call per structure (reading the file included), wall clock, one run (not a median of "
-        "repeats: 86 structures x 5 methods), median over structures; the machine was shared with other "
+        f"repeats: {len(m['structures'])} structures x {len(results)} methods), median over structures; the machine was shared with other "
         f"work (load average {info.get('load_average_at_start', '?')} on {info.get('cpus', '?')} CPUs at the "
         "start), so the times are indicative, comparable only within this table. No peak memory is measured.",
         "",
         _table(results),
         "Versions: " + ", ".join(f"{n} {_version(VERSIONS[n])}" for n in results if "skipped" not in results[n]) + ".",
         "",
-        "![recall against rank](pocket_sites.png)",
+        "![recall against rank, test split](pocket_sites.png)",
         "",
     ]
     if misses:

@@ -137,3 +137,23 @@ def test_centres_from_lining_is_the_centroid():
     lining = [[0, 3, 7], [9]]
     got = ps.centres_from_lining(lining, xyz)
     np.testing.assert_allclose(got, [xyz[[0, 3, 7]].sum(axis=0) / 3, xyz[9]])
+
+
+@pytest.mark.parametrize("pid,name", [("1xdn", "MSE"), ("1atp", "TPO"), ("1hvr", "CSO")])
+def test_protein_only_input_keeps_the_modified_residues_of_the_chain(tmp_path, pid, name):
+    # the PDB writes MSE, TPO... as HETATM; dropping them would cut holes in the chain
+    # that every method would report as pockets.  Oracle: the residue's heavy atoms,
+    # counted by text in the shipped file (first alternate location, first model).
+    entry = next(e for e in ENTRIES if e["id"] == pid)
+    text = gzip.decompress((ps.DATA / entry["file"]).read_bytes()).decode()
+    model = text.split("\nENDMDL")[0].splitlines()
+    want = sum(
+        1
+        for line in model
+        if line.startswith("HETATM") and line[17:20] == name and line[16] in " A" and line[76:78].strip() != "H"
+    )
+    assert want > 0
+    out = ps.protein_only_pdb(ps.DATA / entry["file"], tmp_path / "p.pdb").read_text().splitlines()
+    assert sum(1 for line in out if line.startswith("ATOM") and line[17:20] == name) == want
+    assert not any(line.startswith("HETATM") for line in out)
+    assert ps.read_sites(ps.DATA / entry["file"])["protein_atoms"] == sum(1 for line in out if line.startswith("ATOM"))
