@@ -660,9 +660,10 @@ def l17_shape_classification():
 @register(
     "l18_binding_sites",
     "Does the pocket define the docking site? Ligand sites found (a pocket centre within 4 Å "
-    "of a ligand atom) among the first N + k pockets, on the 52 test structures of the "
-    "binding-site benchmark: ours in CASTp's order and with the default ranking (stars), "
-    "beside fpocket-rs, pocketeer and pyKVFinder (committed results, not recomputed).",
+    "of a ligand atom) among the first N + k cavities listed, on the 52 test structures of the "
+    "binding-site benchmark: ours at the report's defaults (ranked; growth model and discrete "
+    "flow) beside fpocket-rs (in its own order and by drug score), pocketeer and pyKVFinder "
+    "(committed results, not recomputed).",
     source="Lesson 18",
     lesson="18_binding_sites",
     needs=("report", "ranking.rank_score"),
@@ -672,26 +673,17 @@ def l18_binding_sites():
 
     results = Path(__file__).resolve().parents[1] / "benchmarks" / "results"
     methods = json.loads((results / "pocket_sites.json").read_text(encoding="utf-8"))["methods"]
-    ranked = {}
-    for line in (results / "pocket_ranking_dev.md").read_text(encoding="utf-8").splitlines():
-        cols = [c.strip() for c in line.strip().strip("|").split("|")]
-        if len(cols) == 6 and cols[0].startswith(("growth", "flow")):
-            ranked[cols[0].split()[0]] = (float(cols[3].rstrip(" %")), float(cols[4].rstrip(" %")))
     fig, ax = _slide()
     k = np.arange(11)
     for name, res in methods.items():
-        ours = name.startswith("shapelab")
-        label = name + (" (CASTp order)" if ours else "")
         ax.plot(
             k,
             100 * np.asarray(res["splits"]["test"]["top_n_plus_k"]),
             marker="o",
             lw=2,
-            label=label,
-            ls="-" if ours else "--",
+            label=name,
+            ls="-" if name.startswith("shapelab") else "--",
         )
-    for (name, (top_n, top_n2)), colour in zip(ranked.items(), ("C0", "C1")):
-        ax.plot([0, 2], [top_n, top_n2], ls="none", marker="*", ms=16, color=colour, label=f"{name}, default ranking")
     ax.axvline(2, color="0.6", lw=1)
     ax.set(
         xlabel="k: the first N + k cavities listed (N = ligand sites)",
@@ -700,7 +692,7 @@ def l18_binding_sites():
         xticks=k,
         title="Binding-site benchmark, test split",
     )
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=4, fontsize=8, frameon=False)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=3, fontsize=8, frameon=False)
     return fig
 
 
