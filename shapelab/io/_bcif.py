@@ -13,7 +13,6 @@ and imported only when a BinaryCIF file is read.
 
 from __future__ import annotations
 
-import io
 import os
 import re
 
@@ -29,6 +28,10 @@ __all__ = ["read_bcif", "INSTALL_HINT"]
 INSTALL_HINT = 'pip install "shapelab[bcif]"'
 
 _INT = re.compile(r"[+-]?[0-9]+")
+# a number written as a string: what the mmCIF reader accepts (a CIF number with an optional
+# standard uncertainty, dropped), not all that Python's float() does ("1_000", " 1.5", "nan")
+_NUMBER = re.compile(r"([+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)(?:\([0-9]+\))?")
+_BYTES_PER_ROW = 8  # a decoded float64 column; max_bytes bounds it as it bounds the file
 _PRESENT = 0  # biotite's MaskValue.PRESENT; 1 is "." (inapplicable), 2 is "?" (unknown)
 
 
@@ -38,6 +41,60 @@ def _biotite_pdbx():
     except ImportError as e:
         raise ImportError(f"reading BinaryCIF needs biotite, which is not installed ({e}): {INSTALL_HINT}") from None
     return pdbx
+
+
+def _sizes_checked(content, name, max_bytes):
+    """Refuse, before anything is decoded, an ``atom_site`` category that would decode to
+    more than its file says: a row count past ``max_bytes // 8`` (one float64 column
+    larger than the file may be), or a run-length or integer-packing step whose declared
+    output (``srcSize``, from which biotite allocates) exceeds the category's rows (or, for
+    a string table's offsets, its strings).  A few bytes of run-length encoding can
+    otherwise ask for gigabytes, as a gzip bomb would without ``max_bytes``."""
+    if not isinstance(content, dict) or not isinstance(content.get("dataBlocks"), list):
+        return  # biotite's deserialisation names what is wrong
+    for block in content["dataBlocks"]:
+        cats = block.get("categories") if isinstance(block, dict) else None
+        for cat in cats if isinstance(cats, list) else ():
+            if not (isinstance(cat, dict) and str(cat.get("name", "")).lstrip("_").lower() == "atom_site"):
+                continue
+            where = f"{name!r}: atom_site (data block {block.get('header')})"
+            rows = cat.get("rowCount")
+            if isinstance(rows, bool) or not isinstance(rows, int) or rows < 0:
+                raise ValueError(f"{where} has no valid rowCount: {rows!r}")
+            if rows * _BYTES_PER_ROW > max_bytes:
+                raise ValueError(
+                    f"{where} has {rows} rows: decoded, one column would take more than "
+                    f"max_bytes={max_bytes} bytes; pass a larger max_bytes= to read it"
+                )
+            for col in cat.get("columns") or ():
+                if not isinstance(col, dict):
+                    continue
+                item = f"{name!r}: atom_site.{col.get('name')} (data block {block.get('header')})"
+                for part in (col.get("data"), col.get("mask")):
+                    if isinstance(part, dict):
+                        _encodings_checked(part.get("encoding"), rows, item)
+
+
+def _encodings_checked(encodings, limit, item):
+    """Each run-length or integer-packing step of a column declares at most ``2 * limit + 2``
+    values: ``limit`` values decoded, or the (value, run length) pairs of a run-length step."""
+    most = 2 * limit + 2
+    for enc in encodings if isinstance(encodings, list) else ():
+        if not isinstance(enc, dict):
+            continue
+        kind = enc.get("kind")
+        if kind in ("RunLength", "IntegerPacking"):
+            size = enc.get("srcSize")
+            if isinstance(size, bool) or not isinstance(size, int) or not 0 <= size <= most:
+                raise ValueError(
+                    f"{item}: its {kind} encoding declares srcSize={size!r} values, more than the "
+                    f"{most} the category's rows allow"
+                )
+        elif kind == "StringArray":  # indices, one a row; offsets, one a distinct string and one more
+            _encodings_checked(enc.get("dataEncoding"), limit, item)
+            strings = enc.get("stringData")
+            more = len(strings) if isinstance(strings, str) else 0
+            _encodings_checked(enc.get("offsetEncoding"), limit + more + 1, item)
 
 
 class _Columns:
@@ -90,10 +147,10 @@ class _Columns:
                 if mask is not None and mask[k] != _PRESENT:
                     out[k] = np.nan
                     continue
-                try:
-                    out[k] = float(re.sub(r"\([0-9]+\)$", "", str(v)))
-                except ValueError:
-                    raise ValueError(f"{self.where(item, rows[k])} is not a number: {str(v)!r}") from None
+                match = _NUMBER.fullmatch(str(v))
+                if match is None:
+                    raise ValueError(f"{self.where(item, rows[k])} is not a number: {str(v)!r}")
+                out[k] = float(match.group(1))
         if mask is not None:
             absent = mask != _PRESENT
             if required and absent.any():
@@ -104,14 +161,15 @@ class _Columns:
         bad = ~np.isfinite(out) & (np.ones(len(out), bool) if mask is None else mask == _PRESENT)
         if bad.any():
             k = int(np.flatnonzero(bad)[0])
-            raise ValueError(f"{self.where(item, rows[k])} must be finite, got {values[k]!r}")
+            raise ValueError(f"{self.where(item, rows[k])} must be finite, got {str(values[k])!r}")
         return out.tolist()
 
     def integers(self, item, rows):
         values, mask = self.decoded(item)
         values, mask = values[rows], None if mask is None else mask[rows]
-        if mask is not None:
-            k = int(np.flatnonzero(mask != _PRESENT)[0])
+        absent = np.empty(0, int) if mask is None else np.flatnonzero(mask != _PRESENT)
+        if len(absent):  # only the rows read count: another model's "?" is not this one's
+            k = int(absent[0])
             what = "." if mask[k] == 1 else "?"
             raise ValueError(f"{self.where(item, rows[k])} is not an integer: {what!r}")
         if values.dtype.kind in "iu":
@@ -166,8 +224,17 @@ def read_bcif(
     data = read_limited(path, opts["max_bytes"])
     if not data:
         raise ValueError(f"{name!r} is empty: no BinaryCIF data blocks and no atom_site category")
+    import msgpack  # biotite's own dependency, for the container
+
     try:
-        doc = pdbx.BinaryCIFFile.read(io.BytesIO(data))
+        content = msgpack.unpackb(data, use_list=True, raw=False)  # as BinaryCIFFile.read does
+    except Exception as e:  # msgpack's errors (ExtraData, FormatError, ...)
+        raise ValueError(
+            f"{name!r} is not a readable BinaryCIF file (a MessagePack map of dataBlocks): {type(e).__name__}: {e}"
+        ) from None
+    _sizes_checked(content, name, opts["max_bytes"])
+    try:
+        doc = pdbx.BinaryCIFFile.deserialize(content)
         block_names = list(doc.keys())
     except Exception as e:  # msgpack's errors (ExtraData, FormatError, ...) or a map without dataBlocks
         raise ValueError(

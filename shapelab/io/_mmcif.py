@@ -236,6 +236,11 @@ def read_mmcif(
         data = data[3:]
     if not data.strip():
         raise ValueError(f"{name!r} is empty: no data block and no _atom_site table")
+    if data[:1] and (0x80 <= data[0] <= 0x8F or data[0] in (0xDE, 0xDF)) and b"dataBlocks" in data[: 2**16]:
+        raise ValueError(
+            f"{name!r} is a BinaryCIF file (a MessagePack map of dataBlocks), not mmCIF text: "
+            f"read it with shapelab.read_structure (format=None or 'bcif')"
+        )
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as e:

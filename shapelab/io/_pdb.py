@@ -113,6 +113,11 @@ _EOL = re.compile(rb"\r\n|\r|\n")
 _BOM = b"\xef\xbb\xbf"
 
 
+# the first byte of a MessagePack map (fixmap, map16, map32), as Latin-1: how a BinaryCIF
+# file starts (its first line also names its dataBlocks)
+_MSGPACK_MAPS = frozenset(chr(b) for b in (*range(0x80, 0x90), 0xDE, 0xDF))
+
+
 def _pdb_lines(path, max_bytes: int):
     """Yield ``(line number, text)`` of a plain or gzip file, streamed.
 
@@ -348,6 +353,11 @@ def read_pdb(
             if blank and line.startswith("data_"):
                 raise ValueError(
                     f"line {lineno}: {os.fspath(path)!r} is an mmCIF file (it starts with a data_ block), "
+                    f"not PDB: read it with shapelab.read_structure"
+                )
+            if lineno == 1 and line[:1] in _MSGPACK_MAPS and "dataBlocks" in line:
+                raise ValueError(
+                    f"line 1: {os.fspath(path)!r} is a BinaryCIF file (a MessagePack map of dataBlocks), "
                     f"not PDB: read it with shapelab.read_structure"
                 )
             blank = blank and not line.strip()

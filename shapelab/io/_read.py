@@ -61,7 +61,8 @@ def detect_format(path) -> str:
     By content first (after gzip decompression and a UTF-8 byte-order mark): a
     MessagePack map holding ``dataBlocks`` is BinaryCIF; text whose first token,
     after blank and ``#`` comment lines, starts with ``data_`` is mmCIF; other
-    non-blank text is PDB.  A file with no content to go by (empty, blank, an
+    non-blank content is PDB, unless the name ends in ``.bcif`` (or ``.bcif.gz``):
+    then the BinaryCIF reader says what is wrong with it.  A file with no content to go by (empty, blank, an
     unreadable gzip stream) is named by its extension (``.cif``, ``.mmcif``,
     ``.mcif`` -> mmCIF; ``.bcif`` -> BinaryCIF; anything else -> PDB, each with an
     optional ``.gz``), so that its reader reports what is wrong with it.
@@ -95,7 +96,11 @@ def detect_format(path) -> str:
         token = line.strip()
         if not token or token.startswith(b"#"):
             continue
-        return "mmcif" if token[:5].lower() == b"data_" else "pdb"
+        if token[:5].lower() == b"data_":
+            return "mmcif"
+        # neither BinaryCIF nor mmCIF by content: PDB, unless the name says BinaryCIF (a
+        # damaged .bcif is then reported as BinaryCIF, not as a PDB file without atoms)
+        return "bcif" if _by_extension(path) == "bcif" else "pdb"
     return _by_extension(path)
 
 
@@ -133,13 +138,15 @@ def read_structure(
         The file.  Its format is recognised by its content (see
         :func:`detect_format`): gzip by its first two bytes; then mmCIF by a first
         token ``data_...``, BinaryCIF by a MessagePack map holding ``dataBlocks``,
-        anything else as PDB.  The extension (``.cif``, ``.mmcif``, ``.bcif``,
-        optionally ``.gz``) decides only for a file whose content says nothing
-        (empty or blank).
+        anything else as PDB (as BinaryCIF if named ``.bcif``, so that a damaged
+        BinaryCIF file is reported as one).  Otherwise the extension (``.cif``,
+        ``.mmcif``, ``.bcif``, optionally ``.gz``) decides only for a file whose
+        content says nothing (empty or blank).
     probe, default_radius, hetatm, water, hydrogens, radii, max_bytes
         As in :func:`read_pdb`.  For mmCIF and BinaryCIF, ``max_bytes`` bounds the
-        whole (decompressed) file, which is held in memory while it is parsed, and
-        ``hetatm`` names may have up to 5 characters (the wwPDB's extended CCD
+        whole (decompressed) file, which is held in memory while it is parsed (for
+        BinaryCIF, also the ``atom_site`` row count times 8 bytes: one decoded
+        column), and ``hetatm`` names may have up to 5 characters (the wwPDB's extended CCD
         identifiers).
     model : int, optional
         The model read: the MODEL serial of a PDB file, ``pdbx_PDB_model_num`` of an
@@ -172,7 +179,9 @@ def read_structure(
         MessagePack map of ``dataBlocks``, no ``atom_site`` category or a required
         column missing (as for mmCIF), a column that cannot be decoded or whose
         length is not the category's row count (``"atom_site.ITEM (data block
-        B)"``), and the same per-value errors as mmCIF, named as ``"atom_site row N
+        B)"``), a run-length or integer-packing step declaring more values than the
+        rows allow (refused before anything is decoded: a few bytes of run-length
+        encoding could otherwise ask for gigabytes), and the same per-value errors as mmCIF, named as ``"atom_site row N
         (id I), atom_site.ITEM"``.  Every message names the file.  Nothing is
         returned in part: any error in the model read fails the whole call.
     ImportError

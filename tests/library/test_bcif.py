@@ -507,3 +507,201 @@ def test_the_probe_can_fail():
     """The subprocess above does see biotite when it is importable."""
     r = _run(f"import shapelab as sl\nprint(len(sl.read_structure({str(DATA / '1fbl.bcif')!r})))")
     assert r.returncode == 0 and int(r.stdout) == len(read_structure(DATA / "1fbl.bcif"))
+
+
+# ------------------------------------------------------------------ second reading (breaking it)
+
+
+def test_a_masked_integer_in_another_model_does_not_stop_this_one(tmp_path):
+    """A '?' residue number in model 2 is model 2's error: model 1 reads, as in mmCIF (the
+    reader once raised an IndexError here)."""
+    bad = list(_row(4, 2))
+    bad[_HEAD.index("auth_seq_id")] = "?"
+    text = tmp_path / "m.cif"
+    text.write_text(_table([_row(k, 1) for k in range(1, 4)] + [_row(k, 2) for k in range(1, 4)] + [tuple(bad)]))
+    out = _to_bcif(pdbx.CIFFile.read(str(text)), tmp_path / "m.bcif")
+    _assert_same(read_structure(out, model=1, **EVERYTHING), read_structure(text, model=1, **EVERYTHING))
+    with pytest.raises(
+        ValueError, match=r"m\.bcif': atom_site row 7 \(id 4\), atom_site\.auth_seq_id is not an integer"
+    ):
+        read_structure(out, model=2)
+    with pytest.raises(ValueError, match=r"auth_seq_id is not an integer"):
+        read_structure(text, model=2)
+
+
+def _with_column(tmp_path, item, column, name="s.bcif"):
+    """The small two-model file with one atom_site column replaced."""
+    out, _ = _good(tmp_path)
+    f = pdbx.BinaryCIFFile.read(str(out))
+    cat = f["test"]["atom_site"]
+    cols = {k: cat[k] for k in cat.keys()}
+    cols[item] = column
+    f["test"]["atom_site"] = pdbx.BinaryCIFCategory(cols)
+    f.write(str(tmp_path / name))
+    return tmp_path / name
+
+
+@pytest.mark.parametrize("value", ["1_000", " 1.5", "1.5 ", "nan", "infinity", "0x10", "\uff11"])
+def test_a_number_written_as_a_string_is_what_mmcif_accepts(tmp_path, value):
+    """Coordinates stored as strings are read by the CIF number syntax of the mmCIF
+    reader, not by Python's float() (which takes "1_000", " 1.5", "nan", full-width digits)."""
+    col = pdbx.BinaryCIFColumn(pdbx.BinaryCIFData(np.array([value] + ["1.0"] * 9)))
+    path = _with_column(tmp_path, "Cartn_x", col)
+    with pytest.raises(ValueError, match=r"s\.bcif': atom_site row 1 \(id 1\), atom_site\.Cartn_x is not a number: "):
+        read_structure(path)
+    if value.strip() == value and value.isascii():  # the same token, unquoted, in the text mmCIF
+        text = tmp_path / "s.cif"
+        text.write_text(_table([_row(1, 1, xyz=(value, "2.0", "3.0")), _row(2, 1)]))
+        with pytest.raises(ValueError, match=r"_atom_site\.Cartn_x is not a number"):
+            read_structure(text)
+
+
+def test_a_number_with_an_uncertainty_as_a_string(tmp_path):
+    col = pdbx.BinaryCIFColumn(pdbx.BinaryCIFData(np.array(["1.25(3)", "-2e1"] + ["1.0"] * 8)))
+    s = read_structure(_with_column(tmp_path, "Cartn_x", col), hydrogens=True)
+    assert list(s.balls.centers[:2, 0]) == [1.25, -20.0]
+
+
+def test_every_encoding_reads_as_the_text(tmp_path):
+    """Each BinaryCIF encoding chosen explicitly (fixed point into float64 and float32, delta,
+    integer packing of 1 and 2 bytes, signed and unsigned, run-length, interval
+    quantization, string tables with run-length indices and delta offsets, run-length
+    masks) on negative residue numbers, insertion codes and alternate locations of equal
+    occupancy, in two models: the same atoms as the text mmCIF."""
+    enc = pytest.importorskip("biotite.structure.io.pdbx.encoding")
+    rows, k = [], 0
+    for model in (1, 2):
+        for seq, icode in ((-5, "?"), (-5, "A"), (-4, "?"), (0, "?"), (3, "B")):
+            for alt in ("A", "B") if seq == 0 else (".",):
+                k += 1
+                rows.append(_row(k, model, seq=seq, icode=icode, alt=alt, name="CA" if alt == "." else "CB"))
+    text = tmp_path / "enc.cif"
+    text.write_text(_table(rows))
+    f64, f32, i32 = enc.TypeCode.FLOAT64, enc.TypeCode.FLOAT32, enc.TypeCode.INT32
+
+    def packed(n, unsigned=False):
+        return [enc.IntegerPackingEncoding(byte_count=n, is_unsigned=unsigned), enc.ByteArrayEncoding()]
+
+    chains = {
+        "Cartn_x": [enc.FixedPointEncoding(1000, src_type=f64), enc.DeltaEncoding(), *packed(2)],
+        "Cartn_y": [enc.FixedPointEncoding(1000, src_type=f64), *packed(1)],
+        "Cartn_z": [enc.FixedPointEncoding(1000, src_type=f32), enc.ByteArrayEncoding()],
+        "occupancy": [enc.IntervalQuantizationEncoding(0.0, 1.0, 101, src_type=f64), enc.RunLengthEncoding()]
+        + [enc.ByteArrayEncoding()],
+        "auth_seq_id": [enc.DeltaEncoding(src_type=i32), enc.RunLengthEncoding(), *packed(1)],
+        "label_seq_id": [enc.RunLengthEncoding(), enc.ByteArrayEncoding()],
+        "pdbx_PDB_model_num": [enc.RunLengthEncoding(), *packed(2, unsigned=True)],
+        "id": [enc.DeltaEncoding(), *packed(1, unsigned=True)],
+    }
+    cols = {}
+    for key, col in pdbx.CIFFile.read(str(text))["test"]["atom_site"].items():
+        mask = None if col.mask is None else np.asarray(col.mask.array)
+        if key in chains:
+            dtype = np.float64 if key.startswith(("Cartn", "occupancy")) else np.int32
+            arr, chain = col.as_array(dtype, masked_value=None if mask is None else 0), chains[key]
+        else:
+            arr = col.as_array(str, masked_value=None if mask is None else "")
+            chain = [
+                enc.StringArrayEncoding(
+                    data_encoding=[enc.RunLengthEncoding(), *packed(1)],
+                    offset_encoding=[enc.DeltaEncoding(), *packed(1)],
+                )
+            ]
+        m = None
+        if mask is not None and mask.any():
+            m = pdbx.BinaryCIFData(mask.astype(np.uint8), [enc.RunLengthEncoding(), enc.ByteArrayEncoding()])
+        cols[key] = pdbx.BinaryCIFColumn(pdbx.BinaryCIFData(arr, chain), m)
+    bfile, block = pdbx.BinaryCIFFile(), pdbx.BinaryCIFBlock()
+    block["atom_site"] = pdbx.BinaryCIFCategory(cols)
+    bfile["test"] = block
+    out = tmp_path / "enc.bcif"
+    bfile.write(str(out))
+    kinds = {e["kind"] for c in _columns(msgpack.unpackb(out.read_bytes())).values() for e in c["data"]["encoding"]}
+    assert kinds == {
+        "FixedPoint",
+        "Delta",
+        "IntegerPacking",
+        "ByteArray",
+        "RunLength",
+        "IntervalQuantization",
+        "StringArray",
+    }
+    for kw in ({}, dict(model=2), EVERYTHING, dict(model=2, **EVERYTHING)):
+        b = read_structure(out, **kw)
+        _assert_same(b, read_structure(text, **kw))
+        assert list(b.residue_numbers) == [-5, -5, -4, 0, 3] and list(b.insertion_codes) == ["", "A", "", "", "B"]
+    assert read_structure(out).altlocs[3] == "A" and read_structure(out, model=2).altlocs[3] == "B"  # '?' loses
+
+
+def _bomb(tmp_path, item, data, encoding, name="bomb.bcif"):
+    _, doc = _good(tmp_path)
+    _columns(doc)[item]["data"] = {"data": data, "encoding": encoding}
+    return _write(tmp_path, doc, name)
+
+
+@pytest.mark.parametrize(
+    "encoding, match",
+    [
+        ([{"kind": "RunLength", "srcType": 3, "srcSize": 2**31 - 1}, {"kind": "ByteArray", "type": 3}], "RunLength"),
+        ([{"kind": "RunLength", "srcType": 3}, {"kind": "ByteArray", "type": 3}], "RunLength"),  # sums the runs
+        (
+            [{"kind": "IntegerPacking", "byteCount": 1, "isUnsigned": False, "srcSize": 2**31 - 1}]
+            + [{"kind": "ByteArray", "type": 1}],
+            "IntegerPacking",
+        ),
+    ],
+)
+def test_an_encoding_that_asks_for_more_than_the_rows_is_refused_before_decoding(
+    tmp_path, encoding, match, monkeypatch
+):
+    """A few bytes of run-length encoding (value 1, 2**31 - 1 times) would have biotite
+    allocate gigabytes: the declared sizes are checked against the category's rowCount
+    first, and nothing is decoded."""
+    data = np.array([1, 2**31 - 1], "<i4").tobytes()
+    path = _bomb(tmp_path, "pdbx_PDB_model_num", data, encoding)
+    bcif = pytest.importorskip("biotite.structure.io.pdbx.bcif")
+
+    def never(*a, **k):
+        raise AssertionError("decoded")
+
+    monkeypatch.setattr(bcif, "decode_stepwise", never)
+    with pytest.raises(
+        ValueError,
+        match=rf"bomb\.bcif': atom_site\.pdbx_PDB_model_num \(data block test\): its {match} encoding declares srcSize=",
+    ):
+        read_structure(path)
+
+
+def test_a_row_count_past_max_bytes_is_refused(tmp_path):
+    """A row count whose decoded float64 column would exceed max_bytes, refused as the
+    file itself would be."""
+    _, doc = _good(tmp_path)
+    doc["dataBlocks"][0]["categories"][0]["rowCount"] = 2**40
+    path = _write(tmp_path, doc)
+    with pytest.raises(
+        ValueError, match=r"bad\.bcif': atom_site \(data block test\) has 1099511627776 rows: decoded, one"
+    ):
+        read_structure(path)
+
+
+def test_read_pdb_and_the_mmcif_reader_name_binary_cif():
+    for file in ("1fbl.bcif", "2W83.bcif.gz"):
+        with pytest.raises(
+            ValueError, match=rf"line 1: '.*{file}' is a BinaryCIF file .*read it with shapelab\.read_structure"
+        ):
+            read_pdb(DATA / file)
+        with pytest.raises(ValueError, match=rf"{file}' is a BinaryCIF file .*not mmCIF text: read it with"):
+            read_structure(DATA / file, format="mmcif")
+
+
+def test_a_damaged_file_named_bcif_is_reported_as_binary_cif(tmp_path):
+    """Content decides, but content that is neither BinaryCIF nor mmCIF in a file named
+    .bcif goes to the BinaryCIF reader, which says what is wrong (it was read as a PDB
+    file: "holds no ATOM or HETATM records"); the same bytes named .pdb stay PDB."""
+    for name, data in (("junk.bcif", b"junk"), ("junk.bcif.gz", gzip.compress(b"\x00\x01junk"))):
+        (tmp_path / name).write_bytes(data)
+        assert detect_format(tmp_path / name) == "bcif"
+        with pytest.raises(ValueError, match=rf"{name}' is not a readable BinaryCIF file"):
+            read_structure(tmp_path / name)
+    (tmp_path / "junk.pdb").write_bytes(b"junk")
+    assert detect_format(tmp_path / "junk.pdb") == "pdb"
