@@ -32,6 +32,17 @@ _INT = re.compile(r"[+-]?[0-9]+")
 # standard uncertainty, dropped), not all that Python's float() does ("1_000", " 1.5", "nan")
 _NUMBER = re.compile(r"([+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)(?:\([0-9]+\))?")
 _BYTES_PER_ROW = 8  # a decoded float64 column; max_bytes bounds it as it bounds the file
+# the atom_site columns read (lower case): only these are decoded, so only these are checked
+_OPTIONAL = (
+    "id",
+    "pdbx_PDB_model_num",
+    "occupancy",
+    "B_iso_or_equiv",
+    "pdbx_PDB_ins_code",
+    "label_alt_id",
+    "group_PDB",
+)
+_READ = frozenset(t.lower() for t in (*(t for items in REQUIRED_ITEMS for t in items), *_OPTIONAL))
 _PRESENT = 0  # biotite's MaskValue.PRESENT; 1 is "." (inapplicable), 2 is "?" (unknown)
 
 
@@ -43,7 +54,7 @@ def _biotite_pdbx():
     return pdbx
 
 
-def _sizes_checked(content, name, max_bytes):
+def _sizes_checked(pdbx, content, name, max_bytes):
     """Refuse, before anything is decoded, an ``atom_site`` category that would decode to
     more than its file says: a row count past ``max_bytes // 8`` (one float64 column
     larger than the file may be), or a run-length or integer-packing step whose declared
@@ -67,12 +78,32 @@ def _sizes_checked(content, name, max_bytes):
                     f"max_bytes={max_bytes} bytes; pass a larger max_bytes= to read it"
                 )
             for col in cat.get("columns") or ():
-                if not isinstance(col, dict):
-                    continue
+                if not (isinstance(col, dict) and str(col.get("name", "")).lower() in _READ):
+                    continue  # a column never decoded allocates nothing
                 item = f"{name!r}: atom_site.{col.get('name')} (data block {block.get('header')})"
                 for part in (col.get("data"), col.get("mask")):
                     if isinstance(part, dict):
                         _encodings_checked(part.get("encoding"), rows, item)
+                data = col.get("data")
+                for enc in data.get("encoding") or () if isinstance(data, dict) else ():
+                    if isinstance(enc, dict) and enc.get("kind") == "StringArray":
+                        _strings_checked(pdbx, enc, rows, item, max_bytes)
+
+
+def _strings_checked(pdbx, enc, rows, item, max_bytes):
+    """A string table decodes to ``rows`` strings as wide as its longest (numpy's
+    fixed-width strings, 4 bytes a character): one string of a megabyte in a table of a
+    thousand rows would take 4 GB."""
+    try:
+        offsets = pdbx.BinaryCIFData.deserialize({"data": enc["offsets"], "encoding": enc["offsetEncoding"]}).array
+        longest = int(np.diff(np.asarray(offsets, dtype=np.int64)).max(initial=0))
+    except Exception:  # biotite's decoding of the column names what is wrong
+        return
+    if rows * 4 * max(longest, 1) > max_bytes:
+        raise ValueError(
+            f"{item}: its longest string has {longest} characters; decoded, its {rows} rows would take "
+            f"more than max_bytes={max_bytes} bytes; pass a larger max_bytes= to read it"
+        )
 
 
 def _encodings_checked(encodings, limit, item):
@@ -232,7 +263,7 @@ def read_bcif(
         raise ValueError(
             f"{name!r} is not a readable BinaryCIF file (a MessagePack map of dataBlocks): {type(e).__name__}: {e}"
         ) from None
-    _sizes_checked(content, name, opts["max_bytes"])
+    _sizes_checked(pdbx, content, name, opts["max_bytes"])
     try:
         doc = pdbx.BinaryCIFFile.deserialize(content)
         block_names = list(doc.keys())

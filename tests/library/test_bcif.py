@@ -705,3 +705,38 @@ def test_a_damaged_file_named_bcif_is_reported_as_binary_cif(tmp_path):
             read_structure(tmp_path / name)
     (tmp_path / "junk.pdb").write_bytes(b"junk")
     assert detect_format(tmp_path / "junk.pdb") == "pdb"
+
+
+def test_a_long_string_in_a_string_table_is_refused_before_decoding(tmp_path, monkeypatch):
+    """biotite decodes a string table into fixed-width strings as wide as its longest: one
+    string of 2**20 characters in 10 rows is 40 MiB (4 bytes a character), past
+    max_bytes=2**24 though the file is a megabyte; refused from the offsets alone."""
+    long = "C" * 2**20
+    col = pdbx.BinaryCIFColumn(pdbx.BinaryCIFData(np.array([long] + ["C"] * 9)))
+    path = _with_column(tmp_path, "type_symbol", col, name="wide.bcif")
+    bcif = pytest.importorskip("biotite.structure.io.pdbx.bcif")
+    decode = bcif.decode_stepwise
+
+    def only_offsets(data, encoding):  # the offsets may be decoded (they are small), the column not
+        if any(type(e).__name__ == "StringArrayEncoding" for e in encoding):
+            raise AssertionError("decoded")
+        return decode(data, encoding)
+
+    monkeypatch.setattr(bcif, "decode_stepwise", only_offsets)
+    with pytest.raises(
+        ValueError, match=r"wide\.bcif': atom_site\.type_symbol \(data block test\): its longest string has 1048576"
+    ):
+        read_structure(path, max_bytes=2**24)
+    monkeypatch.undo()
+    with pytest.raises(ValueError, match=r"type_symbol is not an element symbol"):  # read, then refused
+        read_structure(path, max_bytes=2**26)
+
+
+def test_real_binary_cif_files_read_within_the_size_checks():
+    """The checks refuse nothing the PDB's tools wrote: the shipped files read at a max_bytes
+    of 4 times their decompressed size."""
+    for file in ("1fbl.bcif", "2W83.bcif.gz"):
+        size = (
+            len(gzip.decompress((DATA / file).read_bytes())) if file.endswith(".gz") else (DATA / file).stat().st_size
+        )
+        assert len(read_structure(DATA / file, max_bytes=4 * size, **EVERYTHING)) > 1000
