@@ -154,7 +154,15 @@ class _Columns:
             values = column.as_array()
             mask = None if column.mask is None else np.asarray(column.mask.array)
         except Exception as e:  # a malformed encoding: biotite raises what numpy or msgpack raise
-            raise ValueError(f"{self.where(item)} cannot be decoded: {type(e).__name__}: {e}") from None
+            cause = e.__cause__ or e.__context__  # biotite's DeserializationError wraps the reason
+            why = f"{type(e).__name__}: {e}" + ("" if cause is None else f" ({type(cause).__name__}: {cause})")
+            raise ValueError(f"{self.where(item)} cannot be decoded: {why}") from None
+        if mask is not None and not np.isin(mask, (0, 1, 2)).all():
+            bad = mask[~np.isin(mask, (0, 1, 2))][0]
+            raise ValueError(
+                f"{self.where(item)} has a mask value {int(bad)}: a BinaryCIF mask holds 0 (present), "
+                f"1 ('.') or 2 ('?')"
+            )
         values = np.asarray(values)
         if self.n is None and values.ndim == 1:
             return values, mask

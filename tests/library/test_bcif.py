@@ -740,3 +740,20 @@ def test_real_binary_cif_files_read_within_the_size_checks():
             len(gzip.decompress((DATA / file).read_bytes())) if file.endswith(".gz") else (DATA / file).stat().st_size
         )
         assert len(read_structure(DATA / file, max_bytes=4 * size, **EVERYTHING)) > 1000
+
+
+def test_a_mask_value_that_is_not_binary_cifs(tmp_path):
+    """A mask holds 0, 1 ('.') or 2 ('?'); a 5 was read as '?' (and as NaN in an optional column)."""
+    for item in ("Cartn_x", "occupancy"):
+        _, doc = _good(tmp_path)
+        _columns(doc)[item]["mask"] = {"data": b"\x00" * 9 + b"\x05", "encoding": [{"kind": "ByteArray", "type": 4}]}
+        with pytest.raises(ValueError, match=rf"bad\.bcif': atom_site\.{item} \(data block test\) has a mask value 5"):
+            read_structure(_write(tmp_path, doc), model=2, hydrogens=True)
+
+
+def test_an_undecodable_column_says_why(tmp_path):
+    """biotite wraps the reason in a DeserializationError; the message carries it."""
+    _, doc = _good(tmp_path)
+    _columns(doc)["Cartn_x"]["data"]["data"] = "not bytes"
+    with pytest.raises(ValueError, match=r"Cartn_x \(data block test\) cannot be decoded: .*\(TypeError: "):
+        read_structure(_write(tmp_path, doc))
