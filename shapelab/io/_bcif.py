@@ -283,8 +283,9 @@ def read_bcif(
     for bname in block_names:
         try:
             block = doc[bname]
-            if "atom_site" in block.keys():
-                category, block_name = block["atom_site"], bname
+            key = next((k for k in block.keys() if k.lower() == "atom_site"), None)  # CIF names ignore case
+            if key is not None:
+                category, block_name = block[key], bname
                 break
         except Exception as e:
             raise ValueError(

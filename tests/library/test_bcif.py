@@ -757,3 +757,13 @@ def test_an_undecodable_column_says_why(tmp_path):
     _columns(doc)["Cartn_x"]["data"]["data"] = "not bytes"
     with pytest.raises(ValueError, match=r"Cartn_x \(data block test\) cannot be decoded: .*\(TypeError: "):
         read_structure(_write(tmp_path, doc))
+
+
+def test_category_names_ignore_case(tmp_path):
+    """CIF names ignore case, as the mmCIF reader's do: _ATOM_SITE is atom_site."""
+    _, doc = _good(tmp_path)
+    doc["dataBlocks"][0]["categories"][0]["name"] = "_ATOM_Site"
+    _assert_same(read_structure(_write(tmp_path, doc), model=2), read_structure(tmp_path / "small.cif", model=2))
+    text = (tmp_path / "small.cif").read_text().replace("_atom_site.", "_ATOM_SITE.")
+    (tmp_path / "upper.cif").write_text(text)
+    assert len(read_structure(tmp_path / "upper.cif", model=2)) == len(read_structure(tmp_path / "small.cif", model=2))
