@@ -177,12 +177,14 @@ def read_structure(
         ``"_atom_site row N (id I), _atom_site.ITEM"``; an absent model.  For
         BinaryCIF: an empty file, an unreadable gzip stream, bytes that are not a
         MessagePack map of ``dataBlocks``, no ``atom_site`` category or a required
-        column missing (as for mmCIF), a column that cannot be decoded or whose
+        column missing (as for mmCIF), a column that cannot be decoded (or whose
+        mask holds a value other than 0, 1 for ``.``, 2 for ``?``) or whose
         length is not the category's row count (``"atom_site.ITEM (data block
         B)"``), a run-length or integer-packing step declaring more values than the
-        rows allow (refused before anything is decoded: a few bytes of run-length
-        encoding could otherwise ask for gigabytes), and the same per-value errors as mmCIF, named as ``"atom_site row N
-        (id I), atom_site.ITEM"``.  Every message names the file.  Nothing is
+        rows allow or a string table whose longest string times the rows passes
+        ``max_bytes`` (refused before anything is decoded: a few bytes could
+        otherwise ask for gigabytes), and the same per-value errors as mmCIF, named
+        as ``"atom_site row N (id I), atom_site.ITEM"``.  Every message names the file.  Nothing is
         returned in part: any error in the model read fails the whole call.
     ImportError
         A BinaryCIF file when biotite is not installed; the message says
