@@ -9,8 +9,8 @@ import weakref
 import numpy as np
 
 import shapelab as sl
+from shapelab import _pockets, cavities, filtration
 from shapelab import _topology as topology  # the implementation holds summary()
-from shapelab import cavities, filtration
 
 
 def _ring(n=12, radius=3.0, r=0.9):
@@ -53,9 +53,9 @@ def test_derived_results_are_computed_once():
     S = topology.summary(F)
     F.betti(0.5), F.betti_curve([0.0, 1.0]), F.persistence(), sl.voids(F, 0.0)
     assert topology.summary(F) is S
-    T = cavities._tree(F)
+    T = _pockets.merge_tree(F)
     sl.pockets(F, 0.0)
-    assert cavities._tree(F) is T
+    assert _pockets.merge_tree(F) is T
 
 
 def test_a_copy_derives_afresh_and_equals():
