@@ -5,7 +5,7 @@ per task:
 
 ``report``
     The CASTp-style report of the voids and pockets of a structure
-    (:func:`shapelab.report`, Notes §23.1): reads ``FILE``, PDB or mmCIF, with
+    (:func:`shapelab.report`, Notes §23.1): reads ``FILE``, PDB, mmCIF or BinaryCIF, with
     :func:`shapelab.read_structure` and its defaults (HETATM records kept, water and
     hydrogens dropped; each flag changes one of them), so that it prints exactly the
     table of ``report(read_structure(FILE), 1.4)`` (ranked by default: best binding-site
@@ -63,7 +63,7 @@ def parser() -> argparse.ArgumentParser:
     sub = top.add_subparsers(dest="command", metavar="COMMAND", required=True)
     ap = sub.add_parser(
         "report",
-        description="CASTp-style report of the voids and pockets of a PDB or mmCIF file (Notes §23.1). "
+        description="CASTp-style report of the voids and pockets of a PDB, mmCIF or BinaryCIF file (Notes §23.1). "
         "The file is read as shapelab.read_structure reads it by default: HETATM records (ligands, ions) "
         "kept, water and hydrogens dropped.",
     )
@@ -71,7 +71,7 @@ def parser() -> argparse.ArgumentParser:
         "file",
         nargs="+",
         metavar="FILE",
-        help="PDB or mmCIF file (plain or gzip); several files, folders (searched for *.pdb, *.ent, *.cif, "
+        help="PDB, mmCIF or BinaryCIF file (plain or gzip); several files, folders (searched for *.pdb, *.ent, *.cif, "
         "*.bcif and their .gz) or glob patterns report on many structures at once",
     )
     ap.add_argument("--probe", type=float, default=1.4, help="probe radius in Å (default 1.4)")
