@@ -431,9 +431,9 @@ def test_one_file_and_a_batch_name_a_bcif_file_alike(tmp_path):
 
     from shapelab import cli
 
-    src = tmp_path / "x.bcif.gz"  # the reader decides by the content: here gzip'd PDB text
-    tiny_pdb(tmp_path / "x.pdb")
-    src.write_bytes(gzip.compress((tmp_path / "x.pdb").read_bytes()))
+    pytest.importorskip("biotite")  # the BinaryCIF reader (shapelab[bcif])
+    src = tmp_path / "x.bcif.gz"  # a real BinaryCIF entry, gzip'd (P2Rank's test data, tests/data/SOURCES.json)
+    src.write_bytes(gzip.compress((ROOT / "tests" / "data" / "1fbl.bcif").read_bytes()))
     (tmp_path / "one").mkdir()
     (tmp_path / "many").mkdir()
     with contextlib.redirect_stdout(io.StringIO()):
