@@ -7,9 +7,10 @@ are read **without their HETATM records** (except the modified residues of the c
 such as MSE); every method lists its pockets in its own
 rank order on the same protein-only file, and we count how many ligand sites are
 found among the first N and N + 2 pockets (N = the number of ligand sites of the
-structure): the DCA criterion of P2Rank (Krivák & Hoksza 2018) and LIGYSIS (Utgés &
-Barton 2024): a site is *found* at rank k if the centre of one of the first k pockets
-lies within 4 Å of any heavy atom of the site's ligands.
+structure): the DCA criterion of P2Rank (Krivák & Hoksza 2018), with the top-(N+2) cut
+proposed by LIGYSIS (Utgés & Barton 2024, whose own hit test is a 12 Å distance between
+centres, so their percentages are not comparable with these): a site is *found* at rank k
+if the centre of one of the first k pockets lies within 4 Å of any heavy atom of the site's ligands.
 
 Ligand rule
 -----------
@@ -941,7 +942,7 @@ def _markdown(results: dict, info: dict, machine: str, command: str) -> str:
         "(4 Å), not water, ions, buffers or crystallisation additives, lipids or detergents, glycans, nor modified "
         "residues (MODRES, polymer entity, or peptide-bonded); ligands within 4 Å of each other are one site; N = "
         "sites of the structure. **Found**: a pocket centre within 4 Å of any heavy atom of the site "
-        "(DCA, P2Rank/LIGYSIS) among the first N (N+2) pockets; recall pooled over sites. Pocket centre: "
+        "(DCA, P2Rank; top-(N+2) as in LIGYSIS) among the first N (N+2) pockets; recall pooled over sites. Pocket centre: "
         "shapelab, centroid of the lining atoms of every cavity its report lists at the defaults (rank='score', "
         "min_volume 10 Å³; voids and pockets ranked together), in that order; fpocket-rs and pocketeer, centroid of the alpha-sphere centres; "
         "pyKVFinder, centroid of the cavity's grid points.",
