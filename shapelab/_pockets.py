@@ -25,6 +25,7 @@ from __future__ import annotations
 
 from array import array
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from scipy.sparse import coo_matrix
@@ -33,6 +34,7 @@ from scipy.sparse.csgraph import breadth_first_order, connected_components, dept
 from ._toolkit.derived import derived
 from ._toolkit.unionfind import elder_merges
 from ._topology import summary
+from .freespace import free_measure
 
 __all__ = [
     "MergeTree",
@@ -265,3 +267,39 @@ class OutsideGraph:
                         status[x] = found
                 ok[j] = status[y]
         return uf[ok]
+
+
+class MeasuredRegion:
+    """What :class:`shapelab.Pocket` and :class:`shapelab.FlowPocket` both measure of a
+    region of Delaunay cells at ``tau``: the times of the :class:`shapelab.Cavity`
+    protocol, the free volume and the size of the mouth (Notes §23.1).
+
+    The subclass is a dataclass with ``cells``, ``mouth``, ``closes_at``, ``fills_at``,
+    ``tau`` and ``balls``; one source for both pocket definitions.
+    """
+
+    @property
+    def born(self) -> float:
+        """``closes_at``: when the region becomes a void (the :class:`shapelab.Cavity` protocol)."""
+        return self.closes_at
+
+    @property
+    def dies(self) -> float:
+        """``fills_at``: when that void is filled (the :class:`shapelab.Cavity` protocol)."""
+        return self.fills_at
+
+    @property
+    def persistence(self) -> float:
+        """``fills_at - closes_at``: how long the region lives as a void (for a flow pocket,
+        0 only at a tie: a sink's orthocentre on one of its facets)."""
+        return self.fills_at - self.closes_at
+
+    @cached_property
+    def volume(self) -> float:
+        """Free space of the region at ``tau`` (exact power-cell decomposition)."""
+        return float(free_measure(self.balls, self.tau, self.cells).sum())
+
+    @cached_property
+    def mouth_size(self) -> float:
+        """Total size of the mouth simplices: length in 2D, area in 3D."""
+        return float(simplex_sizes(self.balls.centers[self.mouth]).sum())

@@ -54,7 +54,7 @@ from typing import Protocol, runtime_checkable
 
 import numpy as np
 
-from ._pockets import OutsideGraph, complement_labels, leaf_run, lining_of, merge_tree, simplex_sizes
+from ._pockets import MeasuredRegion, OutsideGraph, complement_labels, leaf_run, lining_of, merge_tree
 from ._toolkit import tolerances as tol
 from ._toolkit.derived import derived
 from ._toolkit.validate import (
@@ -65,7 +65,7 @@ from ._toolkit.validate import (
 )
 from ._topology import is_roundoff, reduce_h1, summary
 from .filtration import as_filtration
-from .freespace import free_measure, vertex_values, void_measure
+from .freespace import vertex_values, void_measure
 
 __all__ = [
     "Cavity",
@@ -202,7 +202,7 @@ class Void:
 
 
 @dataclass(frozen=True, eq=False)
-class Pocket:
+class Pocket(MeasuredRegion):
     """A dent that closes into a void later in the growth (Notes §23.1, Figure 23.2).
 
     Attributes
@@ -256,31 +256,6 @@ class Pocket:
     fills_at: float
     tau: float
     balls: object
-
-    @property
-    def born(self) -> float:
-        """``closes_at``: when the pocket becomes a void (the :class:`Cavity` protocol)."""
-        return self.closes_at
-
-    @property
-    def dies(self) -> float:
-        """``fills_at``: when that void is filled (the :class:`Cavity` protocol)."""
-        return self.fills_at
-
-    @property
-    def persistence(self) -> float:
-        """``fills_at - closes_at``: how long the pocket lives as a void."""
-        return self.fills_at - self.closes_at
-
-    @cached_property
-    def volume(self) -> float:
-        """Free space of the pocket at ``tau`` (exact power-cell decomposition)."""
-        return float(free_measure(self.balls, self.tau, self.cells).sum())
-
-    @cached_property
-    def mouth_size(self) -> float:
-        """Total size of the mouth simplices: length in 2D, area in 3D."""
-        return float(simplex_sizes(self.balls.centers[self.mouth]).sum())
 
     def __repr__(self) -> str:
         return (

@@ -106,19 +106,18 @@ from __future__ import annotations
 import numbers
 from dataclasses import dataclass, field
 from fractions import Fraction
-from functools import cached_property
 
 import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import breadth_first_order, connected_components
 
-from ._pockets import lining_of, merge_tree, simplex_sizes
+from ._pockets import MeasuredRegion, lining_of, merge_tree
 from ._toolkit.derived import derived
 from ._toolkit.tolerances import FILTER_UNDERFLOW
 from ._toolkit.validate import as_tau, readonly
 from ._topology import is_roundoff
 from .filtration import as_filtration
-from .freespace import free_measure, vertex_values
+from .freespace import vertex_values
 
 __all__ = ["DiscreteFlow", "FlowPocket", "discrete_flow", "flow_pockets", "flow_side_exact"]
 
@@ -129,7 +128,7 @@ _TINY = FILTER_UNDERFLOW  # below this a float bound may be spoilt by underflow:
 
 # ============================================================================ results
 @dataclass(frozen=True, eq=False)
-class FlowPocket:
+class FlowPocket(MeasuredRegion):
     """A pocket region of the discrete flow at ``tau`` (or a void: no mouth).
 
     Attributes
@@ -211,31 +210,6 @@ class FlowPocket:
     def is_void(self) -> bool:
         """``True`` when the region has no mouth: a void (cavity), not a pocket."""
         return len(self.mouth_ids) == 0
-
-    @property
-    def born(self) -> float:
-        """``closes_at`` (the :class:`shapelab.Cavity` protocol)."""
-        return self.closes_at
-
-    @property
-    def dies(self) -> float:
-        """``fills_at`` (the :class:`shapelab.Cavity` protocol)."""
-        return self.fills_at
-
-    @property
-    def persistence(self) -> float:
-        """``fills_at - closes_at``: 0 only at a tie (a sink's orthocentre on one of its facets)."""
-        return self.fills_at - self.closes_at
-
-    @cached_property
-    def volume(self) -> float:
-        """Free space of the region at ``tau`` (exact power-cell decomposition, as ``Pocket.volume``)."""
-        return float(free_measure(self.balls, self.tau, self.cells).sum())
-
-    @cached_property
-    def mouth_size(self) -> float:
-        """Total size of the mouth facets: length in 2D, area in 3D."""
-        return float(simplex_sizes(self.balls.centers[self.mouth]).sum())
 
     def __repr__(self) -> str:
         kind = "void" if self.is_void else "pocket"
