@@ -18,9 +18,9 @@ import re
 
 import numpy as np
 
-from ._mmcif import REQUIRED_ITEMS, read_limited, reader_options
+from ._mmcif import REQUIRED_ITEMS, atom_records, read_limited, reader_options
 from ._selection import kept_structure
-from ._structure import AtomRecord, PDBStructure
+from ._structure import PDBStructure
 
 __all__ = ["read_bcif", "INSTALL_HINT"]
 
@@ -339,36 +339,28 @@ def read_bcif(
     alt = cols.labels("label_alt_id", rows) if cols.has("label_alt_id") else [""] * m
     group = cols.labels("group_PDB", rows) if cols.has("group_PDB") else ["ATOM"] * m
     elem = cols.labels("type_symbol", rows)
-    symbols = {}  # each distinct type_symbol checked and normalised once
-    for k, i in enumerate(rows):
-        if group[k] not in ("ATOM", "HETATM"):
-            raise ValueError(f"{cols.where('group_PDB', i)} is neither ATOM nor HETATM: {group[k]!r}")
-        if not atom[k]:
-            raise ValueError(f"{cols.where(at_item, i)} is empty: every atom needs a name")
-        e = elem[k]
-        if e not in symbols:
-            if not (e.isascii() and e.isalpha() and len(e) <= 2):
-                raise ValueError(f"{cols.where('type_symbol', i)} is not an element symbol: {e!r}")
-            symbols[e] = e[0].upper() + e[1:].lower()
-    recs = [
-        AtomRecord(
-            int(i) + 1,
-            group[k] == "HETATM",
-            alt[k],
-            atom[k],
-            resn[k],
-            ch[k],
-            num[k],
-            icode[k],
-            x[k],
-            y[k],
-            z[k],
-            occ[k],
-            bf[k],
-            symbols[elem[k]],
-        )
-        for k, i in enumerate(rows)
-    ]
+    shown = {"group_PDB": lambda k: repr(group[k]), at_item: lambda k: "empty", "type_symbol": lambda k: repr(elem[k])}
+    recs = atom_records(
+        rows,
+        dict(
+            group=group,
+            alt=alt,
+            atom=atom,
+            atom_item=at_item,
+            resn=resn,
+            chain=ch,
+            num=num,
+            icode=icode,
+            x=x,
+            y=y,
+            z=z,
+            occ=occ,
+            b=bf,
+            elem=elem,
+        ),
+        where=cols.where,
+        shown=lambda item, i, k: shown[item](k),
+    )
     return kept_structure(
         recs,
         tables=opts["tables"],

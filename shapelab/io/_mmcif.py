@@ -166,6 +166,47 @@ def _parse(path, text: str):
         raise ValueError(f"{os.fspath(path)!r} is not a readable mmCIF file: {msg}") from None
 
 
+def atom_records(rows, c: dict, where, shown) -> list:
+    """The :class:`AtomRecord` rows of the ``_atom_site`` rows ``rows``, from columns already
+    read (``c``: lists aligned with ``rows`` under the keys group, alt, atom, atom_item, resn,
+    chain, num, icode, x, y, z, occ, b, elem), after the checks both CIF readers make: the
+    group is ATOM or HETATM, every atom has a name, the type symbol is an element symbol
+    (normalised once per distinct symbol).  ``where(item, i)`` names row ``i``'s item in an
+    error and ``shown(item, i, k)`` the value it shows (the text mmCIF shows the raw value,
+    BinaryCIF the decoded one); ``i`` counts from 0 in the file, ``k`` in ``rows``."""
+    group, atom, elem = c["group"], c["atom"], c["elem"]
+    symbols = {}  # each distinct type_symbol checked and normalised once
+    for k, i in enumerate(rows):
+        if group[k] not in ("ATOM", "HETATM"):
+            raise ValueError(f"{where('group_PDB', i)} is neither ATOM nor HETATM: {shown('group_PDB', i, k)}")
+        if not atom[k]:
+            raise ValueError(f"{where(c['atom_item'], i)} is {shown(c['atom_item'], i, k)}: every atom needs a name")
+        e = elem[k]
+        if e not in symbols:
+            if not (e.isascii() and e.isalpha() and len(e) <= 2):
+                raise ValueError(f"{where('type_symbol', i)} is not an element symbol: {shown('type_symbol', i, k)}")
+            symbols[e] = e[0].upper() + e[1:].lower()
+    return [
+        AtomRecord(
+            int(i) + 1,
+            group[k] == "HETATM",
+            c["alt"][k],
+            atom[k],
+            c["resn"][k],
+            c["chain"][k],
+            c["num"][k],
+            c["icode"][k],
+            c["x"][k],
+            c["y"][k],
+            c["z"][k],
+            c["occ"][k],
+            c["b"][k],
+            symbols[elem[k]],
+        )
+        for k, i in enumerate(rows)
+    ]
+
+
 def reader_options(path, probe, default_radius, model, chain, hetatm, water, hydrogens, radii, max_bytes) -> dict:
     """The keywords of :func:`read_mmcif` (and of the BinaryCIF reader) checked and
     normalised: TypeError or ValueError naming the argument and the value received."""
@@ -312,38 +353,28 @@ def read_mmcif(
     groups = column("group_PDB")
     group = ["ATOM"] * len(rows) if groups is None else read.labels(groups, "group_PDB")
     elem = read.labels(els, el_item)
-    symbols = {}  # each distinct type_symbol checked and normalised once
-    for k, i in enumerate(rows):
-        if group[k] not in ("ATOM", "HETATM"):
-            raise ValueError(
-                f"{_where(name, i + 1, read.ident(i), 'group_PDB')} is neither ATOM nor HETATM: {groups[i]!r}"
-            )
-        if not atom[k]:
-            raise ValueError(f"{_where(name, i + 1, read.ident(i), at_item)} is {ats[i]!r}: every atom needs a name")
-        e = elem[k]
-        if e not in symbols:
-            if not (e.isascii() and e.isalpha() and len(e) <= 2):
-                raise ValueError(f"{_where(name, i + 1, read.ident(i), el_item)} is not an element symbol: {els[i]!r}")
-            symbols[e] = e[0].upper() + e[1:].lower()
-    recs = [
-        AtomRecord(
-            i + 1,
-            group[k] == "HETATM",
-            alt[k],
-            atom[k],
-            resn[k],
-            ch[k],
-            num[k],
-            icode[k],
-            x[k],
-            y[k],
-            z[k],
-            occ[k],
-            bf[k],
-            symbols[elem[k]],
-        )
-        for k, i in enumerate(rows)
-    ]
+    raw = {"group_PDB": groups, at_item: ats, "type_symbol": els}  # the text as written, shown in errors
+    recs = atom_records(
+        rows,
+        dict(
+            group=group,
+            alt=alt,
+            atom=atom,
+            atom_item=at_item,
+            resn=resn,
+            chain=ch,
+            num=num,
+            icode=icode,
+            x=x,
+            y=y,
+            z=z,
+            occ=occ,
+            b=bf,
+            elem=elem,
+        ),
+        where=lambda item, i: _where(name, i + 1, read.ident(i), item),
+        shown=lambda item, i, k: repr(raw[item][i]),
+    )
 
     return kept_structure(
         recs,
