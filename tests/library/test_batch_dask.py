@@ -55,8 +55,8 @@ def alarm():
 @pytest.fixture(scope="module")
 def cluster():
     # Dask's nanny starts its workers with MALLOC_TRIM_THRESHOLD_=65536, which makes glibc
-    # return the library's mid-sized arrays to the system at once: about 3x the CPU time
-    # (page faults).  Unset, as the README says for real clusters ("On a Dask cluster").
+    # return the library's mid-sized arrays to the system at once: two to three times the CPU
+    # time (page faults).  Unset, as the README says for real clusters ("On a Dask cluster").
     def fire(signum, frame):  # the function-scoped alarm is not armed yet: a cluster that never starts
         raise TimeoutError(f"the LocalCluster did not start within {LIMIT} s")
 

@@ -9,7 +9,6 @@ MDAnalysis.
 
 from __future__ import annotations
 
-import signal
 import warnings
 
 import pytest
@@ -25,42 +24,8 @@ distributed = pytest.importorskip(
 )
 pytest.importorskip("MDAnalysis", reason='MDAnalysis is not installed (pip install "shapelab[md]")')
 
-LIMIT = 120
-
-
-@pytest.fixture(autouse=True)
-def alarm():
-    def fire(signum, frame):
-        raise TimeoutError(f"the test took more than {LIMIT} s: is the Dask cluster answering?")
-
-    old = signal.signal(signal.SIGALRM, fire)
-    signal.alarm(LIMIT)
-    yield
-    signal.alarm(0)
-    signal.signal(signal.SIGALRM, old)
-
-
-@pytest.fixture(scope="module")
-def cluster():
-    # Dask's nanny starts its workers with MALLOC_TRIM_THRESHOLD_=65536, which makes glibc
-    # return the library's mid-sized arrays to the system at once: about 3x the CPU time
-    # (page faults).  Unset, as the README says for real clusters ("On a Dask cluster").
-    def fire(signum, frame):  # the function-scoped alarm is not armed yet: a cluster that never starts
-        raise TimeoutError(f"the LocalCluster did not start within {LIMIT} s")
-
-    old = signal.signal(signal.SIGALRM, fire)
-    signal.alarm(LIMIT)
-    try:
-        with dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
-            c = distributed.LocalCluster(
-                n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
-            )
-        client = distributed.Client(c, timeout=60, set_as_default=False)  # not the default client
-    finally:
-        signal.alarm(0)
-        signal.signal(signal.SIGALRM, old)
-    with c, client:
-        yield c, client
+# the same guard against a hung cluster and the same two-worker LocalCluster as the batch's tests
+from tests.library.test_batch_dask import alarm, cluster  # noqa: E402, F401
 
 
 def same(a, b):
