@@ -304,6 +304,7 @@ def _lower_hull(x: np.ndarray, w: np.ndarray):
 #: 1e4-1e5 SA balls of proteins; the merge and the thread start cost ~5 %)
 _BLOCKS_MIN_POINTS = 20_000
 #: the halo of a block: this fraction of all points on each side beyond its own slab
+#: (and at least ``2 n**(2/3)``, two layers of a cube of ``n`` points)
 _BLOCK_HALO = 0.04
 
 
@@ -336,14 +337,14 @@ def _block_plan(x: np.ndarray, nb: int):
     """Split the points along their longest axis ``a`` at quantiles into ``nb`` own
     slabs ``[cuts[j-1], cuts[j])``; block ``j`` holds every point whose coordinate
     ``a`` lies in ``[lo[j], hi[j]]``, its own slab widened by a halo of
-    ``_BLOCK_HALO * n`` points on each side.  Returns ``a, cuts, lo, hi, idx`` (the
+    ``max(_BLOCK_HALO * n, 2 n**(2/3))`` points on each side.  Returns ``a, cuts, lo, hi, idx`` (the
     points of each block, ascending)."""
     n = x.shape[0]
     a = int(np.argmax(x.max(axis=0) - x.min(axis=0)))
     order = np.argsort(x[:, a], kind="stable")
     xs = x[order, a]
     cuts = np.array([xs[(j * n) // nb] for j in range(1, nb)])
-    halo = int(_BLOCK_HALO * n)
+    halo = max(int(_BLOCK_HALO * n), int(2 * n ** (2 / 3)))  # and two layers of points at least
     lo, hi, idx = [], [], []
     for j in range(nb):
         i0, i1 = max(0, (j * n) // nb - halo), min(n, ((j + 1) * n) // nb + halo)
