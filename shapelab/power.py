@@ -553,9 +553,18 @@ def _certified_blocks(balls: Balls, fr: _Frame, nb: int):
         return None, "the gaps between the blocks did not fill"
     simp, nbr = filled
     P = _exact_points(balls, fr)
-    cert = certify(P, simp.astype(np.int32), nbr.astype(np.int32), order=morton_order(fr.x))
+    order = morton_order(fr.x)
+    simp, nbr = simp.astype(np.int32), nbr.astype(np.int32)
+    cert = certify(P, simp, nbr, order=order)
     if not cert.ok:
-        return None, cert.reason
+        # degenerate input (rounded coordinates): the local exact repair, as on the
+        # one-block road
+        fixed = repair(P, simp, nbr, order=order)
+        if fixed is None:
+            return None, cert.reason + "; the local repair did not certify"
+        simp, cert2, info = fixed
+        rep = TriangulationReport("repaired", cert.reason, {**P.stats, **info}, blocks=nb)
+        return (simp.astype(np.int32), cert2.neighbors, rep), ""
     return (simp.astype(np.int32), cert.neighbors, TriangulationReport("qhull", "", dict(P.stats), blocks=nb)), ""
 
 
@@ -585,7 +594,8 @@ class TriangulationReport:
         at least 20,000 balls with ``SHAPELAB_THREADS`` (or the CPUs) at 2 or more,
         that many slabs along the longest axis, each with a halo, triangulated by
         Qhull in threads and merged; the merged candidate passed the same exact
-        certificate.  The result is the same triangulation, rows in the same order.
+        certificate (``"qhull"``) or the local repair (``"repaired"``).  The result
+        is the same triangulation, rows in the same order.
     blocks_reason : str
         Why a candidate computed in blocks was rejected ("" if none was), after
         which the one-block road above ran.

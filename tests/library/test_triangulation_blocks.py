@@ -127,8 +127,9 @@ def test_blocks_on_the_rounded_md_file():
     assert np.array_equal(out["1"][1], out["2"][1]) and np.array_equal(out["1"][2], out["2"][2])
 
 
+@pytest.mark.parametrize("repairs", [True, False])
 @pytest.mark.parametrize("broken", ["drop", "duplicate", "swap"])
-def test_a_broken_merge_is_rejected_and_falls_back(monkeypatch, broken):
+def test_a_broken_merge_is_rejected_and_falls_back(monkeypatch, broken, repairs):
     rng = np.random.default_rng(7)
     balls = Balls(rng.uniform(0, 20, (800, 3)), rng.uniform(1.0, 2.0, 800))
     ref = roads(balls, ("1",))["1"]
@@ -150,9 +151,14 @@ def test_a_broken_merge_is_rejected_and_falls_back(monkeypatch, broken):
     monkeypatch.setattr(PW, "_fill_gaps", bad)
     monkeypatch.setattr(PW, "_BLOCKS_MIN_POINTS", 64)
     monkeypatch.setenv("SHAPELAB_THREADS", "2")
+    if not repairs:  # (random input: the one-block road needs no repair)
+        monkeypatch.setattr(PW, "repair", lambda *a, **k: None)
     fr, simp, nbr, rep = PW.triangulate_local(balls, report=True)
-    assert rep.blocks == 1 and rep.blocks_reason  # the certificate said no
-    assert rep.method == "qhull" and rep.reason == ""  # the one-block road's own report
+    if rep.blocks == 2:  # the certificate said no, the local repair mended the merge
+        assert repairs and rep.method == "repaired" and rep.reason and rep.blocks_reason == ""
+    else:  # the certificate said no, the one-block road ran with its own report
+        assert rep.blocks == 1 and "repair did not certify" in rep.blocks_reason or not repairs
+        assert rep.blocks_reason and rep.method == "qhull" and rep.reason == ""
     assert np.array_equal(simp, ref[0]) and np.array_equal(nbr, ref[1])
     m = union_measure(balls)
     assert m.surface_area == ref[3] and m.volume == ref[4]
