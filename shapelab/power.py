@@ -34,6 +34,17 @@ Implementation notes
   Either way the result is the unique regular triangulation of the perturbed input:
   the same on every CPU, BLAS and Qhull build.  :func:`triangulation_report` says
   which road was taken.
+* **Blocks (threads).**  For 3D input of at least 20,000 balls and two or more
+  threads (``SHAPELAB_THREADS``, else the CPUs), the candidate is computed in slabs
+  along the longest axis, each with a halo of points, by one Qhull per slab in
+  threads (Qhull releases the GIL).  A slab keeps the tetrahedra it can vouch for
+  (its orthoball, enlarged by the largest weight, inside the slab, or no point
+  outside the slab below the lifted plane); the flat tetrahedra where a cut meets
+  the convex hull come from one small Qhull on the open facets' and the hulls'
+  points.  The merged candidate passes the same exact certificate (or the local
+  repair), else the one-block road runs.  The certified triangulation is unique and
+  its rows are sorted lexicographically on every road, so the result, and every
+  sum over it, is the same whatever the thread count.
 * **Conditioning.**  Before lifting, the centres are translated to their mean and
   scaled to unit size, and the lifted height is centred and scaled as well.  The lower
   hull is invariant under these maps (an affine change of the height by a function
