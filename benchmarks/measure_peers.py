@@ -3,6 +3,8 @@ items 1 and 4; issue 24's scaling curves with Voronota-LT).
 
 ``python -m benchmarks.measure_peers [--out FILE] [--only LABEL ...] [--sides S ...] [--repeats R]``
 ``python -m benchmarks.measure_peers --profile 9360 99840`` (the stages of ``union_measure``)
+``python -m benchmarks.measure_peers --threads 2 --sides ours voronotalt --only "1hvr x16" "1hvr x64" "1hvr x128"``
+(ours also with 2 threads: the 2-core wall time beside the one-thread one)
 
 Rungs: the same as :mod:`benchmarks.report_scaling`: assemblies of 1, 4, 16, 64 and
 128 rotated copies of 1hvr (1,560 to 199,680 heavy atoms), the shipped proteins 1hvr,
@@ -22,7 +24,13 @@ thread options):
   tessellation alone is recorded too (``core``);
 * ``freesasa``: Lee–Richards, 100 slices per atom (area only);
 * ``zsasa_sr``: zsasa's Shrake–Rupley, 100 points per atom (area only, approximate);
-* ``zsasa_lr``: zsasa's Lee–Richards, 100 slices per atom (area only).
+* ``zsasa_lr``: zsasa's Lee–Richards, 100 slices per atom (area only);
+* ``ours_mt`` (with ``--threads N``, N > 1): ours again with ``SHAPELAB_THREADS=N``
+  (the triangulation's candidate in N blocks, :func:`shapelab.power.triangulation_report`);
+  its *wall* time is the figure to read, against ours with one thread (``ours`` then
+  runs with ``SHAPELAB_THREADS=1``).  The peers stay on one thread: Voronota-LT's
+  Python module (``voronotalt`` 1.1.479) takes no thread count and its wheel is not
+  linked to OpenMP, so it has no threaded mode to measure from Python.
 
 Each side and rung is one fresh process: imports and a warm-up on 1hvr (untimed),
 then ``R`` timed calls (default 5) of which the median is reported; the peak memory
@@ -56,6 +64,7 @@ NAMES = {
     "freesasa": "freesasa LR-100",
     "zsasa_sr": "zsasa SR-100 (approx.)",
     "zsasa_lr": "zsasa LR-100",
+    "ours_mt": "shapelab union_measure, N threads",
 }
 PROBE = 1.4
 #: one thread for every library that could start more
@@ -94,7 +103,7 @@ def _call(side: str, s):
 
     centers = np.ascontiguousarray(s.balls.centers, dtype=np.float64)
     vdw = s.balls.radii - PROBE
-    if side == "ours":
+    if side in ("ours", "ours_mt"):
         from shapelab import union_measure
 
         m = union_measure(s.balls)
@@ -204,6 +213,12 @@ def _worker(side: str, kind: str, arg: str, repeats: int, dump: str) -> None:
             cores.append(core)
     if per_atom is not None:
         np.save(dump, per_atom)
+    road = None
+    if side in ("ours", "ours_mt"):  # which road the triangulation took (untimed)
+        from shapelab.power import triangulation_report
+
+        rep = triangulation_report(s.balls)
+        road = f"{rep.method}, blocks={rep.blocks}" + (f" ({rep.blocks_reason})" if rep.blocks_reason else "")
     out = {
         "n": len(s.balls),
         "seconds": statistics.median(times),
@@ -213,13 +228,16 @@ def _worker(side: str, kind: str, arg: str, repeats: int, dump: str) -> None:
         "peak_kib": peak,
         "area": area,
         "volume": vol,
+        "road": road,
     }
     print(json.dumps(out))
 
 
-def _run(side, kind, arg, repeats, dump):
+def _run(side, kind, arg, repeats, dump, threads=None):
     cmd = [sys.executable, "-m", "benchmarks.measure_peers", "--worker", side, kind, arg, str(repeats), dump]
     env = dict(os.environ, PYTHONPATH=str(ROOT), **ONE_THREAD)
+    if threads is not None:  # ours on one thread, ours_mt on N
+        env["SHAPELAB_THREADS"] = str(threads if side == "ours_mt" else 1)
     out = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT, env=env)
     if out.returncode != 0:
         raise RuntimeError(f"{side} {kind} {arg} failed:\n{out.stderr[-2000:]}")
@@ -232,6 +250,9 @@ def main(argv=None) -> int:
     ap.add_argument("--only", nargs="*", default=None, help="labels of the rungs to run")
     ap.add_argument("--sides", nargs="*", default=list(SIDES), choices=SIDES)
     ap.add_argument("--repeats", type=int, default=5)
+    ap.add_argument(
+        "--threads", type=int, default=None, help="also run ours with SHAPELAB_THREADS=N (side ours_mt; ours on 1)"
+    )
     ap.add_argument("--worker", nargs=5, help=argparse.SUPPRESS)
     ap.add_argument(
         "--profile", type=int, nargs="+", metavar="ATOMS", help="only profile union_measure's stages at these sizes"
@@ -249,6 +270,9 @@ def main(argv=None) -> int:
     from benchmarks.harness import machine, machine_line
     from benchmarks.scaling import fit_exponent
 
+    if args.threads is not None and args.threads > 1 and "ours_mt" not in args.sides:
+        args.sides.append("ours_mt")
+
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for label, kind, arg in _rungs():
@@ -259,7 +283,7 @@ def main(argv=None) -> int:
             dumps = {}
             for side in args.sides:
                 dumps[side] = str(Path(tmp) / f"{side}.npy")
-                row[side] = _run(side, kind, arg, args.repeats, dumps[side])
+                row[side] = _run(side, kind, arg, args.repeats, dumps[side], args.threads)
             row["n"] = row[args.sides[0]]["n"]
             row["load"] = (round(load0, 2), round(os.getloadavg()[0], 2))
             if "ours" in row:
@@ -292,6 +316,7 @@ def main(argv=None) -> int:
         "machine": machine_line(machine()),
         "when": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
         "sides": args.sides,
+        "threads": args.threads,
         "rows": rows,
         "exponents": fits,
     }
@@ -348,6 +373,11 @@ def table(doc) -> str:
     if "ours" in sides:
         head += " | ours / Voronota-LT" if "voronotalt" in sides else ""
         head += " | ours / freesasa" if "freesasa" in sides else ""
+    mt = "ours" in sides and "ours_mt" in sides
+    if mt:
+        n_mt = doc.get("threads")
+        head += f" | ours wall, 1 / {n_mt} threads"
+        head += f" | ours {n_mt} threads / Voronota-LT (wall)" if "voronotalt" in sides else ""
     head += " | load |"
     lines += [head, "|" + "---|" + "---:|" * (head.count("|") - 3) + "---|"]
     for r in doc["rows"]:
@@ -359,6 +389,10 @@ def table(doc) -> str:
                 cells.append(f"{r['ours']['cpu_seconds'] / r['voronotalt']['cpu_seconds']:.2f}")
             if "freesasa" in sides:
                 cells.append(f"{r['ours']['cpu_seconds'] / r['freesasa']['cpu_seconds']:.2f}")
+        if mt:
+            cells.append(f"{r['ours']['seconds'] / r['ours_mt']['seconds']:.2f}")
+            if "voronotalt" in sides:
+                cells.append(f"{r['ours_mt']['seconds'] / r['voronotalt']['seconds']:.2f}")
         cells.append(f"{r['load'][0]:.2f} / {r['load'][1]:.2f}")
         lines.append("| " + " | ".join(cells) + " |")
     if "ours" in sides:
@@ -376,6 +410,9 @@ def table(doc) -> str:
                 v = r["voronotalt"]
                 cells += [f"{v['volume_rel']:+.1e}", f"{v['atom_area_max_abs']:.1e}"]
             lines.append("| " + " | ".join(cells) + " |")
+    if "ours_mt" in sides:
+        lines += ["", "The triangulation's road (`triangulation_report`), one thread and N threads:", ""]
+        lines += [f"- {r['label']}: {r['ours'].get('road')}; {r['ours_mt'].get('road')}" for r in doc["rows"]]
     lines += ["", "Peak memory of the first timed call (MiB):", ""]
     lines += ["| structure | atoms | " + " | ".join(NAMES[s] for s in sides) + " |"]
     lines.append("|" + "---|" + "---:|" * (len(sides) + 1))

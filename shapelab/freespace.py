@@ -859,23 +859,9 @@ def _threads(n_tasks: int) -> int:
     most four by default (``SHAPELAB_THREADS`` in the environment overrides it; 1 runs them in the calling
     thread), never more than there are slices, and 1 when called from a thread other
     than the main one (a Dask worker's or a caller's own pool: no pools in pools)."""
-    import os
-    import threading
+    from ._toolkit.threads import thread_count
 
-    if threading.current_thread() is not threading.main_thread():
-        return 1
-    env = os.environ.get("SHAPELAB_THREADS", "").strip()
-    if env:
-        try:
-            n = int(env)
-        except ValueError:
-            raise ValueError(f"SHAPELAB_THREADS must be a positive integer, got {env!r}") from None
-        if n < 1:
-            raise ValueError(f"SHAPELAB_THREADS must be a positive integer, got {env!r}")
-    else:
-        n = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
-        n = min(n, _DEFAULT_THREADS_CAP)  # each thread holds a slice's temporaries (~8 MiB)
-    return max(1, min(n, n_tasks))
+    return thread_count(n_tasks, cap=_DEFAULT_THREADS_CAP)
 
 
 def _each(fn, starts) -> None:
