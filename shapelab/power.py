@@ -311,8 +311,10 @@ def _lower_hull(x: np.ndarray, w: np.ndarray):
 # ----------------------------------------------------------------------------------
 # The candidate in blocks (threads): Qhull on slabs with a halo, merged
 # ----------------------------------------------------------------------------------
-#: below this many (kept) points one Qhull is as fast as two blocks (measured at
-#: 1e4-1e5 SA balls of proteins; the merge and the thread start cost ~5 %)
+#: below this many (kept) points blocks are not worth their overhead (the halo, the
+#: merge, the thread start: ~10-20 % more CPU); at 24,960 SA balls two blocks shorten
+#: the critical path of union_measure by an estimated 1.3x (benchmarks/results/
+#: measure_peers_threads.md; not yet timed on an idle machine)
 _BLOCKS_MIN_POINTS = 20_000
 #: the halo of a block: this fraction of all points on each side beyond its own slab
 #: (and at least ``2 n**(2/3)``, two layers of a cube of ``n`` points)
