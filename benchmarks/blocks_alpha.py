@@ -53,7 +53,7 @@ def _worker(side: str, name: str) -> None:
         t0, c0 = time.perf_counter(), time.process_time()
         F = alpha_filtration(b)
         wall, cpu = time.perf_counter() - t0, time.process_time() - c0
-        counts = list(F.counts)
+        counts = list(F.counts())
         rep = triangulation_report(b)
         road = f"{rep.method}, blocks={rep.blocks}" + (f" ({rep.blocks_reason})" if rep.blocks_reason else "")
     print(json.dumps({"wall": wall, "cpu": cpu, "counts": counts, "road": road, "n": len(b)}))

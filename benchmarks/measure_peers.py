@@ -238,6 +238,7 @@ def _run(side, kind, arg, repeats, dump, threads=None):
     env = dict(os.environ, PYTHONPATH=str(ROOT), **ONE_THREAD)
     if threads is not None:  # ours on one thread, ours_mt on N
         env["SHAPELAB_THREADS"] = str(threads if side == "ours_mt" else 1)
+    env.setdefault("SHAPELAB_THREADS", "1")  # one thread unless told (the triangulation's blocks)
     out = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT, env=env)
     if out.returncode != 0:
         raise RuntimeError(f"{side} {kind} {arg} failed:\n{out.stderr[-2000:]}")

@@ -311,8 +311,10 @@ def _lower_hull(x: np.ndarray, w: np.ndarray):
 # ----------------------------------------------------------------------------------
 # The candidate in blocks (threads): Qhull on slabs with a halo, merged
 # ----------------------------------------------------------------------------------
-#: below this many (kept) points one Qhull is as fast as two blocks (measured at
-#: 1e4-1e5 SA balls of proteins; the merge and the thread start cost ~5 %)
+#: below this many (kept) points blocks are not worth their overhead (the halo, the
+#: merge, the thread start: ~10-20 % more CPU); at 24,960 SA balls two blocks shorten
+#: the critical path of union_measure by an estimated 1.3x (benchmarks/results/
+#: measure_peers_threads.md; not yet timed on an idle machine)
 _BLOCKS_MIN_POINTS = 20_000
 #: the halo of a block: this fraction of all points on each side beyond its own slab
 #: (and at least ``2 n**(2/3)``, two layers of a cube of ``n`` points)
@@ -529,6 +531,26 @@ def _fill_gaps(x, w, simp, nbr, hull_vertices):
     return simp, nbr
 
 
+def _lex_order(simp: np.ndarray) -> np.ndarray:
+    """``np.lexsort(simp.T[::-1])`` for tetrahedra, faster: one argsort of the first
+    three vertices packed in an int64 (fewer than 2**21 points); two tetrahedra of a
+    triangulation share at most one facet, so rows with equal keys come in pairs,
+    ordered by their last vertex."""
+    n = int(simp.max()) + 1
+    if simp.shape[1] != 4 or n >= 1 << 21:
+        return np.lexsort(simp.T[::-1])
+    s = simp.astype(np.int64)
+    key = (s[:, 0] * n + s[:, 1]) * n + s[:, 2]
+    order = np.argsort(key, kind="stable")
+    ks = key[order]
+    d = np.flatnonzero(ks[1:] == ks[:-1])
+    if d.size > 1 and np.any(d[1:] == d[:-1] + 1):  # pragma: no cover - not a triangulation
+        return np.lexsort(simp.T[::-1])
+    swap = d[simp[order[d], 3] > simp[order[d + 1], 3]]
+    order[swap], order[swap + 1] = order[swap + 1], order[swap].copy()
+    return order
+
+
 def _canonical(simp: np.ndarray, nbr: np.ndarray):
     """The rows of ``simp`` (vertices ascending) sorted lexicographically, and the
     neighbour relation ``nbr`` carried along: the certified triangulation is unique,
@@ -537,7 +559,7 @@ def _canonical(simp: np.ndarray, nbr: np.ndarray):
     m = simp.shape[0]
     if m <= 1:
         return simp, nbr
-    order = np.lexsort(simp.T[::-1])
+    order = _lex_order(simp)
     inv = np.empty(m, dtype=np.int32)
     inv[order] = np.arange(m, dtype=np.int32)
     nb = nbr[order]

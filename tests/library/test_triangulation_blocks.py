@@ -178,3 +178,15 @@ def test_block_count(monkeypatch):
     t.start()
     t.join()
     assert seen == [1]  # no pools in pools
+
+
+def test_lex_order_is_lexsort():
+    # the fast canonical order of tetrahedra equals NumPy's lexsort (rows sharing
+    # their first three vertices come in pairs in a triangulation)
+    rng = np.random.default_rng(5)
+    balls = Balls(rng.uniform(0, 10, (2000, 3)), rng.uniform(0.5, 1.5, 2000))
+    simp = PW.triangulate_local(balls)[1]
+    shuffled = simp[rng.permutation(simp.shape[0])]
+    assert np.array_equal(PW._lex_order(shuffled), np.lexsort(shuffled.T[::-1]))
+    tri = np.array([[0, 1, 2, 5], [0, 1, 2, 3], [1, 2, 3, 4], [0, 1, 3, 4]])
+    assert PW._lex_order(tri).tolist() == [1, 0, 3, 2]
