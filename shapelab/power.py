@@ -89,7 +89,7 @@ from ._toolkit.validate import (
     default_bbox,
 )
 from .balls import Balls
-from .exact.certify import certify, facet_adjacency, repair
+from .exact.certify import certify, facet_adjacency, failing_simplices, repair
 from .exact.incremental import incremental_triangulation
 from .exact.predicates import WeightedPoints, affine_basis, det, projection_axes
 
@@ -103,6 +103,9 @@ __all__ = [
 ]
 
 _QHULL_OPTIONS = "Qt Qbb Q12 Q5 Q8"
+# a rejected candidate with more failing simplices than this fraction is not repaired
+# locally: the tie-break candidate (_tiebreak_candidate) is tried first
+TIEBREAK_FAILING = 0.01
 
 
 # ----------------------------------------------------------------------------------
@@ -296,6 +299,30 @@ def _lower_hull(x: np.ndarray, w: np.ndarray):
         return None
 
 
+def _tiebreak_candidate(x: np.ndarray, w: np.ndarray):
+    """A second candidate for input whose ties Qhull breaks its own way: the lower
+    hull with each lifted height lowered by a small convex decreasing function of the
+    point's rank in the tie-break order (the row order of ``x``; tolerance
+    ``QHULL_TIEBREAK``).  Like Simulation of Simplicity, it lowers earlier balls more,
+    so the ties of a lattice in its input order (co-spherical cubes: one
+    diagonal per face) go the same way; :func:`_certified` certifies and repairs it
+    like the first one.  Returns ``(simp, nbr, perm)`` or ``None``."""
+    n, k = x.shape
+    if n <= k + 1:
+        return None
+    h = np.einsum("ij,ij->i", x, x) - w
+    h = h - h.mean()
+    hs = float(np.max(np.abs(h)))
+    if hs > 0:
+        h = h / hs
+    h = h - tol.QHULL_TIEBREAK * (1.0 - np.arange(n) / n) ** 2
+    perm = morton_order(x)
+    try:
+        return (*_hull_once(x, h, perm), perm)
+    except RuntimeError:
+        return None
+
+
 @dataclass(frozen=True)
 class TriangulationReport:
     """How :func:`regular_triangulation` obtained its answer.
@@ -352,7 +379,7 @@ def _certified(balls: Balls, fr: _Frame):
             if cert.ok:
                 return simp.astype(np.int32), cert.neighbors, TriangulationReport("qhull", "", dict(P.stats))
             reason = cert.reason
-            fixed = repair(P, simp, nbr, order=perm)
+            fixed = _tiebreak_repair(P, fr, simp, nbr, perm)
             if fixed is not None:
                 simp, cert, info = fixed
                 counts = {**P.stats, **info}
@@ -362,6 +389,28 @@ def _certified(balls: Balls, fr: _Frame):
     simp = incremental_triangulation(P, order).astype(np.int32)
     nbr, _ = facet_adjacency(simp)
     return simp, nbr, TriangulationReport("incremental", reason, dict(P.stats))
+
+
+def _tiebreak_repair(P: WeightedPoints, fr: _Frame, simp, nbr, perm):
+    """The repair of a rejected candidate: locally if few simplices fail; otherwise
+    (ties everywhere: grids, cages) from the candidate of :func:`_tiebreak_candidate`,
+    certified, then repaired locally.  ``(simp, cert, info)`` or ``None``."""
+    bad = failing_simplices(P, simp, perm, nbr)[0]
+    if np.count_nonzero(bad) <= TIEBREAK_FAILING * simp.shape[0]:
+        fixed = repair(P, simp, nbr, order=perm)
+        if fixed is not None:
+            return fixed
+    cand = _tiebreak_candidate(fr.x, fr.w)
+    if cand is None or cand[0].shape[0] == 0:
+        return None
+    simp2, nbr2, perm2 = cand
+    cert = certify(P, simp2, nbr2, order=perm2)
+    if cert.ok:
+        return simp2, cert, {"attempts": 0, "cavity_simplices": 0, "cavity_points": 0, "tiebreak": True}
+    fixed = repair(P, simp2, nbr2, order=perm2)
+    if fixed is not None:
+        fixed[2]["tiebreak"] = True
+    return fixed
 
 
 def triangulate_local(balls: Balls, report: bool = False):
