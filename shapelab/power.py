@@ -106,6 +106,9 @@ _QHULL_OPTIONS = "Qt Qbb Q12 Q5 Q8"
 # a rejected candidate with more failing simplices than this fraction is not repaired
 # locally: the tie-break candidate (_tiebreak_candidate) is tried first
 TIEBREAK_FAILING = 0.01
+# centres whose distinct values per axis span a product of at most this many times
+# their number lie on a lattice (_on_a_lattice): the tie-break candidate goes first
+LATTICE_FILL = 8
 
 
 # ----------------------------------------------------------------------------------
@@ -366,6 +369,12 @@ def _exact_points(balls: Balls, fr: _Frame) -> WeightedPoints:
 def _certified(balls: Balls, fr: _Frame):
     """Top simplices (local indices), neighbours and the report."""
     P = _exact_points(balls, fr)
+    if fr.k == balls.dim and _on_a_lattice(balls.centers, fr.keep):
+        fixed = _tiebreak_repair(P, fr)
+        if fixed is not None:  # ties everywhere: the tie-break candidate first
+            simp, cert, info = fixed
+            method = "repaired" if info["attempts"] else "qhull"
+            return simp.astype(np.int32), cert.neighbors, TriangulationReport(method, "", {**P.stats, **info})
     cand = _lower_hull(fr.x, fr.w)
     reason = "Qhull failed"
     if cand is not None:
@@ -391,15 +400,31 @@ def _certified(balls: Balls, fr: _Frame):
     return simp, nbr, TriangulationReport("incremental", reason, dict(P.stats))
 
 
-def _tiebreak_repair(P: WeightedPoints, fr: _Frame, simp, nbr, perm):
-    """The repair of a rejected candidate: locally if few simplices fail; otherwise
-    (ties everywhere: grids, cages) from the candidate of :func:`_tiebreak_candidate`,
-    certified, then repaired locally.  ``(simp, cert, info)`` or ``None``."""
-    bad = failing_simplices(P, simp, perm, nbr)[0]
-    if np.count_nonzero(bad) <= TIEBREAK_FAILING * simp.shape[0]:
-        fixed = repair(P, simp, nbr, order=perm)
-        if fixed is not None:
-            return fixed
+def _on_a_lattice(centers: np.ndarray, keep: np.ndarray) -> bool:
+    """True when the centres take so few distinct values along each axis that they
+    fill a good part of the product of those values (a grid): every power test is
+    then a tie, and Qhull's candidate fails everywhere.  A sample decides first."""
+    c = centers[keep] if keep.size != centers.shape[0] else centers
+    for rows in (c[:512], c):
+        prod = 1
+        for a in range(c.shape[1]):
+            prod *= np.unique(rows[:, a]).size
+        if prod > LATTICE_FILL * rows.shape[0]:
+            return False
+    return True
+
+
+def _tiebreak_repair(P: WeightedPoints, fr: _Frame, simp=None, nbr=None, perm=None):
+    """The repair of a rejected candidate ``simp`` (if given): locally if few
+    simplices fail; otherwise (ties everywhere: grids, cages) from the candidate of
+    :func:`_tiebreak_candidate`, certified, then repaired locally.  ``(simp, cert,
+    info)`` or ``None``."""
+    if simp is not None:
+        bad = failing_simplices(P, simp, perm, nbr)[0]
+        if np.count_nonzero(bad) <= TIEBREAK_FAILING * simp.shape[0]:
+            fixed = repair(P, simp, nbr, order=perm)
+            if fixed is not None:
+                return fixed
     cand = _tiebreak_candidate(fr.x, fr.w)
     if cand is None or cand[0].shape[0] == 0:
         return None
