@@ -420,9 +420,9 @@ def _tiebreak_repair(P: WeightedPoints, fr: _Frame, simp=None, nbr=None, perm=No
     :func:`_tiebreak_candidate`, certified, then repaired locally.  ``(simp, cert,
     info)`` or ``None``."""
     if simp is not None:
-        bad = failing_simplices(P, simp, perm, nbr)[0]
-        if np.count_nonzero(bad) <= TIEBREAK_FAILING * simp.shape[0]:
-            fixed = repair(P, simp, nbr, order=perm)
+        failing = failing_simplices(P, simp, perm, nbr)
+        if np.count_nonzero(failing[0]) <= TIEBREAK_FAILING * simp.shape[0]:
+            fixed = repair(P, simp, nbr, order=perm, failing=failing)
             if fixed is not None:
                 return fixed
     cand = _tiebreak_candidate(fr.x, fr.w)

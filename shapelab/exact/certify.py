@@ -685,7 +685,15 @@ def _components(simp, mask, n):
     return np.split(ids[order], cuts)
 
 
-def repair(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None, attempts: int = 4, max_fraction=0.25):
+def repair(
+    P: WeightedPoints,
+    simp: np.ndarray,
+    neighbors=None,
+    order=None,
+    attempts: int = 4,
+    max_fraction=0.25,
+    failing=None,
+):
     """Repair a candidate regular triangulation locally (Notes §23.1).
 
     Parameters
@@ -705,6 +713,9 @@ def repair(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None, atte
     max_fraction : float
         Give up (return ``None``) when a cavity holds more than this fraction of the
         points: re-triangulating most of the input locally costs as much as the whole.
+    failing : tuple, optional
+        What :func:`failing_simplices` returned for this candidate, if the caller
+        computed it already.
 
     Returns
     -------
@@ -735,7 +746,7 @@ def repair(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None, atte
     m, w = simp.shape
     if m == 0 or w < 2:
         return None
-    bad, nbr, pos = failing_simplices(P, simp, order, neighbors)
+    bad, nbr, pos = failing_simplices(P, simp, order, neighbors) if failing is None else failing
     if not bad.any():
         return None  # nothing local to repair: the failure is global
     n = P.n
