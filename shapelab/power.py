@@ -28,8 +28,12 @@ Implementation notes
   and their neighbourhood are re-triangulated by the exact incremental algorithm of
   :mod:`shapelab.exact.incremental` on their points alone, stitched in, and the whole
   is certified again (rounded coordinates, exact translates in a water box, a grid
-  patch).  Where the failures are everywhere (co-spherical cages, grids, lattices
-  with round-off noise) or the repair does not certify, the exact incremental
+  patch).  Where the failures are everywhere (grids, co-spherical cages), Qhull's
+  ties are not Simulation of Simplicity's: a second candidate lowers each lifted
+  height by a small convex decreasing function of the ball's rank in the tie-break
+  order (:func:`_tiebreak_candidate`), which breaks the ties of a lattice in its input
+  order the same way; it is certified and repaired locally like the first (centres on
+  a lattice take it first).  Where the repair does not certify, the exact incremental
   algorithm computes the whole triangulation.
   Either way the result is the unique regular triangulation of the perturbed input:
   the same on every CPU, BLAS and Qhull build.  :func:`triangulation_report` says
@@ -346,7 +350,7 @@ class TriangulationReport:
         Tests decided by the floating-point filter and exactly, ties broken by
         Simulation of Simplicity; after a repair also ``attempts``,
         ``cavity_simplices`` and ``cavity_points`` (the size of the re-triangulated
-        region).
+        region), and ``tiebreak`` (True) when the tie-break candidate was used.
 
     See Also
     --------

@@ -28,7 +28,11 @@ values, :math:`u = 2^{-53}`); only where :math:`|D|` does not exceed the bound i
 the determinant recomputed *exactly*, with Python integers, from the input's own
 binary values (every float64 is an integer times a power of two, so all inputs are
 integers at one common scale).  The sign is therefore a function of the input alone,
-the same on every CPU, BLAS and compiler.
+the same on every CPU, BLAS and compiler.  The rows a vectorised call leaves undecided
+are evaluated together: numpy int64 determinants at the coarsest common scale where a
+bound on the magnitudes shows that they cannot overflow (grids and other dyadic
+input: small integers), numpy arrays of Python integers elsewhere, and the ties'
+Simulation of Simplicity batched as well.
 
 Ties (``D = 0``: five co-spherical centres in 3D, four cocircular in 2D, a ball whose
 lifted centre lies exactly on a lifted facet) are broken by *Simulation of
