@@ -426,7 +426,7 @@ def _tiebreak_repair(P: WeightedPoints, fr: _Frame, simp=None, nbr=None, perm=No
     if simp is not None:
         failing = failing_simplices(P, simp, perm, nbr)
         if np.count_nonzero(failing[0]) <= TIEBREAK_FAILING * simp.shape[0]:
-            fixed = repair(P, simp, nbr, order=perm, failing=failing)
+            fixed = repair(P, simp, nbr, order=perm, failing=failing, start=1)
             if fixed is not None:
                 return fixed
     cand = _tiebreak_candidate(fr.x, fr.w)
@@ -436,7 +436,7 @@ def _tiebreak_repair(P: WeightedPoints, fr: _Frame, simp=None, nbr=None, perm=No
     cert = certify(P, simp2, nbr2, order=perm2)
     if cert.ok:
         return simp2, cert, {"attempts": 0, "cavity_simplices": 0, "cavity_points": 0, "tiebreak": True}
-    fixed = repair(P, simp2, nbr2, order=perm2)
+    fixed = repair(P, simp2, nbr2, order=perm2, start=1)
     if fixed is not None:
         fixed[2]["tiebreak"] = True
     return fixed

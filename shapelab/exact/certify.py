@@ -693,6 +693,7 @@ def repair(
     attempts: int = 4,
     max_fraction=0.25,
     failing=None,
+    start: int = 0,
 ):
     """Repair a candidate regular triangulation locally (Notes §23.1).
 
@@ -716,6 +717,10 @@ def repair(
     failing : tuple, optional
         What :func:`failing_simplices` returned for this candidate, if the caller
         computed it already.
+    start : int
+        The first attempt (1: begin with the failing simplices' facet neighbours,
+        which saves a whole certificate where the failing simplices alone are too
+        tight a cavity, as on rounded MD systems).
 
     Returns
     -------
@@ -761,7 +766,7 @@ def repair(
     cav = bad.copy()
     grow = bad.copy()
     done: dict = {}
-    for attempt in range(attempts):
+    for attempt in range(start, attempts):
         if attempt:
             cav |= _grow(simp, nbr, grow, n, 1 if attempt == 1 else 2)
         vm = np.zeros(n, dtype=bool)
@@ -796,7 +801,7 @@ def repair(
         new, nn = _assemble(simp, nbr, cav, parts)
         cert = certify(P, new, nn, order=order)
         if cert.ok:
-            info = {"attempts": attempt + 1, "cavity_simplices": int(cav.sum()), "cavity_points": int(npts)}
+            info = {"attempts": attempt + 1 - start, "cavity_simplices": int(cav.sum()), "cavity_points": int(npts)}
             return new, cert, info
         grow = cav.copy()
     return None
