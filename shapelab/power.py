@@ -373,12 +373,16 @@ def _exact_points(balls: Balls, fr: _Frame) -> WeightedPoints:
 def _certified(balls: Balls, fr: _Frame):
     """Top simplices (local indices), neighbours and the report."""
     P = _exact_points(balls, fr)
-    if fr.k == balls.dim and _on_a_lattice(balls.centers, fr.keep):
+    lattice = fr.k == balls.dim and _on_a_lattice(balls.centers, fr.keep)
+    if lattice:
         fixed = _tiebreak_repair(P, fr)
         if fixed is not None:  # ties everywhere: the tie-break candidate first
             simp, cert, info = fixed
-            method = "repaired" if info["attempts"] else "qhull"
-            return simp.astype(np.int32), cert.neighbors, TriangulationReport(method, "", {**P.stats, **info})
+            rep = TriangulationReport("qhull", "", {**P.stats, **info})
+            if info["attempts"]:
+                why = "the centres lie on a lattice; the tie-break candidate failed the certificate"
+                rep = TriangulationReport("repaired", why, rep.counts)
+            return simp.astype(np.int32), cert.neighbors, rep
     cand = _lower_hull(fr.x, fr.w)
     reason = "Qhull failed"
     if cand is not None:
@@ -392,7 +396,7 @@ def _certified(balls: Balls, fr: _Frame):
             if cert.ok:
                 return simp.astype(np.int32), cert.neighbors, TriangulationReport("qhull", "", dict(P.stats))
             reason = cert.reason
-            fixed = _tiebreak_repair(P, fr, simp, nbr, perm)
+            fixed = _tiebreak_repair(P, fr, simp, nbr, perm, tiebreak=not lattice)
             if fixed is not None:
                 simp, cert, info = fixed
                 counts = {**P.stats, **info}
@@ -418,17 +422,19 @@ def _on_a_lattice(centers: np.ndarray, keep: np.ndarray) -> bool:
     return True
 
 
-def _tiebreak_repair(P: WeightedPoints, fr: _Frame, simp=None, nbr=None, perm=None):
+def _tiebreak_repair(P: WeightedPoints, fr: _Frame, simp=None, nbr=None, perm=None, tiebreak=True):
     """The repair of a rejected candidate ``simp`` (if given): locally if few
-    simplices fail; otherwise (ties everywhere: grids, cages) from the candidate of
-    :func:`_tiebreak_candidate`, certified, then repaired locally.  ``(simp, cert,
-    info)`` or ``None``."""
+    simplices fail; otherwise (ties everywhere: grids, cages), unless ``tiebreak`` is
+    False (tried already), from the candidate of :func:`_tiebreak_candidate`,
+    certified, then repaired locally.  ``(simp, cert, info)`` or ``None``."""
     if simp is not None:
         failing = failing_simplices(P, simp, perm, nbr)
         if np.count_nonzero(failing[0]) <= TIEBREAK_FAILING * simp.shape[0]:
             fixed = repair(P, simp, nbr, order=perm, failing=failing, start=1)
             if fixed is not None:
                 return fixed
+    if not tiebreak:
+        return None
     cand = _tiebreak_candidate(fr.x, fr.w)
     if cand is None or cand[0].shape[0] == 0:
         return None
