@@ -438,8 +438,12 @@ def _exact_rows(C: np.ndarray, W: np.ndarray, rows: np.ndarray, scale: float):
     E = np.where(E == np.iinfo(np.int32).max, 0, E)
     sc = np.where(Mc == 0, 0, ec - E[:, None, None])
     sw = np.where(Mw == 0, 0, ew - 2 * E[:, None])
-    X = Mc.astype(object) << sc.astype(object)
-    Wi = Mw.astype(object) << sw.astype(object)
+    small = _small_row_integers(Mc, ec, Mw, ew, j)
+    if small is not None:  # int64 suffices for every intermediate (grids, halves)
+        X, Wi, E = small
+    else:
+        X = Mc.astype(object) << sc.astype(object)
+        Wi = Mw.astype(object) << sw.astype(object)
     A = [X[:, i + 1, :] - X[:, 0, :] for i in range(j)]
     G = [[None] * j for _ in range(j)]
     for s_ in range(j):
@@ -470,13 +474,69 @@ def _exact_rows(C: np.ndarray, W: np.ndarray, rows: np.ndarray, scale: float):
     sp, sq = float(scale).as_integer_ratio()
     flat = np.array([d == 0 for d in det.tolist()], dtype=bool)
     rho = np.zeros(m)
+    done = _small_quotients(num, den, E, sp, sq, rho) if small is not None else np.zeros(m, dtype=bool)
     for t_, (nu, de, e) in enumerate(zip(num.tolist(), den.tolist(), E.tolist())):
-        if de != 0:
+        if de != 0 and not done[t_]:
             nu, de = nu * sq * sq, 2 * de * sp * sp
             rho[t_] = (nu << 2 * e) / de if e >= 0 else nu / (de << -2 * e)
     lam_num = [den - sum(Nl)] + Nl  # signs of lam_0..lam_j (den >= 0)
     att = np.stack([np.array([v < 0 for v in q.tolist()], dtype=bool) for q in lam_num], axis=1)
     return rho, att, flat
+
+
+def _small_quotients(num, den, E, sp: int, sq: int, rho) -> np.ndarray:
+    """``rho = num sq^2 2^(2E) / (2 den sp^2)`` for int64 rows of :func:`_exact_rows`
+    where numerator and denominator are exact in float64 (below 2**53): one IEEE
+    division, correctly rounded as Python's ``int / int``, times a power of two (exact
+    in the normal range).  Fills ``rho`` there; returns the mask of rows done."""
+    if sp >= 2**26 or sq >= 2**26:
+        return np.zeros(num.shape, dtype=bool)
+    a, b = float(sq * sq), float(2 * sp * sp)
+    ok = (den != 0) & (np.abs(num) < 2.0**53 / a) & (np.abs(den) < 2.0**53 / b)
+    with np.errstate(all="ignore"):
+        q = np.ldexp((num * (sq * sq)).astype(np.float64) / (den * (2 * sp * sp)).astype(np.float64), 2 * E)
+    ok &= np.isfinite(q) & ((q == 0) | (np.abs(q) >= np.finfo(np.float64).tiny))
+    rho[ok] = q[ok]
+    return ok
+
+
+def _small_row_integers(Mc, ec, Mw, ew, j: int):
+    """For :func:`_exact_rows`: the rows' centres and weights as int64 integers at
+    the coarsest common scale of each row (trailing zero bits dropped, so dyadic
+    input gives small integers), with the row exponents ``E``; ``None`` unless a
+    bound shows that no intermediate of the adjugate solve can reach 2**62."""
+    big = np.iinfo(np.int32).max
+    m = Mc.shape[0]
+
+    def low(M, e):  # exponent of the lowest set bit; 'big' for zero
+        a = np.abs(M)
+        lb = np.log2((a & -a).astype(np.float64), where=a != 0, out=np.zeros(a.shape))
+        return np.where(a == 0, big, e + lb.astype(np.int64))
+
+    lc, lw = low(Mc, ec), low(Mw, ew)
+    E = np.minimum(lc.reshape(m, -1).min(axis=1), lw.min(axis=1) // 2)
+    E = np.where(E == big, 0, E)
+    # magnitudes in units 2**E (floats: only a bound)
+    ac = np.abs(Mc) * np.exp2(np.where(Mc == 0, 0, ec - E[:, None, None]).astype(np.float64))
+    aw = np.abs(Mw) * np.exp2(np.where(Mw == 0, 0, ew - 2 * E[:, None]).astype(np.float64))
+    if not (np.all(ac < 2.0**60) and np.all(aw < 2.0**60)):
+        return None
+    a = 2.0 * ac.max(axis=(1, 2))  # |A| entries
+    wm = aw.max(axis=1)
+    g = 3.0 * a * a  # |G|
+    bb = g + 2.0 * wm  # |2 beta|
+    det_m = 6.0 * g**j
+    n_m = 3.0 * 2.0 * g ** (j - 1) * bb
+    num_m = 3.0 * n_m * bb + 4.0 * det_m * wm
+    if not np.all(np.maximum(num_m, 4.0 * det_m + 3.0 * n_m) < 2.0**61):
+        return None
+    sc = np.where(Mc == 0, 0, ec - E[:, None, None])
+    sw = np.where(Mw == 0, 0, ew - 2 * E[:, None])
+    lcs = np.where(Mc == 0, 0, lc - ec)  # trailing zeros
+    lws = np.where(Mw == 0, 0, lw - ew)
+    X = (Mc >> lcs) << (sc + lcs)
+    Wi = (Mw >> lws) << (sw + lws)
+    return X, Wi, E
 
 
 def _orthospheres_certified(balls: Balls, fr, S: np.ndarray):

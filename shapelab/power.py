@@ -28,8 +28,12 @@ Implementation notes
   and their neighbourhood are re-triangulated by the exact incremental algorithm of
   :mod:`shapelab.exact.incremental` on their points alone, stitched in, and the whole
   is certified again (rounded coordinates, exact translates in a water box, a grid
-  patch).  Where the failures are everywhere (co-spherical cages, grids, lattices
-  with round-off noise) or the repair does not certify, the exact incremental
+  patch).  Where the failures are everywhere (grids, co-spherical cages), Qhull's
+  ties are not Simulation of Simplicity's: a second candidate lowers each lifted
+  height by a small convex decreasing function of the ball's rank in the tie-break
+  order (:func:`_tiebreak_candidate`), which breaks the ties of a lattice in its input
+  order the same way; it is certified and repaired locally like the first (centres on
+  a lattice take it first).  Where the repair does not certify, the exact incremental
   algorithm computes the whole triangulation.
   Either way the result is the unique regular triangulation of the perturbed input:
   the same on every CPU, BLAS and Qhull build.  :func:`triangulation_report` says
@@ -101,7 +105,7 @@ from ._toolkit.validate import (
     default_bbox,
 )
 from .balls import Balls
-from .exact.certify import certify, facet_adjacency, repair
+from .exact.certify import certify, facet_adjacency, failing_simplices, repair
 from .exact.incremental import incremental_triangulation
 from .exact.predicates import WeightedPoints, affine_basis, det, projection_axes
 
@@ -115,6 +119,12 @@ __all__ = [
 ]
 
 _QHULL_OPTIONS = "Qt Qbb Q12 Q5 Q8"
+# a rejected candidate with more failing simplices than this fraction is not repaired
+# locally: the tie-break candidate (_tiebreak_candidate) is tried first
+TIEBREAK_FAILING = 0.01
+# centres whose distinct values per axis span a product of at most this many times
+# their number lie on a lattice (_on_a_lattice): the tie-break candidate goes first
+LATTICE_FILL = 8
 
 
 # ----------------------------------------------------------------------------------
@@ -601,6 +611,30 @@ def _certified_blocks(balls: Balls, fr: _Frame, nb: int):
     return (simp.astype(np.int32), cert.neighbors, TriangulationReport("qhull", "", dict(P.stats), blocks=nb)), ""
 
 
+def _tiebreak_candidate(x: np.ndarray, w: np.ndarray):
+    """A second candidate for input whose ties Qhull breaks its own way: the lower
+    hull with each lifted height lowered by a small convex decreasing function of the
+    point's rank in the tie-break order (the row order of ``x``; tolerance
+    ``QHULL_TIEBREAK``).  Like Simulation of Simplicity, it lowers earlier balls more,
+    so the ties of a lattice in its input order (co-spherical cubes: one
+    diagonal per face) go the same way; :func:`_certified` certifies and repairs it
+    like the first one.  Returns ``(simp, nbr, perm)`` or ``None``."""
+    n, k = x.shape
+    if n <= k + 1:
+        return None
+    h = np.einsum("ij,ij->i", x, x) - w
+    h = h - h.mean()
+    hs = float(np.max(np.abs(h)))
+    if hs > 0:
+        h = h / hs
+    h = h - tol.QHULL_TIEBREAK * (1.0 - np.arange(n) / n) ** 2
+    perm = morton_order(x)
+    try:
+        return (*_hull_once(x, h, perm), perm)
+    except RuntimeError:
+        return None
+
+
 @dataclass(frozen=True)
 class TriangulationReport:
     """How :func:`regular_triangulation` obtained its answer.
@@ -621,7 +655,7 @@ class TriangulationReport:
         Tests decided by the floating-point filter and exactly, ties broken by
         Simulation of Simplicity; after a repair also ``attempts``,
         ``cavity_simplices`` and ``cavity_points`` (the size of the re-triangulated
-        region).
+        region), and ``tiebreak`` (True) when the tie-break candidate was used.
     blocks : int
         How many blocks (threads) Qhull's candidate came from: 1, or for 3D input of
         at least 20,000 balls with ``SHAPELAB_THREADS`` (or the CPUs) at 2 or more,
@@ -656,6 +690,16 @@ def _exact_points(balls: Balls, fr: _Frame) -> WeightedPoints:
 def _certified(balls: Balls, fr: _Frame):
     """Top simplices (local indices), neighbours and the report."""
     P = _exact_points(balls, fr)
+    lattice = fr.k == balls.dim and _on_a_lattice(balls.centers, fr.keep)
+    if lattice:
+        fixed = _tiebreak_repair(P, fr)
+        if fixed is not None:  # ties everywhere: the tie-break candidate first
+            simp, cert, info = fixed
+            rep = TriangulationReport("qhull", "", {**P.stats, **info})
+            if info["attempts"]:
+                why = "the centres lie on a lattice; the tie-break candidate failed the certificate"
+                rep = TriangulationReport("repaired", why, rep.counts)
+            return simp.astype(np.int32), cert.neighbors, rep
     cand = _lower_hull(fr.x, fr.w)
     reason = "Qhull failed"
     if cand is not None:
@@ -669,7 +713,7 @@ def _certified(balls: Balls, fr: _Frame):
             if cert.ok:
                 return simp.astype(np.int32), cert.neighbors, TriangulationReport("qhull", "", dict(P.stats))
             reason = cert.reason
-            fixed = repair(P, simp, nbr, order=perm)
+            fixed = _tiebreak_repair(P, fr, simp, nbr, perm, tiebreak=not lattice)
             if fixed is not None:
                 simp, cert, info = fixed
                 counts = {**P.stats, **info}
@@ -679,6 +723,46 @@ def _certified(balls: Balls, fr: _Frame):
     simp = incremental_triangulation(P, order).astype(np.int32)
     nbr, _ = facet_adjacency(simp)
     return simp, nbr, TriangulationReport("incremental", reason, dict(P.stats))
+
+
+def _on_a_lattice(centers: np.ndarray, keep: np.ndarray) -> bool:
+    """True when the centres take so few distinct values along each axis that they
+    fill a good part of the product of those values (a grid): every power test is
+    then a tie, and Qhull's candidate fails everywhere.  A sample decides first."""
+    c = centers[keep] if keep.size != centers.shape[0] else centers
+    for rows in (c[:512], c):
+        prod = 1
+        for a in range(c.shape[1]):
+            prod *= np.unique(rows[:, a]).size
+        if prod > LATTICE_FILL * rows.shape[0]:
+            return False
+    return True
+
+
+def _tiebreak_repair(P: WeightedPoints, fr: _Frame, simp=None, nbr=None, perm=None, tiebreak=True):
+    """The repair of a rejected candidate ``simp`` (if given): locally if few
+    simplices fail; otherwise (ties everywhere: grids, cages), unless ``tiebreak`` is
+    False (tried already), from the candidate of :func:`_tiebreak_candidate`,
+    certified, then repaired locally.  ``(simp, cert, info)`` or ``None``."""
+    if simp is not None:
+        failing = failing_simplices(P, simp, perm, nbr)
+        if np.count_nonzero(failing[0]) <= TIEBREAK_FAILING * simp.shape[0]:
+            fixed = repair(P, simp, nbr, order=perm, failing=failing, start=1)
+            if fixed is not None:
+                return fixed
+    if not tiebreak:
+        return None
+    cand = _tiebreak_candidate(fr.x, fr.w)
+    if cand is None or cand[0].shape[0] == 0:
+        return None
+    simp2, nbr2, perm2 = cand
+    cert = certify(P, simp2, nbr2, order=perm2)
+    if cert.ok:
+        return simp2, cert, {"attempts": 0, "cavity_simplices": 0, "cavity_points": 0, "tiebreak": True}
+    fixed = repair(P, simp2, nbr2, order=perm2, start=1)
+    if fixed is not None:
+        fixed[2]["tiebreak"] = True
+    return fixed
 
 
 def triangulate_local(balls: Balls, report: bool = False):
@@ -694,6 +778,8 @@ def triangulate_local(balls: Balls, report: bool = False):
         out = fr, np.zeros((1, 1), dtype=np.int32), np.full((1, 1), -1, dtype=np.int32)
     else:
         nb = _block_count(fr.keep.size, fr.k)
+        if nb > 1 and _on_a_lattice(balls.centers, fr.keep):
+            nb = 1  # ties everywhere: the tie-break candidate of one block comes first
         got, why = _certified_blocks(balls, fr, nb) if nb > 1 else (None, "")
         if got is not None:
             simp, nbr, rep = got

@@ -16,7 +16,9 @@ Two comparisons per input:
   weighted ``AlphaComplex(...).create_simplex_tree()`` on the same balls, target 1x.
 
 ``python -m benchmarks.cases.degenerate`` prints, per input, the road
-(:func:`shapelab.power.triangulation_report`) and the size of the repaired cavity.
+(:func:`shapelab.power.triangulation_report`), whether the tie-break candidate was
+used (``tiebreak``: grids, 2nwl's dummy-atom planes) and the size of the repaired
+cavity.
 """
 
 from __future__ import annotations
@@ -163,7 +165,8 @@ def main() -> None:  # pragma: no cover - a report, run by hand
         t = time.perf_counter()
         rep = triangulation_report(b)
         dt = time.perf_counter() - t
-        extra = {k: rep.counts[k] for k in ("attempts", "cavity_simplices", "cavity_points") if k in rep.counts}
+        keys = ("tiebreak", "attempts", "cavity_simplices", "cavity_points")
+        extra = {k: rep.counts[k] for k in keys if k in rep.counts}
         print(f"{name}: {len(b.centers)} balls, {rep.method} ({rep.reason or 'certified'}) {extra} {dt:.2f} s")
 
 

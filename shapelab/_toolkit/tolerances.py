@@ -30,6 +30,7 @@ __all__ = [
     "QHULL_VERTICAL",
     "QHULL_STEEP",
     "QHULL_FLAT",
+    "QHULL_TIEBREAK",
     "COVER_PREFILTER",
     "ORTHOCENTRE_CONDITION",
     "ENTRY_TIME_RTOL",
@@ -134,6 +135,14 @@ QHULL_STEEP = 1e-3
 #: A steep facet is flat in projection when ``|det| <= QHULL_FLAT * prod |edges|``
 #: (relative to the simplex's own edge lengths: scale-free).  Candidate only.
 QHULL_FLAT = 1e-12
+#: Where Qhull's candidate fails its certificate everywhere (grids, cages), a second
+#: candidate lowers each normalised lifted height (in [-1, 1]) by
+#: ``QHULL_TIEBREAK * (1 - rank/n)**2``, ``rank`` the tie-break order of Simulation of
+#: Simplicity: far above Qhull's round-off (~1e-15) so that it decides the ties, far
+#: below the heights' spread so that it changes few decisions that are not ties.  It
+#: agrees with the symbolic perturbation on lattices in their input order; elsewhere
+#: the certificate and the local repair decide.  Candidate only.
+QHULL_TIEBREAK = 1e-5
 
 # ------------------------------------------------------------------ certify
 #: The cover count of :func:`shapelab.exact.certify.certify` picks, by float bounding

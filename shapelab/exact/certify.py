@@ -685,7 +685,16 @@ def _components(simp, mask, n):
     return np.split(ids[order], cuts)
 
 
-def repair(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None, attempts: int = 4, max_fraction=0.25):
+def repair(
+    P: WeightedPoints,
+    simp: np.ndarray,
+    neighbors=None,
+    order=None,
+    attempts: int = 4,
+    max_fraction=0.25,
+    failing=None,
+    start: int = 0,
+):
     """Repair a candidate regular triangulation locally (Notes §23.1).
 
     Parameters
@@ -705,6 +714,13 @@ def repair(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None, atte
     max_fraction : float
         Give up (return ``None``) when a cavity holds more than this fraction of the
         points: re-triangulating most of the input locally costs as much as the whole.
+    failing : tuple, optional
+        What :func:`failing_simplices` returned for this candidate, if the caller
+        computed it already.
+    start : int
+        The first attempt (1: begin with the failing simplices' facet neighbours,
+        which saves a whole certificate where the failing simplices alone are too
+        tight a cavity, as on rounded MD systems).
 
     Returns
     -------
@@ -735,7 +751,7 @@ def repair(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None, atte
     m, w = simp.shape
     if m == 0 or w < 2:
         return None
-    bad, nbr, pos = failing_simplices(P, simp, order, neighbors)
+    bad, nbr, pos = failing_simplices(P, simp, order, neighbors) if failing is None else failing
     if not bad.any():
         return None  # nothing local to repair: the failure is global
     n = P.n
@@ -750,7 +766,7 @@ def repair(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None, atte
     cav = bad.copy()
     grow = bad.copy()
     done: dict = {}
-    for attempt in range(attempts):
+    for attempt in range(start, attempts):
         if attempt:
             cav |= _grow(simp, nbr, grow, n, 1 if attempt == 1 else 2)
         vm = np.zeros(n, dtype=bool)
@@ -785,7 +801,7 @@ def repair(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None, atte
         new, nn = _assemble(simp, nbr, cav, parts)
         cert = certify(P, new, nn, order=order)
         if cert.ok:
-            info = {"attempts": attempt + 1, "cavity_simplices": int(cav.sum()), "cavity_points": int(npts)}
+            info = {"attempts": attempt + 1 - start, "cavity_simplices": int(cav.sum()), "cavity_points": int(npts)}
             return new, cert, info
         grow = cav.copy()
     return None

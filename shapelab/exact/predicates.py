@@ -28,7 +28,11 @@ values, :math:`u = 2^{-53}`); only where :math:`|D|` does not exceed the bound i
 the determinant recomputed *exactly*, with Python integers, from the input's own
 binary values (every float64 is an integer times a power of two, so all inputs are
 integers at one common scale).  The sign is therefore a function of the input alone,
-the same on every CPU, BLAS and compiler.
+the same on every CPU, BLAS and compiler.  The rows a vectorised call leaves undecided
+are evaluated together: numpy int64 determinants at the coarsest common scale where a
+bound on the magnitudes shows that they cannot overflow (grids and other dyadic
+input: small integers), numpy arrays of Python integers elsewhere, and the ties'
+Simulation of Simplicity batched as well.
 
 Ties (``D = 0``: five co-spherical centres in 3D, four cocircular in 2D, a ball whose
 lifted centre lies exactly on a lifted facet) are broken by *Simulation of
@@ -64,6 +68,8 @@ __all__ = ["WeightedPoints", "affine_basis", "det", "permanent", "projection_axe
 
 _U = 2.0**-53
 _TINY = FILTER_UNDERFLOW  # below this a float bound may be spoilt by underflow: decide exactly
+_BATCH_MIN = 8  # undecided rows from which the exact stage runs batched (numpy integers)
+_INT_BITS = 61  # int64 exact stage: values and determinants below 2**61 in magnitude
 
 
 def _expand4(M, plus: bool):
@@ -299,6 +305,8 @@ class WeightedPoints:
         self._xi = [None] * n
         self._w_int = [None] * n
         self._t_int = [None] * n
+        self._ints = None
+        self._ints_obj = None
 
     # ------------------------------------------------------------------ exact ints
     def _to_int(self, v: float) -> int:
@@ -406,8 +414,163 @@ class WeightedPoints:
         undecided = np.flatnonzero(~ok)
         self.stats[kind + "_filtered"] += int(ok.size - undecided.size)
         self.stats[kind + "_exact"] += int(undecided.size)
+        if undecided.size >= _BATCH_MIN:
+            out[undecided] = self._exact_batch(rows[undecided], kind)
+            return out
         for t in undecided:
             out[t] = exact(rows[t])
+        return out
+
+    # ------------------------------------------------------------------ exact, batched
+    def _int_arrays(self):
+        """The input as integers at one common scale, for the batched exact stage:
+        ``(U, W, T)`` (coordinates along the axes, weights, and for ``k < d`` the global
+        heights), int64 when every value fits with room, else object arrays of Python
+        integers.  The scale is the lowest set bit of all values (``2^F``), so dyadic
+        input (grids, halves) gives small integers."""
+        if self._ints is None:
+            vals = np.concatenate([self.x.ravel(), self.r])
+            M, e = _exponent_ints(vals)
+            nz = M != 0
+            aM = np.abs(M)
+            low = np.zeros(M.shape, dtype=np.int64)
+            low[nz] = np.log2((aM[nz] & -aM[nz]).astype(np.float64)).astype(np.int64)
+            F = int((e + low)[nz].min()) if nz.any() else 0
+            bits = int((53 + e - F)[nz].max()) if nz.any() else 0
+            shift = np.where(nz, e + low - F, 0)
+            core = np.where(nz, M >> low, 0)
+            if bits <= _INT_BITS:
+                ints = core << shift
+            else:
+                ints = core.astype(object) << shift.astype(object)
+            nd = self.n * self.d
+            X, R = ints[:nd].reshape(self.n, self.d), ints[nd:]
+            W = R * R  # int64 may wrap: only ring operations follow, bounds come from Xf, Rf
+            U = X[:, list(self.axes)]
+            T = Uf = Wf = Tm = None
+            if self.global_height and self.n:
+                Y = X - X[0]
+                T = (Y * Y).sum(axis=1) - W
+            if ints.dtype != object:  # float magnitudes for the overflow bounds
+                Xf, Rf = X.astype(np.float64), R.astype(np.float64)
+                Uf, Wf = Xf[:, list(self.axes)], Rf * Rf
+                if T is not None:
+                    Yf = np.abs(Xf - Xf[0])
+                    Tm = (Yf * Yf).sum(axis=1) + Wf  # a bound on |T| (times 1 + 2**-50)
+            self._ints = (np.ascontiguousarray(U), W, T, Uf, Wf, Tm, X, R)
+        return self._ints
+
+    def _exact_batch(self, rows, kind: str) -> np.ndarray:
+        """Exact signs of many rows at once (the rows the filter left undecided):
+        integer determinants, int64 where a bound shows no overflow, else Python
+        integers; ties of the power test broken by Simulation of Simplicity."""
+        if kind == "orient":
+            return self._orient_int(rows)
+        s = self._power_int(rows)
+        tie = np.flatnonzero(s == 0)
+        if tie.size:
+            self.stats["power_ties"] += int(tie.size)
+            s[tie] = self._sos_batch(rows[tie])
+        return s
+
+    def _int_det(self, V, A):
+        """Signs of det(V) for integer matrices V (rows of column arrays), and the mask
+        of rows where int64 may have overflowed (``A``: float bounds of the entries'
+        magnitudes; int64 arithmetic wraps modulo 2**64, so below the bound it is exact)."""
+        D = det(V)
+        if D.dtype == np.int64:
+            big = ~(_rowsum_bound(A) < 2.0**_INT_BITS)  # the bound has 2**-45 relative slack
+            return np.sign(D).astype(np.int8), big
+        return np.array([_sign(v) for v in D.ravel()], dtype=np.int8), np.zeros(D.shape, dtype=bool)
+
+    def _object_ints(self):
+        """:meth:`_int_arrays` as Python integers (the int64 ones may have wrapped)."""
+        if self._ints_obj is None:
+            U, W, T = self._int_arrays()[:3]
+            if U.dtype == object:
+                self._ints_obj = (U, W, T)
+            else:
+                Uo = U.astype(object)
+                R = self._int_arrays()[7].astype(object)
+                Wo = R * R
+                To = None
+                if T is not None:
+                    X = self._int_arrays()[6].astype(object)
+                    Y = X - X[0]
+                    To = (Y * Y).sum(axis=1) - Wo
+                self._ints_obj = (Uo, Wo, To)
+        return self._ints_obj
+
+    def _orient_int(self, rows, obj=False) -> np.ndarray:
+        k = self.k
+        obj = obj or self._int_arrays()[3] is None
+        U, Uf = (self._object_ints()[0], None) if obj else (self._int_arrays()[0], self._int_arrays()[3])
+        r0 = rows[:, 0]
+        V = [[U[rows[:, i], c] - U[r0, c] for c in range(k)] for i in range(1, k + 1)]
+        if obj:
+            return self._int_det(V, None)[0]
+        A = [[np.abs(Uf[rows[:, i], c] - Uf[r0, c]) for c in range(k)] for i in range(1, k + 1)]
+        s, big = self._int_det(V, A)
+        if big.any():
+            s[big] = self._orient_int(rows[big], obj=True)
+        return s
+
+    def _power_int(self, rows, obj=False) -> np.ndarray:
+        k = self.k
+        obj = obj or self._int_arrays()[3] is None
+        if obj:
+            (U, W, T), Uf = self._object_ints(), None
+        else:
+            U, W, T, Uf, Wf, Tm = self._int_arrays()[:6]
+        r0 = rows[:, 0]
+        V, A = [], []
+        for i in range(1, k + 2):
+            ri = rows[:, i]
+            v = [U[ri, c] - U[r0, c] for c in range(k)]
+            a = None if obj else [np.abs(Uf[ri, c] - Uf[r0, c]) for c in range(k)]
+            if T is not None:
+                h = T[ri] - T[r0]
+                hm = None if obj else Tm[ri] + Tm[r0]
+            else:
+                sq = v[0] * v[0]
+                for c in range(1, k):
+                    sq = sq + v[c] * v[c]
+                h = sq - W[ri] + W[r0]
+                if not obj:
+                    sm = a[0] * a[0]
+                    for c in range(1, k):
+                        sm = sm + a[c] * a[c]
+                    hm = sm + Wf[ri] + Wf[r0]
+            V.append(v + [h])
+            if not obj:
+                A.append(a + [hm])
+        if obj:
+            return self._int_det(V, None)[0]
+        s, big = self._int_det(V, A)
+        if big.any():
+            s[big] = self._power_int(rows[big], obj=True)
+        return s
+
+    def _sos_batch(self, rows) -> np.ndarray:
+        """Simulation of Simplicity for tied power rows (see :meth:`_power_exact`):
+        ``-cofactor`` of the first point in priority whose cofactor is not zero."""
+        k = self.k
+        w = k + 2
+        pri = self.priority[rows]
+        order = np.argsort(pri, axis=1, kind="stable")
+        out = np.zeros(rows.shape[0], dtype=np.int8)
+        todo = np.arange(rows.shape[0])
+        for step in range(w):
+            if todo.size == 0:
+                break
+            j = order[todo, step]
+            keep = np.array([[c for c in range(w) if c != jj] for jj in range(w)])[j]
+            sub = np.take_along_axis(rows[todo], keep, axis=1)
+            o = self.orient(sub).astype(np.int64)
+            cof = np.where((j + k + 1) % 2 == 0, o, -o)
+            hit = o != 0
+            out[todo[hit]] = -cof[hit]
+            todo = todo[~hit]
         return out
 
     def power(self, rows) -> np.ndarray:
