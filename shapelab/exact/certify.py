@@ -955,7 +955,6 @@ def repair(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None, atte
             continue
         new, nn = _assemble(simp, nbr, cav, parts)
         cert = _certify_stitched(P, first, cav, new, nn, order=order)
-
         if cert.ok:
             info = {"attempts": attempt + 1, "cavity_simplices": int(cav.sum()), "cavity_points": int(npts)}
             return new, cert, info
