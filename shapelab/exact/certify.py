@@ -185,12 +185,21 @@ def _verified_neighbors(simp: np.ndarray, hint: np.ndarray):
     if w > 1 and not np.all(simp[:, 1:] > simp[:, :-1]):
         return None
     nbr = hint.astype(np.int32, copy=False)
-    t, i = np.nonzero(nbr > np.arange(m, dtype=np.int32)[:, None])  # each pair once
-    nb = nbr[t, i]
-    back = nbr[nb] == t[:, None].astype(np.int32)
-    if not np.all(back.sum(axis=1) == 1):
+    f = np.flatnonzero(nbr > np.arange(m, dtype=np.int32)[:, None])  # each pair once
+    t = f // w
+    i = f - t * w
+    nb = nbr.ravel()[f]
+    # the column of t in its neighbour's row, which must hold t exactly once
+    G, t32 = nbr[nb], t.astype(np.int32)
+    hits = np.zeros(t.size, dtype=np.int8)
+    j = np.zeros(t.size, dtype=np.int64)
+    for c in range(w):
+        e = G[:, c] == t32
+        hits += e
+        j[e] = c
+    if not np.all(hits == 1):
         return None
-    j = np.argmax(back, axis=1)
+    del G
     # same facet on both sides: compare the facets' packed integer keys (exact)
     n = int(simp.max()) + 1
     if (w - 1) * max(1, n.bit_length()) <= 62:
@@ -202,8 +211,10 @@ def _verified_neighbors(simp: np.ndarray, hint: np.ndarray):
                     key *= np.int64(n)
                     key += simp[:, c]
             K[:, a] = key
-        if not np.array_equal(K[t, i], K[nb, j]):
+        K = K.ravel()
+        if not np.array_equal(K[f], K[nb * w + j]):
             return None
+        del K
     else:  # pragma: no cover - beyond ~2e6 balls: compare the vertex sets
         St, Sn = simp[t], simp[nb]
         eq = St[:, :, None] == Sn[:, None, :]
@@ -214,10 +225,10 @@ def _verified_neighbors(simp: np.ndarray, hint: np.ndarray):
     # every slot is either paired (seen from one side above) or on the boundary
     if np.count_nonzero(nbr >= 0) != 2 * t.size:
         return None
-    pos = np.full((m, w), -1, dtype=np.int32)
-    pos[t, i] = j
-    pos[nb, j] = i
-    return nbr, pos
+    pos = np.full(m * w, -1, dtype=np.int32)
+    pos[f] = j
+    pos[nb * w + j] = i
+    return nbr, pos.reshape(m, w)
 
 
 def certify(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None) -> Certificate:
@@ -277,17 +288,21 @@ def certify(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None) -> 
     s = P.orient(simp).astype(np.int64)
     if np.any(s == 0):
         return _fail(f"{int(np.sum(s == 0))} simplices have zero volume", nbr, P)
-    # 2. interior facets: opposite sides
-    t1, i1 = np.nonzero(nbr >= 0)
-    keep = t1 < nbr[t1, i1]
-    t1, i1 = t1[keep], i1[keep]
-    t2, i2 = nbr[t1, i1].astype(np.int64), pos[t1, i1].astype(np.int64)
+    # 2. interior facets: opposite sides (each pair once, t1 < t2)
+    f = np.flatnonzero(nbr > np.arange(m, dtype=nbr.dtype)[:, None])
+    t1 = f // w
+    i1 = f - t1 * w
+    t2, i2 = nbr.ravel()[f].astype(np.int64), pos.ravel()[f].astype(np.int64)
+    del f
     par = lambda i: 1 - 2 * (i % 2)  # noqa: E731  (-1)**i
     if np.any(s[t1] * par(i1) != -s[t2] * par(i2)):
         return _fail("two simplices overlap across a facet", nbr, P)
     # 3. local regularity: the apex of t2 above the lifted hyperplane of t1
-    rows = np.concatenate([simp[t1], simp[t2, i2][:, None]], axis=1)
+    rows = np.empty((t1.size, w + 1), dtype=np.int64)
+    rows[:, :w] = simp[t1]
+    rows[:, w] = simp.ravel()[t2 * w + i2]
     pw = P.power(rows).astype(np.int64) * s[t1]
+    del rows
     if np.any(pw <= 0):
         return _fail(f"{int(np.sum(pw <= 0))} interior facets are not locally regular", nbr, P)
     # 4. closed, locally convex boundary
