@@ -1057,13 +1057,16 @@ def alpha_filtration(balls: Balls) -> Filtration:
         # lexicographic tie-break can use them
         order = _filtration_order(v, faces[j])
         out = np.empty(faces[j].shape, dtype=np.int32)
-        out[...] = faces[j][order] if identity else fr.keep[faces[j][order]]
+        if identity and faces[j].dtype == out.dtype:  # gather straight into the output
+            np.take(faces[j], order, axis=0, out=out)
+        else:
+            out[...] = fr.keep[faces[j][order]]
         simp_out.append(freeze(out))
-        vals_out.append(freeze(v[order]))
+        vals_out.append(freeze(np.take(v, order)))
         faces[j] = vals[j] = v = None  # free as we go
         if j >= 1:
-            out = np.empty(bnd[j].shape, dtype=np.int32)
-            out[...] = inv_prev[bnd[j][order]]
+            out = np.take(bnd[j], order, axis=0).astype(np.int32, copy=False)
+            np.take(inv_prev, out, out=out)  # (out= is buffered: in place is safe)
             bnd_out.append(freeze(out))
             bnd[j] = None
         inv_prev = np.empty(order.size, dtype=np.int32)
