@@ -456,11 +456,14 @@ def _count_cover(P: WeightedPoints, simp, s) -> int:
 #    predicates and the same symbolic perturbation as the global one;
 # 4. its simplices inside the cavity (a flood fill from the cavity's boundary facets,
 #    each of which must appear in it) replace the cavity;
-# 5. the stitched triangulation is certified again, whole.
+# 5. the stitched triangulation is certified again (:func:`_certify_stitched`): the
+#    conditions that are per simplex, per facet or per ball left out only where the
+#    stitch changed them (the first pass over the candidate vouches for the rest),
+#    the global ones (closed, connected, convex boundary; one cover) whole.
 #
-# Because the final certificate is the same complete, exact test, a repaired answer
-# that passes it *is* the unique regular triangulation of the perturbed input: the one
-# the whole-input exact road computes.  If no attempt certifies, :func:`repair` returns
+# Because the final certificate decides exactly what the complete, exact test
+# :func:`certify` decides, a repaired answer that passes it *is* the unique regular
+# triangulation of the perturbed input: the one the whole-input exact road computes.  If no attempt certifies, :func:`repair` returns
 # ``None`` and the caller falls back to the whole-input exact road.
 
 
@@ -537,10 +540,11 @@ def _first_pass(P: WeightedPoints, simp: np.ndarray, order=None, neighbors=None)
     bad |= np.any(nbr == -2, axis=1)
     s = P.orient(simp).astype(np.int64)
     bad |= s == 0
-    t1, i1 = np.nonzero(nbr >= 0)
-    keep = t1 < nbr[t1, i1]
-    t1, i1 = t1[keep], i1[keep]
-    t2, i2 = nbr[t1, i1].astype(np.int64), pos[t1, i1].astype(np.int64)
+    f = np.flatnonzero(nbr > np.arange(m, dtype=nbr.dtype)[:, None])  # pairs once, t1 < t2
+    t1 = f // w
+    i1 = f - t1 * w
+    t2, i2 = nbr.ravel()[f].astype(np.int64), pos.ravel()[f].astype(np.int64)
+    del f
     par = lambda i: 1 - 2 * (i % 2)  # noqa: E731
     good = (s[t1] != 0) & (s[t2] != 0)
     over = good & (s[t1] * par(i1) != -s[t2] * par(i2))
@@ -548,8 +552,11 @@ def _first_pass(P: WeightedPoints, simp: np.ndarray, order=None, neighbors=None)
     bad[t2[over]] = True
     g = np.flatnonzero(good & ~over)
     if g.size:
-        rows = np.concatenate([simp[t1[g]], simp[t2[g], i2[g]][:, None]], axis=1)
+        rows = np.empty((g.size, w + 1), dtype=np.int64)
+        rows[:, :w] = simp[t1[g]]
+        rows[:, w] = simp.ravel()[t2[g] * w + i2[g]]
         pw = P.power(rows).astype(np.int64) * s[t1[g]]
+        del rows
         nr = g[pw <= 0]
         bad[t1[nr]] = True
         bad[t2[nr]] = True
@@ -905,7 +912,8 @@ def repair(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None, atte
     shapelab.exact.incremental.incremental_triangulation
         Re-triangulates the cavity, and the whole input if this fails.
     shapelab.exact.certify.certify
-        Decides whether the repaired triangulation is the regular one.
+        The conditions the repaired triangulation must pass (re-checked only where
+        the stitch changed them, the global ones whole).
 
     References
     ----------
