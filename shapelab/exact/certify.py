@@ -677,7 +677,9 @@ def _certify_stitched(P: WeightedPoints, first: _FirstPass, cav: np.ndarray, new
     kept = np.flatnonzero(~cav)
     nk = kept.size
     if (
-        cav.shape != first.bad.shape
+        M == 0
+        or w < 2
+        or cav.shape != first.bad.shape
         or np.any(first.bad & ~cav)
         or nn.shape != new.shape
         or nn.min(initial=0) < -1
