@@ -1117,13 +1117,16 @@ def alpha_filtration(balls: Balls) -> Filtration:
         # lexicographic tie-break can use them
         order = _filtration_order(v, faces[j])
         out = np.empty(faces[j].shape, dtype=np.int32)
-        out[...] = faces[j][order] if identity else fr.keep[faces[j][order]]
+        if identity and faces[j].dtype == out.dtype:  # gather straight into the output
+            np.take(faces[j], order, axis=0, out=out)
+        else:
+            out[...] = fr.keep[faces[j][order]]
         simp_out.append(freeze(out))
-        vals_out.append(freeze(v[order]))
+        vals_out.append(freeze(np.take(v, order)))
         faces[j] = vals[j] = v = None  # free as we go
         if j >= 1:
-            out = np.empty(bnd[j].shape, dtype=np.int32)
-            out[...] = inv_prev[bnd[j][order]]
+            out = np.take(bnd[j], order, axis=0).astype(np.int32, copy=False)
+            np.take(inv_prev, out, out=out)  # (out= is buffered: in place is safe)
             bnd_out.append(freeze(out))
             bnd[j] = None
         inv_prev = np.empty(order.size, dtype=np.int32)
@@ -1234,36 +1237,29 @@ def simplices_up_to(balls: Balls, select) -> list:
 def _filtration_order(v: np.ndarray, rows: np.ndarray) -> np.ndarray:
     """Permutation sorting by value, ties broken lexicographically by the rows.
 
-    Uses a SIMD sort of the order-preserving integer image of the values with the
-    index packed into the low bits, then a stable pass (fast on nearly sorted
-    data) to repair the order where the packing dropped low-order value bits.
+    One ``np.lexsort`` on integer keys: the order-preserving integer image of the
+    values (``-0.0`` counted as ``0.0``, so equal floats give equal keys) and the rows
+    packed into as few int64 words as their columns fit in (most significant column
+    first).  Rows are distinct, so the order is total and does not depend on the
+    algorithm; ``lexsort`` is stable besides.
     """
     m = v.size
     if m == 0:
         return np.zeros(0, dtype=np.int64)
-    ib = max(1, int(m - 1).bit_length())
-    bits = v.view(np.int64)
-    # order-preserving map of float64 to int64 (negative floats reversed)
-    ordered = np.where(bits < 0, np.int64(-(2**63)) - bits - 1, bits) if np.any(bits < 0) else bits.copy()
-    ordered >>= np.int64(ib)
-    packed = (ordered << np.int64(ib)) | np.arange(m, dtype=np.int64)
-    packed.sort()
-    order = packed & np.int64((1 << ib) - 1)
-    vs = v[order]
-    if np.any(vs[1:] < vs[:-1]):
-        order = order[np.argsort(vs, kind="stable")]
-        vs = v[order]
-    ties = vs[1:] == vs[:-1]
-    if np.any(ties):
-        # lexicographic order of the rows inside groups of equal value
-        grp = np.zeros(m, dtype=bool)
-        grp[1:] |= ties
-        grp[:-1] |= ties
-        pos = np.flatnonzero(grp)
-        sub = order[pos]
-        keys = [rows[sub, c] for c in range(rows.shape[1] - 1, -1, -1)] + [v[sub]]
-        order[pos] = sub[np.lexsort(keys)]
-    return order
+    key = (v + 0.0).view(np.int64)  # + 0.0: -0.0 -> 0.0
+    if np.any(key < 0):  # negative floats: reversed, below the positive ones
+        key = np.where(key < 0, np.int64(-(2**63)) - key - 1, key)
+    w = rows.shape[1]
+    bits = max(1, int(rows.max()).bit_length())
+    per = max(1, 62 // bits)  # columns per int64 word
+    words = []
+    for a in range(0, w, per):
+        word = rows[:, a].astype(np.int64)
+        for c in range(a + 1, min(w, a + per)):
+            word <<= np.int64(bits)
+            word |= rows[:, c]
+        words.append(word)
+    return np.lexsort(words[::-1] + [key])
 
 
 def dual_complex(balls: Balls) -> Complex:

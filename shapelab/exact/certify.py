@@ -185,12 +185,21 @@ def _verified_neighbors(simp: np.ndarray, hint: np.ndarray):
     if w > 1 and not np.all(simp[:, 1:] > simp[:, :-1]):
         return None
     nbr = hint.astype(np.int32, copy=False)
-    t, i = np.nonzero(nbr > np.arange(m, dtype=np.int32)[:, None])  # each pair once
-    nb = nbr[t, i]
-    back = nbr[nb] == t[:, None].astype(np.int32)
-    if not np.all(back.sum(axis=1) == 1):
+    f = np.flatnonzero(nbr > np.arange(m, dtype=np.int32)[:, None])  # each pair once
+    t = f // w
+    i = f - t * w
+    nb = nbr.ravel()[f]
+    # the column of t in its neighbour's row, which must hold t exactly once
+    G, t32 = nbr[nb], t.astype(np.int32)
+    hits = np.zeros(t.size, dtype=np.int8)
+    j = np.zeros(t.size, dtype=np.int64)
+    for c in range(w):
+        e = G[:, c] == t32
+        hits += e
+        j[e] = c
+    if not np.all(hits == 1):
         return None
-    j = np.argmax(back, axis=1)
+    del G
     # same facet on both sides: compare the facets' packed integer keys (exact)
     n = int(simp.max()) + 1
     if (w - 1) * max(1, n.bit_length()) <= 62:
@@ -202,8 +211,10 @@ def _verified_neighbors(simp: np.ndarray, hint: np.ndarray):
                     key *= np.int64(n)
                     key += simp[:, c]
             K[:, a] = key
-        if not np.array_equal(K[t, i], K[nb, j]):
+        K = K.ravel()
+        if not np.array_equal(K[f], K[nb * w + j]):
             return None
+        del K
     else:  # pragma: no cover - beyond ~2e6 balls: compare the vertex sets
         St, Sn = simp[t], simp[nb]
         eq = St[:, :, None] == Sn[:, None, :]
@@ -214,10 +225,10 @@ def _verified_neighbors(simp: np.ndarray, hint: np.ndarray):
     # every slot is either paired (seen from one side above) or on the boundary
     if np.count_nonzero(nbr >= 0) != 2 * t.size:
         return None
-    pos = np.full((m, w), -1, dtype=np.int32)
-    pos[t, i] = j
-    pos[nb, j] = i
-    return nbr, pos
+    pos = np.full(m * w, -1, dtype=np.int32)
+    pos[f] = j
+    pos[nb * w + j] = i
+    return nbr, pos.reshape(m, w)
 
 
 def certify(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None) -> Certificate:
@@ -277,59 +288,27 @@ def certify(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None) -> 
     s = P.orient(simp).astype(np.int64)
     if np.any(s == 0):
         return _fail(f"{int(np.sum(s == 0))} simplices have zero volume", nbr, P)
-    # 2. interior facets: opposite sides
-    t1, i1 = np.nonzero(nbr >= 0)
-    keep = t1 < nbr[t1, i1]
-    t1, i1 = t1[keep], i1[keep]
-    t2, i2 = nbr[t1, i1].astype(np.int64), pos[t1, i1].astype(np.int64)
+    # 2. interior facets: opposite sides (each pair once, t1 < t2)
+    f = np.flatnonzero(nbr > np.arange(m, dtype=nbr.dtype)[:, None])
+    t1 = f // w
+    i1 = f - t1 * w
+    t2, i2 = nbr.ravel()[f].astype(np.int64), pos.ravel()[f].astype(np.int64)
+    del f
     par = lambda i: 1 - 2 * (i % 2)  # noqa: E731  (-1)**i
     if np.any(s[t1] * par(i1) != -s[t2] * par(i2)):
         return _fail("two simplices overlap across a facet", nbr, P)
     # 3. local regularity: the apex of t2 above the lifted hyperplane of t1
-    rows = np.concatenate([simp[t1], simp[t2, i2][:, None]], axis=1)
+    rows = np.empty((t1.size, w + 1), dtype=np.int64)
+    rows[:, :w] = simp[t1]
+    rows[:, w] = simp.ravel()[t2 * w + i2]
     pw = P.power(rows).astype(np.int64) * s[t1]
+    del rows
     if np.any(pw <= 0):
         return _fail(f"{int(np.sum(pw <= 0))} interior facets are not locally regular", nbr, P)
     # 4. closed, locally convex boundary
-    bt, bi = np.nonzero(nbr == -1)
-    if k == 1:
-        if bt.size != 2:
-            return _fail("the boundary of a 1D triangulation must be two points", nbr, P)
-    else:
-        cols = [[c for c in range(w) if c != i] for i in range(w)]
-        F = np.take_along_axis(simp[bt], np.array(cols)[bi], axis=1)  # boundary facets
-        apex = simp[bt, bi]
-        # ridges: facet minus one vertex
-        rc = [[c for c in range(k) if c != j] for j in range(k)]
-        R = np.concatenate([F[:, c] for c in rc])
-        own = np.tile(np.arange(F.shape[0]), k)
-        extra = np.concatenate([F[:, j] for j in range(k)])
-        order, inv, cnt = _group(_row_keys(R, n))
-        if np.any(cnt != 2):
-            return _fail("the boundary is not closed", nbr, P)
-        a, b = order[0::2], order[1::2]
-        f1, u1, v2 = own[a], extra[a], extra[b]
-        from scipy.sparse import coo_matrix
-        from scipy.sparse.csgraph import connected_components
-
-        nb_ = F.shape[0]
-        ncomp = connected_components(coo_matrix((np.ones(a.size), (own[a], own[b])), shape=(nb_, nb_)), directed=False)[
-            0
-        ]
-        if ncomp != 1:
-            return _fail("the boundary is not connected", nbr, P)
-        ridge = R[a]
-        a1 = apex[f1]
-        o_in = P.orient(np.c_[F[f1], a1]).astype(np.int64)
-        o_v = P.orient(np.c_[F[f1], v2]).astype(np.int64)
-        if np.any(o_v == -o_in):
-            return _fail("the boundary is not convex", nbr, P)
-        flat = np.flatnonzero(o_v == 0)
-        if flat.size:
-            ou = P.orient(np.c_[ridge[flat], a1[flat], u1[flat]]).astype(np.int64)
-            ov = P.orient(np.c_[ridge[flat], a1[flat], v2[flat]]).astype(np.int64)
-            if np.any(ou * ov >= 0):
-                return _fail("the boundary folds over itself", nbr, P)
+    why = _boundary_failure(P, simp, nbr)
+    if why:
+        return _fail(why, nbr, P)
     # 5. one cover: the centroid of simplex 0 lies in one closed simplex
     cover = _count_cover(P, simp, s)
     if cover != 1:
@@ -347,6 +326,54 @@ def certify(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None) -> 
         if np.any(hp <= 0):
             return _fail(f"{int(np.sum(hp <= 0))} balls left out are not hidden", nbr, P)
     return Certificate(True, "", nbr, dict(P.stats))
+
+
+def _boundary_failure(P: WeightedPoints, simp: np.ndarray, nbr: np.ndarray) -> str:
+    """Condition 4 of :func:`certify` on the facets with no neighbour (``nbr == -1``):
+    the first way the boundary is not closed, connected and locally convex, or ""."""
+    m, w = simp.shape
+    k = w - 1
+    n = P.n
+    bt, bi = np.nonzero(nbr == -1)
+    if k == 1:
+        if bt.size != 2:
+            return "the boundary of a 1D triangulation must be two points"
+    else:
+        cols = [[c for c in range(w) if c != i] for i in range(w)]
+        F = np.take_along_axis(simp[bt], np.array(cols)[bi], axis=1)  # boundary facets
+        apex = simp[bt, bi]
+        # ridges: facet minus one vertex
+        rc = [[c for c in range(k) if c != j] for j in range(k)]
+        R = np.concatenate([F[:, c] for c in rc])
+        own = np.tile(np.arange(F.shape[0]), k)
+        extra = np.concatenate([F[:, j] for j in range(k)])
+        order, inv, cnt = _group(_row_keys(R, n))
+        if np.any(cnt != 2):
+            return "the boundary is not closed"
+        a, b = order[0::2], order[1::2]
+        f1, u1, v2 = own[a], extra[a], extra[b]
+        from scipy.sparse import coo_matrix
+        from scipy.sparse.csgraph import connected_components
+
+        nb_ = F.shape[0]
+        ncomp = connected_components(coo_matrix((np.ones(a.size), (own[a], own[b])), shape=(nb_, nb_)), directed=False)[
+            0
+        ]
+        if ncomp != 1:
+            return "the boundary is not connected"
+        ridge = R[a]
+        a1 = apex[f1]
+        o_in = P.orient(np.c_[F[f1], a1]).astype(np.int64)
+        o_v = P.orient(np.c_[F[f1], v2]).astype(np.int64)
+        if np.any(o_v == -o_in):
+            return "the boundary is not convex"
+        flat = np.flatnonzero(o_v == 0)
+        if flat.size:
+            ou = P.orient(np.c_[ridge[flat], a1[flat], u1[flat]]).astype(np.int64)
+            ov = P.orient(np.c_[ridge[flat], a1[flat], v2[flat]]).astype(np.int64)
+            if np.any(ou * ov >= 0):
+                return "the boundary folds over itself"
+    return ""
 
 
 def _start_simplices(P, simp, q, order=None):
@@ -429,11 +456,14 @@ def _count_cover(P: WeightedPoints, simp, s) -> int:
 #    predicates and the same symbolic perturbation as the global one;
 # 4. its simplices inside the cavity (a flood fill from the cavity's boundary facets,
 #    each of which must appear in it) replace the cavity;
-# 5. the stitched triangulation is certified again, whole.
+# 5. the stitched triangulation is certified again (:func:`_certify_stitched`): the
+#    conditions that are per simplex, per facet or per ball left out only where the
+#    stitch changed them (the first pass over the candidate vouches for the rest),
+#    the global ones (closed, connected, convex boundary; one cover) whole.
 #
-# Because the final certificate is the same complete, exact test, a repaired answer
-# that passes it *is* the unique regular triangulation of the perturbed input: the one
-# the whole-input exact road computes.  If no attempt certifies, :func:`repair` returns
+# Because the final certificate decides exactly what the complete, exact test
+# :func:`certify` decides, a repaired answer that passes it *is* the unique regular
+# triangulation of the perturbed input: the one the whole-input exact road computes.  If no attempt certifies, :func:`repair` returns
 # ``None`` and the caller falls back to the whole-input exact road.
 
 
@@ -474,21 +504,56 @@ def failing_simplices(P: WeightedPoints, simp: np.ndarray, order=None, neighbors
         The complete check; a candidate with no failing simplex can still fail it
         (a boundary that is not closed, a double cover).
     """
+    return _Failing(_first_pass(P, simp, order, neighbors))
+
+
+@dataclass(frozen=True)
+class _Failing(tuple):
+    """``(bad, nbr, pos)``, as :func:`failing_simplices` documents, which also
+    carries the whole first pass (``first``) for :func:`repair` to reuse."""
+
+    def __new__(cls, first):
+        t = super().__new__(cls, (first.bad, first.nbr, first.pos))
+        t.first = first
+        return t
+
+
+class _FirstPass:
+    """What :func:`failing_simplices` found, kept for the local re-certificate
+    (:func:`_certify_stitched`): the candidate ``simp``, its verified facet adjacency
+    ``nbr``/``pos``, orientations ``s``, the failing simplices ``bad``, and the balls
+    left out ``q`` with the simplex ``loc`` each was located in (-1 if none) and
+    whether it is hidden there (``hidden``)."""
+
+    simp: np.ndarray
+    nbr: np.ndarray
+    pos: np.ndarray
+    s: np.ndarray
+    bad: np.ndarray
+    q: np.ndarray
+    loc: np.ndarray
+    hidden: np.ndarray
+
+
+def _first_pass(P: WeightedPoints, simp: np.ndarray, order=None, neighbors=None) -> _FirstPass:
+    """:func:`failing_simplices`, with what it computed on the way."""
     simp = np.asarray(simp, dtype=np.int64)
     m, w = simp.shape
     k = w - 1
     given = None if neighbors is None or k < 1 or m == 0 else _verified_neighbors(simp, neighbors)
     nbr, pos = given if given is not None else facet_adjacency(simp)
     bad = np.zeros(m, dtype=bool)
+    z = np.zeros(0, dtype=np.int64)
     if m == 0 or k < 1:
-        return bad, nbr, pos
+        return _FirstPass(simp, nbr, pos, np.zeros(m, dtype=np.int64), bad, z, z, z.astype(bool))
     bad |= np.any(nbr == -2, axis=1)
     s = P.orient(simp).astype(np.int64)
     bad |= s == 0
-    t1, i1 = np.nonzero(nbr >= 0)
-    keep = t1 < nbr[t1, i1]
-    t1, i1 = t1[keep], i1[keep]
-    t2, i2 = nbr[t1, i1].astype(np.int64), pos[t1, i1].astype(np.int64)
+    f = np.flatnonzero(nbr > np.arange(m, dtype=nbr.dtype)[:, None])  # pairs once, t1 < t2
+    t1 = f // w
+    i1 = f - t1 * w
+    t2, i2 = nbr.ravel()[f].astype(np.int64), pos.ravel()[f].astype(np.int64)
+    del f
     par = lambda i: 1 - 2 * (i % 2)  # noqa: E731
     good = (s[t1] != 0) & (s[t2] != 0)
     over = good & (s[t1] * par(i1) != -s[t2] * par(i2))
@@ -496,8 +561,11 @@ def failing_simplices(P: WeightedPoints, simp: np.ndarray, order=None, neighbors
     bad[t2[over]] = True
     g = np.flatnonzero(good & ~over)
     if g.size:
-        rows = np.concatenate([simp[t1[g]], simp[t2[g], i2[g]][:, None]], axis=1)
+        rows = np.empty((g.size, w + 1), dtype=np.int64)
+        rows[:, :w] = simp[t1[g]]
+        rows[:, w] = simp.ravel()[t2[g] * w + i2[g]]
         pw = P.power(rows).astype(np.int64) * s[t1[g]]
+        del rows
         nr = g[pw <= 0]
         bad[t1[nr]] = True
         bad[t2[nr]] = True
@@ -536,6 +604,7 @@ def failing_simplices(P: WeightedPoints, simp: np.ndarray, order=None, neighbors
     present = np.zeros(P.n, dtype=bool)
     present[simp.ravel()] = True
     q = np.flatnonzero(~present)
+    loc, hidden = np.full(q.size, -1, dtype=np.int64), np.zeros(q.size, dtype=bool)
     if q.size:
         ok = ~bad & (s != 0)
         sane = np.flatnonzero(ok)
@@ -556,14 +625,148 @@ def failing_simplices(P: WeightedPoints, simp: np.ndarray, order=None, neighbors
             li = loc[inside]
             hp = P.power(np.c_[simp[li], q[inside]]).astype(np.int64) * s[li]
             bad[li[hp <= 0]] = True
+            hidden[inside] = hp > 0
         # not located (outside, or walked into a failure): the simplices at its start
         bad[start[~inside]] = True
-    return bad, nbr, pos
+    return _FirstPass(simp, nbr, pos, s, bad, q, loc, hidden)
 
 
 def _locate_safe(P, simp, nbr, s, q, start):
     out = _locate(P, simp, nbr, s, q, start)
     return np.where(out >= 0, out, -1)
+
+
+def _certify_stitched(P: WeightedPoints, first: _FirstPass, cav: np.ndarray, new, nn, order=None) -> Certificate:
+    """:func:`certify` for a stitched triangulation, re-checking only what changed.
+
+    ``new`` is what :func:`_assemble` makes of the candidate ``first.simp`` and the
+    cavity ``cav``: rows ``[0, nk)`` are the kept simplices ``first.simp[~cav]`` in
+    their order (neighbour slots re-linked only where they pointed into the
+    cavity), rows ``[nk, M)`` the new simplices, ``nn`` the neighbour relation.  The
+    answer (``ok``) is that of ``certify(P, new, nn, order)``; only the first failed
+    condition named in ``reason`` may differ when several fail.  It relies on what
+    the first pass over the candidate, :func:`_first_pass`, established.
+
+    Why it is enough to re-check the changed part (conditions as in :func:`certify`):
+
+    * the neighbour relation (what :func:`_verified_neighbors` checks): a kept slot
+      that did not point into the cavity is unchanged, and it and its partner were
+      verified, symmetric and on the same facet, by the first pass.  Checked here:
+      every slot of a new simplex and every re-linked kept slot points to a row that
+      points back exactly once, across the same facet (so every non-negative slot is
+      paired, as the whole check requires).  If that fails (or ``new`` does not
+      start with the kept simplices), the whole :func:`certify` decides, which then
+      sorts the facets itself;
+    * 1 (orientation) is per simplex: kept simplices are not failing, so non-zero in
+      the first pass (``first.s``); the new ones are tested;
+    * 2 and 3 (opposite sides, local regularity) are per interior facet: a facet
+      between two kept simplices is one of the first pass, which marked both
+      simplices of any facet that failed; the facets with a new simplex on either
+      side are tested;
+    * 4 (closed, connected, locally convex boundary) is global (connectivity) and is
+      re-checked whole; it costs in proportion to the boundary only;
+    * 5 (one cover) is global: with 2 and 4 holding everywhere the cover is the same
+      at every point, so one point suffices, as in :func:`certify` (a bounding-box
+      filter, then a few exact tests);
+    * 6 (balls left out) is per ball: a ball left out by the candidate and still
+      left out, located by the first pass in a kept simplex and hidden there, is
+      still inside that closed simplex and above its lifted hyperplane; every other
+      ball left out (including vertices of the candidate that the repair hid) is
+      located in ``new`` and tested.
+
+    See Also
+    --------
+    certify
+        The whole check, which this replaces after :func:`repair` stitches.
+    """
+    new = np.asarray(new, dtype=np.int64)
+    nn = np.asarray(nn)
+    simp, nbr = first.simp, first.nbr
+    M, w = new.shape
+    kept = np.flatnonzero(~cav)
+    nk = kept.size
+    if (
+        M == 0
+        or w < 2
+        or cav.shape != first.bad.shape
+        or np.any(first.bad & ~cav)
+        or nn.shape != new.shape
+        or nn.min(initial=0) < -1
+        or nn.max(initial=-1) >= M
+        or not np.array_equal(new[:nk], simp[kept])
+    ):
+        return certify(P, new, nn, order=order)  # not stitched as expected: whole
+    nn = nn.astype(np.int32, copy=False)
+    if not np.all(new[nk:, 1:] > new[nk:, :-1]):
+        return certify(P, new, nn, order=order)  # not stitched as expected: whole
+    # slots to check: every slot of a new row, and the kept slots that pointed into
+    # the cavity (re-linked)
+    ko = nbr[kept].astype(np.int64)
+    rel = (ko >= 0) & cav[np.maximum(ko, 0)]
+    old_id = np.full(simp.shape[0], -1, dtype=np.int64)
+    old_id[kept] = np.arange(nk)
+    if not np.array_equal(nn[:nk][~rel], np.where(ko >= 0, old_id[np.maximum(ko, 0)], -1)[~rel]):
+        return certify(P, new, nn, order=order)  # not stitched as expected: whole
+    kt, ki = np.nonzero(rel)
+    nt = np.repeat(np.arange(nk, M), w)
+    ni = np.tile(np.arange(w), M - nk)
+    t = np.concatenate([kt, nt])
+    i = np.concatenate([ki, ni])
+    u = nn[t, i].astype(np.int64)
+    paired = u >= 0
+    t, i, u = t[paired], i[paired], u[paired]
+    back = nn[u] == t[:, None]
+    if not np.all(back.sum(axis=1) == 1):
+        return certify(P, new, nn, order=order)  # not stitched as expected: whole
+    j = np.argmax(back, axis=1)
+    # the same facet on both sides: the vertex sets without the opposite vertices
+    same = (new[t].sum(axis=1) - new[t, i]) == (new[u].sum(axis=1) - new[u, j])
+    eq = new[t][:, :, None] == new[u][:, None, :]
+    same &= (eq.any(axis=2).sum(axis=1) == w - 1) & ~eq[np.arange(t.size), i].any(axis=1)
+    if not np.all(same):
+        return certify(P, new, nn, order=order)  # not stitched as expected: whole
+    # 1. orientation
+    s = np.empty(M, dtype=np.int64)
+    s[:nk] = first.s[kept]
+    s[nk:] = P.orient(new[nk:]) if M > nk else 0
+    if np.any(s[nk:] == 0):
+        return _fail(f"{int(np.sum(s[nk:] == 0))} simplices have zero volume", nn, P)
+    # 2, 3. the interior facets with a new simplex on one side (each pair once)
+    partner_checked = (u >= nk) | rel[np.minimum(u, nk - 1), j] if nk else np.ones(u.size, dtype=bool)
+    keep = ~partner_checked | (t < u)
+    t1, i1, t2, i2 = t[keep], i[keep], u[keep], j[keep]
+    par = lambda a: 1 - 2 * (a % 2)  # noqa: E731  (-1)**a
+    if np.any(s[t1] * par(i1) != -s[t2] * par(i2)):
+        return _fail("two simplices overlap across a facet", nn, P)
+    if t1.size:
+        pw = P.power(np.concatenate([new[t1], new[t2, i2][:, None]], axis=1)).astype(np.int64) * s[t1]
+        if np.any(pw <= 0):
+            return _fail(f"{int(np.sum(pw <= 0))} interior facets are not locally regular", nn, P)
+    # 4. the boundary, whole
+    why = _boundary_failure(P, new, nn)
+    if why:
+        return _fail(why, nn, P)
+    # 5. one cover
+    cover = _count_cover(P, new, s)
+    if cover != 1:
+        return _fail(f"the simplices cover a point {cover} times", nn, P)
+    # 6. balls left out: those not already shown hidden in a kept simplex
+    present = np.zeros(P.n, dtype=bool)
+    present[new.ravel()] = True
+    done = np.zeros(P.n, dtype=bool)
+    ok = first.hidden & (first.loc >= 0)
+    ok[ok] = ~cav[first.loc[ok]]
+    done[first.q[ok]] = True
+    q = np.flatnonzero(~present & ~done)
+    if q.size:
+        start = _start_simplices(P, new, q, order)
+        loc = _locate(P, new, nn, s, q, start)
+        if np.any(loc < 0):
+            return _fail("a centre that is not a vertex lies outside the triangulation", nn, P)
+        hp = P.power(np.c_[new[loc], q]).astype(np.int64) * s[loc]
+        if np.any(hp <= 0):
+            return _fail(f"{int(np.sum(hp <= 0))} balls left out are not hidden", nn, P)
+    return Certificate(True, "", nn, dict(P.stats))
 
 
 def _grow(simp: np.ndarray, nbr: np.ndarray, mask: np.ndarray, n: int, attempt: int) -> np.ndarray:
@@ -716,7 +919,8 @@ def repair(
         points: re-triangulating most of the input locally costs as much as the whole.
     failing : tuple, optional
         What :func:`failing_simplices` returned for this candidate, if the caller
-        computed it already.
+        computed it already (its first pass is reused; any other value is ignored
+        and the first pass is computed).
     start : int
         The first attempt (1: begin with the failing simplices' facet neighbours,
         which saves a whole certificate where the failing simplices alone are too
@@ -736,7 +940,8 @@ def repair(
     shapelab.exact.incremental.incremental_triangulation
         Re-triangulates the cavity, and the whole input if this fails.
     shapelab.exact.certify.certify
-        Decides whether the repaired triangulation is the regular one.
+        The conditions the repaired triangulation must pass (re-checked only where
+        the stitch changed them, the global ones whole).
 
     References
     ----------
@@ -751,7 +956,10 @@ def repair(
     m, w = simp.shape
     if m == 0 or w < 2:
         return None
-    bad, nbr, pos = failing_simplices(P, simp, order, neighbors) if failing is None else failing
+    first = getattr(failing, "first", None)
+    if first is None:  # not computed by failing_simplices for this candidate
+        first = _first_pass(P, simp, order, neighbors)
+    bad, nbr, pos = first.bad, first.nbr, first.pos
     if not bad.any():
         return None  # nothing local to repair: the failure is global
     n = P.n
@@ -799,7 +1007,7 @@ def repair(
         if grow.any():
             continue
         new, nn = _assemble(simp, nbr, cav, parts)
-        cert = certify(P, new, nn, order=order)
+        cert = _certify_stitched(P, first, cav, new, nn, order=order)
         if cert.ok:
             info = {"attempts": attempt + 1 - start, "cavity_simplices": int(cav.sum()), "cavity_points": int(npts)}
             return new, cert, info
