@@ -308,6 +308,40 @@ print(json.dumps({"elapsed": time.perf_counter() - t0, "import_peer": t_import_p
 """
 
 
+#: the first structure's report twice in one fresh process (in a temporary folder): the
+#: first call pays the imports and first-use caches (the warm-up), the second does not
+_WARMUP = r"""
+import json, sys, time
+import shapelab  # the lazy export map alone: what the batch's caller has imported too
+times = []
+for _ in range(2):
+    t = time.perf_counter()
+    rep = shapelab.report(shapelab.read_structure(sys.argv[1], hetatm=False), float(sys.argv[2]))
+    rep.write(".", "first")
+    times.append(time.perf_counter() - t)
+print(json.dumps({"cold": times[0], "warm": times[1]}))
+"""
+
+
+def warmup(path: str, repeats: int) -> dict:
+    """The first structure's report, cold (imports and warm-up included) and warm, in
+    ``repeats`` fresh processes (medians): what the first row of a batch pays extra."""
+    cold, warm, load0 = [], [], os.getloadavg()[0]
+    for _ in range(repeats):
+        with tempfile.TemporaryDirectory() as tmp:
+            _, out = _timed([sys.executable, "-c", _WARMUP, path, str(PROBE)], cwd=tmp)
+        r = json.loads(out.strip().splitlines()[-1])
+        cold.append(r["cold"])
+        warm.append(r["warm"])
+    return {
+        "file": str(Path(path).relative_to(ROOT)),
+        "runs": repeats,
+        "cold_s": statistics.median(cold),
+        "warm_s": statistics.median(warm),
+        "load": f"{load0:.2f} / {os.getloadavg()[0]:.2f}",
+    }
+
+
 def _stats(xs: list[float]) -> dict:
     return {"first_s": xs[0], "median_rest_s": statistics.median(xs[1:]), "sum_s": sum(xs)}
 
@@ -357,6 +391,7 @@ def batch(repeats: int, jobs=(1, 2)) -> dict:
                     file=sys.stderr,
                 )
         atoms = inner["atoms"]
+        first = warmup(paths[0], max(repeats, 3))
         one = {"SHAPELAB_THREADS": "1", "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
         wall, stdout = _timed([sys.executable, "-c", _PEER, json.dumps(paths), str(PROBE)], cwd=tmp, extra=one)
         peer = json.loads(stdout.strip().splitlines()[-1])
@@ -387,6 +422,7 @@ def batch(repeats: int, jobs=(1, 2)) -> dict:
         "atoms_total": sum(atoms),
         "atoms_median": statistics.median(atoms),
         "probe": PROBE,
+        "first_structure": first,
         "jobs": rows,
         "peer": {
             "wall_s": wall,
@@ -491,6 +527,17 @@ def _batch_markdown(b: dict, load: str) -> list[str]:
             f"| {r['jobs']} | {r['runs']} | {r['wall_s']:.1f} | {r['per_structure_s']:.3f} | {r['first_done_s']:.2f} "
             f"| {r['rows']['first_s']:.2f} | {r['rows']['median_rest_s']:.3f} | {r['peak_main_mib']:.0f} | {worker} |"
         )
+    if b.get("first_structure"):
+        f = b["first_structure"]
+        L += [
+            "",
+            f"**The first structure's warm-up**: `shapelab.report` of {Path(f['file']).name.split('.')[0]} (and "
+            f"its files written) twice in one fresh process: {f['cold_s']:.2f} s the first time (the lazy imports "
+            f"of numpy, scipy and the report's modules, and first-use caches), {f['warm_s']:.2f} s the second "
+            f"(median of {f['runs']} processes): the import and warm-up cost "
+            f"{f['cold_s'] - f['warm_s']:.2f} s once per process (once per worker with jobs > 1)"
+            + (f"; load {f['load']}." if f.get("load") else "."),
+        ]
     p = b["peer"]
     L += [
         "",
