@@ -507,7 +507,6 @@ def failing_simplices(P: WeightedPoints, simp: np.ndarray, order=None, neighbors
     return _Failing(_first_pass(P, simp, order, neighbors))
 
 
-@dataclass(frozen=True)
 class _Failing(tuple):
     """``(bad, nbr, pos)``, as :func:`failing_simplices` documents, which also
     carries the whole first pass (``first``) for :func:`repair` to reuse."""
@@ -518,6 +517,7 @@ class _Failing(tuple):
         return t
 
 
+@dataclass(frozen=True)
 class _FirstPass:
     """What :func:`failing_simplices` found, kept for the local re-certificate
     (:func:`_certify_stitched`): the candidate ``simp``, its verified facet adjacency
