@@ -108,10 +108,21 @@ def test_blocks_on_an_assembly_of_translated_copies():
 
 
 def test_blocks_on_a_grid_fall_back():
+    # centres on a lattice skip the blocks: the tie-break candidate of one block
     g = np.stack(np.meshgrid(*[np.arange(8.0)] * 3, indexing="ij"), -1).reshape(-1, 3)
     out = roads(Balls(g, 0.5), ("1", "2"))
     assert_same(out)
-    assert out["2"][2].blocks == 1 and out["2"][2].blocks_reason  # rejected, then one block
+    assert out["2"][2].blocks == 1 and not out["2"][2].blocks_reason
+    assert out["2"][2].counts.get("tiebreak")
+
+
+def test_blocks_on_a_grid_moved_off_the_lattice_fall_back():
+    # a grid with one centre moved is no lattice: the blocks run, their candidate is
+    # rejected (ties everywhere) and the one-block road gives the same arrays
+    g = np.stack(np.meshgrid(*[np.arange(8.0)] * 3, indexing="ij"), -1).reshape(-1, 3)
+    g[0] += 0.25
+    out = roads(Balls(g, 0.5), ("1", "2"))
+    assert_same(out)
 
 
 @pytest.mark.skipif(not MD_FILE.exists(), reason="the verification corpus is not on disk")
