@@ -319,13 +319,16 @@ _BLOCKS_MIN_POINTS = 20_000
 #: the halo of a block: this fraction of all points on each side beyond its own slab
 #: (and at least ``2 n**(2/3)``, two layers of a cube of ``n`` points)
 _BLOCK_HALO = 0.04
+#: at most this many point-tetrahedron tests per point of a block near its cuts
+#: (proteins need fewer than one); past it the block road gives up
+_BLOCK_TEST_BUDGET = 16
 
 
 def _block_count(n: int, k: int) -> int:
     """How many blocks the candidate triangulation is computed in: the thread count
     (:func:`shapelab._toolkit.threads.thread_count`, ``SHAPELAB_THREADS``) for 3D
     input of at least ``_BLOCKS_MIN_POINTS`` points, else 1."""
-    if k != 3 or n < _BLOCKS_MIN_POINTS:
+    if k != 3 or n < _BLOCKS_MIN_POINTS or n >= 1 << 21:  # (_facet_keys packs 3 indices in an int64)
         return 1
     return thread_count(max(1, n // (_BLOCKS_MIN_POINTS // 2)))
 
@@ -370,7 +373,9 @@ def _block_plan(x: np.ndarray, nb: int):
 
 def _block_tetrahedra(x, w, plan, j):
     """The tetrahedra of block ``j``'s Qhull candidate that it vouches for (global
-    indices, rows ascending), or ``None`` if Qhull failed.
+    indices, rows ascending), their neighbours and the block's hull vertices;
+    ``None`` if Qhull failed, or a sentence if the block gave up (too many points
+    outside it to test, see ``_BLOCK_TEST_BUDGET``).
 
     A tetrahedron's *home* is the block whose own slab holds its orthocentre if that
     block holds all its vertices, else the block whose own slab holds the middle of
@@ -406,21 +411,37 @@ def _block_tetrahedra(x, w, plan, j):
         if out.size:
             from scipy.spatial import cKDTree
 
-            hits = cKDTree(x[out]).query_ball_point(c[unsafe], R[unsafe], return_sorted=False)
-            lens = np.fromiter(map(len, hits), dtype=np.int64, count=len(hits))
-            if lens.sum():
-                import itertools
-
-                p = out[np.fromiter(itertools.chain.from_iterable(hits), dtype=np.int64, count=int(lens.sum()))]
-                t = np.repeat(unsafe, lens)
-                d = c[t] - x[p]
-                pw = np.einsum("ij,ij->i", d, d) - rho[t] - w[p]
-                keep[t[pw < -1e-12 * np.abs(rho[t])]] = False
+            tree = cKDTree(x[out])
+            # the balls are counted before they are listed, a chunk at a time: a ball
+            # enlarged by a large weight, or the huge orthoballs of a nearly flat
+            # input's slivers, can hold most points outside the block for every
+            # tetrahedron (quadratic memory); past the budget the block gives up
+            budget, total = _BLOCK_TEST_BUDGET * ij.size, 0
+            for u in np.array_split(unsafe, -(-unsafe.size // 1024)):
+                total += int(tree.query_ball_point(c[u], R[u], return_length=True).sum())
+                if total > budget:
+                    return "too many points to test near a block's cut"
+                _drop_below(x, w, c, rho, out, u, tree.query_ball_point(c[u], R[u], return_sorted=False), keep)
     kept = mine[keep]
     new = np.full(nbr0.shape[0], -1, dtype=np.int64)
     new[kept] = np.arange(kept.size)
     nbr = nbr0[kept]
     return simp[keep], np.where(nbr >= 0, new[np.maximum(nbr, 0)], -1), hull_vertices
+
+
+def _drop_below(x, w, c, rho, out, u, hits, keep) -> None:
+    """Clear ``keep[t]`` for the tetrahedra ``t`` in ``u`` with a point ``out[hits]``
+    below their lifted plane (negative power to the orthosphere ``(c[t], rho[t])``,
+    in floating point)."""
+    lens = np.fromiter(map(len, hits), dtype=np.int64, count=len(hits))
+    if lens.sum():
+        import itertools
+
+        p = out[np.fromiter(itertools.chain.from_iterable(hits), dtype=np.int64, count=int(lens.sum()))]
+        t = np.repeat(u, lens)
+        d = c[t] - x[p]
+        pw = np.einsum("ij,ij->i", d, d) - rho[t] - w[p]
+        keep[t[pw < -1e-12 * np.abs(rho[t])]] = False
 
 
 def _facet_keys(simp: np.ndarray, t: np.ndarray, i: np.ndarray, n: int) -> np.ndarray:
@@ -578,6 +599,8 @@ def _certified_blocks(balls: Balls, fr: _Frame, nb: int):
         parts = list(pool.map(lambda j: _block_tetrahedra(fr.x, fr.w, plan, j), range(nb)))
     if any(p is None for p in parts):
         return None, "Qhull failed in a block"
+    if any(isinstance(p, str) for p in parts):
+        return None, next(p for p in parts if isinstance(p, str))
     offsets = np.cumsum([0] + [p[0].shape[0] for p in parts])
     simp = np.concatenate([p[0] for p in parts])
     nbr = np.concatenate([np.where(p[1] >= 0, p[1] + o, -1) for p, o in zip(parts, offsets)])
