@@ -37,14 +37,16 @@ Implementation notes
 * **Blocks (threads).**  For 3D input of at least 20,000 balls and two or more
   threads (``SHAPELAB_THREADS``, else the CPUs), the candidate is computed in slabs
   along the longest axis, each with a halo of points, by one Qhull per slab in
-  threads (Qhull releases the GIL).  A slab keeps the tetrahedra it can vouch for
-  (its orthoball, enlarged by the largest weight, inside the slab, or no point
-  outside the slab below the lifted plane); the flat tetrahedra where a cut meets
-  the convex hull come from one small Qhull on the open facets' and the hulls'
-  points.  The merged candidate passes the same exact certificate (or the local
-  repair), else the one-block road runs.  The certified triangulation is unique and
-  its rows are sorted lexicographically on every road, so the result, and every
-  sum over it, is the same whatever the thread count.
+  threads (Qhull releases the GIL).  A slab keeps the tetrahedra that look safe in
+  floating point (its orthoball, enlarged by the largest weight, inside the slab, or
+  no point outside the slab found below the lifted plane): a filter that chooses a
+  candidate, not a proof.  The flat tetrahedra where a cut meets the convex hull
+  come from one small Qhull on the open facets' and the hulls' points.  The merged
+  candidate passes the same exact certificate (or the local repair), else the
+  one-block road runs (also when a block's Qhull fails or its cut needs too many
+  tests: nearly flat input, one very large ball).  The certified triangulation is
+  unique and its rows are sorted lexicographically on every road, so the result,
+  and every sum over it, is the same whatever the thread count.
 * **Conditioning.**  Before lifting, the centres are translated to their mean and
   scaled to unit size, and the lifted height is centred and scaled as well.  The lower
   hull is invariant under these maps (an affine change of the height by a function
@@ -384,8 +386,9 @@ def _block_tetrahedra(x, w, plan, j):
     keeps one when no point outside the block can lie below its lifted plane: a
     point ``p`` has negative power to the orthosphere ``(c, rho)`` only if
     ``|c - z_p|^2 < rho + w_p <= rho + max(w)``, so that ball must lie within the
-    block's slab, or else the points outside the block in it are tested (in
-    floating point: this is a candidate, which the exact certificate checks)."""
+    block's slab, or else the points outside the block in it are tested.  All of
+    this is floating point (the orthoballs, the margins, the power tests): it only
+    chooses a candidate, which proves nothing; the exact certificate decides."""
     a, cuts, lo, hi, idx = plan
     ij = idx[j]
     res = _lower_hull(x[ij], w[ij])

@@ -232,3 +232,29 @@ def test_no_blocks_beyond_the_packed_facet_keys(monkeypatch):
     monkeypatch.setenv("SHAPELAB_THREADS", "2")
     assert PW._block_count((1 << 21) - 1, 3) == 2
     assert PW._block_count(1 << 21, 3) == 1
+
+
+@pytest.mark.parametrize("how", ["raises", "empty"])
+def test_a_block_whose_qhull_fails_falls_back(monkeypatch, how):
+    # Qhull gives up in one block (a flat block: QhullError, made RuntimeError by
+    # _hull_once), or gives an empty lower hull there: the one-block road runs, no
+    # exception reaches the caller
+    rng = np.random.default_rng(13)
+    balls = Balls(rng.uniform(0, 20, (600, 3)), rng.uniform(1.0, 2.0, 600))
+    ref = roads(balls, ("1",))["1"]
+    real = PW._hull_once
+
+    def failing(x, h, perm):
+        if threading.current_thread() is threading.main_thread():
+            return real(x, h, perm)
+        if how == "raises":
+            raise RuntimeError("Qhull failed on the lifted balls: QH6154 (simulated)")
+        simp, nbr = real(x, h, perm)
+        return simp[:0], nbr[:0]
+
+    monkeypatch.setattr(PW, "_hull_once", failing)
+    out = roads(balls, ("1", "2", "3"))
+    for th in ("2", "3"):
+        assert out[th][2].blocks == 1 and out[th][2].blocks_reason == "Qhull failed in a block"
+        assert np.array_equal(out[th][0], ref[0]) and np.array_equal(out[th][1], ref[1])
+        assert out[th][3] == ref[3] and out[th][4] == ref[4]
