@@ -41,14 +41,16 @@ Implementation notes
 * **Blocks (threads).**  For 3D input of at least 20,000 balls and two or more
   threads (``SHAPELAB_THREADS``, else the CPUs), the candidate is computed in slabs
   along the longest axis, each with a halo of points, by one Qhull per slab in
-  threads (Qhull releases the GIL).  A slab keeps the tetrahedra it can vouch for
-  (its orthoball, enlarged by the largest weight, inside the slab, or no point
-  outside the slab below the lifted plane); the flat tetrahedra where a cut meets
-  the convex hull come from one small Qhull on the open facets' and the hulls'
-  points.  The merged candidate passes the same exact certificate (or the local
-  repair), else the one-block road runs.  The certified triangulation is unique and
-  its rows are sorted lexicographically on every road, so the result, and every
-  sum over it, is the same whatever the thread count.
+  threads (Qhull releases the GIL).  A slab keeps the tetrahedra that look safe in
+  floating point (its orthoball, enlarged by the largest weight, inside the slab, or
+  no point outside the slab found below the lifted plane): a filter that chooses a
+  candidate, not a proof.  The flat tetrahedra where a cut meets the convex hull
+  come from one small Qhull on the open facets' and the hulls' points.  The merged
+  candidate passes the same exact certificate (or the local repair), else the
+  one-block road runs (also when a block's Qhull fails or its cut needs too many
+  tests: nearly flat input, one very large ball).  The certified triangulation is
+  unique and its rows are sorted lexicographically on every road, so the result,
+  and every sum over it, is the same whatever the thread count.
 * **Conditioning.**  Before lifting, the centres are translated to their mean and
   scaled to unit size, and the lifted height is centred and scaled as well.  The lower
   hull is invariant under these maps (an affine change of the height by a function
@@ -329,13 +331,16 @@ _BLOCKS_MIN_POINTS = 20_000
 #: the halo of a block: this fraction of all points on each side beyond its own slab
 #: (and at least ``2 n**(2/3)``, two layers of a cube of ``n`` points)
 _BLOCK_HALO = 0.04
+#: at most this many point-tetrahedron tests per point of a block near its cuts
+#: (proteins need fewer than one); past it the block road gives up
+_BLOCK_TEST_BUDGET = 16
 
 
 def _block_count(n: int, k: int) -> int:
     """How many blocks the candidate triangulation is computed in: the thread count
     (:func:`shapelab._toolkit.threads.thread_count`, ``SHAPELAB_THREADS``) for 3D
     input of at least ``_BLOCKS_MIN_POINTS`` points, else 1."""
-    if k != 3 or n < _BLOCKS_MIN_POINTS:
+    if k != 3 or n < _BLOCKS_MIN_POINTS or n >= 1 << 21:  # (_facet_keys packs 3 indices in an int64)
         return 1
     return thread_count(max(1, n // (_BLOCKS_MIN_POINTS // 2)))
 
@@ -380,7 +385,9 @@ def _block_plan(x: np.ndarray, nb: int):
 
 def _block_tetrahedra(x, w, plan, j):
     """The tetrahedra of block ``j``'s Qhull candidate that it vouches for (global
-    indices, rows ascending), or ``None`` if Qhull failed.
+    indices, rows ascending), their neighbours and the block's hull vertices;
+    ``None`` if Qhull failed, or a sentence if the block gave up (too many points
+    outside it to test, see ``_BLOCK_TEST_BUDGET``).
 
     A tetrahedron's *home* is the block whose own slab holds its orthocentre if that
     block holds all its vertices, else the block whose own slab holds the middle of
@@ -389,8 +396,9 @@ def _block_tetrahedra(x, w, plan, j):
     keeps one when no point outside the block can lie below its lifted plane: a
     point ``p`` has negative power to the orthosphere ``(c, rho)`` only if
     ``|c - z_p|^2 < rho + w_p <= rho + max(w)``, so that ball must lie within the
-    block's slab, or else the points outside the block in it are tested (in
-    floating point: this is a candidate, which the exact certificate checks)."""
+    block's slab, or else the points outside the block in it are tested.  All of
+    this is floating point (the orthoballs, the margins, the power tests): it only
+    chooses a candidate, which proves nothing; the exact certificate decides."""
     a, cuts, lo, hi, idx = plan
     ij = idx[j]
     res = _lower_hull(x[ij], w[ij])
@@ -416,21 +424,37 @@ def _block_tetrahedra(x, w, plan, j):
         if out.size:
             from scipy.spatial import cKDTree
 
-            hits = cKDTree(x[out]).query_ball_point(c[unsafe], R[unsafe], return_sorted=False)
-            lens = np.fromiter(map(len, hits), dtype=np.int64, count=len(hits))
-            if lens.sum():
-                import itertools
-
-                p = out[np.fromiter(itertools.chain.from_iterable(hits), dtype=np.int64, count=int(lens.sum()))]
-                t = np.repeat(unsafe, lens)
-                d = c[t] - x[p]
-                pw = np.einsum("ij,ij->i", d, d) - rho[t] - w[p]
-                keep[t[pw < -1e-12 * np.abs(rho[t])]] = False
+            tree = cKDTree(x[out])
+            # the balls are counted before they are listed, a chunk at a time: a ball
+            # enlarged by a large weight, or the huge orthoballs of a nearly flat
+            # input's slivers, can hold most points outside the block for every
+            # tetrahedron (quadratic memory); past the budget the block gives up
+            budget, total = _BLOCK_TEST_BUDGET * ij.size, 0
+            for u in np.array_split(unsafe, -(-unsafe.size // 1024)):
+                total += int(tree.query_ball_point(c[u], R[u], return_length=True).sum())
+                if total > budget:
+                    return "too many points to test near a block's cut"
+                _drop_below(x, w, c, rho, out, u, tree.query_ball_point(c[u], R[u], return_sorted=False), keep)
     kept = mine[keep]
     new = np.full(nbr0.shape[0], -1, dtype=np.int64)
     new[kept] = np.arange(kept.size)
     nbr = nbr0[kept]
     return simp[keep], np.where(nbr >= 0, new[np.maximum(nbr, 0)], -1), hull_vertices
+
+
+def _drop_below(x, w, c, rho, out, u, hits, keep) -> None:
+    """Clear ``keep[t]`` for the tetrahedra ``t`` in ``u`` with a point ``out[hits]``
+    below their lifted plane (negative power to the orthosphere ``(c[t], rho[t])``,
+    in floating point)."""
+    lens = np.fromiter(map(len, hits), dtype=np.int64, count=len(hits))
+    if lens.sum():
+        import itertools
+
+        p = out[np.fromiter(itertools.chain.from_iterable(hits), dtype=np.int64, count=int(lens.sum()))]
+        t = np.repeat(u, lens)
+        d = c[t] - x[p]
+        pw = np.einsum("ij,ij->i", d, d) - rho[t] - w[p]
+        keep[t[pw < -1e-12 * np.abs(rho[t])]] = False
 
 
 def _facet_keys(simp: np.ndarray, t: np.ndarray, i: np.ndarray, n: int) -> np.ndarray:
@@ -588,6 +612,8 @@ def _certified_blocks(balls: Balls, fr: _Frame, nb: int):
         parts = list(pool.map(lambda j: _block_tetrahedra(fr.x, fr.w, plan, j), range(nb)))
     if any(p is None for p in parts):
         return None, "Qhull failed in a block"
+    if any(isinstance(p, str) for p in parts):
+        return None, next(p for p in parts if isinstance(p, str))
     offsets = np.cumsum([0] + [p[0].shape[0] for p in parts])
     simp = np.concatenate([p[0] for p in parts])
     nbr = np.concatenate([np.where(p[1] >= 0, p[1] + o, -1) for p, o in zip(parts, offsets)])

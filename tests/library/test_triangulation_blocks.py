@@ -201,3 +201,71 @@ def test_lex_order_is_lexsort():
     assert np.array_equal(PW._lex_order(shuffled), np.lexsort(shuffled.T[::-1]))
     tri = np.array([[0, 1, 2, 5], [0, 1, 2, 3], [1, 2, 3, 4], [0, 1, 3, 4]])
     assert PW._lex_order(tri).tolist() == [1, 0, 3, 2]
+
+
+@pytest.mark.parametrize("kind", ["nearly flat", "one large ball"])
+def test_a_block_gives_up_when_its_cut_needs_too_many_tests(kind, monkeypatch):
+    # the orthoballs of a nearly flat input's slivers, or every orthoball enlarged by
+    # one large weight, hold most points outside a block: the block road used to
+    # list them all (quadratic memory: a MemoryError at 20,000 nearly flat points);
+    # it now counts them first and gives up past its budget
+    import scipy.spatial
+
+    listed = []
+
+    class Tree(scipy.spatial.cKDTree):
+        def query_ball_point(self, x, r, **kw):
+            got = super().query_ball_point(x, r, **kw)
+            if not kw.get("return_length"):
+                listed.append(sum(map(len, got)))
+            return got
+
+    monkeypatch.setattr(scipy.spatial, "cKDTree", Tree)
+    rng = np.random.default_rng(11)
+    n = 400 if kind == "nearly flat" else 3000
+    c = rng.uniform(0, 20, (n, 3))
+    r = rng.uniform(1.0, 2.0, n)
+    if kind == "nearly flat":
+        c[:, 2] = 1e-10 * rng.uniform(-1, 1, n)
+    else:
+        c[0], r[0] = (10.0, 10.0, 10.0), 8.0
+    balls = Balls(c, r)
+    out = roads(balls, ("1", "2", "4"))
+    assert max(listed, default=0) <= 16 * n  # (before: 210 n and 68 n in one call)
+    assert_same(out)
+    for th in ("2", "4"):
+        assert out[th][2].blocks == 1 and "too many points to test" in out[th][2].blocks_reason
+
+
+def test_no_blocks_beyond_the_packed_facet_keys(monkeypatch):
+    # _facet_keys packs three point indices in an int64: 2**21 points or more take
+    # the one-block road (whose own keys fall back to np.unique)
+    monkeypatch.setenv("SHAPELAB_THREADS", "2")
+    assert PW._block_count((1 << 21) - 1, 3) == 2
+    assert PW._block_count(1 << 21, 3) == 1
+
+
+@pytest.mark.parametrize("how", ["raises", "empty"])
+def test_a_block_whose_qhull_fails_falls_back(monkeypatch, how):
+    # Qhull gives up in one block (a flat block: QhullError, made RuntimeError by
+    # _hull_once), or gives an empty lower hull there: the one-block road runs, no
+    # exception reaches the caller
+    rng = np.random.default_rng(13)
+    balls = Balls(rng.uniform(0, 20, (600, 3)), rng.uniform(1.0, 2.0, 600))
+    ref = roads(balls, ("1",))["1"]
+    real = PW._hull_once
+
+    def failing(x, h, perm):
+        if threading.current_thread() is threading.main_thread():
+            return real(x, h, perm)
+        if how == "raises":
+            raise RuntimeError("Qhull failed on the lifted balls: QH6154 (simulated)")
+        simp, nbr = real(x, h, perm)
+        return simp[:0], nbr[:0]
+
+    monkeypatch.setattr(PW, "_hull_once", failing)
+    out = roads(balls, ("1", "2", "3"))
+    for th in ("2", "3"):
+        assert out[th][2].blocks == 1 and out[th][2].blocks_reason == "Qhull failed in a block"
+        assert np.array_equal(out[th][0], ref[0]) and np.array_equal(out[th][1], ref[1])
+        assert out[th][3] == ref[3] and out[th][4] == ref[4]
