@@ -318,3 +318,27 @@ def test_int64_orthospheres_equal_the_python_integer_road(name, monkeypatch):
         assert np.array_equal(F.values(k), R.values(k))
     if name in ("grid", "grid-halves", "grid-radii", "grid2d"):  # the test reaches the int64 road
         assert _int64_rows(balls, monkeypatch) > 0
+
+
+def _lattice_orders():
+    g = lattice(6, 3)
+    box = np.stack(np.meshgrid(np.arange(5.0), np.arange(7.0), np.arange(3.0), indexing="ij"), -1).reshape(-1, 3)
+    return {
+        "row-major": g,
+        "reversed": g[::-1],
+        "axes-reversed": g[:, ::-1],
+        "box-5x7x3": box,
+        "anisotropic": g * [1.0, 2.0, 3.0],
+        "2d-axes-reversed": lattice(9, 2)[:, ::-1],
+    }
+
+
+@pytest.mark.parametrize("name", sorted(_lattice_orders()))
+def test_full_lattices_in_row_major_order_take_the_tiebreak_road(name):
+    """power.py's notes say the tie-break candidate agrees with Simulation of Simplicity
+    on full lattices in row-major input order (any order of the axes, either
+    direction); the answer is still the whole-input road's."""
+    balls = Balls(_lattice_orders()[name], 0.5)
+    rep = triangulation_report(balls)
+    assert rep.counts.get("tiebreak"), (name, rep.method, rep.reason)
+    assert as_set(regular_triangulation(balls)) == whole_road(balls)
