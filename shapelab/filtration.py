@@ -419,9 +419,11 @@ def _exact_rows(C: np.ndarray, W: np.ndarray, rows: np.ndarray, scale: float):
     and exponent from ``np.frexp``), the Gram system :math:`G\\lambda = \\beta`,
     :math:`G = AA^T`, :math:`\\beta_i = (|a_i|^2 - w_i + w_0)/2`, is solved by its
     adjugate, :math:`\\lambda_i = N_i / (2\\det G)` with :math:`N = \\operatorname{adj}(G)\\,2\\beta`,
-    and :math:`\\rho = \\lambda\\cdot\\beta - w_0`.  The integers are Python integers
-    in NumPy object arrays (vectorised over rows; unbounded, so no overflow
-    whatever the exponents).
+    and :math:`\\rho = \\lambda\\cdot\\beta - w_0`.  The integers are int64 where a
+    bound on the rows' magnitudes shows that no result can overflow
+    (:func:`_small_row_integers`: grids and other dyadic input near the origin), else
+    Python integers in NumPy object arrays (vectorised over rows; unbounded, so no
+    overflow whatever the exponents).
     """
     m, w1 = rows.shape
     j = w1 - 1
@@ -516,9 +518,11 @@ def _small_row_integers(Mc, ec, Mw, ew, j: int):
     lc, lw = low(Mc, ec), low(Mw, ew)
     E = np.minimum(lc.reshape(m, -1).min(axis=1), lw.min(axis=1) // 2)
     E = np.where(E == big, 0, E)
-    # magnitudes in units 2**E (floats: only a bound)
-    ac = np.abs(Mc) * np.exp2(np.where(Mc == 0, 0, ec - E[:, None, None]).astype(np.float64))
-    aw = np.abs(Mw) * np.exp2(np.where(Mw == 0, 0, ew - 2 * E[:, None]).astype(np.float64))
+    # magnitudes in units 2**E (floats: only a bound; a row mixing tiny and huge
+    # values overflows to inf here and takes the object road, without a warning)
+    with np.errstate(over="ignore"):
+        ac = np.abs(Mc) * np.exp2(np.where(Mc == 0, 0, ec - E[:, None, None]).astype(np.float64))
+        aw = np.abs(Mw) * np.exp2(np.where(Mw == 0, 0, ew - 2 * E[:, None]).astype(np.float64))
     if not (np.all(ac < 2.0**60) and np.all(aw < 2.0**60)):
         return None
     a = 2.0 * ac.max(axis=(1, 2))  # |A| entries

@@ -31,10 +31,13 @@ Implementation notes
   patch).  Where the failures are everywhere (grids, co-spherical cages), Qhull's
   ties are not Simulation of Simplicity's: a second candidate lowers each lifted
   height by a small convex decreasing function of the ball's rank in the tie-break
-  order (:func:`_tiebreak_candidate`), which breaks the ties of a lattice in its input
-  order the same way; it is certified and repaired locally like the first (centres on
-  a lattice take it first).  Where the repair does not certify, the exact incremental
-  algorithm computes the whole triangulation.
+  order (:func:`_tiebreak_candidate`), which breaks the ties of a full lattice (every
+  node present, in row-major input order: any order of the axes, either direction)
+  the same way; it is certified and repaired locally like the first (centres on a
+  lattice take it first).  Where the repair does not certify (co-spherical cages
+  such as C60; lattices with holes, in a shuffled, snake or Morton order, with
+  round-off noise, or with duplicates of a larger radius later in the input), the
+  exact incremental algorithm computes the whole triangulation.
   Either way the result is the unique regular triangulation of the perturbed input:
   the same on every CPU, BLAS and Qhull build.  :func:`triangulation_report` says
   which road was taken.
@@ -753,8 +756,10 @@ def _certified(balls: Balls, fr: _Frame):
 
 def _on_a_lattice(centers: np.ndarray, keep: np.ndarray) -> bool:
     """True when the centres take so few distinct values along each axis that they
-    fill a good part of the product of those values (a grid): every power test is
-    then a tie, and Qhull's candidate fails everywhere.  A sample decides first."""
+    fill a good part of the product of those values (a grid): many power tests are
+    then ties, and Qhull's candidate fails everywhere.  A sample can reject first.
+    Only a guess: a wrong one costs a Qhull call and a certificate (then the usual
+    road)."""
     c = centers[keep] if keep.size != centers.shape[0] else centers
     for rows in (c[:512], c):
         prod = 1

@@ -140,8 +140,10 @@ QHULL_FLAT = 1e-12
 #: ``QHULL_TIEBREAK * (1 - rank/n)**2``, ``rank`` the tie-break order of Simulation of
 #: Simplicity: far above Qhull's round-off (~1e-15) so that it decides the ties, far
 #: below the heights' spread so that it changes few decisions that are not ties.  It
-#: agrees with the symbolic perturbation on lattices in their input order; elsewhere
-#: the certificate and the local repair decide.  Candidate only.
+#: agrees with the symbolic perturbation on full lattices in row-major input order
+#: (any order of the axes, either direction), not on lattices with holes or in a
+#: shuffled order; elsewhere the certificate and the local repair decide.  Candidate
+#: only.
 QHULL_TIEBREAK = 1e-5
 
 # ------------------------------------------------------------------ certify

@@ -248,3 +248,97 @@ def test_membrane_with_dummy_atom_grids_from_the_corpus(monkeypatch):
     rep = triangulation_report(balls)
     assert rep.method in ("qhull", "repaired"), (rep.method, rep.reason)
     assert as_set(regular_triangulation(balls)) == switched_off(balls, monkeypatch)
+
+
+# ----------------------------------------------------------------------------------
+# The int64 road of the exact orthospheres (shapelab.filtration._exact_rows)
+# ----------------------------------------------------------------------------------
+def _object_road(balls: Balls, monkeypatch):
+    """alpha_filtration with the int64 road of the exact orthospheres switched off
+    (Python integers for every row, as before the int64 road)."""
+    import shapelab.filtration as filtration
+
+    with monkeypatch.context() as m:
+        m.setattr(filtration, "_small_row_integers", lambda *a, **k: None)
+        return filtration.alpha_filtration(balls)
+
+
+def _int64_rows(balls: Balls, monkeypatch) -> int:
+    """How many exact rows took the int64 road."""
+    import shapelab.filtration as filtration
+
+    seen = []
+    real = filtration._small_row_integers
+
+    def spy(*args, **kwargs):
+        out = real(*args, **kwargs)
+        seen.append(0 if out is None else out[0].shape[0])
+        return out
+
+    with monkeypatch.context() as m:
+        m.setattr(filtration, "_small_row_integers", spy)
+        filtration.alpha_filtration(balls)
+    return sum(seen)
+
+
+def _filtration_inputs():
+    rng = np.random.default_rng(8)
+    g = lattice(5, 3)
+    tiny = lattice(4, 3)
+    tiny[0] = [1e-300, 0.0, 0.0]  # a row mixing 2**-997 with 3: the magnitude bound overflows
+    return {
+        "grid": Balls(g, 0.5),
+        "grid-halves": Balls(g * 0.5 + 0.25, 0.25),
+        "grid-radii": Balls(g, rng.choice([0.0, 0.5, 1.0], len(g))),
+        "grid-far": Balls(g + 2.0**40 + 0.5, 0.5),  # too large for int64: Python integers
+        "grid2d": Balls(lattice(7, 2), 0.5),
+        "grid-tiny-coordinate": Balls(tiny, 0.5),
+    }
+
+
+FILTRATION = _filtration_inputs()
+
+
+@pytest.mark.parametrize("name", sorted(FILTRATION))
+def test_int64_orthospheres_equal_the_python_integer_road(name, monkeypatch):
+    """The filtration values are the same bit for bit with and without the int64 road,
+    and no RuntimeWarning escapes (pyproject turns shapelab's into errors; a row mixing
+    a tiny and an ordinary coordinate used to overflow the float magnitude bound)."""
+    import warnings
+
+    from shapelab import alpha_filtration
+
+    balls = FILTRATION[name]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        F = alpha_filtration(balls)
+    R = _object_road(balls, monkeypatch)
+    for k in range(F.dimension + 1):
+        assert np.array_equal(F.simplices(k), R.simplices(k))
+        assert np.array_equal(F.values(k), R.values(k))
+    if name in ("grid", "grid-halves", "grid-radii", "grid2d"):  # the test reaches the int64 road
+        assert _int64_rows(balls, monkeypatch) > 0
+
+
+def _lattice_orders():
+    g = lattice(6, 3)
+    box = np.stack(np.meshgrid(np.arange(5.0), np.arange(7.0), np.arange(3.0), indexing="ij"), -1).reshape(-1, 3)
+    return {
+        "row-major": g,
+        "reversed": g[::-1],
+        "axes-reversed": g[:, ::-1],
+        "box-5x7x3": box,
+        "anisotropic": g * [1.0, 2.0, 3.0],
+        "2d-axes-reversed": lattice(9, 2)[:, ::-1],
+    }
+
+
+@pytest.mark.parametrize("name", sorted(_lattice_orders()))
+def test_full_lattices_in_row_major_order_take_the_tiebreak_road(name):
+    """power.py's notes say the tie-break candidate agrees with Simulation of Simplicity
+    on full lattices in row-major input order (any order of the axes, either
+    direction); the answer is still the whole-input road's."""
+    balls = Balls(_lattice_orders()[name], 0.5)
+    rep = triangulation_report(balls)
+    assert rep.counts.get("tiebreak"), (name, rep.method, rep.reason)
+    assert as_set(regular_triangulation(balls)) == whole_road(balls)
