@@ -619,7 +619,9 @@ def _first_pass(P: WeightedPoints, simp: np.ndarray, order=None, neighbors=None)
             st = remap[start]
             okst = st >= 0
             if okst.any():
-                loc[okst] = sane[_locate_safe(P, sub, nb2, s[sane], q[okst], st[okst])]
+                got = _locate_safe(P, sub, nb2, s[sane], q[okst], st[okst])
+                # -1 (not located) stays -1: sane[-1] would be the last sane simplex
+                loc[okst] = np.where(got >= 0, sane[np.maximum(got, 0)], -1)
         inside = loc >= 0
         if inside.any():
             li = loc[inside]

@@ -175,3 +175,71 @@ def test_rounded_coordinates_agree_on_every_single_deletion(seed):
     for j in range(0, len(fill), max(1, len(fill) // 8)):
         new, nn = _stitch(cand, cav, fill[:j] + fill[j + 1 :])
         assert not _both(P, first, cav, new, nn).ok
+
+
+def _ball_cut_out_case():
+    """A 3x3 grid without its centre (2D) whose candidate leaves out ball 5 = (2, 0):
+    the regular triangulation's [3, 5, 6] is missing, so the ball lies outside the
+    candidate's union (found by the fuzzing of the second reader, issue 25)."""
+    c = np.array([[0, 0], [0, 1], [0, 2], [1, 0], [1, 2], [2, 0], [2, 1], [2, 2]], dtype=float)
+    r = np.array(
+        [
+            0.7377766191326491,
+            0.7776346925578066,
+            0.4089836078472413,
+            0.3524881744533123,
+            0.6052490561587722,
+            0.4855814952455459,
+            0.7472735728717307,
+            0.523931343205731,
+        ]
+    )
+    P = WeightedPoints(c, r)
+    cand = np.array([[0, 1, 3], [4, 6, 7], [1, 3, 6], [1, 2, 6], [2, 4, 6]], dtype=np.int64)
+    return P, cand
+
+
+def test_a_ball_the_first_pass_cannot_locate_is_not_called_hidden():
+    """The first pass walks in its sane simplices; a ball it cannot locate there must
+    stay unlocated (-1), not be taken as lying in the last sane simplex (``sane[-1]``)
+    and then be "hidden" by a simplex that does not contain it.  Oracle: the exact
+    orientation tests of each claimed location."""
+    P, cand = _ball_cut_out_case()
+    first = _first_pass(P, cand)
+    assert first.q.tolist() == [5]
+    for q, t, h in zip(first.q, first.loc, first.hidden):
+        if t >= 0:
+            s = int(P.orient(cand[t : t + 1])[0])
+            for i in range(cand.shape[1]):
+                row = cand[t].copy()
+                row[i] = q
+                assert int(P.orient(row[None, :])[0]) * s >= 0, (q, t)
+        else:
+            assert not h
+    assert first.loc.tolist() == [-1] and first.bad[2]  # the simplex it starts from
+
+
+def test_a_stitch_that_leaves_a_ball_outside_is_rejected_by_both():
+    """Before the fix the local check accepted this stitch (it trusted a wrong
+    "hidden" from the first pass) while the whole certificate rejects it: ball 5 lies
+    outside the stitched union, whose boundary is still closed and convex."""
+    P, cand = _ball_cut_out_case()
+    first = _first_pass(P, cand)
+    cav = np.zeros(len(cand), dtype=bool)
+    cav[[3, 4]] = True
+    new = np.array([[0, 1, 3], [4, 6, 7], [1, 3, 6], [1, 2, 4], [1, 4, 6]], dtype=np.int64)
+    nn = facet_adjacency(new)[0]
+    assert not certify(P, new, nn).ok
+    assert not _both(P, first, cav, new, nn).ok
+
+
+def test_repair_of_a_candidate_that_leaves_a_ball_outside_is_the_regular_triangulation():
+    """End to end: before the fix :func:`repair` returned a triangulation without
+    ball 5 (the whole certificate rejects it).  Oracle: the exact incremental road."""
+    from shapelab.exact.incremental import incremental_triangulation
+
+    P, cand = _ball_cut_out_case()
+    fixed = repair(P, cand, max_fraction=1.0)
+    assert fixed is not None and certify(P, fixed[0]).ok
+    truth = {tuple(r) for r in incremental_triangulation(P).tolist()}
+    assert {tuple(r) for r in np.sort(fixed[0], axis=1).tolist()} == truth
