@@ -419,7 +419,7 @@ def _block_tetrahedra(x, w, plan, j):
     home = np.where(holds, home, np.searchsorted(cuts, 0.5 * (vmin + vmax), "right"))
     mine = np.flatnonzero((home == j) & np.isfinite(rho))
     simp, c, rho, ca = simp[mine], c[mine], rho[mine], ca[mine]
-    R = np.sqrt(np.maximum(rho + float(w.max()), 0.0)) * (1 + 1e-9)
+    R = np.sqrt(np.maximum(rho + float(w.max()), 0.0)) * (1 + tol.BLOCK_SLACK)
     unsafe = np.flatnonzero((ca - R < lo[j]) | (ca + R > hi[j]))
     keep = np.ones(simp.shape[0], dtype=bool)
     if unsafe.size:
@@ -457,7 +457,7 @@ def _drop_below(x, w, c, rho, out, u, hits, keep) -> None:
         t = np.repeat(u, lens)
         d = c[t] - x[p]
         pw = np.einsum("ij,ij->i", d, d) - rho[t] - w[p]
-        keep[t[pw < -1e-12 * np.abs(rho[t])]] = False
+        keep[t[pw < -tol.BLOCK_POWER * np.abs(rho[t])]] = False
 
 
 def _facet_keys(simp: np.ndarray, t: np.ndarray, i: np.ndarray, n: int) -> np.ndarray:

@@ -31,6 +31,8 @@ __all__ = [
     "QHULL_STEEP",
     "QHULL_FLAT",
     "QHULL_TIEBREAK",
+    "BLOCK_SLACK",
+    "BLOCK_POWER",
     "COVER_PREFILTER",
     "ORTHOCENTRE_CONDITION",
     "ENTRY_TIME_RTOL",
@@ -145,6 +147,13 @@ QHULL_FLAT = 1e-12
 #: shuffled order; elsewhere the certificate and the local repair decide.  Candidate
 #: only.
 QHULL_TIEBREAK = 1e-5
+#: The candidate in blocks (threads): a block vouches for a tetrahedron when its
+#: orthoball, enlarged by the largest weight and by this relative slack, lies within
+#: the block's slab.  Candidate only (the exact certificate decides).
+BLOCK_SLACK = 1e-9
+#: ... or when no point outside the block in that ball has power below
+#: ``-BLOCK_POWER * |rho|`` to the orthosphere (floating point; candidate only).
+BLOCK_POWER = 1e-12
 
 # ------------------------------------------------------------------ certify
 #: The cover count of :func:`shapelab.exact.certify.certify` picks, by float bounding
