@@ -94,6 +94,7 @@ Implementation notes
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -342,8 +343,16 @@ _BLOCK_TEST_BUDGET = 16
 def _block_count(n: int, k: int) -> int:
     """How many blocks the candidate triangulation is computed in: the thread count
     (:func:`shapelab._toolkit.threads.thread_count`, ``SHAPELAB_THREADS``) for 3D
-    input of at least ``_BLOCKS_MIN_POINTS`` points, else 1."""
+    input of at least ``_BLOCKS_MIN_POINTS`` points when ``SHAPELAB_THREADS`` is set
+    in the environment, else 1.
+
+    Opt-in: the blocks cost 15-25 % more CPU and up to 70 % more peak memory, and on
+    rounded MD systems their merge falls back to one block after the work (measured
+    in ``benchmarks/results/measure_peers_threads.md``), so only a caller who asks
+    for threads gets them."""
     if k != 3 or n < _BLOCKS_MIN_POINTS or n >= 1 << 21:  # (_facet_keys packs 3 indices in an int64)
+        return 1
+    if not os.environ.get("SHAPELAB_THREADS", "").strip():
         return 1
     return thread_count(max(1, n // (_BLOCKS_MIN_POINTS // 2)))
 
@@ -493,6 +502,13 @@ def _orient(x, f: np.ndarray, apex: np.ndarray) -> np.ndarray:
     return np.sign(np.einsum("ij,ij->i", np.cross(x[f[:, 1]] - p0, x[f[:, 2]] - p0), x[apex] - p0))
 
 
+def _volumes(x, T: np.ndarray) -> np.ndarray:
+    """Absolute volumes (times 6) of the tetrahedra ``T``, floating point."""
+    p0 = x[T[:, 0]]
+    u = np.einsum("ij,ij->i", np.cross(x[T[:, 1]] - p0, x[T[:, 2]] - p0), x[T[:, 3]] - p0)
+    return np.abs(u)
+
+
 def _fill_gaps(x, w, simp, nbr, hull_vertices):
     """Fill the gaps between the blocks' tetrahedra: those whose vertices span
     every block's slab (flat tetrahedra on the convex hull where a cut meets it).
@@ -555,6 +571,16 @@ def _fill_gaps(x, w, simp, nbr, hull_vertices):
         if np.count_nonzero(inside) > limit:
             return None
     add = np.flatnonzero(inside)
+    # a leak: where the small Qhull's triangulation differs from the blocks' on the
+    # gap's boundary (degenerate input: rounded coordinates), the flood runs into the
+    # region the blocks cover; the candidate would fail the certificate and its
+    # repair grow large (45,000 simplices on the solvated 1tw7 file, 3x the one-block
+    # time), so give up at once.  The gap's volume is the hull's (the small Qhull
+    # covers it: it holds the blocks' hull vertices) less the blocks' tetrahedra.
+    vs, vb = _volumes(x, S), _volumes(x, simp)
+    excess = vs[add].sum() - (vs.sum() - vb.sum())
+    if excess > tol.BLOCK_GAP_VOLUME * vs.sum():
+        return None
     base = simp.shape[0]
     new = np.full(m, -1, dtype=np.int64)
     new[add] = base + np.arange(add.size)
@@ -687,8 +713,9 @@ class TriangulationReport:
         region), and ``tiebreak`` (True) when the tie-break candidate was used.
     blocks : int
         How many blocks (threads) Qhull's candidate came from: 1, or for 3D input of
-        at least 20,000 balls with ``SHAPELAB_THREADS`` (or the CPUs) at 2 or more,
-        that many slabs along the longest axis, each with a halo, triangulated by
+        at least 20,000 balls with ``SHAPELAB_THREADS`` (or the CPUs, at most 4) at
+        2 or more, that many slabs (at most one per 10,000 balls, none from 2**21
+        balls on) along the longest axis, each with a halo, triangulated by
         Qhull in threads and merged; the merged candidate passed the same exact
         certificate (``"qhull"``) or the local repair (``"repaired"``).  The result
         is the same triangulation, rows in the same order.

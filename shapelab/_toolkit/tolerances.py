@@ -33,6 +33,7 @@ __all__ = [
     "QHULL_TIEBREAK",
     "BLOCK_SLACK",
     "BLOCK_POWER",
+    "BLOCK_GAP_VOLUME",
     "COVER_PREFILTER",
     "ORTHOCENTRE_CONDITION",
     "ENTRY_TIME_RTOL",
@@ -154,6 +155,9 @@ BLOCK_SLACK = 1e-9
 #: ... or when no point outside the block in that ball has power below
 #: ``-BLOCK_POWER * |rho|`` to the orthosphere (floating point; candidate only).
 BLOCK_POWER = 1e-12
+#: The fill of the gaps between blocks gives up when its tetrahedra's volume exceeds
+#: the gaps' by more than this fraction of the hull's (round-off; candidate only).
+BLOCK_GAP_VOLUME = 1e-9
 
 # ------------------------------------------------------------------ certify
 #: The cover count of :func:`shapelab.exact.certify.certify` picks, by float bounding
