@@ -342,3 +342,29 @@ def test_full_lattices_in_row_major_order_take_the_tiebreak_road(name):
     rep = triangulation_report(balls)
     assert rep.counts.get("tiebreak"), (name, rep.method, rep.reason)
     assert as_set(regular_triangulation(balls)) == whole_road(balls)
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    st.integers(2, 3),
+    st.lists(st.tuples(*[st.integers(-2, 2)] * 3), min_size=6, max_size=40),
+    st.lists(st.sampled_from([0.0, 0.5, 1.0, 2.0**-30, 2.0**20]), min_size=40, max_size=40),
+    st.sampled_from([1.0, 0.5, 2.0**-40, 2.0**30, 0.1]),
+    st.sampled_from([0.0, 0.25, 2.0**40 + 0.5, -(2.0**20)]),
+    st.integers(0, 2**32 - 1),
+)
+def test_batched_exact_stage_on_degenerate_sets(d, pts, radii, step, offset, seed):
+    """The batched exact stage (int64 or Python integers, Simulation of Simplicity
+    batched) against the one-row evaluation, on sets full of ties: small lattices with
+    duplicates, collinear and co-spherical subsets, far from the origin, tiny or huge
+    radii, a shuffled priority."""
+    c = np.array(pts, dtype=float)[:, :d] * step + offset
+    n = len(c)
+    rng = np.random.default_rng(seed)
+    P = WeightedPoints(c, np.array(radii[:n]) * step, priority=rng.permutation(n))
+    rows = _rows(rng, n, d + 2, count=300)
+    if len(rows) < 8:
+        return
+    assert np.array_equal(P._exact_batch(rows, "power"), [P._power_exact(r) for r in rows])
+    sub = rows[:, : d + 1]
+    assert np.array_equal(P._exact_batch(sub, "orient"), [P._orient_exact(r) for r in sub])
