@@ -41,8 +41,8 @@ Implementation notes
   Either way the result is the unique regular triangulation of the perturbed input:
   the same on every CPU, BLAS and Qhull build.  :func:`triangulation_report` says
   which road was taken.
-* **Blocks (threads).**  For 3D input of at least 20,000 balls and two or more
-  threads (``SHAPELAB_THREADS``, else the CPUs), the candidate is computed in slabs
+* **Blocks (threads), opt-in.**  For 3D input of at least 20,000 balls when
+  ``SHAPELAB_THREADS`` is set to 2 or more in the environment, the candidate is computed in slabs
   along the longest axis, each with a halo of points, by one Qhull per slab in
   threads (Qhull releases the GIL).  A slab keeps the tetrahedra that look safe in
   floating point (its orthoball, enlarged by the largest weight, inside the slab, or
@@ -328,9 +328,9 @@ def _lower_hull(x: np.ndarray, w: np.ndarray):
 # The candidate in blocks (threads): Qhull on slabs with a halo, merged
 # ----------------------------------------------------------------------------------
 #: below this many (kept) points blocks are not worth their overhead (the halo, the
-#: merge, the thread start: ~10-20 % more CPU); at 24,960 SA balls two blocks shorten
-#: the critical path of union_measure by an estimated 1.3x (benchmarks/results/
-#: measure_peers_threads.md; not yet timed on an idle machine)
+#: merge, the thread start: ~10-35 % more CPU); on the idle machine two threads made
+#: union_measure 1.05x faster at 24,960 SA balls, 1.19x at 99,840 and 1.37x at
+#: 199,680 (benchmarks/results/measure_peers_threads.md)
 _BLOCKS_MIN_POINTS = 20_000
 #: the halo of a block: this fraction of all points on each side beyond its own slab
 #: (and at least ``2 n**(2/3)``, two layers of a cube of ``n`` points)
@@ -713,9 +713,9 @@ class TriangulationReport:
         region), and ``tiebreak`` (True) when the tie-break candidate was used.
     blocks : int
         How many blocks (threads) Qhull's candidate came from: 1, or for 3D input of
-        at least 20,000 balls with ``SHAPELAB_THREADS`` (or the CPUs, at most 4) at
-        2 or more, that many slabs (at most one per 10,000 balls, none from 2**21
-        balls on) along the longest axis, each with a halo, triangulated by
+        at least 20,000 balls with ``SHAPELAB_THREADS`` set to 2 or more in the
+        environment (opt-in), that many slabs (at most one per 10,000 balls, none
+        from 2**21 balls on) along the longest axis, each with a halo, triangulated by
         Qhull in threads and merged; the merged candidate passed the same exact
         certificate (``"qhull"``) or the local repair (``"repaired"``).  The result
         is the same triangulation, rows in the same order.
