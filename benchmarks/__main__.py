@@ -17,4 +17,7 @@ if not any(a in ("--list", "--worker", "-h", "--help") for a in _args) and all(
     from benchmarks import user_wait  # what a user waits for (issue 25, item 3)
 
     status = user_wait.main([]) or status
+    from benchmarks import measure_peers  # the union measure on 1 and 2 threads and its peers (issue 25, item 1)
+
+    status = measure_peers.main(["--threads", "2", "--out", "benchmarks/results/measure_peers_threads.json"]) or status
 sys.exit(status)

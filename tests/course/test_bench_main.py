@@ -1,6 +1,7 @@
 """``python -m benchmarks`` (``make bench``): the whole run is the cases, then the
-binding-site benchmark, then what a user waits for (issue 25, item 3); one case, the
-list or a worker runs neither of the last two."""
+binding-site benchmark, then what a user waits for (issue 25, item 3), then the union
+measure on 1 and 2 threads against its peers (item 1); one case, the list or a worker
+runs none of the last three."""
 
 from __future__ import annotations
 
@@ -12,20 +13,37 @@ import pytest
 
 @pytest.fixture
 def calls(monkeypatch):
-    from benchmarks import harness, pocket_sites, user_wait
+    from benchmarks import harness, measure_peers, pocket_sites, user_wait
 
     seen = []
     monkeypatch.setattr(harness, "main", lambda *a: seen.append("cases") or 0)
     monkeypatch.setattr(pocket_sites, "main", lambda argv=None: seen.append("pocket_sites") or 0)
     monkeypatch.setattr(user_wait, "main", lambda argv=None: seen.append("user_wait") or 0)
+    monkeypatch.setattr(measure_peers, "main", lambda argv=None: seen.append(("measure_peers", *argv)) or 0)
     return seen
 
 
 @pytest.mark.parametrize(
     "argv, expected",
     [
-        ([], ["cases", "pocket_sites", "user_wait"]),
-        (["--repeats", "5"], ["cases", "pocket_sites", "user_wait"]),
+        (
+            [],
+            [
+                "cases",
+                "pocket_sites",
+                "user_wait",
+                ("measure_peers", "--threads", "2", "--out", "benchmarks/results/measure_peers_threads.json"),
+            ],
+        ),
+        (
+            ["--repeats", "5"],
+            [
+                "cases",
+                "pocket_sites",
+                "user_wait",
+                ("measure_peers", "--threads", "2", "--out", "benchmarks/results/measure_peers_threads.json"),
+            ],
+        ),
         (["union_measure_vs_voronota"], ["cases"]),
         (["--list"], ["cases"]),
         (["pocket_sites"], ["pocket_sites"]),
