@@ -316,16 +316,26 @@ def certify(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None) -> 
     # 6. the centres that are not vertices are inside and hidden
     present = np.zeros(n, dtype=bool)
     present[simp.ravel()] = True
-    q = np.flatnonzero(~present)
-    if q.size:
-        start = _start_simplices(P, simp, q, order)
-        loc = _locate(P, simp, nbr, s, q, start)
-        if np.any(loc < 0):
-            return _fail("a centre that is not a vertex lies outside the triangulation", nbr, P)
-        hp = P.power(np.c_[simp[loc], q]).astype(np.int64) * s[loc]
-        if np.any(hp <= 0):
-            return _fail(f"{int(np.sum(hp <= 0))} balls left out are not hidden", nbr, P)
+    why = _left_out_failure(P, simp, nbr, s, np.flatnonzero(~present), order)
+    if why:
+        return _fail(why, nbr, P)
     return Certificate(True, "", nbr, dict(P.stats))
+
+
+def _left_out_failure(P: WeightedPoints, simp, nbr, s, q: np.ndarray, order=None) -> str:
+    """Condition 6 of :func:`certify` for the centres ``q`` that are not vertices:
+    each lies in a simplex (located by walking from a nearby start) and is hidden
+    there (positive power to its orthosphere).  "" if they are, else why not."""
+    if not q.size:
+        return ""
+    start = _start_simplices(P, simp, q, order)
+    loc = _locate(P, simp, nbr, s, q, start)
+    if np.any(loc < 0):
+        return "a centre that is not a vertex lies outside the triangulation"
+    hp = P.power(np.c_[simp[loc], q]).astype(np.int64) * s[loc]
+    if np.any(hp <= 0):
+        return f"{int(np.sum(hp <= 0))} balls left out are not hidden"
+    return ""
 
 
 def _boundary_failure(P: WeightedPoints, simp: np.ndarray, nbr: np.ndarray) -> str:
@@ -759,15 +769,9 @@ def _certify_stitched(P: WeightedPoints, first: _FirstPass, cav: np.ndarray, new
     ok = first.hidden & (first.loc >= 0)
     ok[ok] = ~cav[first.loc[ok]]
     done[first.q[ok]] = True
-    q = np.flatnonzero(~present & ~done)
-    if q.size:
-        start = _start_simplices(P, new, q, order)
-        loc = _locate(P, new, nn, s, q, start)
-        if np.any(loc < 0):
-            return _fail("a centre that is not a vertex lies outside the triangulation", nn, P)
-        hp = P.power(np.c_[new[loc], q]).astype(np.int64) * s[loc]
-        if np.any(hp <= 0):
-            return _fail(f"{int(np.sum(hp <= 0))} balls left out are not hidden", nn, P)
+    why = _left_out_failure(P, new, nn, s, np.flatnonzero(~present & ~done), order)
+    if why:
+        return _fail(why, nn, P)
     return Certificate(True, "", nn, dict(P.stats))
 
 
