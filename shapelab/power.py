@@ -111,7 +111,7 @@ from ._toolkit.validate import (
     default_bbox,
 )
 from .balls import Balls
-from .exact.certify import certify, facet_adjacency, failing_simplices, repair
+from .exact.certify import certify, facet_adjacency, repair
 from .exact.incremental import incremental_triangulation
 from .exact.predicates import WeightedPoints, affine_basis, det, projection_axes
 
@@ -803,11 +803,9 @@ def _tiebreak_repair(P: WeightedPoints, fr: _Frame, simp=None, nbr=None, perm=No
     False (tried already), from the candidate of :func:`_tiebreak_candidate`,
     certified, then repaired locally.  ``(simp, cert, info)`` or ``None``."""
     if simp is not None:
-        failing = failing_simplices(P, simp, perm, nbr)
-        if np.count_nonzero(failing[0]) <= TIEBREAK_FAILING * simp.shape[0]:
-            fixed = repair(P, simp, nbr, order=perm, failing=failing, start=1)
-            if fixed is not None:
-                return fixed
+        fixed = repair(P, simp, nbr, order=perm, start=1, max_failing=TIEBREAK_FAILING)
+        if fixed is not None:
+            return fixed
     if not tiebreak:
         return None
     cand = _tiebreak_candidate(fr.x, fr.w)

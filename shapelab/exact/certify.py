@@ -514,17 +514,8 @@ def failing_simplices(P: WeightedPoints, simp: np.ndarray, order=None, neighbors
         The complete check; a candidate with no failing simplex can still fail it
         (a boundary that is not closed, a double cover).
     """
-    return _Failing(_first_pass(P, simp, order, neighbors))
-
-
-class _Failing(tuple):
-    """``(bad, nbr, pos)``, as :func:`failing_simplices` documents, which also
-    carries the whole first pass (``first``) for :func:`repair` to reuse."""
-
-    def __new__(cls, first):
-        t = super().__new__(cls, (first.bad, first.nbr, first.pos))
-        t.first = first
-        return t
+    first = _first_pass(P, simp, order, neighbors)
+    return first.bad, first.nbr, first.pos
 
 
 @dataclass(frozen=True)
@@ -901,7 +892,7 @@ def repair(
     order=None,
     attempts: int = 4,
     max_fraction=0.25,
-    failing=None,
+    max_failing: float = 1.0,
     start: int = 0,
 ):
     """Repair a candidate regular triangulation locally (Notes §23.1).
@@ -923,10 +914,10 @@ def repair(
     max_fraction : float
         Give up (return ``None``) when a cavity holds more than this fraction of the
         points: re-triangulating most of the input locally costs as much as the whole.
-    failing : tuple, optional
-        What :func:`failing_simplices` returned for this candidate, if the caller
-        computed it already (its first pass is reused; any other value is ignored
-        and the first pass is computed).
+    max_failing : float
+        Give up (return ``None``) when more than this fraction of the candidate's
+        simplices fail, before any re-triangulation: the caller has a better
+        candidate for input that fails nearly everywhere (grids).
     start : int
         The first attempt (1: begin with the failing simplices' facet neighbours,
         which saves a whole certificate where the failing simplices alone are too
@@ -962,12 +953,12 @@ def repair(
     m, w = simp.shape
     if m == 0 or w < 2:
         return None
-    first = getattr(failing, "first", None)
-    if first is None:  # not computed by failing_simplices for this candidate
-        first = _first_pass(P, simp, order, neighbors)
+    first = _first_pass(P, simp, order, neighbors)
     bad, nbr, pos = first.bad, first.nbr, first.pos
     if not bad.any():
         return None  # nothing local to repair: the failure is global
+    if np.count_nonzero(bad) > max_failing * m:
+        return None  # failing nearly everywhere: not local
     n = P.n
     present = np.zeros(n, dtype=bool)
     present[simp.ravel()] = True
