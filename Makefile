@@ -1,79 +1,67 @@
-# shapelab: the course's commands.  Everything runs inside .venv, made on first use.
-#   make test     library tests + strict nbval on every lesson (what CI runs)
-#   make test-lib the library's and the teaching layer's tests and doctests (tests/library, tests/teaching; no Node, no book)
-#   make lint     ruff: lint and format check (part of make test)
+# shapelab: the course's commands.  Each is the short form of `python -m course COMMAND`
+# (course/__main__.py), which works the same without make, on Windows too.
+#   make lab      JupyterLab on 127.0.0.1 with a token: the student edition (student/)
+#   make lab-instructor  the same on the lessons with their solutions (lessons/)
 #   make course   execute every lesson, build the book, slides, figures, student edition
-#   make lab      JupyterLab on 127.0.0.1 with a printed token
+#   make test     lint, library tests, strict nbval on every lesson (what CI runs)
+#   make test-lib the library's and the teaching layer's tests and doctests (no Node, no book)
+#   make nbval    strict nbval on every lesson in the students' environment (lab + book extras)
 #   make bench    benchmarks against the peer libraries (CASE=name for one)
 #   make verify   persistence of real structures against GUDHI in Z/2, Z/3, Z/11, then the report CLI on every file
 
 PYTHON ?= python3
-VENV   := .venv
+COURSE := $(PYTHON) -m course
+VENV   := $(or $(SHAPELAB_VENV),.venv)
 PY     := $(VENV)/bin/python
 PIP    := $(PY) -m pip
 CONSTRAINTS := requirements/constraints.txt
 JOBS   ?= 2
 CASE   ?=
+export JOBS
 
-.PHONY: test test-lib lint course lab bench verify verify-cli lessons book slides figures student env clean help
+.PHONY: test test-lib lint course lab lab-instructor nbval bench verify verify-cli lessons book slides figures student env clean help
 
 help:
-	@sed -n '2,9p' Makefile | sed 's/^# //'
+	@sed -n '3,11p' Makefile | sed 's/^# //'
 
-$(PY):
-	$(PYTHON) -m venv $(VENV)
-	$(PIP) install -q --upgrade pip
+test:
+	$(COURSE) test
 
-# one stamp per set of extras; reinstalled when pyproject.toml or the pins change
-$(VENV)/.installed-%: pyproject.toml $(CONSTRAINTS) | $(PY)
-	@echo "installing shapelab[$*] into $(VENV) (pinned by $(CONSTRAINTS)) ..."
-	$(PIP) install -q -c $(CONSTRAINTS) -e ".[$*]"
-	@touch $@
-
-book/node_modules/.installed: book/package.json book/package-lock.json
-	@echo "installing the book's JavaScript (MathJax, require.js, widgets, reveal.js, 3Dmol.js) from the npm registry ..."
-	cd book && npm ci --no-audit --no-fund --loglevel=error
-	@touch $@
-
-env: $(VENV)/.installed-test
-
-test: $(VENV)/.installed-test $(VENV)/.installed-book book/node_modules/.installed lint
-	$(PY) -m pytest -n $(JOBS) --dist loadscope \
-	    --nbval --nbval-current-env --nbval-sanitize-with tests/nbval_sanitize.cfg \
-	    --nbval-cell-timeout 120 --doctest-modules tests lessons shapelab
+test-lib:
+	$(COURSE) test-lib
 
 # ruff: lint and format (pyproject.toml [tool.ruff]); `ruff format .` fixes the format
-lint: $(VENV)/.installed-test
+lint: env
 	$(PY) -m ruff check .
 	$(PY) -m ruff format --check .
 
-test-lib: $(VENV)/.installed-test
-	$(PY) -m pytest -n $(JOBS) --dist loadscope --doctest-modules tests/library tests/teaching shapelab \
-	    -p no:nbval
+course:
+	$(COURSE) build
 
-lessons: $(VENV)/.installed-book
-	$(PY) -m course.execute
+lab:
+	$(COURSE) lab
 
-course: $(VENV)/.installed-book book/node_modules/.installed
-	$(PY) -m course.build
+lab-instructor:
+	$(COURSE) lab --instructor
 
-book: $(VENV)/.installed-book book/node_modules/.installed
-	$(PY) -m course.build --only book
+nbval:
+	$(COURSE) nbval
 
-slides: $(VENV)/.installed-book book/node_modules/.installed
-	$(PY) -m course.build --only slides
+lessons:
+	$(COURSE) lessons
 
-figures: $(VENV)/.installed-book
-	$(PY) -m course.figures --out book/_build/figures --format svg
+book slides student figures:
+	$(COURSE) $@
 
-student: $(VENV)/.installed-book
-	$(PY) -m course.build --only student
+env:
+	$(COURSE) setup
 
-# 3Dmol.js (book/node_modules) lets shapelab.plot.view3d draw in JupyterLab offline;
-# without npm the lab still starts and a view says what is missing
-lab: $(VENV)/.installed-lab
-	@$(MAKE) -s book/node_modules/.installed || echo "npm unavailable: shapelab.plot.view3d will not draw in JupyterLab"
-	@$(PY) -m course.lab
+# the benchmarks' and the corpus's environments (peers without wheels everywhere: Linux x86-64 only)
+$(VENV)/.installed-%: pyproject.toml $(CONSTRAINTS)
+	@test -x $(PY) || $(PYTHON) -m venv $(VENV)
+	@echo "installing shapelab[$*] into $(VENV) (pinned by $(CONSTRAINTS)) ..."
+	$(PIP) install -q -c $(CONSTRAINTS) -e ".[$*]"
+	@touch $@
 
 bench: $(VENV)/.installed-bench
 	$(PY) -m benchmarks $(CASE)

@@ -1,10 +1,22 @@
 """Start JupyterLab on 127.0.0.1 with a fresh random token, and print the URL.
 
+    python -m course lab               # the student edition, in student/ (made on first use)
+    python -m course lab --instructor  # the lessons with their solutions, in lessons/
+
+A student opens the **student edition**: the lessons without solutions, their
+self-checks kept (:mod:`course.student`).  It is the student's working copy, in
+``student/`` at the repository's root, and it is never overwritten: a lesson missing
+from it is written on first use, and a lesson changed since the copy was made (after a
+``git pull``) is named, with the command that replaces it.  JupyterLab serves
+``student/`` only.  ``--instructor`` serves the repository and opens ``lessons/``,
+where the solutions are.
+
 The token is never empty; ``--allow-root`` is added only when running as root.
 """
 
 from __future__ import annotations
 
+import argparse
 import os
 import secrets
 import subprocess
@@ -12,9 +24,11 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
+LESSONS = ROOT / "lessons"
+STUDENT = ROOT / "student"
 
 
-def build_command(token: str, port: str, as_root: bool) -> list[str]:
+def build_command(token: str, port: str, as_root: bool, root_dir: Path = ROOT, open_path: str = "") -> list[str]:
     """The JupyterLab command line: loopback only, a non-empty token, root only if needed."""
     if not token:
         raise ValueError("token must not be empty: JupyterLab would accept anyone")
@@ -26,24 +40,79 @@ def build_command(token: str, port: str, as_root: bool) -> list[str]:
         f"--ServerApp.port={port}",
         f"--IdentityProvider.token={token}",
         "--ServerApp.open_browser=False",
-        f"--ServerApp.root_dir={ROOT}",
-        "--LabApp.default_url=/lab/tree/lessons/00_start_here.ipynb",
+        f"--ServerApp.root_dir={root_dir}",
+        f"--LabApp.default_url=/lab/tree/{open_path}",
     ]
     if as_root:
         cmd.append("--allow-root")
     return cmd
 
 
-def main() -> int:
+def lessons() -> list[Path]:
+    return sorted(p for p in LESSONS.glob("[0-9][0-9]_*.ipynb") if not p.name.endswith(".failed.ipynb"))
+
+
+def student_copy(dest: Path = STUDENT, sources: list[Path] | None = None) -> tuple[list[str], list[str]]:
+    """Write the student edition of every lesson missing from ``dest``; never touch one
+    that is there.  Returns (written, stale): the names written now, and the names whose
+    lesson is newer than the student's copy."""
+    import nbformat
+
+    from course.student import README, student_notebook
+
+    dest.mkdir(parents=True, exist_ok=True)
+    written, stale = [], []
+    for path in lessons() if sources is None else sources:
+        target = dest / path.name
+        if target.exists():
+            if path.stat().st_mtime > target.stat().st_mtime + 1:
+                stale.append(path.name)
+            continue
+        nb, _ = student_notebook(nbformat.read(path, as_version=4))
+        tmp = target.with_suffix(".tmp")
+        nbformat.write(nb, tmp)
+        os.replace(tmp, target)  # nothing half-written
+        written.append(path.name)
+    readme = dest / "README.md"
+    if not readme.exists():
+        readme.write_text(README, encoding="utf-8")
+    return written, stale
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m course lab", description=__doc__.split("\n\n")[0])
+    ap.add_argument(
+        "--instructor", action="store_true", help="open the lessons with their solutions (lessons/), not student/"
+    )
+    ap.add_argument("--port", default=os.environ.get("PORT", "8888"))
+    ap.add_argument("--dry-run", action="store_true", help="prepare and print the command, do not start JupyterLab")
+    args = ap.parse_args(argv)
+    if args.instructor:
+        root, first = ROOT, "lessons/00_start_here.ipynb"
+        print("JupyterLab for the shapelab course: the INSTRUCTOR's lessons, with their solutions (lessons/).")
+    else:
+        written, stale = student_copy()
+        root, first = STUDENT, "00_start_here.ipynb"
+        print("JupyterLab for the shapelab course: the student edition (student/, no solutions).")
+        if written:
+            print(f"  wrote {len(written)} lesson(s) into student/ (your working copy: edit freely)")
+        for name in stale:
+            print(
+                f"  note: lessons/{name} changed after your copy was made; your copy is kept. To start "
+                f"it afresh, move student/{name} aside and run this command again."
+            )
     token = secrets.token_hex(24)
-    port = os.environ.get("PORT", "8888")
-    cmd = build_command(token, port, as_root=hasattr(os, "geteuid") and os.geteuid() == 0)
-    print("JupyterLab for the shapelab course, on this machine only (127.0.0.1).")
-    print(f"Open: http://127.0.0.1:{port}/lab/tree/lessons/00_start_here.ipynb?token={token}")
+    cmd = build_command(
+        token, args.port, as_root=hasattr(os, "geteuid") and os.geteuid() == 0, root_dir=root, open_path=first
+    )
+    print("On this machine only (127.0.0.1).")
+    print(f"Open: http://127.0.0.1:{args.port}/lab/tree/{first}?token={token}")
     print("(If the port is taken, JupyterLab picks the next one and prints its own URL below.)")
     sys.stdout.flush()
+    if args.dry_run:
+        return 0
     env = dict(os.environ, PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
-    return subprocess.call(cmd, cwd=ROOT, env=env)
+    return subprocess.call(cmd, cwd=root, env=env)
 
 
 if __name__ == "__main__":

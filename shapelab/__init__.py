@@ -32,6 +32,7 @@ Modules, one per concept of the notes:
 ``shapelab.trajectory``       :func:`trajectory_measures`: area, volume, cavities of MD frames (MDAnalysis)
 ``shapelab.cli``              ``python -m shapelab report FILE...``: the command line
 ``shapelab.datasets``         generated molecules and the inputs of the figures
+``shapelab.peers``            GUDHI's diagrams of the lessons' inputs: live if installed, else shipped
 ``shapelab.plot``             one function per kind of figure, a shared style
 ``shapelab.widgets``          ipywidgets explorers built on :mod:`shapelab.plot`
 ``shapelab.check``            self-checks for exercises
@@ -119,6 +120,7 @@ _SUBMODULES = {
     "critical",
     "io",
     "datasets",
+    "peers",
     "plot",
     "widgets",
     "check",

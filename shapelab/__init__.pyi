@@ -17,6 +17,7 @@ from . import io as io
 from . import matching as matching
 from . import measure as measure
 from . import oracles as oracles
+from . import peers as peers
 from . import plot as plot
 from . import power as power
 from . import quaternion as quaternion

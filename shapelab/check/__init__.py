@@ -47,7 +47,7 @@ _EXPORTS = {
     "ring_tunnel": "answers",
     "buried_area": "answers",
     "most_spread_class": "answers",
-    "rips_union_gap": "answers",
+    "rips_not_nerve": "answers",
     "curve_pairs": "answers",
     "euler_poincare": "answers",
     "most_exposed_residue": "answers",

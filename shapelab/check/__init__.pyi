@@ -19,7 +19,7 @@ from .answers import neck_closing as neck_closing
 from .answers import pocket_residues as pocket_residues
 from .answers import radical_center as radical_center
 from .answers import ring_tunnel as ring_tunnel
-from .answers import rips_union_gap as rips_union_gap
+from .answers import rips_not_nerve as rips_not_nerve
 from .answers import standard_error_factor as standard_error_factor
 from .answers import torus_viewpoints as torus_viewpoints
 from .answers import void_components as void_components
@@ -76,7 +76,7 @@ __all__ = [
     "quiz",
     "radical_center",
     "ring_tunnel",
-    "rips_union_gap",
+    "rips_not_nerve",
     "rotation_matrix",
     "show_quiz",
     "standard_error_factor",

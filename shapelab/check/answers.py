@@ -31,7 +31,7 @@ __all__ = [
     "void_components",
     "buried_area",
     "most_spread_class",
-    "rips_union_gap",
+    "rips_not_nerve",
     "first_site_rank",
 ]
 
@@ -750,51 +750,79 @@ def most_spread_class(answer, distances, labels, *, spread) -> CheckResult:
     return value("the most spread-out class", received, expected)
 
 
-def rips_union_gap(gap, points, *, max_edge_length: float = 1.6, rtol: float = 1e-6) -> CheckResult:
-    """Lesson 17: the bottleneck distance between the :math:`H_1` diagrams of the
-    Vietoris–Rips filtration of ``points`` (in the scale ρ = half the edge length) and
-    of their α-filtration (in ρ = √τ): the union's diagram against one that is not a
-    nerve's.
+def rips_not_nerve(count, points, rho) -> CheckResult:
+    """Lesson 17: how many triangles of the Vietoris–Rips complex of ``points`` at radius
+    ``rho`` are not in the Čech complex, the nerve of the balls of radius ``rho``.
+
+    A triangle is in the Rips complex when its three sides are at most :math:`2\\rho`;
+    it is in the nerve when the three balls share a point, that is when the smallest
+    ball enclosing its vertices has radius at most :math:`\\rho`.  The check finds that
+    ball its own way, not by the triangle's angles: the circumcentre solved as a
+    linear system in the triangle's plane, kept when its barycentric coordinates are
+    all non-negative, else the midpoint of the longest side.
 
     Parameters
     ----------
-    gap : float
-        The student's distance.
-    points : array_like, shape (n, 3)
-        The points (balls of radius 0).
-    max_edge_length : float
-        GUDHI's Rips threshold; every :math:`H_1` class must die below it (checked).
-    rtol : float
-        Relative tolerance.
+    count : int
+        The student's number of triangles.
+    points : array_like, shape (n, d)
+        The centres, d = 2 or 3.
+    rho : float
+        The radius, > 0.
 
     Returns
     -------
     CheckResult
 
+    Raises
+    ------
+    ValueError
+        If a side or an enclosing radius lies within 1e-9 of its threshold: round-off
+        would then decide the count.
+
     See Also
     --------
-    shapelab.filtration.alpha_filtration : the α-filtration, the nerve of the union's cells.
+    shapelab.filtration.alpha_filtration : the α-filtration, the nerve of the clipped balls.
 
     References
     ----------
-    .. [1] Lecture notes, §23.1 (the dual complex and the union).
+    .. [1] Lecture notes, §23.1 (the dual complex as a nerve).
     .. [2] H. Edelsbrunner and J. Harer, *Computational Topology*, AMS, 2010, §III.2
        (Čech and Vietoris–Rips complexes).
     """
-    import gudhi
+    from .._toolkit.validate import as_finite_scalar, as_points
 
-    from ..balls import Balls
-    from ..diagrams import bottleneck_distance
-    from ..filtration import alpha_filtration
-
-    X = np.asarray(points, dtype=float)
-    alpha = np.sqrt(np.maximum(np.asarray(alpha_filtration(Balls(X, 0.0)).persistence()[1], dtype=float), 0.0))
-    st = gudhi.RipsComplex(points=X, max_edge_length=max_edge_length).create_simplex_tree(max_dimension=2)
-    st.compute_persistence(homology_coeff_field=2)
-    rips = np.asarray(st.persistence_intervals_in_dimension(1), dtype=float).reshape(-1, 2) / 2.0
-    if not np.all(np.isfinite(rips)):
-        raise ValueError(f"max_edge_length={max_edge_length!r} leaves a loop of the Rips filtration alive")
-    return value("the H1 bottleneck distance, Rips against α (in ρ)", gap, bottleneck_distance(alpha, rips), rtol=rtol)
+    X = as_points(points, "points")
+    rho = as_finite_scalar(rho, "rho", positive=True)
+    D = np.linalg.norm(X[:, None, :] - X[None, :, :], axis=-1)
+    off = ~np.eye(len(X), dtype=bool)
+    if np.any(np.abs(D[off] - 2 * rho) < 1e-9):
+        raise ValueError(f"a distance between two points lies within 1e-9 of 2*rho = {2 * rho!r}")
+    i, j = np.nonzero(np.triu(D <= 2 * rho, 1))
+    adj = D <= 2 * rho
+    tri = [
+        (a, b, c)
+        for a, b in zip(i.tolist(), j.tolist())
+        for c in (np.flatnonzero(adj[a, b + 1 :] & adj[b, b + 1 :]) + b + 1).tolist()
+    ]
+    outside = 0
+    for a, b, c in tri:
+        P, Q, S = X[a], X[b], X[c]
+        u, v = Q - P, S - P
+        G = np.array([[u @ u, u @ v], [u @ v, v @ v]])
+        s, t = np.linalg.solve(G, 0.5 * np.array([u @ u, v @ v]))  # circumcentre P + s u + t v
+        if min(s, t, 1.0 - s - t) >= 0.0:
+            radius = np.linalg.norm(s * u + t * v)
+        else:
+            radius = max(D[a, b], D[a, c], D[b, c]) / 2.0
+        if abs(radius - rho) < 1e-9:
+            raise ValueError(f"a triangle's smallest enclosing ball has radius within 1e-9 of rho = {rho!r}")
+        outside += radius > rho
+    if isinstance(count, (bool, np.bool_)) or not isinstance(count, (int, np.integer)):
+        msg = f"✗ the Rips triangles outside the nerve: expected a whole number, got a {type(count).__name__}."
+        print(msg)
+        return CheckResult("the Rips triangles outside the nerve", False, 1, msg)
+    return value("the Rips triangles outside the nerve", int(count), outside)
 
 
 def first_site_rank(

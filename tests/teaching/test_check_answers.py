@@ -138,18 +138,66 @@ def test_most_spread_class_refuses_a_wrong_label_or_value_without_giving_it(answ
     assert "✗" in out and "✓" not in out and "0.5" not in out  # a wrong value is named by its class only
 
 
-# ---- lesson 17: Rips against α, on the regular octahedron ---------------------------------
-def test_rips_union_gap_closed_form_on_the_octahedron(capsys):
-    # edges sqrt(2): 7 loops born at rho = sqrt(1/2) in both filtrations; the faces close them
-    # at their circumradius sqrt(2/3) in the alpha filtration, at once (with their edges) in
-    # the Rips one, whose H1 is empty: the gap is (sqrt(2/3) - sqrt(1/2)) / 2
+# ---- lesson 17: Rips triangles outside the nerve -----------------------------------------
+def _exact_rips_only(X, rho):
+    """Brute force in exact rationals, by the angles: a triangle with sides <= 2 rho is
+    outside the nerve iff it is acute with circumradius > rho (R^2 = a^2 b^2 c^2 / (16 A^2))."""
+    from fractions import Fraction
+    from itertools import combinations
+
+    P = [[Fraction(float(x)) for x in p] for p in X]
+    r2 = Fraction(float(rho)) ** 2
+
+    def d2(p, q):
+        return sum((a - b) ** 2 for a, b in zip(p, q))
+
+    n = 0
+    for i, j, k in combinations(range(len(P)), 3):
+        a2, b2, c2 = d2(P[j], P[k]), d2(P[i], P[k]), d2(P[i], P[j])
+        if max(a2, b2, c2) > 4 * r2:
+            continue
+        s = sorted((a2, b2, c2))
+        if s[0] + s[1] <= s[2]:
+            continue  # right or obtuse: the smallest ball has the longest side as diameter
+        u = [x - y for x, y in zip(P[j], P[i])]
+        v = [x - y for x, y in zip(P[k], P[i])]
+        uu, vv, uv = sum(x * x for x in u), sum(x * x for x in v), sum(x * y for x, y in zip(u, v))
+        area2 = (uu * vv - uv * uv) / 4
+        n += a2 * b2 * c2 / (16 * area2) > r2
+    return n
+
+
+def test_rips_not_nerve_closed_forms(capsys):
+    # the regular octahedron: 8 equilateral faces of side sqrt(2), circumradius sqrt(2/3)
     octahedron = np.vstack([np.eye(3), -np.eye(3)])
-    gap = (np.sqrt(2 / 3) - np.sqrt(1 / 2)) / 2
-    assert check.rips_union_gap(gap, octahedron)
-    assert not check.rips_union_gap(2 * gap, octahedron)  # Rips in the edge-length scale: no, but 2x off
-    assert not check.rips_union_gap(gap**2, octahedron)
+    assert check.rips_not_nerve(8, octahedron, 0.75)  # sqrt(2) <= 1.5 < 2, sqrt(2/3) > 0.75
+    assert check.rips_not_nerve(0, octahedron, 0.9)  # the faces are in the nerve from sqrt(2/3)
+    assert check.rips_not_nerve(0, octahedron, 1.1)  # 20 Rips triangles, all in the nerve
+    assert not check.rips_not_nerve(20, octahedron, 1.1)  # every Rips triangle: no
+    # an equilateral triangle of side 1: Rips from rho = 1/2, nerve from 1/sqrt(3)
+    tri = [[0.0, 0.0], [1.0, 0.0], [0.5, np.sqrt(3) / 2]]
+    assert check.rips_not_nerve(1, tri, 0.55)
+    assert check.rips_not_nerve(0, tri, 0.45) and check.rips_not_nerve(0, tri, 0.6)
+    assert not check.rips_not_nerve(1.0, tri, 0.55)  # a float is not a count
     out = capsys.readouterr().out
-    assert out.count("✓") == 1 and out.count("✗") == 2
+    assert out.count("✗") == 2 and out.count("✓") == 6
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_rips_not_nerve_against_exact_brute_force(seed):
+    rng = np.random.default_rng(seed)
+    X = rng.uniform(0, 1, (18, 2 + seed % 2))
+    rho = 0.3
+    want = _exact_rips_only(X, rho)
+    assert check.rips_not_nerve(want, X, rho)
+    assert not check.rips_not_nerve(want + 1, X, rho)
+
+
+def test_rips_not_nerve_refuses_a_tie_and_bad_rho():
+    with pytest.raises(ValueError, match="within 1e-9"):
+        check.rips_not_nerve(0, [[0.0, 0.0], [1.0, 0.0]], 0.5)  # a side exactly 2 rho
+    with pytest.raises(ValueError, match="rho"):
+        check.rips_not_nerve(0, [[0.0, 0.0], [1.0, 0.0]], -1.0)
 
 
 def _exposed_toy():
