@@ -7,8 +7,10 @@ CONTRIBUTING.md) and by ``make course`` (execute into the book's build tree).
     python -m course.execute lessons/03_*.ipynb   # some, in place
     python -m course.execute --out book/lessons   # copies, for the book
 
-A lesson fails if any cell raises, writes to stderr, or the whole notebook takes
-longer than ``--limit`` seconds (default 60, the course's budget on 2 cores).
+A lesson fails if any cell raises or writes to stderr.  The course's budget is 60 s per
+lesson on 2 cores (``BUDGET``): a lesson over it is named with a warning, and fails
+only with ``--limit SECONDS`` (maintainers' runs), so that a student's slower laptop
+still builds the course.
 Widget state is stored in the committed lessons; the book's copies (``--out``) carry the
 explorers' static players instead (shapelab.widgets.static) and no widget state.
 """
@@ -42,9 +44,11 @@ def problems(nb) -> list[str]:
 
 
 LOG = ROOT / "book" / "_build" / "logs" / "kernels.log"
+#: the course's time budget per lesson, in seconds on 2 cores (a warning past it)
+BUDGET = 60.0
 
 
-def execute(path: Path, out_dir: Path | None, timeout: int, limit: float, log=None) -> float:
+def execute(path: Path, out_dir: Path | None, timeout: int, limit: float | None, log=None) -> float:
     nb = nbformat.read(path, as_version=4)
     env_cwd = path.parent
     keep_widgets = os.environ.get("SHAPELAB_STATIC_EXPLORERS") != "1"
@@ -67,8 +71,8 @@ def execute(path: Path, out_dir: Path | None, timeout: int, limit: float, log=No
     client.execute(**({"stderr": log} if log is not None else {}))
     elapsed = time.perf_counter() - t0
     found = problems(nb)
-    if elapsed > limit:
-        found.append(f"took {elapsed:.1f} s, over the {limit:.0f} s budget")
+    if limit is not None and elapsed > limit:
+        found.append(f"took {elapsed:.1f} s, over the {limit:.0f} s limit")
     target = (out_dir / path.name) if out_dir else path
     target.parent.mkdir(parents=True, exist_ok=True)
     if found and out_dir is None:
@@ -87,7 +91,9 @@ def main(argv=None) -> int:
     ap.add_argument("notebooks", nargs="*", type=Path, help="default: lessons/*.ipynb")
     ap.add_argument("--out", type=Path, default=None, help="write executed copies here instead of in place")
     ap.add_argument("--timeout", type=int, default=120, help="per-cell timeout in seconds")
-    ap.add_argument("--limit", type=float, default=60.0, help="whole-notebook budget in seconds")
+    ap.add_argument(
+        "--limit", type=float, default=None, help=f"fail a lesson that takes longer (default: warn past {BUDGET:.0f} s)"
+    )
     ap.add_argument(
         "--static-explorers",
         action=argparse.BooleanOptionalAction,
@@ -121,7 +127,8 @@ def main(argv=None) -> int:
             failures.append(str(exc))
             continue
         total += dt
-        print(f" {dt:.1f} s")
+        over = f"  (over the course's {BUDGET:.0f} s budget on 2 cores)" if dt > BUDGET else ""
+        print(f" {dt:.1f} s{over}")
     log.close()
     print(
         f"executed {len(paths) - len(failures)}/{len(paths)} lessons in {total:.1f} s "

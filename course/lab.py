@@ -52,7 +52,7 @@ def lessons() -> list[Path]:
     return sorted(p for p in LESSONS.glob("[0-9][0-9]_*.ipynb") if not p.name.endswith(".failed.ipynb"))
 
 
-def student_copy(dest: Path = STUDENT, sources: list[Path] | None = None) -> tuple[list[str], list[str]]:
+def student_copy(dest: Path | None = None, sources: list[Path] | None = None) -> tuple[list[str], list[str]]:
     """Write the student edition of every lesson missing from ``dest``; never touch one
     that is there.  Returns (written, stale): the names written now, and the names whose
     lesson is newer than the student's copy."""
@@ -60,6 +60,7 @@ def student_copy(dest: Path = STUDENT, sources: list[Path] | None = None) -> tup
 
     from course.student import README, student_notebook
 
+    dest = STUDENT if dest is None else dest
     dest.mkdir(parents=True, exist_ok=True)
     written, stale = [], []
     for path in lessons() if sources is None else sources:
