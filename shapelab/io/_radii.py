@@ -257,6 +257,11 @@ def vdw_radius_source(element: str) -> str:
     ValueError
         As :func:`vdw_radius`, for an element in none of the tables.
 
+    See Also
+    --------
+    vdw_radius : the radius.
+    radius_notes : what a report says of the radii of a structure's atoms.
+
     Examples
     --------
     >>> vdw_radius_source("C"), vdw_radius_source("Ba"), vdw_radius_source("mn")
@@ -326,7 +331,21 @@ def radius_notes(structure) -> tuple:
     """What a report says of the radii of ``structure``'s atoms: one note for the atoms
     that took an Alvarez (2013) radius (which elements, how many atoms, the table
     cited) and one for those that took ``default_radius`` (``()`` when neither did, or
-    for a structure without :attr:`~PDBStructure.radius_sources`).
+    for a structure without :attr:`~PDBStructure.radius_sources`).  :func:`shapelab.report`
+    puts them in :attr:`CavityReport.notes <shapelab.cavity_report.CavityReport.notes>`,
+    which its Markdown prints above the table.  Nothing is warned: the notes are the
+    record.
+
+    See Also
+    --------
+    vdw_radius_source : which table an element's radius is from.
+    read_pdb : records the table of each atom (``radius_sources``).
+    shapelab.report : the report that carries the notes.
+
+    References
+    ----------
+    S. Alvarez, "A cartography of the van der Waals territories", *Dalton Trans.* **42**,
+    8617–8636 (2013), Table 1.  doi:10.1039/C3DT50599E
 
     Examples
     --------
