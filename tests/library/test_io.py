@@ -6,9 +6,12 @@ gemmi, an independent PDB and mmCIF reader, is the oracle for what a file says.
 from __future__ import annotations
 
 import gzip
+import hashlib
 import io
 import re
+import tarfile
 import tracemalloc
+from pathlib import Path
 
 import gemmi
 import numpy as np
@@ -215,6 +218,31 @@ def test_metal_ions_read_at_the_defaults_and_the_notes_name_the_table(tmp_path):
     # without the ions, or with radii= for them, no note
     assert radius_notes(read_pdb(p, hetatm=False)) == ()
     assert radius_notes(read_pdb(p, radii={"Mn": 2.0, "Fe": 2.0, "Co": 2.0, "Mo": 2.0})) == ()
+
+
+_CORPUS = Path(__file__).resolve().parents[2] / ".cache" / "corpus" / "archives" / "mdanalysistests-2.11.0.tar.gz"
+_19HC = "mdanalysistests-2.11.0/MDAnalysisTests/data/19hc.pdb.gz"
+
+
+def test_a_real_metalloprotein_reads_at_the_defaults(tmp_path):
+    """19HC, the nine-haem cytochrome c of Desulfovibrio desulfuricans (two chains, 18 Fe),
+    as MDAnalysisTests 2.11.0 ships it (MDAnalysisTests/data/19hc.pdb.gz; fetched by
+    ``python -m course.fetch_corpus``, skipped without it): refused before Alvarez's radii,
+    read at the defaults now, the notes naming the 18 iron atoms."""
+    if not _CORPUS.is_file():
+        pytest.skip("the verification corpus is not fetched (python -m course.fetch_corpus)")
+    with tarfile.open(_CORPUS) as tar:
+        data = tar.extractfile(_19HC).read()
+    assert hashlib.sha256(data).hexdigest() == "3d0db968c94a2e8b079ede0cc4afc4e247b2d616c9631a1975479661d93a932b"
+    path = tmp_path / "19hc.pdb.gz"
+    path.write_bytes(data)
+    s = read_structure(path)
+    iron = s.elements == "Fe"
+    assert iron.sum() == 18 and set(s.residue_names[iron].tolist()) == {"HEM"}
+    assert s.balls.radii[iron].tolist() == [2.44] * 18
+    assert set(s.radius_sources[~iron].tolist()) <= {"bondi", "mantina"}
+    (note,) = radius_notes(s)
+    assert note.startswith("van der Waals radii of Alvarez (2013) for 18 atoms (Fe 18), ")
 
 
 def test_radius_precedence(tmp_path):
