@@ -26,9 +26,9 @@ A file passes (*ok*) when the CLI exits 0 and writes ``.csv``, ``.md``, ``.cif``
 no file.  Two refusals name the flag that lifts them, and the file is run again with it
 (:data:`RETRIES`; verdict *ok with flags* when the report is then written):
 
-* an element without a van der Waals radius in ``shapelab.io.VDW_RADII`` (Bondi 1964
-  and Mantina et al. 2009 have none for the transition metals: Fe in heme; ``X``, the
-  pseudo-atoms of a random walk), which the CLI refuses by default, naming
+* an element without a van der Waals radius in any table of ``shapelab.io`` (Bondi 1964,
+  Mantina et al. 2009, and Alvarez 2013 for the transition metals such as Fe in heme:
+  ``X``, the pseudo-atoms of a random walk), which the CLI refuses by default, naming
   ``--default-radius``: run again with ``--default-radius 2`` (:data:`DEFAULT_RADIUS`,
   an arbitrary round value that only shows the report is written);
 * a file of water (and hydrogens) only, which the CLI's defaults drop: run again with
@@ -65,7 +65,7 @@ RETRIES: tuple[tuple[str, tuple[str, ...], str], ...] = (
     (
         "(on the command line: --default-radius R)",
         ("--default-radius", f"{DEFAULT_RADIUS:g}"),
-        "an element without a radius in Bondi's or Mantina et al.'s table",
+        "an element without a radius in Bondi's, Mantina et al.'s or Alvarez's table",
     ),
     (
         "is left by the selection (chain=None, hetatm=True, water=False, hydrogens=False;",

@@ -166,6 +166,11 @@ class CavityReport:
         The filters applied, as the Markdown names them (``""`` for none).
     method : str
         The pocket definition, ``"growth"`` or ``"flow"`` (:func:`shapelab.pockets`).
+    notes : tuple of str
+        What the reader should know of the structure's radii, as the Markdown says it
+        under "Notes": which atoms took a van der Waals radius of Alvarez (2013) --
+        the elements, how many atoms, the table cited -- or ``default_radius``
+        (:func:`shapelab.io.radius_notes`); ``()`` for none.
 
     See Also
     --------
@@ -184,6 +189,7 @@ class CavityReport:
     found: int | None = None
     filters: str = ""
     method: str = "growth"
+    notes: tuple = ()
 
     def __len__(self) -> int:
         return len(self.rows)
@@ -267,6 +273,8 @@ class CavityReport:
                 '(rank="none" without filters, --rank none on the command line, lists them all)'
             )
             lines[4:4] = [f"{order}{kept}{told}.", ""]
+        if self.notes:
+            lines[-2:-2] = [f"Notes: {'; '.join(self.notes)}.", ""]
         if self.rank != "none":
             lines[-2] += " score | buried | depth | open |"
             lines[-1] += "---:|---:|---:|---:|"
@@ -640,6 +648,11 @@ def report(
     Returns
     -------
     CavityReport
+        With ``notes`` on the radii of a :class:`~shapelab.io.PDBStructure`: which
+        atoms took a van der Waals radius of Alvarez (2013), Table 1 (the transition
+        metals, lanthanides and actinides Bondi 1964 and Mantina et al. 2009 lack:
+        Fe, Mn, Co, Mo, ...), or ``default_radius`` (:func:`shapelab.io.radius_notes`),
+        which the Markdown prints above the table.
 
     Raises
     ------
@@ -727,7 +740,7 @@ def report(
     from .cavities import voids as find_voids
     from .filtration import alpha_filtration
     from .freespace import free_area, free_space
-    from .io import PDBStructure
+    from .io import PDBStructure, radius_notes
     from .ranking import DEFAULT_MIN_PERSISTENCE, DEFAULT_MIN_VOLUME, pocket_features, rank_order, rank_score
 
     if method not in ("growth", "flow"):
@@ -876,6 +889,7 @@ def report(
         found=len(V_all) + len(P_all),
         filters=kept,
         method=method,
+        notes=radius_notes(structure) if labelled else (),
     )
 
 

@@ -99,8 +99,9 @@ def parser() -> argparse.ArgumentParser:
         "--default-radius",
         type=float,
         metavar="R",
-        help="van der Waals radius (Å) of elements shapelab.io.VDW_RADII lacks "
-        "(Bondi 1964 and Mantina et al. 2009 list none for most transition metals)",
+        help="van der Waals radius (Å) of the elements no table lists (Pm, past Es, unknown symbols such as X); "
+        "the others take Bondi's (1964), Mantina et al.'s (2009) or, for the transition metals, lanthanides "
+        "and actinides those two lack, Alvarez's (2013) radius, which the report's notes name",
     )
     rank = ap.add_argument_group(
         "which pockets, in which order (shapelab.report)",

@@ -211,14 +211,16 @@ def selection_radii(atoms, default_radius=None) -> np.ndarray:
     The element is the topology's ``elements`` when it has them, otherwise read from the
     atom name as :func:`shapelab.io.read_pdb` reads a name (:func:`shapelab.io.element_from_name`,
     the name placed in columns 13-16 as MDAnalysis writes it); its radius is
-    :func:`shapelab.io.vdw_radius` (Bondi 1964, Mantina et al. 2009).
+    :func:`shapelab.io.vdw_radius` (Bondi 1964, Mantina et al. 2009, and Alvarez 2013 for
+    the transition metals, lanthanides and actinides those two lack).
 
     Parameters
     ----------
     atoms : MDAnalysis.AtomGroup
         The atoms.
     default_radius : float, optional
-        The radius of an element in neither table; without it such an atom raises.
+        The radius of an element no table lists (Pm, past Es, an unknown symbol);
+        without it such an atom raises.
 
     Returns
     -------
@@ -238,6 +240,11 @@ def selection_radii(atoms, default_radius=None) -> np.ndarray:
     References
     ----------
     A. Bondi, "van der Waals Volumes and Radii", *J. Phys. Chem.* **68**, 441–451 (1964).
+    M. Mantina, A. C. Chamberlin, R. Valero, C. J. Cramer, D. G. Truhlar, "Consistent
+    van der Waals Radii for the Whole Main Group", *J. Phys. Chem. A* **113**, 5806–5812
+    (2009), Table 12.
+    S. Alvarez, "A cartography of the van der Waals territories", *Dalton Trans.* **42**,
+    8617–8636 (2013), Table 1.
     """
     from .io import element_from_name, vdw_radius
 
@@ -262,7 +269,8 @@ def selection_radii(atoms, default_radius=None) -> np.ndarray:
             if default_radius is None:
                 raise ValueError(
                     f"atom {i} of the selection (name {names[i]!r}, residue {resnames[i]}, element {e!r}) has no "
-                    f"van der Waals radius in Bondi's (1964) or Mantina et al.'s (2009) table; pass default_radius="
+                    f"van der Waals radius in Bondi's (1964), Mantina et al.'s (2009) or Alvarez's (2013) table; "
+                    "pass default_radius="
                 )
             rad[i] = default_radius
     return rad

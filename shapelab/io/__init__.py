@@ -21,9 +21,14 @@ Po, At, Rn, Fr, Ra) by M. Mantina, A. C. Chamberlin, R. Valero, C. J. Cramer and
 D. G. Truhlar, "Consistent van der Waals Radii for the Whole Main Group",
 *J. Phys. Chem. A* **113**, 5806–5812 (2009), Table 12.  Where Bondi has a value it is
 kept (Mantina et al. give H 1.10, Li 1.81 and Br 1.83 instead of Bondi's 1.20, 1.82
-and 1.85; the rest of their Table 12 is Bondi's).  Most transition metals (Fe, Mn,
-Co, Mo, ...) have no consistent van der Waals radius in either table: an atom of
-such an element raises unless a ``default_radius`` (or ``radii=``) is given.
+and 1.85; the rest of their Table 12 is Bondi's).  The elements in neither table --
+most transition metals (Fe, Mn, Co, Mo, ...), the lanthanides, most actinides -- take
+the radii of S. Alvarez, "A cartography of the van der Waals territories", *Dalton
+Trans.* **42**, 8617–8636 (2013), Table 1 (:data:`ALVAREZ_RADII`), and a report says
+which atoms did (:func:`radius_notes`).  An atom's radius is, in this order: the
+reader's ``radii=`` (by residue and atom name, then by element), Bondi/Mantina,
+Alvarez, then ``default_radius``; an element none of them gives (Pm, the elements
+after Es, an unknown symbol) raises, naming the element, the file and the line.
 
 Layout
 ------
@@ -32,15 +37,15 @@ every reader shares then keep some of them (:mod:`~shapelab.io._selection`: alte
 locations, water, HETATM, chains, hydrogens) and give each its radius
 (:mod:`~shapelab.io._radii`), and the result is a :class:`PDBStructure`:
 
-==========================  ===================================================
+==========================  ==============================================================
 ``shapelab.io._read``       :func:`read_structure`: recognises the format
 ``shapelab.io._pdb``        :func:`read_pdb`: the PDB format's fixed columns
 ``shapelab.io._mmcif``      mmCIF's ``_atom_site`` table (gemmi's CIF parser)
 ``shapelab.io._selection``  which atoms are kept
-``shapelab.io._radii``      :data:`VDW_RADII`, :func:`vdw_radius`
+``shapelab.io._radii``      :data:`VDW_RADII`, :data:`ALVAREZ_RADII`, :func:`vdw_radius`
 ``shapelab.io._structure``  :class:`PDBStructure`
 ``shapelab.io._writers``    :func:`write_pdb`, :func:`write_mmcif`
-==========================  ===================================================
+==========================  ==============================================================
 
 Everything public is imported from ``shapelab.io``; the private modules are its
 implementation, as in ``scipy.spatial``.
@@ -49,7 +54,7 @@ implementation, as in ``scipy.spatial``.
 from __future__ import annotations
 
 from ._pdb import MAX_PDB_BYTES, element_from_name, read_pdb
-from ._radii import VDW_RADII, vdw_radius
+from ._radii import ALVAREZ_RADII, VDW_RADII, radius_notes, vdw_radius, vdw_radius_source
 from ._read import detect_format, read_structure
 from ._selection import STANDARD_RESIDUES, WATER_RESIDUES
 from ._structure import PDBStructure
@@ -57,6 +62,7 @@ from ._writers import write_mmcif, write_pdb
 
 __all__ = [
     "VDW_RADII",
+    "ALVAREZ_RADII",
     "WATER_RESIDUES",
     "STANDARD_RESIDUES",
     "MAX_PDB_BYTES",
@@ -67,5 +73,7 @@ __all__ = [
     "write_pdb",
     "write_mmcif",
     "vdw_radius",
+    "vdw_radius_source",
+    "radius_notes",
     "element_from_name",
 ]

@@ -218,9 +218,14 @@ def read_pdb(
         Probe radius :math:`p \\ge 0` added to every van der Waals radius; ``probe=1.4``
         (water) gives the solvent-accessible model.
     default_radius : float, optional
-        Van der Waals radius for elements missing from :data:`VDW_RADII` (Bondi 1964
-        and Mantina et al. 2009: most transition metals, e.g. Fe, Mn, Co, Mo) and from
-        ``radii``.  Without it, such an element raises.
+        Van der Waals radius for the elements no table lists: neither ``radii`` nor
+        :data:`VDW_RADII` (Bondi 1964, Mantina et al. 2009) nor :data:`ALVAREZ_RADII`
+        (Alvarez 2013, which gives the transition metals Fe, Mn, Co, Mo, ... their
+        radii; the report's notes name each use).  Promethium, the elements after
+        einsteinium and unknown symbols (``X``) are left.  Without it, such an element
+        raises, naming the tables, the element and its line.  The order is ``radii``,
+        the tables, ``default_radius``: to give a listed element another radius, pass
+        ``radii={"Fe": 2.0}``.
     model : int, optional
         Serial number of the MODEL to read (columns 11–14 of the MODEL record).
         Default: the first model.  A file without MODEL records is model 1; ATOM or
@@ -243,7 +248,8 @@ def read_pdb(
         uses heavy atoms with united-atom-like radii, and X-ray entries mostly have
         no hydrogens, so they are dropped by default.
     radii : mapping, optional
-        Van der Waals radii (Å) that take precedence over :data:`VDW_RADII`: keys are element
+        Van der Waals radii (Å) that take precedence over every table (and over
+        ``default_radius``): keys are element
         symbols (``{"Fe": 2.0}``) or ``(residue name, atom name)`` pairs
         (``{("ALA", "CB"): 1.9}``), the latter winning.  Matching ignores case.
     max_bytes : int, default :data:`MAX_PDB_BYTES` (256 MiB)
@@ -256,7 +262,8 @@ def read_pdb(
     -------
     PDBStructure
         The atoms in file order, with residue names, numbers, insertion codes and
-        chains, so that reports can name the residues lining a feature.
+        chains, so that reports can name the residues lining a feature, and the table
+        each radius came from (``radius_sources``, which a report's notes name).
 
     Raises
     ------
@@ -279,6 +286,8 @@ def read_pdb(
         The writer.
     vdw_radius
         The radii given to the atoms.
+    radius_notes
+        What a report says of them.
     gemmi.read_structure
         A full reader of PDB and mmCIF files.
 
@@ -314,6 +323,21 @@ def read_pdb(
       is kept whole and never mixed with the extra atoms of the other, as gemmi's
       ``remove_alternative_conformations`` keeps one.
     * Other records (HEADER, REMARK, ANISOU, TER, CONECT, ...) are ignored.
+    * Radii, in this order: ``radii`` by (residue, atom) name, then by element;
+      Bondi (1964), or Mantina et al. (2009) for the main-group elements Bondi lacks
+      (:data:`VDW_RADII`); Alvarez (2013), Table 1, for the elements neither lists
+      (:data:`ALVAREZ_RADII`: Sc-Co, Y-Rh, La-Lu but Pm, Hf-Ir, Ac-Es but U); then
+      ``default_radius``.  No warning is emitted: the table used is recorded per atom
+      and stated in a report's notes (:func:`radius_notes`).
+
+    References
+    ----------
+    A. Bondi, "van der Waals Volumes and Radii", *J. Phys. Chem.* **68**, 441–451 (1964).
+    M. Mantina, A. C. Chamberlin, R. Valero, C. J. Cramer, D. G. Truhlar, "Consistent
+    van der Waals Radii for the Whole Main Group", *J. Phys. Chem. A* **113**, 5806–5812
+    (2009), Table 12.
+    S. Alvarez, "A cartography of the van der Waals territories", *Dalton Trans.* **42**,
+    8617–8636 (2013), Table 1.  doi:10.1039/C3DT50599E
 
     Examples
     --------

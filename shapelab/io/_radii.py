@@ -7,9 +7,23 @@ Po, At, Rn, Fr, Ra) by M. Mantina, A. C. Chamberlin, R. Valero, C. J. Cramer and
 D. G. Truhlar, "Consistent van der Waals Radii for the Whole Main Group",
 *J. Phys. Chem. A* **113**, 5806–5812 (2009), Table 12.  Where Bondi has a value it is
 kept (Mantina et al. give H 1.10, Li 1.81 and Br 1.83 instead of Bondi's 1.20, 1.82
-and 1.85; the rest of their Table 12 is Bondi's).  Most transition metals (Fe, Mn,
-Co, Mo, ...) have no consistent van der Waals radius in either table: an atom of
-such an element raises unless a ``default_radius`` (or ``radii=``) is given.
+and 1.85; the rest of their Table 12 is Bondi's).
+
+Most transition metals (Fe, Mn, Co, Mo, ...), the lanthanides and most actinides are in
+neither table.  :data:`ALVAREZ_RADII` gives them the radii of one published table that
+covers them: S. Alvarez, "A cartography of the van der Waals territories", *Dalton
+Trans.* **42**, 8617–8636 (2013), Table 1 -- for those elements only; every radius of
+:data:`VDW_RADII` is kept.  A report names each use of it (:func:`radius_notes`).
+What no table lists (promethium, the elements after einsteinium, an unknown symbol)
+raises unless a ``default_radius`` (or ``radii=``) is given.
+
+The order in which an atom gets its radius (:func:`atom_radii`):
+
+1. ``radii=`` by (residue name, atom name), then by element -- what the user wrote;
+2. :data:`VDW_RADII` (Bondi 1964, Mantina et al. 2009; deuterium takes hydrogen's);
+3. :data:`ALVAREZ_RADII` (Alvarez 2013), for the elements step 2 lacks;
+4. ``default_radius``, for the elements no table lists;
+5. otherwise a ValueError naming the element, the atom and its line.
 
 A reader gives its atoms their radii here, with :func:`atom_radii`.
 """
@@ -20,7 +34,17 @@ import numpy as np
 
 from .._toolkit.validate import as_finite_scalar
 
-__all__ = ["VDW_RADII", "ELEMENT_SYMBOLS", "vdw_radius", "radius_table", "atom_radii"]
+__all__ = [
+    "VDW_RADII",
+    "ALVAREZ_RADII",
+    "ELEMENT_SYMBOLS",
+    "RADIUS_SOURCES",
+    "vdw_radius",
+    "vdw_radius_source",
+    "radius_table",
+    "atom_radii",
+    "radius_notes",
+]
 
 #: van der Waals radii in Å: Bondi (1964), J. Phys. Chem. 68:441, Table I, and for the
 #: main-group elements Bondi does not list (marked M), Mantina et al. (2009),
@@ -82,7 +106,82 @@ VDW_RADII: dict[str, float] = {
     "U": 1.86,
 }
 _UPPER = {k.upper(): k for k in VDW_RADII}
-#: Every element symbol (to read atom names; radii exist only for those in VDW_RADII).
+
+#: van der Waals radii in Å of the elements :data:`VDW_RADII` lacks, from S. Alvarez,
+#: "A cartography of the van der Waals territories", Dalton Trans. 42:8617-8636 (2013),
+#: doi:10.1039/C3DT50599E, Table 1 (radii from the distribution of non-bonded
+#: distances in the Cambridge Structural Database).  Only the elements neither Bondi
+#: nor Mantina et al. list are taken; the table has none for Pm nor past Es.  The
+#: values were read from two independent transcriptions of Table 1 that agree on every
+#: one of them: ASE 3.29.0 (ase/data/vdw_alvarez.py) and mendeleev 1.3.0
+#: (``vdw_radius_alvarez``, in pm).  Alvarez marks the values of Ac, Pa, Cm, Bk, Cf and
+#: Es as of larger uncertainty.
+ALVAREZ_RADII: dict[str, float] = {
+    "Sc": 2.58,
+    "Ti": 2.46,
+    "V": 2.42,
+    "Cr": 2.45,
+    "Mn": 2.45,
+    "Fe": 2.44,
+    "Co": 2.40,
+    "Y": 2.75,
+    "Zr": 2.52,
+    "Nb": 2.56,
+    "Mo": 2.45,
+    "Tc": 2.44,
+    "Ru": 2.46,
+    "Rh": 2.44,
+    "La": 2.98,
+    "Ce": 2.88,
+    "Pr": 2.92,
+    "Nd": 2.95,
+    "Sm": 2.90,
+    "Eu": 2.87,
+    "Gd": 2.83,
+    "Tb": 2.79,
+    "Dy": 2.87,
+    "Ho": 2.81,
+    "Er": 2.83,
+    "Tm": 2.79,
+    "Yb": 2.80,
+    "Lu": 2.74,
+    "Hf": 2.63,
+    "Ta": 2.53,
+    "W": 2.57,
+    "Re": 2.49,
+    "Os": 2.48,
+    "Ir": 2.41,
+    "Ac": 2.80,  # larger uncertainty
+    "Th": 2.93,
+    "Pa": 2.88,  # larger uncertainty
+    "Np": 2.82,
+    "Pu": 2.81,
+    "Am": 2.83,
+    "Cm": 3.05,  # larger uncertainty
+    "Bk": 3.40,  # larger uncertainty
+    "Cf": 3.05,  # larger uncertainty
+    "Es": 2.70,  # larger uncertainty
+}
+_ALVAREZ_UPPER = {k.upper(): k for k in ALVAREZ_RADII}
+
+#: Where an atom's radius came from, as :attr:`PDBStructure.radius_sources` names it:
+#: key -> the table (or keyword) it names.  ``""``: not known (a structure built in code).
+RADIUS_SOURCES = {
+    "radii": "the radii= table",
+    "bondi": "Bondi (1964)",
+    "mantina": "Mantina et al. (2009)",
+    "alvarez": "Alvarez (2013)",
+    "default": "default_radius=",
+}
+_MANTINA = {"Be", "B", "Al", "Ca", "Ge", "Rb", "Sr", "Sb", "Cs", "Ba", "Bi", "Po", "At", "Rn", "Fr", "Ra"}
+#: The tables, as the messages name them.
+TABLES = "Bondi's (1964), Mantina et al.'s (2009) or Alvarez's (2013) table"
+#: Alvarez (2013) in full, as a report's notes cite it.
+ALVAREZ_CITATION = (
+    'S. Alvarez, "A cartography of the van der Waals territories", Dalton Trans. 42, 8617-8636 (2013), Table 1'
+)
+#: Every element symbol (to read atom names; radii exist only for those in VDW_RADII and
+#: ALVAREZ_RADII).
 ELEMENT_SYMBOLS = {
     e.upper(): e
     for e in (
@@ -94,19 +193,36 @@ ELEMENT_SYMBOLS = {
 }
 
 
-def vdw_radius(element: str) -> float:
-    """The van der Waals radius of ``element`` in Å (case-insensitive symbol), from :data:`VDW_RADII`.
+def _table_key(element: str):
+    """(source key, symbol) of ``element``'s radius in the tables, or None."""
+    eu = element.strip().upper()
+    key = _UPPER.get(eu)
+    if key is not None:
+        return ("mantina" if key in _MANTINA else "bondi"), key
+    key = _ALVAREZ_UPPER.get(eu)
+    if key is not None:
+        return "alvarez", key
+    return None
 
-    Bondi's (1964) value, or for a main-group element Bondi does not list, that of
-    Mantina et al. (2009); Notes §23.1 (one ball per atom, of its van der Waals radius).
+
+def vdw_radius(element: str) -> float:
+    """The van der Waals radius of ``element`` in Å (case-insensitive symbol).
+
+    Bondi's (1964) value (:data:`VDW_RADII`), or for a main-group element Bondi does not
+    list, that of Mantina et al. (2009); for an element in neither (most transition
+    metals, the lanthanides, most actinides), that of Alvarez (2013), Table 1
+    (:data:`ALVAREZ_RADII`).  Notes §23.1: one ball per atom, of its van der Waals
+    radius.  :func:`vdw_radius_source` says which table gave it.
 
     Raises
     ------
     ValueError
-        For an element in neither table (most transition metals: Fe, Mn, Co, Mo, ...).
+        For an element in none of the three tables (Pm, the elements after Es, an
+        unknown symbol).
 
     See Also
     --------
+    vdw_radius_source : which table the radius is from.
     read_pdb : reads these radii; ``default_radius=`` or ``radii=`` for other elements.
 
     References
@@ -115,20 +231,44 @@ def vdw_radius(element: str) -> float:
     M. Mantina, A. C. Chamberlin, R. Valero, C. J. Cramer, D. G. Truhlar, "Consistent
     van der Waals Radii for the Whole Main Group", *J. Phys. Chem. A* **113**, 5806–5812
     (2009), Table 12.
+    S. Alvarez, "A cartography of the van der Waals territories", *Dalton Trans.* **42**,
+    8617–8636 (2013), Table 1.  doi:10.1039/C3DT50599E
 
     Examples
     --------
-    >>> vdw_radius("C"), vdw_radius("ca"), vdw_radius("Be")
-    (1.7, 2.31, 1.53)
+    >>> vdw_radius("C"), vdw_radius("ca"), vdw_radius("Be"), vdw_radius("Fe")
+    (1.7, 2.31, 1.53, 2.44)
     """
     if not isinstance(element, str):
         raise TypeError(f"element must be a str, got {type(element).__name__}")
-    key = _UPPER.get(element.strip().upper())
-    if key is None:
-        raise ValueError(
-            f"element {element!r} is in neither Bondi's (1964) nor Mantina et al.'s (2009) table of van der Waals radii"
-        )
-    return VDW_RADII[key]
+    found = _table_key(element)
+    if found is None:
+        raise ValueError(f"element {element!r} has no van der Waals radius in {TABLES}")
+    source, key = found
+    return ALVAREZ_RADII[key] if source == "alvarez" else VDW_RADII[key]
+
+
+def vdw_radius_source(element: str) -> str:
+    """Which table :func:`vdw_radius` takes ``element``'s radius from: ``"Bondi (1964)"``,
+    ``"Mantina et al. (2009)"`` or ``"Alvarez (2013)"`` (the values of :data:`RADIUS_SOURCES`).
+
+    Raises
+    ------
+    ValueError
+        As :func:`vdw_radius`, for an element in none of the tables.
+
+    See Also
+    --------
+    vdw_radius : the radius.
+    radius_notes : what a report says of the radii of a structure's atoms.
+
+    Examples
+    --------
+    >>> vdw_radius_source("C"), vdw_radius_source("Ba"), vdw_radius_source("mn")
+    ('Bondi (1964)', 'Mantina et al. (2009)', 'Alvarez (2013)')
+    """
+    vdw_radius(element)  # the same refusals
+    return RADIUS_SOURCES[_table_key(element)[0]]
 
 
 def radius_table(radii):
@@ -151,27 +291,88 @@ def radius_table(radii):
     return by_element, by_atom
 
 
-def atom_radii(records, tables, default_radius, where="line") -> np.ndarray:
-    """The van der Waals radius of each atom record: ``radii=`` by (residue, atom) name,
-    then by element, then :data:`VDW_RADII` (deuterium takes hydrogen's), then
-    ``default_radius``; an atom with none raises, naming its line (``where`` names
-    what :attr:`AtomRecord.line` counts).  ``tables`` is what :func:`radius_table` returns."""
+def atom_radii(records, tables, default_radius, where="line") -> tuple:
+    """The van der Waals radius of each atom record and where it came from.
+
+    In this order: ``radii=`` by (residue, atom) name, then by element;
+    :data:`VDW_RADII` (deuterium takes hydrogen's); :data:`ALVAREZ_RADII`;
+    ``default_radius``.  An atom with none raises, naming its line (``where`` names what
+    :attr:`AtomRecord.line` counts) and the tables.  ``tables`` is what
+    :func:`radius_table` returns.  Returns the radii (float64) and, per atom, the key of
+    :data:`RADIUS_SOURCES` that gave each."""
     radii_element, radii_atom = tables
     rad = np.empty(len(records))
+    src = []
     for i, r in enumerate(records):
         e, resn, name = r.element, r.residue, r.name
         eu = e.upper()
         ra = radii_atom.get((resn.upper(), name.upper()))
         if ra is None:
             ra = radii_element.get(eu)
+        source = "radii"
         if ra is None:
-            key = _UPPER.get("H" if eu == "D" else eu)  # deuterium: hydrogen's radius
-            ra = VDW_RADII[key] if key is not None else default_radius
+            found = _table_key("H" if eu == "D" else eu)  # deuterium: hydrogen's radius
+            if found is not None:
+                source, key = found
+                ra = ALVAREZ_RADII[key] if source == "alvarez" else VDW_RADII[key]
+            elif default_radius is not None:
+                source, ra = "default", default_radius
         if ra is None:
             raise ValueError(
                 f"{where} {r.line}: element {e!r} (atom {name!r}, residue {resn} {r.number}) has no van "
-                f"der Waals radius in Bondi's (1964) or Mantina et al.'s (2009) table; pass "
-                f"default_radius= (or radii=) to use one"
+                f"der Waals radius in {TABLES}; pass default_radius= (or radii=) to use one"
             )
         rad[i] = ra
-    return rad
+        src.append(source)
+    return rad, np.array(src, dtype=str)
+
+
+def radius_notes(structure) -> tuple:
+    """What a report says of the radii of ``structure``'s atoms: one note for the atoms
+    that took an Alvarez (2013) radius (which elements, how many atoms, the table
+    cited) and one for those that took ``default_radius`` (``()`` when neither did, or
+    for a structure without :attr:`~PDBStructure.radius_sources`).  :func:`shapelab.report`
+    puts them in :attr:`CavityReport.notes <shapelab.cavity_report.CavityReport.notes>`,
+    which its Markdown prints above the table.  Nothing is warned: the notes are the
+    record.
+
+    See Also
+    --------
+    vdw_radius_source : which table an element's radius is from.
+    read_pdb : records the table of each atom (``radius_sources``).
+    shapelab.report : the report that carries the notes.
+
+    References
+    ----------
+    S. Alvarez, "A cartography of the van der Waals territories", *Dalton Trans.* **42**,
+    8617–8636 (2013), Table 1.  doi:10.1039/C3DT50599E
+
+    Examples
+    --------
+    >>> from shapelab.datasets import structure
+    >>> radius_notes(structure("1hvr"))
+    ()
+    """
+    sources = getattr(structure, "radius_sources", None)
+    if sources is None or not len(sources):
+        return ()
+    elements = np.asarray(structure.elements)
+    notes = []
+    for key in ("alvarez", "default"):
+        mask = sources == key
+        if not mask.any():
+            continue
+        names, counts = np.unique(elements[mask], return_counts=True)
+        n = int(mask.sum())
+        atoms = f"{n} atom{'s' if n != 1 else ''}"
+        each = ", ".join(f"{e} {c}" for e, c in zip(names.tolist(), counts.tolist()))
+        if key == "alvarez":
+            notes.append(
+                f"van der Waals radii of Alvarez (2013) for {atoms} ({each}), elements Bondi (1964) and "
+                f"Mantina et al. (2009) do not list: {ALVAREZ_CITATION}"
+            )
+        else:
+            r = np.unique(np.round(np.asarray(structure.balls.radii)[mask] - structure.probe, 6))
+            value = ", ".join(f"{v:g}" for v in r.tolist())
+            notes.append(f"default_radius={value} Å for {atoms} ({each}), elements no table of radii lists")
+    return tuple(notes)

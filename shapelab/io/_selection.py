@@ -134,4 +134,5 @@ def kept_structure(records, *, tables, default_radius, probe, model, where="line
     from ._structure import structure_from_records
 
     kept = select_atoms(resolve_alternate_locations(records), read=records, **selection)
-    return structure_from_records(kept, atom_radii(kept, tables, default_radius, where=where), probe, model)
+    radii, sources = atom_radii(kept, tables, default_radius, where=where)
+    return structure_from_records(kept, radii, probe, model, radius_sources=sources)

@@ -45,7 +45,8 @@ class PDBStructure:
     ----------
     balls : Balls
         Centres in Å; radii = van der Waals radius (:data:`VDW_RADII`: Bondi 1964 and
-        Mantina et al. 2009, or the ``radii=`` table of :func:`read_pdb`) + probe.
+        Mantina et al. 2009; :data:`ALVAREZ_RADII`: Alvarez 2013 for the elements they
+        lack; or the ``radii=`` table or ``default_radius`` of :func:`read_pdb`) + probe.
     atom_names, residue_names, chains, elements : ndarray of str, shape (n,)
         Columns 13–16, 18–20, 21–22 and 77–78 (element symbols normalised, e.g.
         ``"Fe"``); see :func:`read_pdb` for column 21.
@@ -62,8 +63,16 @@ class PDBStructure:
         Columns 55–60 and 61–66 (NaN when blank).
     model : int or None
         Serial of the MODEL that was read (None if the file has no MODEL record).
+    radius_sources : ndarray of str, shape (n,)
+        Where each atom's van der Waals radius came from, a key of
+        :data:`~shapelab.io._radii.RADIUS_SOURCES`: ``"radii"`` (the reader's
+        ``radii=``), ``"bondi"``, ``"mantina"``, ``"alvarez"`` (the tables, in the
+        order of :func:`~shapelab.io._radii.atom_radii`) or ``"default"``
+        (``default_radius=``); ``""`` when not known.  A report's notes name the atoms
+        that took an Alvarez (2013) radius or the default
+        (:func:`~shapelab.io._radii.radius_notes`).
 
-    The last five default to blanks/NaN for structures built in code.
+    The last six default to blanks/NaN for structures built in code.
 
     See Also
     --------
@@ -86,6 +95,7 @@ class PDBStructure:
     occupancies: np.ndarray | None = None
     b_factors: np.ndarray | None = None
     model: int | None = None
+    radius_sources: np.ndarray | None = None
 
     def __post_init__(self):
         n = len(self.balls)
@@ -94,6 +104,7 @@ class PDBStructure:
             ("altlocs", "", str),
             ("occupancies", np.nan, np.float64),
             ("b_factors", np.nan, np.float64),
+            ("radius_sources", "", str),
         ):
             a = _fill(getattr(self, name), n, default, dtype)
             if a.shape != (n,):
@@ -177,12 +188,13 @@ class PDBStructure:
             occupancies=self.occupancies[idx],
             b_factors=self.b_factors[idx],
             model=self.model,
+            radius_sources=self.radius_sources[idx],
         )
 
 
-def structure_from_records(records, radii, probe: float, model) -> PDBStructure:
-    """The :class:`PDBStructure` of the kept ``records`` with van der Waals ``radii``,
-    every radius grown by ``probe``."""
+def structure_from_records(records, radii, probe: float, model, radius_sources=None) -> PDBStructure:
+    """The :class:`PDBStructure` of the kept ``records`` with van der Waals ``radii``
+    (from the tables ``radius_sources`` names), every radius grown by ``probe``."""
     col = list(zip(*records))
     balls = Balls(np.array([(r.x, r.y, r.z) for r in records], dtype=np.float64), radii + probe)
     return PDBStructure(
@@ -199,4 +211,5 @@ def structure_from_records(records, radii, probe: float, model) -> PDBStructure:
         occupancies=np.array(col[11], dtype=np.float64),
         b_factors=np.array(col[12], dtype=np.float64),
         model=model,
+        radius_sources=radius_sources,
     )

@@ -127,7 +127,8 @@ def write_pdb(
     """Write 3D balls as ATOM/HETATM records of a PDB file.
 
     The PDB format stores no radii: :func:`read_pdb` recovers them from the elements,
-    so a round trip preserves radii exactly when they are the radii of :data:`VDW_RADII` (plus one probe).
+    so a round trip preserves radii exactly when they are the radii of :data:`VDW_RADII` or
+    :data:`ALVAREZ_RADII` (plus one probe).
     Coordinates are written with three decimals (the format's precision, 0.001 Å).
     The format's fixed columns limit what it holds (at most 99,999 atoms, residue
     names of three characters, B-factors below 1000); :func:`write_mmcif` holds any

@@ -20,7 +20,6 @@ import sys
 import time
 from pathlib import Path
 
-import pytest
 import yaml
 
 import course.__main__ as cli
@@ -86,7 +85,9 @@ def test_every_lesson_imports_only_what_the_students_extras_install():
             if not names:
                 problems.append(f"{path.name}: imports {module!r}, which no installed distribution provides")
             elif not names & closure:
-                problems.append(f"{path.name}: imports {module!r} ({', '.join(sorted(names))}), not in the lab/book extras")
+                problems.append(
+                    f"{path.name}: imports {module!r} ({', '.join(sorted(names))}), not in the lab/book extras"
+                )
     assert not problems, "\n".join(problems)
 
 
@@ -196,7 +197,9 @@ def test_lab_opens_the_student_edition(tmp_path, monkeypatch, capsys):
                 body = lines[begin + 1 : end]
                 assert all(placeholder.fullmatch(line) for line in body), (path.name, body)
     assert "check." in (tmp_path / "student" / "12_hausdorff.ipynb").read_text(encoding="utf-8")
-    cmd = lab.build_command("t0k", "8899", as_root=False, root_dir=tmp_path / "student", open_path="00_start_here.ipynb")
+    cmd = lab.build_command(
+        "t0k", "8899", as_root=False, root_dir=tmp_path / "student", open_path="00_start_here.ipynb"
+    )
     assert f"--ServerApp.root_dir={tmp_path / 'student'}" in cmd and "--ServerApp.ip=127.0.0.1" in cmd
 
 

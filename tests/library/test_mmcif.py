@@ -376,11 +376,34 @@ def test_a_row_cut_short_at_the_end_of_the_file(tmp_path):
 
 
 def test_a_radius_error_names_the_row(tmp_path):
-    path = tmp_path / "fe.cif"
-    path.write_text(_table([_GOOD, ("HETATM", "FE", "FE", ".", "HEM", "A", "2", "?", "0", "0", "0", "1")]))
-    with pytest.raises(ValueError, match=r"fe\.cif': _atom_site row 2: element 'Fe'.*default_radius="):
+    path = tmp_path / "pm.cif"
+    path.write_text(_table([_GOOD, ("HETATM", "PM", "PM", ".", "PM", "A", "2", "?", "0", "0", "0", "1")]))
+    with pytest.raises(ValueError, match=r"pm\.cif': _atom_site row 2: element 'Pm'.*Alvarez's.*default_radius="):
         read_structure(path)
     assert read_structure(path, default_radius=2.0).balls.radii.tolist() == [1.7, 2.0]
+
+
+def test_metal_ions_take_alvarez_radii_and_say_so(tmp_path):
+    """mmCIF (gemmi's parser) gives a metal ion the radius read_pdb gives it, and the notes
+    name the table: Fe and Mn from Alvarez (2013), Zn from Bondi (1964)."""
+    rows = [_GOOD] + [
+        ("HETATM", el, el, ".", el, "A", str(2 + k), "?", str(3.0 * (k + 1)), "0", "0", "1")
+        for k, el in enumerate(["FE", "MN", "ZN", "MN"])
+    ]
+    path = tmp_path / "ions.cif"
+    path.write_text(_table(rows))
+    s = read_structure(path)
+    assert s.elements.tolist() == ["C", "Fe", "Mn", "Zn", "Mn"]
+    assert s.balls.radii.tolist() == [1.7, 2.44, 2.45, 1.39, 2.45]
+    assert s.radius_sources.tolist() == ["bondi", "alvarez", "alvarez", "bondi", "alvarez"]
+    (note,) = sl.io.radius_notes(s)
+    assert note.startswith("van der Waals radii of Alvarez (2013) for 3 atoms (Fe 1, Mn 2), ")
+    assert "Dalton Trans. 42, 8617-8636 (2013), Table 1" in note
+    pdb = tmp_path / "ions.pdb"
+    write_pdb(pdb, s.balls, s.elements, atom_names=s.atom_names, residue_names=s.residue_names, hetero=s.hetero)
+    p = read_pdb(pdb)
+    assert p.balls.radii.tolist() == s.balls.radii.tolist()
+    assert p.radius_sources.tolist() == s.radius_sources.tolist()
 
 
 def test_max_bytes_bounds_the_decompressed_text(tmp_path):

@@ -437,8 +437,8 @@ def test_cli_flags_map_to_read_pdb(monkeypatch, tmp_path):
 
 
 def _cage_pdb(tmp_path, residue_number="   1"):
-    """A small PDB file: an icosahedron of 12 carbons around one iron ion (HETATM; iron has no
-    van der Waals radius in shapelab.io.VDW_RADII: the CLI needs --default-radius)."""
+    """A small PDB file: an icosahedron of 12 carbons around one ion of promethium (HETATM;
+    no table of shapelab.io has a van der Waals radius for Pm: the CLI needs --default-radius)."""
     phi = (1 + 5**0.5) / 2
     ico = [(0.0, a, b * phi) for a in (-1, 1) for b in (-1, 1)]
     ico = [p for q in ico for p in (q, (q[1], q[2], q[0]), (q[2], q[0], q[1]))]
@@ -447,7 +447,7 @@ def _cage_pdb(tmp_path, residue_number="   1"):
         f"  1.00  0.00           C"
         for k, (x, y, z) in enumerate(ico)
     ]
-    lines.append(f"HETATM   13 FE    FE A 101    {0:8.3f}{0:8.3f}{0:8.3f}  1.00  0.00          FE")
+    lines.append(f"HETATM   13 PM    PM A 101    {0:8.3f}{0:8.3f}{0:8.3f}  1.00  0.00          PM")
     p = tmp_path / "cage.pdb"
     p.write_text("\n".join(lines) + "\nEND\n")
     return p
@@ -475,6 +475,84 @@ def test_cli_checks_the_output_before_computing(monkeypatch, tmp_path, capsys):
             assert list(ro.iterdir()) == []
         finally:
             ro.chmod(0o700)
+
+
+def _metal_ions_pdb(tmp_path):
+    """The 12-carbon cage of _cage_pdb, and outside it six metal ions as HETATM records
+    (Mn2+ as in 1ATP, Zn, Fe, Cu, Co, Mo): Mn, Fe, Co and Mo are in neither Bondi's nor
+    Mantina et al.'s table, Zn and Cu are Bondi's."""
+    lines = _cage_pdb(tmp_path).read_text().splitlines()[:12]
+    ions = [("MN", "MN"), ("ZN", "ZN"), ("FE", "FE"), ("CU", "CU"), ("CO", "CO"), ("MO", "MOO")]
+    for k, (el, resn) in enumerate(ions):
+        x = 8.0 * (k + 1)
+        lines.append(
+            f"HETATM{14 + k:>5} {el:<4} {resn:>3} A{201 + k:>4}    {x:8.3f}{0:8.3f}{0:8.3f}  1.00  0.00          {el}"
+        )
+    p = tmp_path / "metals.pdb"
+    p.write_text("\n".join(lines) + "\nEND\n")
+    return p
+
+
+ALVAREZ_NOTE = (
+    "Notes: van der Waals radii of Alvarez (2013) for 4 atoms (Co 1, Fe 1, Mn 1, Mo 1), elements Bondi (1964) "
+    'and Mantina et al. (2009) do not list: S. Alvarez, "A cartography of the van der Waals territories", '
+    "Dalton Trans. 42, 8617-8636 (2013), Table 1."
+)
+
+
+def test_report_notes_name_the_alvarez_radii(tmp_path):
+    import warnings
+
+    src = _metal_ions_pdb(tmp_path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # the tables used are stated, never warned about
+        s = sl.read_structure(src)
+        rep = sl.report(s, 1.4, name="metals")
+    assert rep.notes == sl.io.radius_notes(s) and len(rep.notes) == 1
+    md = rep.to_markdown()
+    assert ALVAREZ_NOTE in md.splitlines()
+    # the notes stand before the table; the table itself is unchanged
+    assert md.replace(ALVAREZ_NOTE + "\n\n", "") == dataclasses.replace(rep, notes=()).to_markdown()
+    # no note where every radius is Bondi's or Mantina et al.'s, nor for bare balls
+    assert sl.report(structure("1grm"), 1.4).notes == ()
+    assert sl.report(bowl(), 0.0).notes == ()
+    # default_radius= is named too
+    rep = sl.report(sl.read_pdb(_cage_pdb(tmp_path), default_radius=2.0), 0.5)
+    assert rep.notes == ("default_radius=2 Å for 1 atom (Pm 1), elements no table of radii lists",)
+
+
+def test_cli_reports_metal_ions_at_the_defaults(tmp_path):
+    src = _metal_ions_pdb(tmp_path)
+    out = tmp_path / "out"
+    out.mkdir()
+    res = _cli([str(src), "--out", str(out)], tmp_path)
+    assert res.returncode == 0, res.stderr
+    assert res.stderr == ""
+    assert ALVAREZ_NOTE in res.stdout.splitlines()
+    assert (out / "metals_cavities.md").read_text() == res.stdout
+    assert sorted(p.name for p in out.iterdir()) == [f"metals_cavities.{e}" for e in ("cif", "csv", "md", "pdb")]
+    st = gemmi.read_structure(str(out / "metals_cavities.cif"))
+    assert sorted(a.element.name for r in st[0]["A"] for a in r if r.het_flag == "H") == [
+        "Co",
+        "Cu",
+        "Fe",
+        "Mn",
+        "Mo",
+        "Zn",
+    ]
+
+
+def test_cli_refuses_an_element_no_table_lists(tmp_path):
+    src = _cage_pdb(tmp_path)
+    out = tmp_path / "out"
+    out.mkdir()
+    res = _cli([str(src), "--out", str(out)], tmp_path)
+    assert res.returncode == 2 and res.stdout == "" and list(out.iterdir()) == []
+    assert res.stderr == (
+        f"error: {str(src)!r}: line 13: element 'Pm' (atom 'PM', residue PM 101) has no van der Waals radius in "
+        "Bondi's (1964), Mantina et al.'s (2009) or Alvarez's (2013) table; pass default_radius= (or radii=) to use "
+        "one (on the command line: --default-radius R)\n"
+    )
 
 
 def test_cli_without_a_pdb_file_says_why(tmp_path, capsys):

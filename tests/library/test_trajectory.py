@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 import shapelab
-from shapelab.trajectory import track_cavities, trajectory_measures
+from shapelab.trajectory import selection_radii, track_cavities, trajectory_measures
 
 ROOT = Path(__file__).resolve().parents[2]
 ARCHIVE = ROOT / ".cache" / "corpus" / "archives" / "mdanalysistests-2.11.0.tar.gz"
@@ -200,11 +200,14 @@ def test_bad_topology_and_unknown_element(bowl):
     _need_mdanalysis()
     with pytest.raises(TypeError, match="topology"):
         trajectory_measures(42, progress=False)
-    u = universe(bowl_coordinates()[:1], names="FE", resname="HEM", element="Fe")  # iron: no vdW radius
-    with pytest.raises(ValueError, match="default_radius"):
+    u = universe(bowl_coordinates()[:1], names="PM", resname="PM", element="Pm")  # no table lists Pm
+    with pytest.raises(ValueError, match=r"element 'Pm'\) has no van der Waals.*Alvarez's \(2013\).*default_radius"):
         trajectory_measures(u, select="all", progress=False)
     r = trajectory_measures(u, select="all", progress=False, probe=0.0, default_radius=1.7)
     assert r.volume[0] == pytest.approx(bowl[1].volume[0], rel=1e-12)
+    # iron, in neither Bondi's nor Mantina et al.'s table, takes Alvarez's (2013) 2.44 Å
+    u = universe(bowl_coordinates()[:1], names="FE", resname="HEM", element="Fe")
+    assert selection_radii(u.atoms, default_radius=1.7).tolist() == [2.44] * 240
     # without elements, a name is read as a PDB reader reads it: " OG1" is oxygen (1.52 Å)
     u = universe(bowl_coordinates()[:1], names="OG1", resname="SER")
     r = trajectory_measures(u, select="all", progress=False, probe=0.0)
