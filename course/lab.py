@@ -87,6 +87,11 @@ def main(argv=None) -> int:
     )
     ap.add_argument("--port", default=os.environ.get("PORT", "8888"))
     ap.add_argument("--dry-run", action="store_true", help="prepare and print the command, do not start JupyterLab")
+    ap.add_argument(
+        "--check",
+        action="store_true",
+        help="start JupyterLab, check that it serves the first lesson with the token and refuses without it, stop",
+    )
     args = ap.parse_args(argv)
     if args.instructor:
         root, first = ROOT, "lessons/00_start_here.ipynb"
@@ -113,7 +118,50 @@ def main(argv=None) -> int:
     if args.dry_run:
         return 0
     env = dict(os.environ, PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    if args.check:
+        return check_server(cmd, root, env, args.port, token, first)
     return subprocess.call(cmd, cwd=root, env=env)
+
+
+def check_server(cmd, root: Path, env: dict, port: str, token: str, first: str, wait: float = 120.0) -> int:
+    """Start JupyterLab, ask it for the first lesson with the token and without it, stop it.
+
+    Returns 0 when the lesson is served with the token and refused (403) without it."""
+    import time
+    import urllib.error
+    import urllib.request
+
+    proc = subprocess.Popen(cmd, cwd=root, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    url = f"http://127.0.0.1:{port}/api/contents/{first}"
+
+    def status(with_token: bool) -> int:
+        req = urllib.request.Request(url, headers={"Authorization": f"token {token}"} if with_token else {})
+        try:
+            with urllib.request.urlopen(req, timeout=5) as r:
+                return r.status
+        except urllib.error.HTTPError as e:
+            return e.code
+
+    try:
+        deadline = time.monotonic() + wait
+        while True:
+            try:
+                ok = status(True)
+                break
+            except OSError:
+                if proc.poll() is not None or time.monotonic() > deadline:
+                    print(f"check: JupyterLab did not answer on {url}", file=sys.stderr)
+                    return 1
+                time.sleep(0.5)
+        refused = status(False)
+        print(f"check: {first} with the token: HTTP {ok}; without it: HTTP {refused}")
+        return 0 if ok == 200 and refused == 403 else 1
+    finally:
+        proc.terminate()
+        try:
+            proc.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            proc.kill()
 
 
 if __name__ == "__main__":
