@@ -174,7 +174,10 @@ def command_line(command: str, py, args: list[str]) -> list[list]:
     if command == "nbval":
         return [
             [py, "-m", "pip", "install", "-q", "-c", CONSTRAINTS, *NBVAL_TOOLS],
-            _pytest(py, "-n", jobs, *nbval, "--nbval-cell-timeout", "120", *(args or ["lessons"])),
+            # loadscope: every cell of a notebook on one worker, in order, in one kernel
+            _pytest(
+                py, "-n", jobs, "--dist", "loadscope", *nbval, "--nbval-cell-timeout", "120", *(args or ["lessons"])
+            ),
         ]
     if command == "test":
         return [

@@ -243,3 +243,12 @@ def test_contributing_has_the_first_hour_and_the_current_lesson_map():
     assert "## The first hour" in text.split("## Where things go")[0]
     assert lesson_map.table() in text, "run `python -m course.lesson_map` and paste its table into CONTRIBUTING.md"
     assert "`peers`" in lesson_map.table().splitlines()[-2]  # lesson 17 uses shapelab.peers
+
+
+def test_nbval_keeps_each_notebook_on_one_worker():
+    # with pytest-xdist, cells of one notebook on two workers run in two kernels: NameErrors
+    for command in ("nbval", "test"):
+        pytest_cmd = next(c for c in cli.command_line(command, "py", []) if c[1:3] == ["-m", "pytest"])
+        i = pytest_cmd.index("--dist")
+        assert pytest_cmd[i + 1] == "loadscope", command
+        assert "--nbval-sanitize-with" in pytest_cmd and "--nbval-current-env" in pytest_cmd
