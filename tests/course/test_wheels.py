@@ -51,6 +51,18 @@ def test_resolves_from_wheels(results):
     assert not problems, "\n\n".join(problems) + "\n\n" + wheels.table(results)
 
 
+def test_markers_are_evaluated_for_the_target(results):
+    """pip evaluates markers for the machine that runs it; the shim makes them the target's.  If a
+    pip release stopped reading packaging's default_environment, Windows would lose pywinpty here."""
+    for r in results:
+        if r.ok and r.platform == "windows-amd64":
+            assert {"pywinpty", "colorama"} <= set(r.installed), r.label
+        if r.ok and r.platform.startswith("macos"):
+            assert "appnope" in r.installed, r.label
+        if r.ok and r.platform.startswith("linux"):
+            assert not {"pywinpty", "colorama", "appnope"} & set(r.installed), r.label
+
+
 def test_requirements_expand_self_references():
     lab = wheels.requirements("lab")
     project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
