@@ -12,7 +12,8 @@ check and the maintainers' scripts.  Run from the repository root, e.g.
 ``course.student``       the student edition
 ``course.lab``           JupyterLab on 127.0.0.1 with a token (``make lab``)
 ``course.portable``      re-execute lessons under another BLAS/SIMD selection
-``course.pins``          write ``requirements/constraints.txt``
+``course.pins``          write ``requirements/constraints.txt`` (a freeze + overrides)
+``course.wheels``        resolve lab/book/binder from wheels per platform and Python
 ``course.fetch_structures``  fetch and verify the shipped PDB structures
 ``course.example_pdb``   rewrite the shipped example molecule, shapelab/data/globule.pdb
 =======================  ======================================================

@@ -126,42 +126,40 @@ def _pin_versions():
     return course.pins
 
 
-def test_pin_versions_marks_only_what_differs(tmp_path):
+def test_pins_merge_the_freeze_with_the_overrides(tmp_path):
     pv = _pin_versions()
-    new = tmp_path / "311.txt"
-    old = tmp_path / "310.txt"
-    new.write_text("numpy==2.4.6\nSciPy==1.17.1\nsix==1.17.0\n")
-    old.write_text("numpy==2.2.6\nscipy==1.17.1\ntomli==2.5.0\nshapelab==0.1.0\n")
-    lines = pv.merge(pv._read(str(new)), pv._read(str(old)))
-    assert lines == [
-        'numpy==2.4.6 ; python_version >= "3.11"',
-        'numpy==2.2.6 ; python_version < "3.11"',
+    freeze = tmp_path / "freeze.txt"
+    freeze.write_text("numpy==2.4.6\nSciPy==1.17.1\nsoupsieve==4.1.2\npip==26.3\nshapelab==0.1.0\n")
+    overrides = tmp_path / "overrides.txt"
+    overrides.write_text(
+        "# why each\n"
+        'pywinpty==3.1.2 ; os_name == "nt"  # Windows only\n'
+        'soupsieve==2.10 ; python_full_version < "3.11.5"  # 4.1.2 needs 3.11.5\n'
+        'soupsieve==4.1.2 ; python_full_version >= "3.11.5"  # the freeze\'s\n'
+    )
+    f, o = pv._read(str(freeze)), pv.read_overrides(overrides)
+    assert pv.merge(f, o) == [
+        "numpy==2.4.6",
+        'pywinpty==3.1.2 ; os_name == "nt"  # Windows only',
         "SciPy==1.17.1",
-        'six==1.17.0 ; python_version >= "3.11"',
-        'tomli==2.5.0 ; python_version < "3.11"',
+        'soupsieve==2.10 ; python_full_version < "3.11.5"  # 4.1.2 needs 3.11.5',
+        'soupsieve==4.1.2 ; python_full_version >= "3.11.5"  # the freeze\'s',
     ]
+    assert pv.coverage_errors(f, o) == []
+    # an override that leaves a Python without a pin of a package the freeze has, or pins it twice
+    gap = tmp_path / "gap.txt"
+    gap.write_text('numpy==2.3.5 ; python_version >= "3.12"  # why\nnumpy==2.4.6 ; python_version >= "3.13"  # why\n')
+    errors = pv.coverage_errors(f, pv.read_overrides(gap))
+    assert any("no line holds on linux-x86_64, CPython 3.11" in e for e in errors)
+    assert any("2 lines hold on windows-amd64, CPython 3.14" in e for e in errors)
     bad = tmp_path / "bad.txt"
     bad.write_text("numpy==2.4.6\nnumpy>=2\n")
     with pytest.raises(SystemExit, match=r"bad\.txt:2: expected 'name==version'"):
         pv._read(str(bad))
-
-
-def test_constraints_pin_each_package_once_per_python():
-    """Every package is pinned exactly once for 3.10 and once for 3.11+."""
-    seen = {"3.10": {}, "3.11": {}}
-    for n, line in enumerate((ROOT / "requirements" / "constraints.txt").read_text().splitlines(), 1):
-        line = line.strip()
-        if not line or line.startswith("#"):
-            continue
-        spec, _, marker = line.partition(";")
-        name = spec.split("==")[0].strip().lower().replace("_", "-")
-        assert "==" in spec, f"line {n}: {line}"
-        targets = {"": ["3.10", "3.11"], 'python_version >= "3.11"': ["3.11"], 'python_version < "3.11"': ["3.10"]}
-        assert marker.strip() in targets, f"line {n}: unexpected marker {marker!r}"
-        for py in targets[marker.strip()]:
-            assert name not in seen[py], f"line {n}: {name} pinned twice for Python {py}"
-            seen[py][name] = n
-    assert "numpy" in seen["3.10"] and "numpy" in seen["3.11"]
+    silent = tmp_path / "silent.txt"
+    silent.write_text("numpy==2.4.6\n")
+    with pytest.raises(SystemExit, match="say why"):
+        pv.read_overrides(silent)
 
 
 def test_one_version_source():
