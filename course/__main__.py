@@ -32,7 +32,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-if sys.version_info < (3, 11):  # before tomllib's import fails less kindly
+if sys.version_info < (3, 11):  # noqa: UP036 (any Python may run this: say why it cannot)
     raise SystemExit(f"the course needs Python 3.11 or later; this is {sys.version.split()[0]}")
 
 import tomllib  # noqa: E402
