@@ -152,62 +152,45 @@ def ensure_node(required: bool) -> bool:
 
 
 def _pytest(py, *args) -> list:
-    return [py, "-m", "pytest", *args]
+    """pytest on 2 workers (``JOBS``), every test module or notebook on one worker: the
+    cells of a notebook run in order in one kernel."""
+    return [py, "-m", "pytest", "-n", os.environ.get("JOBS", "2"), "--dist", "loadscope", *args]
+
+
+#: strict nbval, as CI runs it: the committed outputs, sanitized, against a fresh run
+NBVAL = [
+    "--nbval",
+    "--nbval-current-env",
+    "--nbval-sanitize-with",
+    "tests/nbval_sanitize.cfg",
+    "--nbval-cell-timeout",
+    "120",
+]
 
 
 def command_line(command: str, py, args: list[str]) -> list[list]:
     """The commands that carry out ``command`` with interpreter ``py``."""
-    jobs = os.environ.get("JOBS", "2")
-    nbval = ["--nbval", "--nbval-current-env", "--nbval-sanitize-with", "tests/nbval_sanitize.cfg"]
-    if command == "setup":
-        return []
-    if command == "lab":
-        return [[py, "-m", "course.lab", *args]]
-    if command == "build":
-        return [[py, "-m", "course.build", *args]]
+    simple = {
+        "setup": [],
+        "lab": [[py, "-m", "course.lab", *args]],
+        "build": [[py, "-m", "course.build", *args]],
+        "figures": [[py, "-m", "course.figures", "--out", "book/_build/figures", "--format", "svg", *args]],
+        "lessons": [[py, "-m", "course.execute", *args]],
+    }
+    if command in simple:
+        return simple[command]
     if command in ("book", "slides", "student"):
         return [[py, "-m", "course.build", "--only", command, *args]]
-    if command == "figures":
-        return [[py, "-m", "course.figures", "--out", "book/_build/figures", "--format", "svg", *args]]
-    if command == "lessons":
-        return [[py, "-m", "course.execute", *args]]
     if command == "nbval":
-        return [
-            [py, "-m", "pip", "install", "-q", "-c", CONSTRAINTS, *NBVAL_TOOLS],
-            # loadscope: every cell of a notebook on one worker, in order, in one kernel
-            _pytest(
-                py, "-n", jobs, "--dist", "loadscope", *nbval, "--nbval-cell-timeout", "120", *(args or ["lessons"])
-            ),
-        ]
+        tools = [py, "-m", "pip", "install", "-q", "-c", CONSTRAINTS, *NBVAL_TOOLS]
+        return [tools, _pytest(py, *NBVAL, *(args or ["lessons"]))]
     if command == "test":
-        return [
-            [py, "-m", "ruff", "check", "."],
-            [py, "-m", "ruff", "format", "--check", "."],
-            _pytest(
-                py,
-                "-n",
-                jobs,
-                "--dist",
-                "loadscope",
-                *nbval,
-                "--nbval-cell-timeout",
-                "120",
-                "--doctest-modules",
-                *(args or ["tests", "lessons", "shapelab"]),
-            ),
-        ]
+        lint = [[py, "-m", "ruff", "check", "."], [py, "-m", "ruff", "format", "--check", "."]]
+        return [*lint, _pytest(py, *NBVAL, "--doctest-modules", *(args or ["tests", "lessons", "shapelab"]))]
     if command == "test-lib":
         return [
             _pytest(
-                py,
-                "-n",
-                jobs,
-                "--dist",
-                "loadscope",
-                "--doctest-modules",
-                "-p",
-                "no:nbval",
-                *(args or ["tests/library", "tests/teaching", "shapelab"]),
+                py, "--doctest-modules", "-p", "no:nbval", *(args or ["tests/library", "tests/teaching", "shapelab"])
             )
         ]
     raise SystemExit(f"unknown command {command!r}")
