@@ -31,9 +31,8 @@ test-lib:
 	$(COURSE) test-lib
 
 # ruff: lint and format (pyproject.toml [tool.ruff]); `ruff format .` fixes the format
-lint: env
-	$(PY) -m ruff check .
-	$(PY) -m ruff format --check .
+lint:
+	$(COURSE) lint
 
 course:
 	$(COURSE) build

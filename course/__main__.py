@@ -6,6 +6,7 @@
     python -m course lessons      re-execute the lessons in place (maintainers)
     python -m course test         what CI runs: lint, library tests, strict nbval on every lesson
     python -m course test-lib     the library's and the teaching layer's tests and doctests
+    python -m course lint         ruff: lint and format check (part of test)
     python -m course nbval        strict nbval on every lesson, in the course's environment (no test extra)
 
 Each command runs in the environment it needs:
@@ -56,6 +57,7 @@ NEEDS = {
     "nbval": (("lab", "book"), False),
     "test": (("test", "book"), True),
     "test-lib": (("test",), False),
+    "lint": (("test",), False),
 }
 #: what `nbval` adds to the students' packages: the test runner only (pinned)
 NBVAL_TOOLS = ("pytest", "nbval", "pytest-xdist")
@@ -184,8 +186,10 @@ def command_line(command: str, py, args: list[str]) -> list[list]:
     if command == "nbval":
         tools = [py, "-m", "pip", "install", "-q", "-c", CONSTRAINTS, *NBVAL_TOOLS]
         return [tools, _pytest(py, *NBVAL, *(args or ["lessons"]))]
+    lint = [[py, "-m", "ruff", "check", "."], [py, "-m", "ruff", "format", "--check", "."]]
+    if command == "lint":
+        return lint
     if command == "test":
-        lint = [[py, "-m", "ruff", "check", "."], [py, "-m", "ruff", "format", "--check", "."]]
         return [*lint, _pytest(py, *NBVAL, "--doctest-modules", *(args or ["tests", "lessons", "shapelab"]))]
     if command == "test-lib":
         return [
