@@ -33,7 +33,7 @@ CITE = re.compile(r"\[(?P<text>[^\]\n]+)\]\(#cite-(?P<key>[A-Za-z0-9_:-]+)\)")
 RAW_ROLE = re.compile(r"\{[a-z:-]+\}`")
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _database(path: Path = BIB):
     from pybtex.database import parse_file
 
@@ -80,7 +80,7 @@ def for_deck(markdown: str) -> str:
     return CITE.sub(lambda m: m.group("text"), markdown)
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _formatted(path: Path = BIB) -> dict[str, str]:
     from pybtex.plugin import find_plugin
 
