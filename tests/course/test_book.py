@@ -114,20 +114,23 @@ def _solution_lines(lesson: Path) -> list[str]:
     for cell in nb.cells:
         if "solution" not in cell.metadata.get("tags", []):
             continue
-        body = cell.source
         if cell.cell_type == "code":
-            body = "\n".join(re.findall(r"# BEGIN SOLUTION\n(.*?)# END SOLUTION", body, re.S))
-        for line in body.splitlines():
-            line = line.strip()
-            if len(line) > 20 and not line.startswith(("#", "$")) and line not in page:
-                lines.append(line)
+            body = "\n".join(re.findall(r"# BEGIN SOLUTION\n(.*?)# END SOLUTION", cell.source, re.S))
+            found = [ln.strip() for ln in body.splitlines() if not ln.strip().startswith("#")]
+            found = [ln for ln in found if len(ln) > 20]
+        else:  # a model answer: the runs of plain words between its markup and formulas
+            found = [seg.strip() for seg in re.split(r"\$[^$]*\$|\(#cite-[^)]*\)|[*`_\\\[\]{}<>|]", cell.source)]
+            found = [seg for seg in found if len(seg) > 40]
+        lines += [" ".join(ln.split()) for ln in found if ln not in page]
     return lines
 
 
 def _text(page: Path) -> str:
     from html import unescape
 
-    return unescape(re.sub(r"<[^>]+>", "", page.read_text(encoding="utf-8", errors="replace")))
+    text = unescape(re.sub(r"<[^>]+>", "", page.read_text(encoding="utf-8", errors="replace")))
+    # MyST's smart quotes: Horn's -> Horn’s
+    return " ".join(text.translate(str.maketrans("‘’“”", "''\"\"")).split())
 
 
 def test_no_solution_on_the_students_site_and_every_one_on_the_instructors(site, instructor_site):
