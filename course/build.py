@@ -275,7 +275,9 @@ def main(argv=None) -> int:
         if args.instructor:
             t = step("book for instructors: solutions shown")
             built = build_book(
-                path_output=BUILD / "instructor", gallery=False, book=site_source(SITE_SRC / "instructor")
+                path_output=BUILD / "instructor",
+                gallery=False,
+                book=site_source(SITE_SRC / "instructor", instructor=True),
             )
             shutil.rmtree(INSTRUCTOR_HTML, ignore_errors=True)
             shutil.move(built, INSTRUCTOR_HTML)
