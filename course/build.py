@@ -3,6 +3,11 @@
     python -m course.build                 # everything (make course)
     python -m course.build --only book     # one artefact: book | slides | figures | student
     python -m course.build --no-execute    # render the committed outputs as they are
+    python -m course.build --instructor    # also the instructors' site (solutions shown)
+
+The site (book/_build/html) is the students': no solution is on it (course.student.
+site_notebook).  ``--instructor`` builds a second site with the solutions in
+book/_build/html-instructor.  The decks are printed to PDF when Chromium is installed.
 
 Progress is printed as it goes, and a summary at the end says what was built,
 how long it took, how large it is and where it went.
@@ -23,6 +28,8 @@ BOOK = ROOT / "book"
 BUILD = BOOK / "_build"
 VENDOR = BOOK / "_extra" / "vendor"
 GALLERY = BOOK / "_gallery"  # the gallery page's figures (book/gallery.md), made before the book
+SITE_SRC = BUILD / "site-src"  # the sites' sources: book/ with the site's lessons (site_source)
+INSTRUCTOR_HTML = BUILD / "html-instructor"
 NODE = BOOK / "node_modules"
 
 # what the offline site needs from the npm packages, and where it goes under the site's
@@ -142,6 +149,54 @@ def book_copy(dest: Path) -> Path:
     return dest
 
 
+def site_lessons(lessons: Path, instructor: bool = False) -> dict:
+    """Make the executed lessons in ``lessons`` (a copy: they are changed in place) the
+    site's pages: citations become links to the references page (course/citations.py)
+    and, unless ``instructor``, the solutions are left out (course.student.site_notebook:
+    the exercise's code cell shows the placeholder, every other output is kept).  A
+    "show solution" toggle would still publish the answer in the page's HTML; the
+    instructors' site (``--instructor``) is a second build.  Returns counts."""
+    import nbformat
+
+    from course import citations
+    from course.student import site_notebook
+
+    totals = {"lessons": 0, "solutions left out": 0, "citations linked": 0}
+    for path in sorted(lessons.glob("[0-9][0-9]_*.ipynb")):
+        nb = nbformat.read(path, as_version=4)
+        for cell in nb.cells:
+            if cell.cell_type == "markdown":
+                totals["citations linked"] += len(citations.CITE.findall(cell.source))
+                cell.source = citations.for_site(cell.source)
+        if not instructor:
+            nb, stats = site_notebook(nb)
+            totals["solutions left out"] += stats["exercises"] + stats["markdown removed"]
+        nbformat.write(nb, path)
+        totals["lessons"] += 1
+    return totals
+
+
+def site_source(dest: Path, instructor: bool = False) -> Path:
+    """The book's sources in ``dest`` with the site's lessons (see :func:`site_lessons`),
+    made from the executed lessons in book/lessons and the gallery's figures."""
+    if dest.exists():
+        shutil.rmtree(dest)
+    book_copy(dest)
+    if GALLERY.exists():
+        shutil.copytree(GALLERY, dest / "_gallery")
+    (dest / "lessons").mkdir(exist_ok=True)
+    for path in sorted((BOOK / "lessons").glob("[0-9][0-9]_*.ipynb")):
+        shutil.copy2(path, dest / "lessons" / path.name)
+    totals = site_lessons(dest / "lessons", instructor)
+    who = "instructors (solutions shown)" if instructor else "students (solutions left out)"
+    print(
+        f"  site for {who}: {totals['lessons']} lessons, {totals['solutions left out']} solutions left out, "
+        f"{totals['citations linked']} citations linked",
+        flush=True,
+    )
+    return dest
+
+
 def build_book(path_output: Path | None = None, gallery: bool = True, book: Path = BOOK) -> Path:
     """Build the site from the book sources in ``book`` (default ``book/``) into
     ``path_output/_build/html`` (default: inside ``book``); the offline JavaScript and
@@ -185,6 +240,11 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--only", choices=["book", "slides", "figures", "student"], action="append")
     ap.add_argument("--no-execute", action="store_true", help="use the committed outputs")
+    ap.add_argument(
+        "--instructor",
+        action="store_true",
+        help=f"also build the instructors' site, solutions shown, in {INSTRUCTOR_HTML.relative_to(ROOT)}",
+    )
     args = ap.parse_args(argv)
     want = set(args.only or ["book", "slides", "figures", "student"])
     summary = []
@@ -209,14 +269,30 @@ def main(argv=None) -> int:
         else:
             build_gallery()
         summary.append(("gallery figures", GALLERY, time.perf_counter() - t))
-        t = step("book (Jupyter Book, offline)")
-        html = build_book(gallery=False)
+        t = step("book (Jupyter Book, offline): the students' site, no solutions")
+        html = build_book(path_output=BOOK, gallery=False, book=site_source(SITE_SRC / "student"))
         summary.append(("course site", html, time.perf_counter() - t))
+        if args.instructor:
+            t = step("book for instructors: solutions shown")
+            built = build_book(
+                path_output=BUILD / "instructor",
+                gallery=False,
+                book=site_source(SITE_SRC / "instructor", instructor=True),
+            )
+            shutil.rmtree(INSTRUCTOR_HTML, ignore_errors=True)
+            shutil.move(built, INSTRUCTOR_HTML)
+            shutil.rmtree(BUILD / "instructor", ignore_errors=True)
+            summary.append(("instructors' site", INSTRUCTOR_HTML, time.perf_counter() - t))
     if "slides" in want:
         t = step("slides (reveal.js, offline)")
         out = BUILD / "slides"
         # the lessons just executed (or copied) into book/lessons
-        run_optional("slides", ["-m", "course.slides", "--out", str(out), "--src", str(BOOK / "lessons")])
+        from course.slides import chromium
+
+        pdf = ["--pdf"] if chromium() else []
+        if not pdf:
+            print("  Chromium is not installed (apt-get install chromium): the decks are built, their PDFs are not")
+        run_optional("slides", ["-m", "course.slides", "--out", str(out), "--src", str(BOOK / "lessons"), *pdf])
         summary.append(("slides", out, time.perf_counter() - t))
     if "student" in want:
         t = step("student edition (solutions removed, outputs cleared)")
@@ -230,6 +306,8 @@ def main(argv=None) -> int:
     print(f"  {'total':18s} {time.perf_counter() - t_all:7.1f} s")
     if "book" in want:
         print(f"\nOpen the course site: {BUILD / 'html' / 'index.html'}")
+        if args.instructor:
+            print(f"The instructors' site: {INSTRUCTOR_HTML / 'index.html'}")
     if "slides" in want:
         print(f"Open a lecture deck:  {BUILD / 'slides'}/<lesson>.slides.html")
     return 0

@@ -48,6 +48,22 @@ LOG = ROOT / "book" / "_build" / "logs" / "kernels.log"
 BUDGET = 60.0
 
 
+#: the inline backend's figure formats for the executed copies (``--out``: the site and the
+#: decks), e.g. ``retina`` (PNG at twice the pixels, shown at the same size) or ``svg``;
+#: the committed lessons (run in place) keep the kernel's default, as nbval compares them
+FIGURE_FORMATS_ENV = "SHAPELAB_FIGURE_FORMATS"
+COPIES_FIGURE_FORMATS = "retina"
+
+
+def kernel_arguments(out_dir: Path | None) -> list[str]:
+    """The kernel's command-line configuration: for copies (``--out``), figures drawn as
+    ``$SHAPELAB_FIGURE_FORMATS`` (default ``retina``); none for the lessons in place."""
+    if out_dir is None:
+        return []
+    formats = [f.strip() for f in os.environ.get(FIGURE_FORMATS_ENV, COPIES_FIGURE_FORMATS).split(",") if f.strip()]
+    return [f"--InlineBackend.figure_formats={f}" for f in formats]
+
+
 def execute(path: Path, out_dir: Path | None, timeout: int, limit: float | None, log=None) -> float:
     nb = nbformat.read(path, as_version=4)
     env_cwd = path.parent
@@ -64,6 +80,7 @@ def execute(path: Path, out_dir: Path | None, timeout: int, limit: float | None,
         store_widget_state=keep_widgets,
         record_timing=False,
         allow_errors=True,
+        extra_arguments=kernel_arguments(out_dir),
     )
     t0 = time.perf_counter()
     # the kernel's own messages (e.g. jupyter_client's note that a local kernel talks over

@@ -5,6 +5,7 @@
     python -m course.slides --out DIR lessons/03_alpha_filtration.ipynb
     python -m course.slides --with-solutions        # instructor decks, solutions included
     python -m course.slides --src book/lessons      # render freshly executed copies
+    python -m course.slides --pdf                   # and print each deck to a PDF (Chromium)
 
 Each deck is ``DIR/<lesson>.slides.html``, made by nbconvert's SlidesExporter with a
 small template of ours (``course/templates/reveal_offline``) that loads everything
@@ -31,6 +32,7 @@ from pathlib import Path
 
 import nbformat
 
+from course import citations
 from course.notebooks import is_solution, slide_type
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -90,10 +92,17 @@ def vendor(out: Path) -> Path:
 
 
 def prepare(nb, with_solutions: bool) -> tuple[nbformat.NotebookNode, Counter]:
-    """A copy of ``nb`` ready for the deck, and counts of what it holds."""
+    """A copy of ``nb`` ready for the deck, and counts of what it holds.
+
+    Besides leaving the solutions out: citations become their author–year text and a
+    last slide lists the works cited (course/citations.py); a code cell longer than
+    MAX_CODE_LINES shows only its output and its code goes to the speaker notes; no
+    slide holds more than MAX_CODE_LINES lines of code or more than BUDGET pixels (a
+    continuation sub-slide starts); each PNG figure is shown at half its pixels
+    (FIGURE_CSS); a heading alone on a slide takes the next cell with it."""
     nb = copy.deepcopy(nb)
     counts: Counter = Counter()
-    cells = []
+    cells, works = [], []
     for cell in nb.cells:
         if is_solution(cell):
             if not with_solutions:
@@ -108,20 +117,127 @@ def prepare(nb, with_solutions: bool) -> tuple[nbformat.NotebookNode, Counter]:
             raise ValueError(f"unknown slide_type {t!r} (use one of {', '.join(SLIDE_TYPES)})")
         if _drop_inline_libraries(cell):
             counts["3Dmol.js copies left to vendor/"] += 1
-        if cell.cell_type == "code" and t not in ("skip", "notes") and _has_figure(cell):
-            # the audience needs the figure, not the code that drew it: the figure gets a
-            # slide of its own (a sub-slide where it was a fragment), without the code
-            cell.metadata.setdefault("tags", [])
-            if HIDE_INPUT not in cell.metadata["tags"]:
-                cell.metadata["tags"].append(HIDE_INPUT)
-            if t in ("-", "fragment"):
-                cell.metadata.setdefault("slideshow", {})["slide_type"] = "subslide"
-                t = "subslide"
-            counts["figures on their own slide"] += 1
-        counts[t] += 1
+        if cell.cell_type == "markdown" and t != "skip":
+            works += citations.cited(cell.source)
+            cell.source = citations.for_deck(cell.source)
         cells.append(cell)
+        if cell.cell_type != "code" or t in ("skip", "notes"):
+            counts[t] += 1
+            continue
+        if _has_figure(cell):
+            # the audience needs the figure, not the code that drew it
+            _hide_input(cell)
+            _size_figures(cell)
+            counts["figures without their code"] += 1
+        elif _code_lines(cell) > MAX_CODE_LINES:
+            _hide_input(cell)
+        if HIDE_INPUT in cell.metadata.get("tags", []) and _code_lines(cell) > MAX_CODE_LINES:
+            # the presenter still has it: in the speaker notes (press S)
+            cells.append(_notes_cell(cell))
+            counts["notes"] += 1
+            counts["code moved to the notes"] += 1
+        counts[t] += 1
+    works = list(dict.fromkeys(works))
+    if works:
+        cells.append(
+            nbformat.v4.new_markdown_cell(citations.works_cited(works), metadata={"slideshow": {"slide_type": "slide"}})
+        )
+        counts["slide"] += 1
+        counts["works cited"] = len(works)
+    cells = _merge_lone_headings(cells, counts)
     nb.cells = _split_long_slides(cells, counts)
     return nb, counts
+
+
+#: no slide shows more lines of code than this; longer cells show their output, and their
+#: code goes to the speaker notes
+MAX_CODE_LINES = 15
+
+
+def _code_lines(cell) -> int:
+    return len(cell.source.rstrip().splitlines()) if cell.cell_type == "code" else 0
+
+
+def _shown_code_lines(cell) -> int:
+    """Lines of code the audience sees: a code cell's input (unless hidden) and the
+    fenced or indented code blocks of a markdown cell."""
+    if cell.cell_type == "code":
+        return 0 if HIDE_INPUT in cell.metadata.get("tags", []) else _code_lines(cell)
+    if cell.cell_type != "markdown":
+        return 0
+    n, fence = 0, False
+    for line in cell.source.splitlines():
+        if line.lstrip().startswith(("```", "~~~")):
+            fence = not fence
+        elif fence:
+            n += 1
+    return n
+
+
+def _hide_input(cell) -> None:
+    tags = cell.metadata.setdefault("tags", [])
+    if HIDE_INPUT not in tags:
+        tags.append(HIDE_INPUT)
+
+
+def _notes_cell(cell):
+    code = cell.source.rstrip()
+    text = f"**Code of this slide** ({_code_lines(cell)} lines, shown in the notebook):\n\n```python\n{code}\n```"
+    return nbformat.v4.new_markdown_cell(text, metadata={"slideshow": {"slide_type": "notes"}})
+
+
+def _is_heading_only(cell) -> bool:
+    lines = [ln for ln in cell.source.splitlines() if ln.strip()]
+    return cell.cell_type == "markdown" and bool(lines) and all(ln.lstrip().startswith("#") for ln in lines)
+
+
+def _merge_lone_headings(cells, counts):
+    """A slide that holds headings alone keeps the next shown cell (a sub-slide) with it."""
+    alone = False  # the current slide has shown headings only, so far
+    for cell in cells:
+        t = slide_type(cell)
+        if t in ("skip", "notes"):
+            continue
+        if t == "subslide" and alone:
+            cell.metadata.setdefault("slideshow", {})["slide_type"] = "-"
+            counts["headings kept with their content"] += 1
+            t = "-"
+        if t in ("slide", "subslide"):
+            alone = _is_heading_only(cell)
+        else:
+            alone = alone and _is_heading_only(cell)
+    return cells
+
+
+def _png_size(b64) -> tuple[int, int] | None:
+    """(width, height) in pixels of a base64 PNG, from its header."""
+    import base64
+
+    text = "".join(b64) if isinstance(b64, list) else b64
+    head = base64.b64decode(text[:44] + "=" * (-len(text[:44]) % 4))
+    if head[:8] != b"\x89PNG\r\n\x1a\n" or len(head) < 24:
+        return None
+    return int.from_bytes(head[16:20], "big"), int.from_bytes(head[20:24], "big")
+
+
+def _size_figures(cell) -> None:
+    """Each PNG figure shown at most at half its pixels: a sharp figure on the projector
+    (the executed copies of ``course.execute --out`` are drawn at twice the resolution,
+    "retina", so that they keep their size; the committed ones are shown smaller)."""
+    for o in cell.get("outputs", []):
+        png = o.get("data", {}).get("image/png")
+        if png is None:
+            continue
+        size = _png_size(png)
+        if size is None:
+            continue
+        meta = o.setdefault("metadata", {}).setdefault("image/png", {})
+        w, h = size
+        if not w:
+            continue
+        shown = min(int(meta.get("width", w)), w // 2)
+        meta["width"] = shown
+        meta["height"] = round(h * shown / w)
 
 
 def _drop_inline_libraries(cell) -> bool:
@@ -163,34 +279,38 @@ def _estimated_height(cell) -> int:
         if o.get("output_type") == "stream":
             h += 25 * lines("".join(o.get("text", "")), 110)
         elif "image/png" in o.get("data", {}):
-            h += 600
+            h += int(o.get("metadata", {}).get("image/png", {}).get("height", 600)) + 20
+        elif "image/svg+xml" in o.get("data", {}):
+            h += 480
         elif "text/plain" in o.get("data", {}):
             h += 25 * lines("".join(o["data"]["text/plain"]), 110)
     return h
 
 
 def _split_long_slides(cells, counts):
-    """Start a continuation sub-slide before a cell that would push its slide past BUDGET."""
-    used = 0
+    """Start a continuation sub-slide before a cell that would push its slide past BUDGET
+    pixels or MAX_CODE_LINES lines of code."""
+    used = code = 0
     for cell in cells:
         t = slide_type(cell)
         if t in ("skip", "notes"):
             continue
-        h = _estimated_height(cell)
+        h, c = _estimated_height(cell), _shown_code_lines(cell)
         if t in ("slide", "subslide"):
-            used = h
-        elif used + h > BUDGET and used > 0:
+            used, code = h, c
+        elif (used + h > BUDGET and used > 0) or (code + c > MAX_CODE_LINES and code > 0):
             cell.metadata.setdefault("slideshow", {})["slide_type"] = "subslide"
             counts["continuation slides"] += 1
-            used = h
+            used, code = h, c
         else:
-            used += h
+            used, code = used + h, code + c
     return cells
 
 
 def _has_figure(cell) -> bool:
     return any(
-        o.get("output_type") in ("display_data", "execute_result") and "image/png" in o.get("data", {})
+        o.get("output_type") in ("display_data", "execute_result")
+        and ("image/png" in o.get("data", {}) or "image/svg+xml" in o.get("data", {}))
         for o in cell.get("outputs", [])
     )
 
@@ -223,6 +343,34 @@ def exporter():
     return ex
 
 
+#: added to each deck's <head> (the template, course/templates/reveal_offline, is left as
+#: it is): every raster image is shown at most at half its pixels, so that it stays sharp
+#: at 1280 x 720 (a projector at 1920 x 1080 still gets 1.3 device pixels per pixel).
+#: Figures of a lesson's outputs get that width from prepare() already; this also covers
+#: what the page draws itself (widgets' images).  The works-cited slide is set smaller.
+FIGURE_CSS = """<style id="shapelab-deck-figures">
+.reveal .jp-RenderedImage img { height: auto; max-height: 600px; }
+.reveal .slides section .works-cited, .reveal .slides section li .bibtex-protected { font-size: inherit; }
+.reveal aside.notes pre { font-size: 0.6em; }
+</style>
+<script>
+(function () {
+  function half(img) {
+    if (!img.naturalWidth || img.dataset.shapelabHalf) { return; }
+    img.dataset.shapelabHalf = "1";
+    img.style.maxWidth = Math.floor(img.naturalWidth / 2) + "px";
+    img.style.maxHeight = Math.floor(img.naturalHeight / 2) + "px";
+    if (img.closest(".jp-RenderedImage")) { img.style.width = "auto"; img.style.height = "auto"; }
+  }
+  document.addEventListener("load", function (e) { if (e.target.tagName === "IMG") { half(e.target); } }, true);
+  document.addEventListener("DOMContentLoaded", function () {
+    document.querySelectorAll("img").forEach(function (img) { if (img.complete) { half(img); } });
+  });
+})();
+</script>
+"""
+
+
 def render(path: Path, out: Path, ex, with_solutions: bool) -> tuple[Path, Counter]:
     nb = nbformat.read(path, as_version=4)
     deck, counts = prepare(nb, with_solutions)
@@ -239,13 +387,57 @@ def render(path: Path, out: Path, ex, with_solutions: bool) -> tuple[Path, Count
         "offline": {"vendor": VENDOR, "view3d": has_view3d},
     }
     body, _ = ex.from_notebook_node(deck, resources=resources)
+    body = body.replace("</head>", FIGURE_CSS + "</head>", 1)
     target = out / f"{path.stem}.slides.html"
     target.write_text(body, encoding="utf-8")
     return target, counts
 
 
+def chromium() -> str | None:
+    """The Chromium (or Chrome) on this machine, or None."""
+    return next((shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome") if shutil.which(n)), None)
+
+
+def pdf(deck: Path, browser: str, budget_ms: int = 30000) -> Path:
+    """``deck`` printed to ``<lesson>.slides.pdf`` beside it: reveal.js's print layout
+    (``?print-pdf``, one page per slide and fragment state), offline, by headless Chromium."""
+    import subprocess
+    import tempfile
+
+    target = deck.with_suffix(".pdf")
+    with tempfile.TemporaryDirectory() as profile:
+        cmd = [
+            browser,
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-dev-shm-usage",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-extensions",
+            # nothing comes from the network: every connection goes to a closed port
+            "--proxy-server=127.0.0.1:9",
+            "--host-resolver-rules=MAP * ~NOTFOUND",
+            f"--user-data-dir={profile}",
+            f"--virtual-time-budget={budget_ms}",
+            "--run-all-compositor-stages-before-draw",
+            "--no-pdf-header-footer",
+            f"--print-to-pdf={target}",
+            deck.as_uri() + "?print-pdf",
+        ]
+        run = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    if run.returncode or not target.exists():
+        raise RuntimeError(f"{deck.name}: Chromium did not print: {run.stderr[-500:]}")
+    return target
+
+
 def write_index(out: Path, decks: list[tuple[Path, str]]) -> Path:
-    rows = "\n".join(f'  <li><a href="{html.escape(p.name)}">{html.escape(title)}</a></li>' for p, title in decks)
+    def row(p: Path, title: str) -> str:
+        pdf = p.with_suffix(".pdf")
+        extra = f' (<a href="{html.escape(pdf.name)}">PDF</a>)' if pdf.exists() else ""
+        return f'  <li><a href="{html.escape(p.name)}">{html.escape(title)}</a>{extra}</li>'
+
+    rows = "\n".join(row(p, title) for p, title in decks)
     page = f"""<!DOCTYPE html>
 <html lang="en">
 <head><meta charset="utf-8"><title>shapelab: lecture decks</title>
@@ -287,6 +479,12 @@ def main(argv=None) -> int:
     )
     ap.add_argument("--src", type=Path, default=ROOT / "lessons", help="folder of lessons (default lessons/)")
     ap.add_argument("--with-solutions", action="store_true", help="keep cells tagged 'solution'")
+    ap.add_argument(
+        "--pdf",
+        action=argparse.BooleanOptionalAction,
+        default=False,
+        help="also print each deck to <lesson>.slides.pdf with headless Chromium (offline)",
+    )
     args = ap.parse_args(argv)
 
     paths = args.lessons or sorted(args.src.glob("[0-9][0-9]_*.ipynb"))
@@ -297,8 +495,11 @@ def main(argv=None) -> int:
     t_all = time.perf_counter()
     out = args.out
     out.mkdir(parents=True, exist_ok=True)
-    for old in out.glob("*.slides.html"):
+    for old in [*out.glob("*.slides.html"), *out.glob("*.slides.pdf")]:
         old.unlink()
+    browser = chromium() if args.pdf else None
+    if args.pdf and browser is None:
+        print("--pdf: Chromium is not installed (apt-get install chromium): no PDF is made", file=sys.stderr)
     vendor(out)
     ex = exporter()
     decks, failures = [], []
@@ -317,6 +518,11 @@ def main(argv=None) -> int:
             detail += f", {counts['solutions removed']} solutions left out"
         if counts["solutions shown"]:
             detail += f", {counts['solutions shown']} solutions shown"
+        if browser is not None:
+            try:
+                detail += f"; PDF {_size(pdf(target, browser)) / 1024:.0f} KiB"
+            except Exception as exc:
+                failures.append(f"{path.name}: PDF: {exc}")
         print(f" {detail}; {_size(target) / 1024:.0f} KiB, {time.perf_counter() - t0:.1f} s")
         if slides <= 1:
             print(f"    warning: {path.name} has no slide metadata, so its deck is one long slide")

@@ -198,6 +198,39 @@ def student_notebook(nb) -> tuple[nbformat.NotebookNode, dict]:
     return nb, stats
 
 
+def site_notebook(nb) -> tuple[nbformat.NotebookNode, dict]:
+    """The course site's page of an executed lesson: as the student edition, no solution
+    (markdown solutions dropped, code between the markers replaced by the placeholder,
+    that cell's outputs removed, since they are the solution's results), but every other
+    cell keeps its outputs: the site shows the lesson as it ran."""
+    nb = copy.deepcopy(nb)
+    stats = {"exercises": 0, "markdown removed": 0}
+    cells = []
+    for i, cell in enumerate(nb.cells):
+        tags = list(cell.get("metadata", {}).get("tags", []))
+        if cell.cell_type == "markdown" and TAG in tags:
+            stats["markdown removed"] += 1
+            continue
+        if cell.cell_type == "code":
+            try:
+                cell.source, n = strip_source(cell.source)
+            except MarkerError as exc:
+                raise MarkerError(f"cell {i}: {exc}") from None
+            if TAG in tags and n == 0:
+                raise MarkerError(
+                    f"cell {i} is tagged 'solution' but has no '# BEGIN SOLUTION' / '# END SOLUTION' markers"
+                )
+            if n:
+                stats["exercises"] += n
+                cell.outputs = []
+                cell.execution_count = None
+        if TAG in tags:
+            cell.metadata["tags"] = [STUDENT_TAG if t == TAG else t for t in tags]
+        cells.append(cell)
+    nb.cells = cells
+    return nb, stats
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("lessons", nargs="*", type=Path, help="default: lessons/NN_*.ipynb")

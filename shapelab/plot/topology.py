@@ -132,6 +132,7 @@ def persistence_diagram(
     title="Persistence diagram",
     dim=None,
     scale: str = "τ",
+    unit: str | None = None,
 ):
     """The persistence diagram: one point (birth, death) per feature (Notes §23.1).
 
@@ -158,6 +159,9 @@ def persistence_diagram(
     scale : str
         The name of the axes' quantity: ``"τ"`` (the growth time, default) or, for
         diagrams converted to radii, ``"ρ"``.
+    unit : str, optional
+        The same as ``scale``, under the name the other plots use
+        (``plot.distance_matrix(..., unit="ρ")``); it wins when both are given.
 
     Returns
     -------
@@ -232,8 +236,8 @@ def persistence_diagram(
         ax.set_xlim(lo_, hi_)
         ax.set_ylim(lo_, hi_)
         ax.set_aspect("equal")
-        ax.set_xlabel(f"birth {scale}")
-        ax.set_ylabel(f"death {scale}")
+        ax.set_xlabel(f"birth {unit or scale}")
+        ax.set_ylabel(f"death {unit or scale}")
         ax.set_title(title)
         ax.legend(loc="lower right", fontsize=9)
     return fig

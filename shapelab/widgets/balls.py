@@ -23,6 +23,11 @@ __all__ = [
 ]
 
 
+def _n(count: int, one: str, many: str | None = None) -> str:
+    """``count`` and the noun, singular for one: "1 triangle", "8 edges", "0 triangles"."""
+    return f"{count} {one if count == 1 else (many or one + 's')}"
+
+
 def _default_range(F):
     """From the first vertex's entry to a little after the last change of topology
     (the largest finite death of the persistence diagram); the last entries of DT
@@ -159,7 +164,11 @@ class AlphaExplorer(StaticFallback, W.VBox):
         t = K.tau
         n = K.counts() + (0,) * (3 - len(K.counts()))
         alpha = f"α = √τ = {np.sqrt(t):.3f}" if t >= 0 else "α = √τ undefined (τ < 0)"
-        parts = [f"τ = {t:.3f}", alpha, f"K: {n[0]} vertices, {n[1]} edges, {n[2]} triangles"]
+        parts = [
+            f"τ = {t:.3f}",
+            alpha,
+            f"K: {_n(n[0], 'vertex', 'vertices')}, {_n(n[1], 'edge')}, {_n(n[2], 'triangle')}",
+        ]
         try:
             b = self._F.betti(t)
             parts.append("Betti (β₀, β₁) = " + f"({b[0]}, {b[1]})")
@@ -335,7 +344,7 @@ class PowerExplorer(StaticFallback, W.VBox):
 
             n = alpha_filtration(self.balls).complex_at(0.0).counts()
             n = tuple(n) + (0,) * (3 - len(n))
-            parts.append(f"K: {n[0]} vertices, {n[1]} edges, {n[2]} triangles")
+            parts.append(f"K: {_n(n[0], 'vertex', 'vertices')}, {_n(n[1], 'edge')}, {_n(n[2], 'triangle')}")
         return " · ".join(parts)
 
     def figure(self):
@@ -491,8 +500,8 @@ class Complex3DExplorer(StaticFallback, W.VBox):
         alpha = f"α = √τ = {np.sqrt(t):.3f}" if t >= 0 else "α undefined (τ < 0)"
         b = self._F.betti(t)
         return (
-            f"τ = {t:.3f} · {alpha} · K: {n[0]} vertices, {n[1]} edges, {n[2]} triangles, "
-            f"{n[3]} tetrahedra · β₀ = {b[0]} components, β₁ = {b[1]} tunnels, β₂ = {b[2]} voids"
+            f"τ = {t:.3f} · {alpha} · K: {_n(n[0], 'vertex', 'vertices')}, {_n(n[1], 'edge')}, "
+            f"{_n(n[2], 'triangle')}, {_n(n[3], 'tetrahedron', 'tetrahedra')} · β₀ = {b[0]} components, β₁ = {b[1]} tunnels, β₂ = {b[2]} voids"
         )
 
     def figure(self):

@@ -43,11 +43,9 @@ def _build_course():
 
 
 @pytest.fixture(scope="module")
-def site(tmp_path_factory):
-    if os.environ.get("SHAPELAB_SITE"):  # a site built before, e.g. by `make book`
-        built = Path(os.environ["SHAPELAB_SITE"]).resolve()
-        assert (built / "index.html").exists(), f"SHAPELAB_SITE={built} holds no built site"
-        return built
+def sources(tmp_path_factory):
+    """Two copies of the book's sources with the site's lessons: the students' (solutions
+    left out, the default build) and the instructors' (``--instructor``)."""
     if shutil.which("npm") is None and not (ROOT / "book" / "node_modules").exists():
         pytest.skip("npm is needed to install the book's offline JavaScript")
     bc = _build_course()
@@ -67,7 +65,27 @@ def site(tmp_path_factory):
         cwd=ROOT,
     )
     assert rc == 0, f"{EXPLORER_LESSON} failed to execute for the book"
-    return bc.build_book(path_output=tmp_path_factory.mktemp("book"), book=src)
+    instructor = tmp_path_factory.mktemp("book-src-instructor")
+    shutil.copytree(src, instructor, dirs_exist_ok=True)
+    bc.site_lessons(src / "lessons", instructor=False)
+    bc.site_lessons(instructor / "lessons", instructor=True)
+    return {"student": src, "instructor": instructor}
+
+
+@pytest.fixture(scope="module")
+def site(sources, tmp_path_factory):
+    if os.environ.get("SHAPELAB_SITE"):  # a site built before, e.g. by `make book`
+        built = Path(os.environ["SHAPELAB_SITE"]).resolve()
+        assert (built / "index.html").exists(), f"SHAPELAB_SITE={built} holds no built site"
+        return built
+    return _build_course().build_book(path_output=tmp_path_factory.mktemp("book"), book=sources["student"])
+
+
+@pytest.fixture(scope="module")
+def instructor_site(sources, tmp_path_factory):
+    """The instructors' site (python -m course.build --instructor); about 10 s more."""
+    out = tmp_path_factory.mktemp("book-instructor")
+    return _build_course().build_book(path_output=out, gallery=False, book=sources["instructor"])
 
 
 def _pages(site: Path):
@@ -81,6 +99,71 @@ def test_every_lesson_has_a_page(site):
     for nb in sorted((ROOT / "lessons").glob("[0-9][0-9]_*.ipynb")):
         assert (site / "lessons" / f"{nb.stem}.html").exists(), f"no page for {nb.name}"
     assert (site / "references.html").exists()
+
+
+def _solution_lines(lesson: Path) -> list[str]:
+    """Lines of ``lesson``'s solutions (code between the markers, model answers) that its
+    students' page has no other reason to hold (the exercise's signature stays)."""
+    import nbformat
+
+    from course.student import site_notebook
+
+    nb = nbformat.read(lesson, as_version=4)
+    page = "\n".join(c.source for c in site_notebook(nb)[0].cells)
+    lines = []
+    for cell in nb.cells:
+        if "solution" not in cell.metadata.get("tags", []):
+            continue
+        if cell.cell_type == "code":
+            body = "\n".join(re.findall(r"# BEGIN SOLUTION\n(.*?)# END SOLUTION", cell.source, re.S))
+            found = [ln.strip() for ln in body.splitlines() if not ln.strip().startswith("#")]
+            found = [ln for ln in found if len(ln) > 20]
+        else:  # a model answer: the runs of plain words between its markup and formulas
+            found = [seg.strip() for seg in re.split(r"\$[^$]*\$|\(#cite-[^)]*\)|[*`_\\\[\]{}<>|]", cell.source)]
+            found = [seg for seg in found if len(seg) > 40]
+        lines += [" ".join(ln.split()) for ln in found if ln not in page]
+    return lines
+
+
+def _text(page: Path) -> str:
+    from html import unescape
+
+    text = unescape(re.sub(r"<[^>]+>", "", page.read_text(encoding="utf-8", errors="replace")))
+    # MyST's smart quotes: Horn's -> Horn’s
+    return " ".join(text.translate(str.maketrans("‘’“”", "''\"\"")).split())
+
+
+def test_no_solution_on_the_students_site_and_every_one_on_the_instructors(site, instructor_site):
+    """The default site publishes no solution (left out, not folded: a toggle still puts
+    the answer in the page); the instructors' build shows them all."""
+    shown, missing, n = [], [], 0
+    for lesson in sorted((ROOT / "lessons").glob("[0-9][0-9]_*.ipynb")):
+        lines = _solution_lines(lesson)
+        n += len(lines)
+        student = _text(site / "lessons" / f"{lesson.stem}.html")
+        instructor = _text(instructor_site / "lessons" / f"{lesson.stem}.html")
+        shown += [f"{lesson.stem}: {ln[:80]}" for ln in lines if ln in student]
+        missing += [f"{lesson.stem}: {ln[:80]}" for ln in lines if ln not in instructor]
+    assert n > 50, "the solutions' lines are no longer found"
+    assert not shown, f"{len(shown)} solution lines on the students' site:\n" + "\n".join(shown[:10])
+    assert not missing, f"{len(missing)} solution lines missing from the instructors' site:\n" + "\n".join(missing[:10])
+
+
+RAW_ROLE = re.compile(r"\{[a-z:-]+\}(?:`|<code|<span class=\"pre\">)")
+
+
+def test_no_page_shows_a_raw_role_and_citations_link_to_the_references(site):
+    raw, broken = [], []
+    ids = set(re.findall(r'id="([^"]+)"', (site / "references.html").read_text(encoding="utf-8")))
+    for page in _pages(site):
+        html = page.read_text(encoding="utf-8", errors="replace")
+        body = re.sub(r"<script\b.*?</script>", "", html, flags=re.S)
+        raw += [f"{page.relative_to(site)}: {m.group(0)}" for m in RAW_ROLE.finditer(body)]
+        broken += [f"{page.name} -> #{a}" for a in re.findall(r'references\.html#([\w-]+)"', html) if a not in ids]
+    assert not raw, "raw MyST roles on the site:\n" + "\n".join(raw[:10])
+    assert not broken, "citations that lead nowhere:\n" + "\n".join(broken[:10])
+    linked = _text(site / "lessons" / f"{EXPLORER_LESSON}.html")
+    assert "Edelsbrunner and Mücke 1994" in linked
 
 
 def test_speaker_notes_stay_off_the_site(site):

@@ -17,7 +17,7 @@ from urllib.parse import urlsplit
 import nbformat
 import pytest
 
-from tests._chromium import CHROMIUM, dump_dom
+from tests._chromium import CHROMIUM, SKIP_REASON, dump_dom
 
 ROOT = Path(__file__).resolve().parents[2]
 pytest.importorskip("nbconvert")
@@ -147,12 +147,13 @@ def test_solutions_stay_out_unless_asked_for(decks, slides, tmp_path):
 def test_slide_metadata_makes_the_slides(decks, slides):
     for lesson in DECK_LESSONS:
         nb = nbformat.read(lesson, as_version=4)
-        # the deck's own metadata: prepare() leaves solutions out, gives figures a slide of
-        # their own and continues long slides on a sub-slide, never adding horizontal slides
+        # the deck's own metadata: prepare() leaves solutions out and continues long slides
+        # on a sub-slide, never adding horizontal slides but the last, "Works cited"
         deck, _ = slides.prepare(nb, with_solutions=False)
         shown = deck.cells
         kinds = [slides.slide_type(c) for c in shown]
-        assert kinds.count("slide") == sum(
+        deck_counts = slides.prepare(nb, with_solutions=False)[1]
+        assert kinds.count("slide") == bool(deck_counts["works cited"]) + sum(
             slides.slide_type(c) == "slide" for c in nb.cells if "solution" not in c.metadata.get("tags", [])
         )
         expected = kinds.count("slide") + (kinds[0] != "slide")
@@ -237,72 +238,132 @@ def test_figures_reach_the_deck_as_images(lesson):
     )
 
 
-FIT_PROBE = r"""<script>
-(function wait() {
-  if (!(window.Reveal && Reveal.isReady && Reveal.isReady()
-        && document.documentElement.getAttribute("data-shapelab-deck") === "ready")) { return setTimeout(wait, 100); }
-  setTimeout(function () {
-    var out = [], H = Reveal.getConfig().height;
-    Reveal.getSlides().forEach(function (s) {
-      var ix = Reveal.getIndices(s); Reveal.slide(ix.h, ix.v);
-      s.querySelectorAll(".fragment").forEach(function (f) { f.classList.add("visible"); });
-      var scale = Reveal.getScale(), top = s.getBoundingClientRect().top, bottom = 0;
-      Array.from(s.children).forEach(function (c) {
-        var r = c.getBoundingClientRect(); if (r.height > 0) { bottom = Math.max(bottom, r.bottom); } });
-      var imgs = Array.from(s.querySelectorAll("img")).map(function (im) {
-        return Math.round((im.getBoundingClientRect().bottom - top) / scale); });
-      out.push({slide: ix.h + "/" + ix.v, height: Math.round((bottom - top) / scale), imgs: imgs});
-    });
-    var pre = document.createElement("pre"); pre.id = "fit";
-    pre.textContent = JSON.stringify({H: H, slides: out}); document.body.appendChild(pre);
-  }, 1500);
-})();
-</script>"""
+@pytest.fixture(scope="module")
+def probed(decks, tmp_path_factory):
+    """Every slide of every deck, stepped through once in headless Chromium at 1280 x 720
+    with all fragments shown (tests/course/deck_probe.py): what the tests below measure."""
+    if CHROMIUM is None:
+        pytest.skip(SKIP_REASON)
+    from tests.course.deck_probe import probe
+
+    profile = tmp_path_factory.mktemp("probe") / "profile"
+    return {deck.name: probe(deck, profile) for deck in sorted(decks.glob("*.slides.html"))}
 
 
-@pytest.mark.skipif(CHROMIUM is None, reason="Chromium is not installed (CI installs it: `apt-get install chromium`)")
-def test_every_slide_fits_with_all_fragments_shown(decks, tmp_path):
+@pytest.mark.skipif(CHROMIUM is None, reason=SKIP_REASON)
+def test_every_slide_fits_with_all_fragments_shown(probed):
     """At 1280 x 720 with every fragment shown, no slide is taller than the slide and every
     image is whole (headless Chromium, network off)."""
-    import json
-
     over, cut, n_slides, n_images = [], [], 0, 0
-    for deck in sorted(decks.glob("*.slides.html")):
-        probe = deck.with_name("_fit_" + deck.name)
-        probe.write_text(deck.read_text(encoding="utf-8").replace("</body>", FIT_PROBE + "</body>"), encoding="utf-8")
-        try:
-            dom = dump_dom(probe.as_uri(), tmp_path / "profile", budget_ms=30000, window=(1280, 720))
-        finally:
-            probe.unlink()
-        m = re.search(r'<pre id="fit"[^>]*>(.*?)</pre>', dom, re.S)
-        assert m, f"{deck.name}: the probe did not run"
-        res = json.loads(m.group(1).replace("&quot;", '"').replace("&amp;", "&"))
-        H = res["H"]
-        for s in res["slides"]:
+    for name, found in probed.items():
+        for s in found:
             n_slides += 1
-            n_images += len(s["imgs"])
-            if s["height"] > H:
-                over.append(f"{deck.name} #{s['slide']}: {s['height']} px")
-            cut += [f"{deck.name} #{s['slide']}: an image ends at {b} px" for b in s["imgs"] if b > H]
+            n_images += len(s["imgEnds"])
+            if s["height"] > s["H"]:
+                over.append(f"{name} #{s['slide']}: {s['height']} px")
+            cut += [f"{name} #{s['slide']}: an image ends at {b} px" for b in s["imgEnds"] if b > s["H"]]
     assert n_slides > 0 and n_images > 0
     assert not over, f"{len(over)} of {n_slides} slides overflow:\n" + "\n".join(over[:20])
     assert not cut, f"{len(cut)} of {n_images} images cut:\n" + "\n".join(cut[:20])
 
 
-def test_figures_get_their_own_slide_without_code_and_long_slides_continue(slides):
-    md = lambda text, t="-": nbformat.v4.new_markdown_cell(text, metadata={"slideshow": {"slide_type": t}})  # noqa: E731
+@pytest.mark.skipif(CHROMIUM is None, reason=SKIP_REASON)
+def test_an_instructor_can_project_every_deck_as_it_is(probed):
+    """Issue 36, on every slide of every deck as the audience sees it: no MyST role left
+    as text, at most 15 lines of code, every raster figure at least 2x its displayed
+    pixels, no heading alone on a slide, and a last slide listing the works cited."""
+    from tests.course.deck_probe import MAX_CODE_LINES, summary
+
+    s = summary(probed)
+    assert s["slides"] > 100 and s["raster figures"] > 20, s
+    problems = {
+        k: s[k]
+        for k in (
+            "slides with raw roles",
+            f"slides with > {MAX_CODE_LINES} code lines",
+            "figures below 2x",
+            "heading-only slides",
+        )
+        if s[k]
+    }
+    assert not problems, "\n".join(f"{k} ({len(v)}): {v[:5]}" for k, v in problems.items())
+    cited = [name for name, found in probed.items() if found[-1]["title"] == "Works cited"]
+    assert len(cited) >= 15, f"only {cited} end on their works cited"
+
+
+def _png(width: int, height: int) -> str:
+    """A base64 PNG header of that size (enough for prepare(), which reads the header)."""
+    import base64
+    import struct
+
+    ihdr = struct.pack(">II", width, height) + bytes([8, 6, 0, 0, 0])
+    return base64.b64encode(b"\x89PNG\r\n\x1a\n" + struct.pack(">I", 13) + b"IHDR" + ihdr + b"\0" * 4).decode()
+
+
+def _md(text, t="-"):
+    return nbformat.v4.new_markdown_cell(text, metadata={"slideshow": {"slide_type": t}})
+
+
+def test_figures_lose_their_code_are_shown_at_half_and_long_slides_continue(slides):
     fig = nbformat.v4.new_code_cell("plot()", metadata={"slideshow": {"slide_type": "fragment"}})
-    fig.outputs = [nbformat.v4.new_output("display_data", data={"image/png": "iVBORw0KGgo=", "text/plain": "<Figure>"})]
-    long = [md("# Title", "slide")] + [
-        md("A paragraph of some length that fills a line of the slide. " * 2) for _ in range(30)
+    fig.outputs = [nbformat.v4.new_output("display_data", data={"image/png": _png(800, 450), "text/plain": "<Figure>"})]
+    long = [_md("# Title", "slide")] + [
+        _md("A paragraph of some length that fills a line of the slide. " * 2) for _ in range(30)
     ]
-    nb = nbformat.v4.new_notebook(cells=[md("# One", "slide"), md("text"), fig, *long])
+    nb = nbformat.v4.new_notebook(cells=[_md("# One", "slide"), _md("text"), fig, *long])
     deck, counts = slides.prepare(nb, with_solutions=False)
     f = deck.cells[2]
-    assert slides.slide_type(f) == "subslide" and slides.HIDE_INPUT in f.metadata["tags"]
-    assert counts["figures on their own slide"] == 1
+    # a figure that fits stays beside its sentence, without its code, at half its pixels
+    assert slides.slide_type(f) == "fragment" and slides.HIDE_INPUT in f.metadata["tags"]
+    assert f.outputs[0].metadata["image/png"] == {"width": 400, "height": 225}
+    assert counts["figures without their code"] == 1
     kinds = [slides.slide_type(c) for c in deck.cells[3:]]
     assert kinds[0] == "slide" and kinds.count("subslide") >= 2  # the long slide continues
     assert kinds.count("slide") == 1  # no new horizontal slide
     body, _ = slides.exporter().from_notebook_node(deck, resources={"offline": {"vendor": "vendor"}})
-    assert "plot()" not in body and "iVBORw0KGgo=" in body
+    assert "plot()" not in body and _png(800, 450)[:20] in body
+
+
+def test_a_code_wall_goes_to_the_speaker_notes_and_no_slide_has_more_than_15_lines(slides):
+    wall = nbformat.v4.new_code_cell("\n".join(f"x{i} = {i}" for i in range(40)))
+    wall.outputs = [nbformat.v4.new_output("stream", name="stdout", text="done\n")]
+    short = [nbformat.v4.new_code_cell("\n".join(f"y{i} = {i}" for i in range(6))) for _ in range(4)]
+    nb = nbformat.v4.new_notebook(cells=[_md("## Code", "slide"), wall, *short])
+    deck, counts = slides.prepare(nb, with_solutions=False)
+    assert slides.HIDE_INPUT in deck.cells[1].metadata["tags"]
+    notes = deck.cells[2]
+    assert slides.slide_type(notes) == "notes" and "x39 = 39" in notes.source
+    assert counts["code moved to the notes"] == 1
+    per_slide, lines = [], 0
+    for c in deck.cells:
+        if slides.slide_type(c) in ("skip", "notes"):
+            continue
+        if slides.slide_type(c) in ("slide", "subslide"):
+            per_slide.append(lines)
+            lines = 0
+        lines += slides._shown_code_lines(c)
+    per_slide.append(lines)
+    assert max(per_slide) <= slides.MAX_CODE_LINES, per_slide
+    body, _ = slides.exporter().from_notebook_node(deck, resources={"offline": {"vendor": "vendor"}})
+    notes_html = body.split('<aside class="notes">', 1)[1].split("</aside>", 1)[0]
+    assert "x39" in notes_html and "done" in body
+
+
+def test_a_heading_alone_keeps_its_content_and_citations_become_text(slides):
+    fig = nbformat.v4.new_code_cell("plot()", metadata={"slideshow": {"slide_type": "subslide"}})
+    fig.outputs = [nbformat.v4.new_output("display_data", data={"image/png": _png(800, 450), "text/plain": "<Figure>"})]
+    nb = nbformat.v4.new_notebook(
+        cells=[
+            _md("# One", "slide"),
+            _md("## A figure", "subslide"),
+            fig,
+            _md("α-shapes ([Edelsbrunner and Mücke 1994](#cite-edelsbrunner1994)).", "slide"),
+        ]
+    )
+    deck, counts = slides.prepare(nb, with_solutions=False)
+    assert slides.slide_type(deck.cells[2]) == "-"  # on the heading's slide
+    assert counts["headings kept with their content"] >= 1
+    assert deck.cells[3].source == "α-shapes (Edelsbrunner and Mücke 1994)."
+    last = deck.cells[-1]
+    assert slides.slide_type(last) == "slide" and last.source.startswith("## Works cited")
+    assert "Three-dimensional alpha shapes" in last.source

@@ -109,7 +109,11 @@ def test_power_explorer_dual_mode_reports_the_dual_complex():
     w = power_explorer(b, index=2, mode="dual")
     w.slider.value = 1.5
     n = alpha_filtration(w.balls).complex_at(0.0).counts()
-    assert f"K: {n[0]} vertices, {n[1]} edges, {n[2]} triangles" in w.status.value
+    nouns = lambda k, one, many: f"{k} {one if k == 1 else many}"  # noqa: E731
+    counts = (
+        f"{nouns(n[0], 'vertex', 'vertices')}, {nouns(n[1], 'edge', 'edges')}, {nouns(n[2], 'triangle', 'triangles')}"
+    )
+    assert f"K: {counts}" in w.status.value
     assert repr(w) == "PowerExplorer(n_balls=12, disk=2, radius=1.500, mode='dual')"
 
 
@@ -166,3 +170,14 @@ def test_complex3d_explorer_arguments_are_validated():
         complex3d_explorer(b3, azim=float("inf"))
     with pytest.raises(ValueError, match="resolution"):
         complex3d_explorer(b3, resolution=2)
+
+
+def test_a_count_of_one_is_singular():
+    from shapelab.widgets.balls import _n
+
+    assert [_n(1, "triangle"), _n(0, "triangle"), _n(8, "edge"), _n(1, "vertex", "vertices")] == [
+        "1 triangle",
+        "0 triangles",
+        "8 edges",
+        "1 vertex",
+    ]
