@@ -166,6 +166,22 @@ def test_venv_python_on_windows_and_posix(monkeypatch, tmp_path):
     assert cli.venv_python(tmp_path) == tmp_path / "bin/python"
 
 
+def test_venv_dir_relative_to_the_root_and_never_empty(monkeypatch, tmp_path):
+    # review of issue 32: SHAPELAB_VENV= (empty) named the current directory, so `python -m
+    # course lab` made the repository itself a virtual environment; a relative path followed
+    # the current directory, where the Makefile takes it from the root
+    monkeypatch.chdir(tmp_path)
+    for unset in ("", "  "):
+        monkeypatch.setenv("SHAPELAB_VENV", unset)
+        assert cli.venv_dir() == cli.ROOT / ".venv"
+    monkeypatch.delenv("SHAPELAB_VENV")
+    assert cli.venv_dir() == cli.ROOT / ".venv"
+    monkeypatch.setenv("SHAPELAB_VENV", ".venv-student")
+    assert cli.venv_dir() == cli.ROOT / ".venv-student"
+    monkeypatch.setenv("SHAPELAB_VENV", str(tmp_path / "env"))
+    assert cli.venv_dir() == tmp_path / "env"
+
+
 def test_current_python_is_used_when_it_has_the_extras():
     # this test environment has the test extra (and shapelab from this repository)
     assert cli.current_python_has(("test",))
