@@ -229,11 +229,49 @@ def test_lab_never_overwrites_a_students_work(tmp_path):
     assert written == [lesson.name] and stale == []
     mine = dest / lesson.name
     mine.write_text(mine.read_text(encoding="utf-8").replace("Start here", "My notes"), encoding="utf-8")
+    lesson.write_text(lesson.read_text(encoding="utf-8").replace("Start here", "Begin here"), encoding="utf-8")
     later = time.time() + 10
     os.utime(lesson, (later, later))  # the lesson changed upstream (a git pull)
     written, stale = lab.student_copy(dest, [lesson])
     assert written == [] and stale == [lesson.name]
     assert "My notes" in mine.read_text(encoding="utf-8")
+
+
+def test_lab_names_a_changed_lesson_even_after_the_student_saved(tmp_path):
+    # review of issue 32: staleness by mtime alone was lost as soon as the student saved
+    # the copy after a git pull (JupyterLab autosaves); the copy records its lesson's digest
+    dest, src = tmp_path / "student", tmp_path / "lessons"
+    src.mkdir()
+    lesson = src / LESSONS[0].name
+    lesson.write_bytes(LESSONS[0].read_bytes())
+    lab.student_copy(dest, [lesson])
+    mine = dest / lesson.name
+    assert json.loads(mine.read_text(encoding="utf-8"))["metadata"]["shapelab"]["lesson_sha256"]
+    # the lesson is re-executed (outputs, later mtime): its cells are the same, not stale
+    nb = json.loads(lesson.read_text(encoding="utf-8"))
+    for cell in nb["cells"]:
+        if cell["cell_type"] == "code":
+            cell["outputs"], cell["execution_count"] = [], None
+    lesson.write_text(json.dumps(nb), encoding="utf-8")
+    later = time.time() + 10
+    os.utime(lesson, (later, later))
+    assert lab.student_copy(dest, [lesson]) == ([], [])
+    # the lesson's text changes upstream, then the student saves the copy (newer than the lesson)
+    nb["cells"][0]["source"] = "# Start here, revised\n"
+    lesson.write_text(json.dumps(nb), encoding="utf-8")
+    saved = json.loads(mine.read_text(encoding="utf-8"))
+    saved["cells"][0]["source"] = "My notes"
+    mine.write_text(json.dumps(saved), encoding="utf-8")
+    os.utime(mine, (later + 60, later + 60))
+    assert lab.student_copy(dest, [lesson]) == ([], [lesson.name])
+    assert "My notes" in mine.read_text(encoding="utf-8")
+    # a copy made before the digest was recorded: the lesson's mtime decides
+    del saved["metadata"]["shapelab"]
+    mine.write_text(json.dumps(saved), encoding="utf-8")
+    os.utime(mine, (later + 60, later + 60))
+    assert lab.student_copy(dest, [lesson]) == ([], [])
+    os.utime(mine, (later - 60, later - 60))
+    assert lab.student_copy(dest, [lesson]) == ([], [lesson.name])
 
 
 def test_lab_instructor_opens_the_lessons(capsys):
