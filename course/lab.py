@@ -153,7 +153,8 @@ def main(argv=None) -> int:
         return 0
     env = dict(os.environ, PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
     if args.check:
-        return check_server(cmd, root, env, args.port, token, first)
+        # on this port or not at all: on another one the check would ask whatever listens here
+        return check_server([*cmd, "--ServerApp.port_retries=0"], root, env, args.port, token, first)
     return subprocess.call(cmd, cwd=root, env=env)
 
 

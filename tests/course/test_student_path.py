@@ -274,6 +274,16 @@ def test_lab_names_a_changed_lesson_even_after_the_student_saved(tmp_path):
     assert lab.student_copy(dest, [lesson]) == ([], [lesson.name])
 
 
+def test_lab_check_stays_on_its_port(tmp_path, monkeypatch):
+    # JupyterLab moves to the next port when one is taken; the check asks the given port
+    # (review of issue 32), so the server must not move
+    monkeypatch.setattr(lab, "STUDENT", tmp_path / "student")
+    seen = {}
+    monkeypatch.setattr(lab, "check_server", lambda cmd, *a: seen.setdefault("cmd", cmd) and 0)
+    assert lab.main(["--check", "--port", "8897"]) == 0
+    assert "--ServerApp.port_retries=0" in seen["cmd"] and "--ServerApp.port=8897" in seen["cmd"]
+
+
 def test_lab_instructor_opens_the_lessons(capsys):
     assert lab.main(["--instructor", "--dry-run"]) == 0
     out = capsys.readouterr().out
