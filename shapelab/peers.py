@@ -100,8 +100,8 @@ def _shipped(kind: str, points: np.ndarray, params: dict, how: str) -> PeerDiagr
     )
 
 
-def _from_tree(st) -> dict:
-    st.compute_persistence(homology_coeff_field=2)
+def _from_tree(st, **kw) -> dict:
+    st.compute_persistence(homology_coeff_field=2, **kw)
     return _as_diagrams({p: st.persistence_intervals_in_dimension(p) for p in (0, 1, 2)})
 
 
@@ -156,7 +156,8 @@ def delaunay_cech_diagrams(points) -> PeerDiagrams:
     if gudhi is None:
         return _shipped("delaunay_cech", X, {}, "delaunay_cech_diagrams")
     st = gudhi.DelaunayCechComplex(points=X).create_simplex_tree(output_squared_values=False)
-    return PeerDiagrams(_from_tree(st), f"GUDHI {gudhi.__version__}, computed now", True)
+    # persistence_dim_max: the simplex tree's top dimension too, else a single point has no H0
+    return PeerDiagrams(_from_tree(st, persistence_dim_max=True), f"GUDHI {gudhi.__version__}, computed now", True)
 
 
 def distance_grid(points, side: float, pad: float) -> np.ndarray:
