@@ -14,7 +14,8 @@ Each command runs in the environment it needs:
 * the Python running this command, when it already has this repository's ``shapelab``
   and the packages of the extra the command needs (a conda environment made from
   ``environment.yml``, a hub's image, an activated virtual environment);
-* otherwise ``.venv`` at the repository's root (``SHAPELAB_VENV`` names another),
+* otherwise ``.venv`` at the repository's root (``SHAPELAB_VENV`` names another, relative
+  to the root),
   made with this Python and filled from ``requirements/constraints.txt`` on first use,
   and again when ``pyproject.toml`` or the pins change.
 
@@ -64,7 +65,11 @@ NBVAL_TOOLS = ("pytest", "nbval", "pytest-xdist")
 
 
 def venv_dir() -> Path:
-    return Path(os.environ.get("SHAPELAB_VENV", ROOT / ".venv")).resolve()
+    """``SHAPELAB_VENV`` or ``.venv``; a relative path is taken from the repository's root, as
+    the Makefile takes it, whatever the current directory.  An empty ``SHAPELAB_VENV`` is
+    unset (as the Makefile's ``$(or ...)``): it would otherwise name the current directory,
+    and the repository itself would be made a virtual environment."""
+    return (ROOT / (os.environ.get("SHAPELAB_VENV", "").strip() or ".venv")).resolve()
 
 
 def venv_python(venv: Path) -> Path:

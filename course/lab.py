@@ -17,6 +17,8 @@ The token is never empty; ``--allow-root`` is added only when running as root.
 from __future__ import annotations
 
 import argparse
+import hashlib
+import json
 import os
 import secrets
 import subprocess
@@ -52,10 +54,34 @@ def lessons() -> list[Path]:
     return sorted(p for p in LESSONS.glob("[0-9][0-9]_*.ipynb") if not p.name.endswith(".failed.ipynb"))
 
 
+def lesson_digest(nb) -> str:
+    """SHA-256 of a lesson's cells (type and source; not outputs or metadata): what the
+    student edition is made from, so re-executing a lesson does not change it."""
+    h = hashlib.sha256()
+    for cell in nb["cells"]:
+        source = cell["source"]
+        h.update(json.dumps([cell["cell_type"], "".join(source) if isinstance(source, list) else source]).encode())
+    return h.hexdigest()
+
+
+def _recorded_digest(target: Path) -> str | None:
+    """The lesson digest a student copy was made from (its metadata), or None."""
+    try:
+        meta = json.loads(target.read_text(encoding="utf-8")).get("metadata", {})
+        return meta.get("shapelab", {}).get("lesson_sha256")
+    except (OSError, ValueError, AttributeError):
+        return None
+
+
 def student_copy(dest: Path | None = None, sources: list[Path] | None = None) -> tuple[list[str], list[str]]:
     """Write the student edition of every lesson missing from ``dest``; never touch one
     that is there.  Returns (written, stale): the names written now, and the names whose
-    lesson is newer than the student's copy."""
+    lesson changed since the student's copy was made.
+
+    A copy records the digest of its lesson's cells (``metadata.shapelab.lesson_sha256``,
+    which JupyterLab keeps when the student saves), so a lesson changed by a ``git pull``
+    is named even after the student has saved the copy again; a copy without it (made
+    by an earlier version) is stale when the lesson is newer than the copy."""
     import nbformat
 
     from course.student import README, student_notebook
@@ -65,11 +91,19 @@ def student_copy(dest: Path | None = None, sources: list[Path] | None = None) ->
     written, stale = [], []
     for path in lessons() if sources is None else sources:
         target = dest / path.name
+        lesson = nbformat.read(path, as_version=4)
+        digest = lesson_digest(lesson)
         if target.exists():
-            if path.stat().st_mtime > target.stat().st_mtime + 1:
+            recorded = _recorded_digest(target)
+            if recorded is not None:
+                changed = recorded != digest
+            else:
+                changed = path.stat().st_mtime > target.stat().st_mtime + 1
+            if changed:
                 stale.append(path.name)
             continue
-        nb, _ = student_notebook(nbformat.read(path, as_version=4))
+        nb, _ = student_notebook(lesson)
+        nb.metadata["shapelab"] = {"lesson": path.name, "lesson_sha256": digest}
         tmp = target.with_suffix(".tmp")
         nbformat.write(nb, tmp)
         os.replace(tmp, target)  # nothing half-written
@@ -119,7 +153,8 @@ def main(argv=None) -> int:
         return 0
     env = dict(os.environ, PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
     if args.check:
-        return check_server(cmd, root, env, args.port, token, first)
+        # on this port or not at all: on another one the check would ask whatever listens here
+        return check_server([*cmd, "--ServerApp.port_retries=0"], root, env, args.port, token, first)
     return subprocess.call(cmd, cwd=root, env=env)
 
 

@@ -2,8 +2,8 @@
 
     python -m course.peer_values
 
-GUDHI is not a requirement of the course (it has no wheel for Linux ARM64 or, at
-3.13, for Intel macOS), so :mod:`shapelab.peers` falls back on these values when it
+GUDHI is not a requirement of the course (it has no wheel for Linux ARM64, and at
+3.13 its macOS wheels need macOS 14), so :mod:`shapelab.peers` falls back on these values when it
 is not installed.  Run this with GUDHI installed (the ``test`` extra) after changing
 a lesson's input; ``tests/library/test_peers.py`` checks the file against GUDHI.
 """

@@ -5,8 +5,9 @@ The course compares its own diagrams with other ways of computing the same thing
 its *diagrams* are the union's).  Two of those ways come from GUDHI (The GUDHI Project
 2015): the Delaunay–Čech complex and a cubical complex of the distance function on a
 voxel grid.  GUDHI is not one of the course's requirements: it has no wheel for Linux
-on ARM64 (Graviton and Ampere hubs, Raspberry Pi, Chromebooks) nor, in its current
-release, for Intel macOS, so a student's ``pip install`` could not be asked to build it.
+on ARM64 (Graviton and Ampere hubs, Raspberry Pi, Chromebooks), and the macOS wheels of
+its 3.12 and 3.13 releases (universal2, Apple silicon and Intel) need macOS 14 where the
+course supports macOS 12, so a student's ``pip install`` could not be asked to build it.
 
 So each function here computes with GUDHI when ``import gudhi`` works and otherwise
 returns the diagrams GUDHI computed for the lesson's input, shipped in
@@ -94,13 +95,13 @@ def _shipped(kind: str, points: np.ndarray, params: dict, how: str) -> PeerDiagr
             return PeerDiagrams(_as_diagrams(entry["diagrams"]), source, False)
     raise ModuleNotFoundError(
         f"{how} needs GUDHI, which is not installed, and shapelab ships its values only for the "
-        f"lessons' inputs; install it with `pip install gudhi` (wheels for Linux x86-64, macOS arm64 "
-        f"and Windows) to compute it for these points"
+        f"lessons' inputs; install it with `pip install gudhi` (wheels for Linux x86-64, macOS 14 "
+        f"or later and Windows x86-64) to compute it for these points"
     )
 
 
-def _from_tree(st) -> dict:
-    st.compute_persistence(homology_coeff_field=2)
+def _from_tree(st, **kw) -> dict:
+    st.compute_persistence(homology_coeff_field=2, **kw)
     return _as_diagrams({p: st.persistence_intervals_in_dimension(p) for p in (0, 1, 2)})
 
 
@@ -155,7 +156,8 @@ def delaunay_cech_diagrams(points) -> PeerDiagrams:
     if gudhi is None:
         return _shipped("delaunay_cech", X, {}, "delaunay_cech_diagrams")
     st = gudhi.DelaunayCechComplex(points=X).create_simplex_tree(output_squared_values=False)
-    return PeerDiagrams(_from_tree(st), f"GUDHI {gudhi.__version__}, computed now", True)
+    # persistence_dim_max: the simplex tree's top dimension too, else a single point has no H0
+    return PeerDiagrams(_from_tree(st, persistence_dim_max=True), f"GUDHI {gudhi.__version__}, computed now", True)
 
 
 def distance_grid(points, side: float, pad: float) -> np.ndarray:

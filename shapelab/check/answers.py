@@ -759,14 +759,15 @@ def rips_not_nerve(count, points, rho) -> CheckResult:
     ball enclosing its vertices has radius at most :math:`\\rho`.  The check finds that
     ball its own way, not by the triangle's angles: the circumcentre solved as a
     linear system in the triangle's plane, kept when its barycentric coordinates are
-    all non-negative, else the midpoint of the longest side.
+    all non-negative, else (and for a triangle with collinear or repeated vertices,
+    which has none) the midpoint of the longest side.
 
     Parameters
     ----------
     count : int
         The student's number of triangles.
     points : array_like, shape (n, d)
-        The centres, d = 2 or 3.
+        The centres, in any dimension d (the lesson's are in 3).
     rho : float
         The radius, > 0.
 
@@ -810,7 +811,10 @@ def rips_not_nerve(count, points, rho) -> CheckResult:
         P, Q, S = X[a], X[b], X[c]
         u, v = Q - P, S - P
         G = np.array([[u @ u, u @ v], [u @ v, v @ v]])
-        s, t = np.linalg.solve(G, 0.5 * np.array([u @ u, v @ v]))  # circumcentre P + s u + t v
+        try:
+            s, t = np.linalg.solve(G, 0.5 * np.array([u @ u, v @ v]))  # circumcentre P + s u + t v
+        except np.linalg.LinAlgError:  # collinear or repeated vertices: no circumcentre
+            s = t = -1.0
         if min(s, t, 1.0 - s - t) >= 0.0:
             radius = np.linalg.norm(s * u + t * v)
         else:

@@ -166,6 +166,22 @@ def test_venv_python_on_windows_and_posix(monkeypatch, tmp_path):
     assert cli.venv_python(tmp_path) == tmp_path / "bin/python"
 
 
+def test_venv_dir_relative_to_the_root_and_never_empty(monkeypatch, tmp_path):
+    # review of issue 32: SHAPELAB_VENV= (empty) named the current directory, so `python -m
+    # course lab` made the repository itself a virtual environment; a relative path followed
+    # the current directory, where the Makefile takes it from the root
+    monkeypatch.chdir(tmp_path)
+    for unset in ("", "  "):
+        monkeypatch.setenv("SHAPELAB_VENV", unset)
+        assert cli.venv_dir() == cli.ROOT / ".venv"
+    monkeypatch.delenv("SHAPELAB_VENV")
+    assert cli.venv_dir() == cli.ROOT / ".venv"
+    monkeypatch.setenv("SHAPELAB_VENV", ".venv-student")
+    assert cli.venv_dir() == cli.ROOT / ".venv-student"
+    monkeypatch.setenv("SHAPELAB_VENV", str(tmp_path / "env"))
+    assert cli.venv_dir() == tmp_path / "env"
+
+
 def test_current_python_is_used_when_it_has_the_extras():
     # this test environment has the test extra (and shapelab from this repository)
     assert cli.current_python_has(("test",))
@@ -213,11 +229,59 @@ def test_lab_never_overwrites_a_students_work(tmp_path):
     assert written == [lesson.name] and stale == []
     mine = dest / lesson.name
     mine.write_text(mine.read_text(encoding="utf-8").replace("Start here", "My notes"), encoding="utf-8")
+    lesson.write_text(lesson.read_text(encoding="utf-8").replace("Start here", "Begin here"), encoding="utf-8")
     later = time.time() + 10
     os.utime(lesson, (later, later))  # the lesson changed upstream (a git pull)
     written, stale = lab.student_copy(dest, [lesson])
     assert written == [] and stale == [lesson.name]
     assert "My notes" in mine.read_text(encoding="utf-8")
+
+
+def test_lab_names_a_changed_lesson_even_after_the_student_saved(tmp_path):
+    # review of issue 32: staleness by mtime alone was lost as soon as the student saved
+    # the copy after a git pull (JupyterLab autosaves); the copy records its lesson's digest
+    dest, src = tmp_path / "student", tmp_path / "lessons"
+    src.mkdir()
+    lesson = src / LESSONS[0].name
+    lesson.write_bytes(LESSONS[0].read_bytes())
+    lab.student_copy(dest, [lesson])
+    mine = dest / lesson.name
+    assert json.loads(mine.read_text(encoding="utf-8"))["metadata"]["shapelab"]["lesson_sha256"]
+    # the lesson is re-executed (outputs, later mtime): its cells are the same, not stale
+    nb = json.loads(lesson.read_text(encoding="utf-8"))
+    for cell in nb["cells"]:
+        if cell["cell_type"] == "code":
+            cell["outputs"], cell["execution_count"] = [], None
+    lesson.write_text(json.dumps(nb), encoding="utf-8")
+    later = time.time() + 10
+    os.utime(lesson, (later, later))
+    assert lab.student_copy(dest, [lesson]) == ([], [])
+    # the lesson's text changes upstream, then the student saves the copy (newer than the lesson)
+    nb["cells"][0]["source"] = "# Start here, revised\n"
+    lesson.write_text(json.dumps(nb), encoding="utf-8")
+    saved = json.loads(mine.read_text(encoding="utf-8"))
+    saved["cells"][0]["source"] = "My notes"
+    mine.write_text(json.dumps(saved), encoding="utf-8")
+    os.utime(mine, (later + 60, later + 60))
+    assert lab.student_copy(dest, [lesson]) == ([], [lesson.name])
+    assert "My notes" in mine.read_text(encoding="utf-8")
+    # a copy made before the digest was recorded: the lesson's mtime decides
+    del saved["metadata"]["shapelab"]
+    mine.write_text(json.dumps(saved), encoding="utf-8")
+    os.utime(mine, (later + 60, later + 60))
+    assert lab.student_copy(dest, [lesson]) == ([], [])
+    os.utime(mine, (later - 60, later - 60))
+    assert lab.student_copy(dest, [lesson]) == ([], [lesson.name])
+
+
+def test_lab_check_stays_on_its_port(tmp_path, monkeypatch):
+    # JupyterLab moves to the next port when one is taken; the check asks the given port
+    # (review of issue 32), so the server must not move
+    monkeypatch.setattr(lab, "STUDENT", tmp_path / "student")
+    seen = {}
+    monkeypatch.setattr(lab, "check_server", lambda cmd, *a: seen.setdefault("cmd", cmd) and 0)
+    assert lab.main(["--check", "--port", "8897"]) == 0
+    assert "--ServerApp.port_retries=0" in seen["cmd"] and "--ServerApp.port=8897" in seen["cmd"]
 
 
 def test_lab_instructor_opens_the_lessons(capsys):

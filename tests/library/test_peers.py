@@ -102,3 +102,13 @@ def test_distance_grid_against_brute_force():
     assert G.shape == tuple(len(a) for a in axes)
     y = np.array([axes[0][1], axes[1][2], axes[2][0]])
     assert G[1, 2, 0] == pytest.approx(np.linalg.norm(X - y, axis=1).min(), abs=1e-12)
+
+
+@pytest.mark.parametrize("n", [1, 5])
+def test_one_point_has_one_component(n):
+    # GUDHI leaves out the top dimension of a simplex tree unless asked: a single point (or
+    # one point repeated) had no H0 pair at all (review of issue 32)
+    pytest.importorskip("gudhi")
+    cech = peers.delaunay_cech_diagrams(np.zeros((n, 3)))
+    np.testing.assert_array_equal(cech[0], [[0.0, np.inf]])
+    assert len(cech[1]) == len(cech[2]) == 0

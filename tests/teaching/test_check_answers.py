@@ -193,6 +193,35 @@ def test_rips_not_nerve_against_exact_brute_force(seed):
     assert not check.rips_not_nerve(want + 1, X, rho)
 
 
+@pytest.mark.parametrize("dim", [1, 2, 3, 4])
+def test_rips_not_nerve_collinear_and_repeated_points(dim, capsys):
+    # lattice points with repeats: collinear triples and triangles with a repeated
+    # vertex have no circumcentre (a singular system); their smallest ball is half the
+    # longest side, as in the exact brute force (review of issue 32)
+    rng = np.random.default_rng(dim)
+    X = rng.integers(0, 3, (14, dim)).astype(float)
+    X = np.vstack([X, X[:3]])  # three repeated points
+    for rho in (0.55, 1.05, 1.3):
+        want = _exact_rips_only(X, rho)
+        assert check.rips_not_nerve(want, X, rho)
+        assert not check.rips_not_nerve(want + 1, X, rho)
+    assert check.rips_not_nerve(0, [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]], 1.2)  # a segment: in the nerve
+    assert check.rips_not_nerve(0, [[1.0, 1.0]] * 3, 0.5)  # one point thrice
+    assert check.rips_not_nerve(0, [[1.0, 1.0, 1.0]], 0.5)  # a single point
+    assert capsys.readouterr().out.count("✗") == 3  # the three off-by-one answers
+
+
+@pytest.mark.parametrize("wrong", [np.int64(1), 1, -1, True, False, 2.0, "2", None])
+def test_rips_not_nerve_wrong_answers_of_any_type_fail(wrong):
+    # an equilateral triangle of side 1 beside a far point: at rho = 0.55, 1 Rips triangle, 0 in the nerve
+    tri = [[0.0, 0.0], [1.0, 0.0], [0.5, np.sqrt(3) / 2], [9.0, 9.0]]
+    assert check.rips_not_nerve(np.int64(1), tri, 0.55)
+    expected_pass = bool(isinstance(wrong, (int, np.integer)) and not isinstance(wrong, bool) and wrong == 1)
+    assert bool(check.rips_not_nerve(wrong, tri, 0.55)) is expected_pass
+    assert not check.rips_not_nerve(0, tri, 0.55)  # the Čech count of outside triangles
+    assert not check.rips_not_nerve(np.int32(0), tri, 0.55)
+
+
 def test_rips_not_nerve_refuses_a_tie_and_bad_rho():
     with pytest.raises(ValueError, match="within 1e-9"):
         check.rips_not_nerve(0, [[0.0, 0.0], [1.0, 0.0]], 0.5)  # a side exactly 2 rho
