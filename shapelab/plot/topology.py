@@ -471,8 +471,8 @@ def betti_curve(F_or_curve, *, taus=None, tau=None, log=None, ax=None, title="Be
         ]
         describe(
             ax,
-            f"{title}: Betti numbers as step curves against the growth time τ from {t[0]:.3g} to {t[-1]:.3g}, "
-            "one line style per dimension. " + "; ".join(peaks),
+            f"{title}: step curves of the Betti numbers against the growth time τ from {t[0]:.3g} to "
+            f"{t[-1]:.3g}, one line style per dimension. " + "; ".join(peaks),
         )
     return fig
 
