@@ -175,6 +175,8 @@ def disks(balls, *, tau=0.0, ax=None, labels=False, title=None, color=None, show
             ax,
             f"{_plural(len(balls), 'disk')}"
             + (f" grown to τ = {_fmt(tau)} ({born} born)" if tau else "")
+            + (f", radii from {_fmt(float(r.min()))} to {_fmt(float(r.max()))}" if len(balls) else "")
+            + (", centres marked" if show_centers and len(balls) else "")
             + (", each labelled with its index" if labels else "")
             + (f"; {title}" if title else ""),
         )
