@@ -1,5 +1,7 @@
-"""The course site's accessibility fixes (issue 35, WCAG 2.1 AA), as a local Sphinx
-extension (``book/_config.yml``: ``sphinx.local_extensions``).
+"""The course site's accessibility fixes (issue 35, WCAG 2.1 AA), as a Sphinx extension
+(``book/_config.yml`` lists ``course.sphinx_a11y``; the build puts the repository on the
+path).  It also brings the templates and the stylesheet of ``book/_a11y/`` by absolute
+path, so that a book built from a copy of ``_config.yml`` alone gets them too.
 
 - A figure's text alternative, from where the figure was made (``shapelab.plot``'s
   descriptions, :func:`shapelab.plot.alt_text`):
@@ -14,9 +16,9 @@ extension (``book/_config.yml``: ``sphinx.local_extensions``).
 - Markup of the theme and of docutils that axe-core flags as serious or critical:
   the citation list's ``role="list"`` holds ``role="doc-biblioentry"`` entries, which
   are no list items (aria-required-children): each entry becomes ``role="listitem"``
-  (``doc-biblioentry`` is deprecated in DPUB-ARIA 1.1).  The search button's name is in
-  ``book/_templates/components/search-button-field.html``; colours and focus in
-  ``book/_static/shapelab-a11y.css``.
+  (``doc-biblioentry`` is deprecated in DPUB-ARIA 1.1).  The search and colour-mode
+  buttons' names (label-content-name-mismatch) are in ``book/_a11y/templates/``; the
+  visible focus in ``book/_a11y/static/shapelab-a11y.css``.
 """
 
 from __future__ import annotations
@@ -26,6 +28,7 @@ import re
 from pathlib import Path
 
 ALT = "alt"
+HERE = Path(__file__).resolve().parent.parent / "book" / "_a11y"
 SVG_TITLE = re.compile(r'<title id="shapelab-alt">(.*?)</title>', re.S)
 
 
@@ -81,9 +84,16 @@ def _page(app, pagename, templatename, context, doctree) -> None:
         context["body"] = _BIBLIOENTRY.sub(r'\1 role="listitem"', body)
 
 
+def _paths(app, config) -> None:
+    # first in templates_path: ours replace the theme's components of the same name
+    config.templates_path.insert(0, str(HERE / "templates"))
+    config.html_static_path.append(str(HERE / "static"))
+
+
 def setup(app):
     _patch_myst_nb()
+    app.connect("config-inited", _paths)
+    app.add_css_file("shapelab-a11y.css")
     app.connect("doctree-read", _gallery_alts)
     app.connect("html-page-context", _page)
-    # book/_static/shapelab-a11y.css: Jupyter Book links every stylesheet in _static
     return {"parallel_read_safe": True, "parallel_write_safe": True, "version": "1"}
