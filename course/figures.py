@@ -174,24 +174,60 @@ def _save_style():
         yield
 
 
-def save(fig, path, fmt: str | None = None) -> Path:
+def description(fig, fallback: str | None = None) -> str | None:
+    """What ``fig`` shows, in words: the description its plotting functions wrote
+    (:func:`shapelab.plot.alt_text`), else ``fallback`` (the registry's caption)."""
+    from shapelab.plot import alt_text
+
+    return alt_text(fig) or fallback
+
+
+#: the SVG element that carries a figure's text alternative (read by the book's
+#: gallery, book/_ext/shapelab_a11y.py)
+SVG_TITLE = '<title id="shapelab-alt">'
+
+
+def _svg_with_title(path: Path, text: str) -> None:
+    """Give the SVG at ``path`` its text alternative: a ``<title>`` first inside the root
+    (what an SVG viewer and a screen reader read) and ``role="img"``."""
+    import html as _html
+
+    svg = path.read_text(encoding="utf-8")
+    start = svg.index("<svg")
+    end = svg.index(">", start)
+    head = svg[start:end]
+    if 'role="img"' not in head:
+        head += ' role="img" aria-labelledby="shapelab-alt"'
+    svg = svg[:start] + head + ">" + f"\n {SVG_TITLE}{_html.escape(text, quote=False)}</title>" + svg[end + 1 :]
+    path.write_text(svg, encoding="utf-8")
+
+
+def save(fig, path, fmt: str | None = None, alt: str | None = None) -> Path:
     """Write ``fig`` to ``path`` deterministically (same figure, same bytes).
 
     PDF: no ``CreationDate``, a fixed Creator/Producer.  SVG: no ``Date``, a fixed
     hash salt for the element ids.  PNG: a fixed ``Software`` entry, 192 dpi.
+
+    The figure's text alternative (``alt``, default :func:`description`) goes with it:
+    the SVG's ``<title>``, the PDF's ``Subject``, the PNG's ``Description``.
     """
     path = Path(path)
     fmt = (fmt or path.suffix.lstrip(".")).lower()
     if fmt not in FORMATS:
         raise ValueError(f"fmt must be one of {', '.join(FORMATS)}, got {fmt!r}")
+    alt = alt or description(fig)
     meta = {
         "pdf": {"CreationDate": None, "ModDate": None, "Creator": PRODUCER, "Producer": PRODUCER},
         "svg": {"Date": None, "Creator": PRODUCER},
         "png": {"Software": PRODUCER},
     }[fmt]
+    if alt:
+        meta.update({"pdf": {"Subject": alt}, "svg": {"Description": alt}, "png": {"Description": alt}}[fmt])
     path.parent.mkdir(parents=True, exist_ok=True)
     with _save_style():
         fig.savefig(path, format=fmt, metadata=meta, dpi=PNG_DPI if fmt == "png" else None, bbox_inches=_page(fig))
+    if alt and fmt == "svg":
+        _svg_with_title(path, alt)
     return path
 
 
@@ -227,6 +263,9 @@ def _placeholder(name: str, reason: str):
     ax.set_axis_off()
     ax.text(0.5, 0.55, f"{name}: not available", ha="center", va="center", fontsize=18)
     ax.text(0.5, 0.4, reason[:120], ha="center", va="center", fontsize=10, color="#666666", wrap=True)
+    from shapelab.plot import describe
+
+    describe(fig, f"Placeholder: the figure {name} is not available ({reason[:120]})")
     return fig
 
 
@@ -822,8 +861,9 @@ def main(argv=None) -> int:
                 continue
             fig = _placeholder(name, reason)
         sizes = []
+        alt = description(fig, spec.caption)  # the placeholder says what it is
         for fmt in formats:
-            path = save(fig, out / f"{name}.{fmt}", fmt)
+            path = save(fig, out / f"{name}.{fmt}", fmt, alt=alt)
             sizes.append(path.stat().st_size)
         total += sum(sizes)
         if not (failed and failed[-1][0] == name):

@@ -1,7 +1,9 @@
 """Plotting: one function per kind of figure, one shared style.
 
 Every function returns a :class:`matplotlib.figure.Figure` (or draws into a given
-``ax`` and returns its figure).  None recomputes geometry: they draw results from
+``ax`` and returns its figure) that says what it shows: :func:`alt_text` reads the
+description the function wrote, :func:`describe` refines it (the figure's text
+alternative on the site, in the decks and in the figure export).  None recomputes geometry: they draw results from
 the rest of the library.
 
 ================  ==============================================================
@@ -19,6 +21,7 @@ the rest of the library.
 from __future__ import annotations
 
 from .._toolkit.lazy import attach
+from ._describe import alt_text, describe, register
 from ._style import COLORS, PAGE, PALETTE, RC, SLIDE, new_figure, style, thin_3d_ticks
 
 _EXPORTS = {
@@ -64,7 +67,22 @@ _EXPORTS = {
     "view3d": "viewer3d",
 }
 
-__all__ = ["COLORS", "PALETTE", "PAGE", "RC", "SLIDE", "new_figure", "style", "thin_3d_ticks", *sorted(_EXPORTS)]
+__all__ = [
+    "COLORS",
+    "PALETTE",
+    "PAGE",
+    "RC",
+    "SLIDE",
+    "new_figure",
+    "style",
+    "thin_3d_ticks",
+    "describe",
+    "alt_text",
+    *sorted(_EXPORTS),
+]
 
 
 __getattr__, __dir__ = attach(__name__, _EXPORTS, eager=__all__)
+
+# in a notebook, a figure's PNG output carries its description as alt text (_describe)
+register()

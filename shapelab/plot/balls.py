@@ -36,6 +36,7 @@ from .._toolkit.validate import (
 from ..balls import Balls
 from ..filtration import as_filtration
 from ._common import axes, grown_radii, set_3d_view
+from ._describe import describe
 from ._style import COLORS, PALETTE, new_figure, style
 
 __all__ = [
@@ -62,6 +63,21 @@ def _check_balls(balls, name="balls", dim=None) -> Balls:
 
 def _fmt(x: float) -> str:
     return f"{x:.3g}"
+
+
+def _plural(n: int, word: str) -> str:
+    """``"1 edge"``, ``"3 edges"`` (``vertex`` -> ``vertices``)."""
+    if n == 1:
+        return f"1 {word}"
+    return f"{n} " + ("vertices" if word == "vertex" else "tetrahedra" if word == "tetrahedron" else word + "s")
+
+
+def _counts(n) -> str:
+    """``"13 vertices, 10 edges, 2 triangles"`` from a complex's counts."""
+    n = tuple(n) + (0,) * (3 - len(n))
+    words = ["vertex", "edge", "triangle", "tetrahedron"]
+    parts = [_plural(int(k), w) for k, w in zip(n, words)]
+    return ", ".join(parts if len(n) > 3 and n[3] else parts[:3])
 
 
 def _tau_title(tau: float) -> str:
@@ -154,6 +170,16 @@ def disks(balls, *, tau=0.0, ax=None, labels=False, title=None, color=None, show
             handles.append(Line2D([], [], ls="", marker="o", ms=4, color=COLORS["complex"], label="centre"))
         ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0))
         ax.set_title(title if title is not None else f"{len(balls)} disks" + (f", {_tau_title(tau)}" if tau else ""))
+        born = int((r > 0).sum())
+        describe(
+            ax,
+            f"{_plural(len(balls), 'disk')}"
+            + (f" grown to τ = {_fmt(tau)} ({born} born)" if tau else "")
+            + (f", radii from {_fmt(float(r.min()))} to {_fmt(float(r.max()))}" if len(balls) else "")
+            + (", centres marked" if show_centers and len(balls) else "")
+            + (", each labelled with its index" if labels else "")
+            + (f"; {title}" if title else ""),
+        )
     return fig
 
 
@@ -239,6 +265,12 @@ def power_diagram(balls_or_diagram, *, bbox=None, ax=None, show_disks=True, labe
         ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0))
         nh = int(pd.hidden.sum())
         ax.set_title(title if title is not None else f"Power diagram of {len(balls)} disks ({nh} hidden)")
+        describe(
+            ax,
+            f"Power diagram of {_plural(len(balls), 'disk')}: {_plural(len(polys), 'power cell')} outlined, "
+            + (f"{_plural(nh, 'hidden disk')} with an empty cell, dashed" if nh else "no hidden disk")
+            + (f"; {title}" if title else ""),
+        )
     return fig
 
 
@@ -385,6 +417,12 @@ class DualComplexView:
             self._title
             if self._title is not None
             else f"Dual complex K at {_tau_title(K.tau)}\n{n[0]} vertices, {n[1]} edges, {n[2]} triangles"
+        )
+        describe(
+            self.ax,
+            f"The dual complex of the {_plural(len(self.balls), 'disk')} at τ = {_fmt(K.tau)}: {_counts(n)}"
+            + (", drawn over the disks and their clipped power cells" if self._cells is not None else "")
+            + (f"; {self._title}" if self._title else ""),
         )
 
     # ---------------------------------------------------- fast re-rendering
@@ -577,6 +615,13 @@ def filtration(F, *, tau=None, ax=None, cmap="cividis", show_disks=False, title=
             if title is not None
             else f"α-filtration shaded by entry time ({what})\n{n[0]} vertices, {n[1]} edges, {n[2]} triangles"
         )
+        first = f"{_fmt(float(vals.min()))} to {_fmt(float(vals.max()))}" if vals.size else "none"
+        describe(
+            ax,
+            f"The α-filtration of {_plural(len(F.balls), 'disk')} ({what}): {_counts(n)}, shaded by entry time "
+            f"in deciles, early simplices dark and thick, late ones light and thin; entry times from {first}"
+            + (f"; {title}" if title else ""),
+        )
     return fig
 
 
@@ -668,6 +713,13 @@ def balls3d(balls, *, tau=0.0, ax=None, resolution=10, alpha=0.35, color=None, e
             bbox_to_anchor=(1.02, 1.0),
         )
         ax.set_title(title if title is not None else f"{len(balls)} balls" + (f", {_tau_title(tau)}" if tau else ""))
+        describe(
+            ax,
+            f"3D view of {_plural(len(balls), 'ball')} as shaded spheres"
+            + (f" grown to τ = {_fmt(tau)}" if tau else "")
+            + f", seen from elevation {_fmt(elev)}°, azimuth {_fmt(azim)}°"
+            + (f"; {title}" if title else ""),
+        )
     return fig
 
 
@@ -780,6 +832,14 @@ def complex3d(
             else f"Dual complex K at {_tau_title(K.tau) if np.isfinite(K.tau) else 'τ = ∞ (all of DT)'}\n"
             f"{n[0]} vertices, {n[1]} edges, {n[2]} triangles, {n[3]} tetrahedra"
         )
+        when = f"τ = {_fmt(K.tau)}" if np.isfinite(K.tau) else "τ = ∞ (all of DT)"
+        describe(
+            ax,
+            f"3D view of the dual complex of {_plural(len(balls), 'ball')} at {when}: {_counts(n)}"
+            + (", simplices shaded by entry time" if shaded else "")
+            + (", over the translucent balls" if show_balls else "")
+            + (f"; {title}" if title else ""),
+        )
     return fig
 
 
@@ -881,6 +941,19 @@ def lifting(balls, *, ax=None, elev=18.0, azim=-60.0, title=None):
         ax.set_title(
             title if title is not None else "The lifting map: the lower hull projects to the regular triangulation"
         )
+        if len(balls):
+            describe(
+                ax,
+                f"The lifting map of {_plural(len(balls), 'disk')}: each disk lifted to a point on or below the "
+                f"paraboloid; the lower convex hull of the lifted points ({_plural(len(tri), 'triangle')}) projects "
+                f"to the regular triangulation drawn in the plane below; "
+                + (
+                    f"{_plural(int(hidden.sum()), 'hidden disk')} lifted above the hull, as open circles"
+                    if hidden.any()
+                    else "no disk is hidden"
+                )
+                + (f"; {title}" if title else ""),
+            )
     return fig
 
 
@@ -937,4 +1010,18 @@ def method_comparison(sizes, seconds, errors=None, *, xlabel="number of disks n"
         axes[0].set_title(title if title is not None else "Cost of the methods")
         if errors is not None:
             axes[1].set_title("Accuracy (against the exact value)")
+        for panel, data, what in ((0, seconds, "time in seconds"), (1, errors, "absolute error")):
+            if data is None:
+                continue
+            ends = []
+            for name, vals in data.items():
+                v = np.asarray(vals, dtype=float)
+                ok = np.flatnonzero(np.isfinite(v) & (v > 0))
+                if len(ok):
+                    ends.append(f"{name} {v[ok[0]]:.2g} at {n[ok[0]]:g} to {v[ok[-1]]:.2g} at {n[ok[-1]]:g}")
+            describe(
+                axes[panel],
+                f"Log-scale {what} of {len(data)} methods against {xlabel}, one line and marker shape per method: "
+                + "; ".join(ends),
+            )
     return fig

@@ -25,6 +25,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
 from ._common import axes
+from ._describe import describe
 from ._style import COLORS, PALETTE, SLIDE, style
 
 __all__ = ["batch_summary", "trajectory_volumes"]
@@ -169,7 +170,8 @@ def batch_summary(summary, *, log=None, max_labels=25, ax=None, title=None):
             pockets = np.array([0.0 if g[1] is None else g[1] for g in order])
             voids = np.array([0.0 if g[2] is None else g[2] for g in order])
             ax.barh(y + h / 2, pockets, height=h, color=_POCKET, label="largest pocket")
-            ax.barh(y - h / 2, voids, height=h, color=_VOID, label="largest void")
+            # hatched: the two kinds differ by more than their colour
+            ax.barh(y - h / 2, voids, height=h, color=_VOID, hatch="//", edgecolor="white", label="largest void")
             names = list(reversed(failed)) + [g[0] for g in order]
             ax.set_yticks(np.arange(n), names)
             for k, lab in enumerate(ax.get_yticklabels()):
@@ -197,7 +199,15 @@ def batch_summary(summary, *, log=None, max_labels=25, ax=None, title=None):
         else:
             for k, (label, col) in enumerate((("largest pocket", _POCKET), ("largest void", _VOID))):
                 v = np.sort([g[1 + k] for g in good if g[1 + k] is not None])[::-1]
-                ax.plot(np.arange(1, len(v) + 1), v, "o-", ms=3, lw=1.2, color=col, label=f"{label} ({len(v)})")
+                ax.plot(
+                    np.arange(1, len(v) + 1),
+                    v,
+                    "o-" if k == 0 else "s--",
+                    ms=3,
+                    lw=1.2,
+                    color=col,
+                    label=f"{label} ({len(v)})",
+                )
             ax.set_xlabel("rank (structures sorted by volume)")
             ax.set_ylabel("volume V SA (Å³)")
             if log:
@@ -210,6 +220,22 @@ def batch_summary(summary, *, log=None, max_labels=25, ax=None, title=None):
             if n > max_labels:
                 ax.set_yticks([])
         ax.set_title(title)
+        text = f"{title}: "
+        if not good:
+            text += "no structure reported"
+        else:
+            top = good[0]
+            pv = [g[1] for g in good if g[1] is not None]
+            vv = [g[2] for g in good if g[2] is not None]
+            kind = "a bar chart, two bars per structure (voids hatched)" if n <= max_labels else "a rank plot"
+            text += (
+                f"{kind} of the volume V SA of the largest pocket and void of {len(good)} structures; "
+                f"{len(pv)} with a pocket, {len(vv)} with a void; the largest pocket, "
+                f"{top[1] or 0:.0f} Å³, in {top[0]}"
+            )
+        if failed:
+            text += f"; {len(failed)} failed: {', '.join(failed[:10])}"
+        describe(ax, text)
     return fig
 
 
@@ -296,11 +322,17 @@ def trajectory_volumes(measures, *, tracks=5, time=True, ax=None, title=None):
             top.plot(xs, np.asarray(measures.volume, dtype=np.float64), color=COLORS["complex"], lw=1.5)
             top.set_ylabel("union (Å³)")
             top.set_title(title if title is not None else "Volume along the trajectory (SA model)")
+            vol = np.asarray(measures.volume, dtype=np.float64)
+            describe(
+                top,
+                f"{title if title is not None else 'Volume along the trajectory (SA model)'}: the volume of the "
+                f"union over {len(xs)} frames, from {vol.min():.0f} to {vol.max():.0f} Å³",
+            )
         for k, t in enumerate(chosen):
             col = PALETTE[k % (len(PALETTE) - 1)]  # black is the union's
             x = np.array([at[f] for f in t.frames])
             v = np.asarray(t.volumes, dtype=np.float64)
-            ax.plot(x, v, "-", color=col, lw=1.5, label=f"track {t.id}")
+            ax.plot(x, v, ("-", "--", "-.", ":")[k % 4], color=col, lw=1.5, label=f"track {t.id}")
             pocket = np.array([kind == "pocket" for kind in t.kinds])
             ax.plot(x[pocket], v[pocket], "o", color=col, ms=4)
             ax.plot(x[~pocket], v[~pocket], "s", color=col, ms=5, mfc="white")
@@ -317,4 +349,14 @@ def trajectory_volumes(measures, *, tracks=5, time=True, ax=None, title=None):
             ax.legend(handles=handles + kinds, loc="upper left", bbox_to_anchor=(1.0, 1.0))
         else:
             ax.legend(handles=[Patch(color="none", label="no cavity tracked")], loc="upper left")
+        tracked = "; ".join(
+            f"track {t.id}: {len(t.frames)} frames, {min(t.volumes):.0f} to {max(t.volumes):.0f} Å³, "
+            f"{sum(k == 'pocket' for k in t.kinds)} as a pocket (dots), {sum(k != 'pocket' for k in t.kinds)} as a void (squares)"
+            for t in chosen
+        )
+        describe(
+            ax,
+            f"The volume of {len(chosen)} tracked cavities against {xlabel}, one line style per track. "
+            + (tracked or "No cavity tracked"),
+        )
     return fig

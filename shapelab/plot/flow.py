@@ -6,6 +6,7 @@ import numpy as np
 from matplotlib.collections import LineCollection, PatchCollection, PolyCollection
 from matplotlib.patches import Circle
 
+from ._describe import describe
 from ._style import COLORS, PAGE, PALETTE, new_figure, style
 
 __all__ = ["discrete_flow"]
@@ -79,6 +80,17 @@ def discrete_flow(F, tau=0.0, *, ax=None, title=None, legend=True, arrows=True):
                 p = flow.pockets[int(flow.region[i])]
                 face.append(COLORS["void"] if p.is_void else PALETTE[1])
         ax.add_collection(PolyCollection(tri, facecolors=face, edgecolors="#555555", linewidths=0.4, alpha=0.8))
+        # hatched, so that pockets and voids differ by more than their colour
+        for hatch, keep in (("//", False), ("xx", True)):
+            sel = [
+                i
+                for i in range(len(S))
+                if flow.empty[i] and flow.region[i] >= 0 and flow.pockets[int(flow.region[i])].is_void == keep
+            ]
+            if sel:
+                ax.add_collection(
+                    PolyCollection(tri[sel], facecolors="none", edgecolors="#333333", linewidths=0, hatch=hatch)
+                )
         E = np.asarray(F.simplices(1), dtype=np.int64)
         mouth = [z[E[m]] for p in flow.pockets for m in p.mouth_ids]
         if mouth:
@@ -107,9 +119,9 @@ def discrete_flow(F, tau=0.0, *, ax=None, title=None, legend=True, arrows=True):
 
             handles = [
                 Patch(facecolor="#bbbbbb", label="in $K_\\tau$"),
-                Patch(facecolor=PALETTE[1], label="pocket (flow stays in)"),
+                Patch(facecolor=PALETTE[1], hatch="//", label="pocket (flow stays in)"),
                 Patch(facecolor="#ffffff", edgecolor="#555555", label="flows to the outside"),
-                Patch(facecolor=COLORS["void"], label="void"),
+                Patch(facecolor=COLORS["void"], hatch="xx", label="void"),
                 ax.lines[-1],
                 LineCollection([], colors=COLORS["mouth"], linewidths=4, label="mouth"),
             ]
@@ -127,4 +139,13 @@ def discrete_flow(F, tau=0.0, *, ax=None, title=None, legend=True, arrows=True):
             n_void = sum(p.is_void for p in flow.pockets)
             title = f"discrete flow at τ = {flow.tau:g}: {len(flow.pockets) - n_void} pocket(s), {n_void} void(s)"
         ax.set_title(title)
+        n_void = sum(p.is_void for p in flow.pockets)
+        describe(
+            ax,
+            f"{title}: the discrete flow of {len(balls)} disks at τ = {flow.tau:g} over {len(S)} triangles, "
+            f"{int((~np.asarray(flow.empty)).sum())} of them in K (grey); {len(flow.pockets) - n_void} pocket "
+            f"region(s) (orange, hatched //), {n_void} void(s) (vermillion, hatched xx), the other empty triangles "
+            f"flowing to the outside (white); {len(sk)} sinks (black dots), {len(mouth)} mouth edges (thick pink)"
+            + (", arrows across the edges the flow crosses" if arrows else ""),
+        )
     return fig

@@ -20,6 +20,7 @@ from matplotlib.patches import Circle
 from matplotlib.ticker import MaxNLocator
 
 from ._common import axes
+from ._describe import describe
 from ._style import COLORS, PAGE, PALETTE, SLIDE, new_figure, style
 
 __all__ = [
@@ -185,6 +186,19 @@ def critical_points(
             pax.set_xlabel(param_label)
             pax.set_ylabel("F = |x − S|")
             pax.set_title("F along the curve")
+            describe(
+                pax,
+                f"F = |x − S| along the curve against the {param_label}, from {float(np.min(F)):.3g} to "
+                f"{float(np.max(F)):.3g}, its minima and maxima marked with down and up triangles",
+            )
+        n_min, n_max = int((result.kinds == "min").sum()), int((result.kinds == "max").sum())
+        describe(
+            ax,
+            f"A closed planar curve and the viewpoint S = ({S[0]:.3g}, {S[1]:.3g}), a star: the critical points of "
+            f"the distance from S, {n_min} minima (down triangles) and {n_max} maxima (up triangles)"
+            + (", joined to S by dashed rays" if rays else "")
+            + ("; F is constant, every point is critical" if result.degenerate else ""),
+        )
     return fig
 
 
@@ -289,6 +303,12 @@ def critical_surface(
         if colorbar:
             sm = ScalarMappable(norm=norm, cmap=cmap)
             fig.colorbar(sm, ax=ax, shrink=0.6, label="F = |x − S|")
+        describe(
+            ax,
+            f"3D view of a surface shaded by the distance F from a viewpoint S (a star), with its critical points: "
+            f"{result.n_min} minima, {result.n_saddle} saddles and {result.n_max} maxima, each kind with its own "
+            f"marker; #min − #saddle + #max = {chi}, the Euler characteristic",
+        )
     return fig
 
 
@@ -331,10 +351,14 @@ def hausdorff(A, B, *, ax=None, size=PAGE, labels=("A", "B"), disks: bool = True
     with style():
         ax.scatter(A[:, 0], A[:, 1], s=22, color=ca, label=la, zorder=3)
         ax.scatter(B[:, 0], B[:, 1], s=22, color=cb, marker="s", label=lb, zorder=3)
-        for (h, i, j), P, Q, col, name in ((ab, A, B, ca, f"h({la}, {lb})"), (ba, B, A, cb, f"h({lb}, {la})")):
+        # the two witnesses differ by line style as well as by colour
+        for (h, i, j), P, Q, col, name, ls in (
+            (ab, A, B, ca, f"h({la}, {lb})", "-"),
+            (ba, B, A, cb, f"h({lb}, {la})", (0, (4, 2))),
+        ):
             p, q = P[i], Q[j]
-            ax.annotate("", xy=q, xytext=p, arrowprops=dict(arrowstyle="-|>", color=col, lw=2.0), zorder=4)
-            ax.plot([], [], color=col, lw=2.0, label=f"{name} = {h:.3f}")
+            ax.annotate("", xy=q, xytext=p, arrowprops=dict(arrowstyle="-|>", color=col, lw=2.0, ls=ls), zorder=4)
+            ax.plot([], [], color=col, lw=2.0, ls=ls, label=f"{name} = {h:.3f}")
             if disks and h > 0:
                 ax.add_patch(Circle(p, h, facecolor=col, alpha=0.08, edgecolor=col, lw=0.8, ls="--", zorder=1))
             ax.scatter([p[0]], [p[1]], s=80, facecolor="none", edgecolor=col, linewidth=1.5, zorder=5)
@@ -345,6 +369,15 @@ def hausdorff(A, B, *, ax=None, size=PAGE, labels=("A", "B"), disks: bool = True
         ax.set_ylabel("y")
         ax.set_title(title or f"H({la}, {lb}) = max{{h({la},{lb}), h({lb},{la})}} = {H:.3f}")
         ax.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=9)
+        describe(
+            ax,
+            (f"{title}: " if title else "")
+            + f"Two planar point sets, {la} ({len(A)} dots) and {lb} ({len(B)} squares), with the witnesses of the "
+            f"directed Hausdorff distances: h({la}, {lb}) = {ab.distance:.3f} (solid arrow) and "
+            f"h({lb}, {la}) = {ba.distance:.3f} (dashed arrow)"
+            + (", each with its empty disk" if disks else "")
+            + f"; H({la}, {lb}) = {H:.3f}",
+        )
     return fig
 
 
@@ -458,6 +491,11 @@ def timings(seconds: dict, *, ax=None, size=PAGE, title: str | None = None, log:
             ax.text(v, k, "  " + text, va="center", fontsize=9)
         ax.set_xlabel("time (s)")
         ax.set_title(title or "Running time")
+        describe(
+            ax,
+            f"{title or 'Running time'}: a bar chart of {len(names)} running times, each bar labelled: "
+            + ", ".join(f"{k} {v * 1e3:.1f} ms" if v < 1 else f"{k} {v:.2f} s" for k, v in zip(names, vals)),
+        )
     return fig
 
 
@@ -505,6 +543,14 @@ def docking_landscape(angles, shifts, scores, *, marks=None, ax=None, size=PAGE,
         ax.set_xlabel("turn about the ligand's axis (°)")
         ax.set_ylabel("shift (Å)")
         ax.set_title(title or "Docking score landscape")
+        i, j = np.unravel_index(int(np.argmax(Z)), Z.shape)
+        describe(
+            ax,
+            f"{title or 'Docking score landscape'}: a heat map of the docking score over turns from {A.min():.0f}° "
+            f"to {A.max():.0f}° and shifts from {S.min():.3g} to {S.max():.3g} Å; the best score, {Z.max():.3g} Å², "
+            f"at a turn of {A[i]:.0f}° and a shift of {S[j]:.3g} Å"
+            + (f"; marked: {', '.join(marks)}" if marks else ""),
+        )
     return fig
 
 
@@ -553,6 +599,14 @@ def docking_pose(
         ax.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), frameon=False, markerscale=1.2)
         if title:
             ax.set_title(title)
+        rmsd = float(np.sqrt(((docked - crystal) ** 2).sum(axis=1).mean())) if docked.shape == crystal.shape else None
+        describe(
+            ax,
+            (f"{title}: " if title else "")
+            + f"3D view of a docked ligand ({len(docked)} atoms, small diamonds) over its crystal pose (large dots), "
+            f"among the {int(near.sum())} receptor atoms within {radius:g} Å"
+            + (f"; RMSD {rmsd:.2f} Å" if rmsd is not None else ""),
+        )
     return fig
 
 
@@ -599,6 +653,7 @@ def point_clouds(clouds: dict, *, size=SLIDE, elev: float = 20.0, azim: float = 
             ax.set_xticklabels([])
             ax.set_yticklabels([])
             ax.set_zticklabels([])
+            describe(ax, f"3D view of {title}, {len(X)} points")
     return fig
 
 
@@ -640,6 +695,20 @@ def distance_matrix(D, labels, *, ax=None, size=PAGE, title: str | None = None, 
         ax.set_xticks(mids, names, rotation=30, ha="right")
         ax.set_yticks(mids, names)
         ax.set_title(title or "Distances between the shapes")
+        within = [D[a:b, a:b][~np.eye(b - a, dtype=bool)] for a, b in zip(starts, ends, strict=True)]
+        inner = np.concatenate([w for w in within if w.size]) if any(w.size for w in within) else np.zeros(0)
+        mask = np.zeros(D.shape, bool)
+        for a, b in zip(starts, ends, strict=True):
+            mask[a:b, a:b] = True
+        outer = D[~mask]
+        u = f" {unit}" if unit else ""
+        describe(
+            ax,
+            f"{title or 'Distances between the shapes'}: a heat map of the {len(labels)} × {len(labels)} distances "
+            f"between the shapes, grouped into {len(names)} classes ({', '.join(names)})"
+            + (f"; within a class at most {inner.max():.3g}{u}" if inner.size else "")
+            + (f", between classes at least {outer.min():.3g}{u}" if outer.size else ""),
+        )
     return fig
 
 
@@ -680,6 +749,11 @@ def embedding(points, labels, *, ax=None, size=PAGE, title: str | None = None):
         ax.set_xlabel("first coordinate")
         ax.set_ylabel("second coordinate")
         ax.set_title(title or "The family in the plane (classical MDS)")
+        describe(
+            ax,
+            f"{title or 'The family in the plane (classical MDS)'}: {len(X)} shapes as points in the plane, one "
+            f"marker shape per class: " + ", ".join(f"{c} ({labels.count(c)})" for c in names),
+        )
     return fig
 
 
@@ -730,4 +804,12 @@ def stability(perturbation, distances: dict, *, ax=None, size=PAGE, title: str |
         ax.set_ylabel(f"bottleneck distance{u}")
         ax.legend(loc="upper left", frameon=False)
         ax.set_title(title or "Stability: the diagrams move no more than the points")
+        below = all(np.all(np.asarray(y, float).ravel() <= x * (1 + 1e-9)) for y in distances.values())
+        describe(
+            ax,
+            f"{title or 'Stability: the diagrams move no more than the points'}: on log axes, the bottleneck distance "
+            f"against the perturbation δ from {x.min():.3g} to {x.max():.3g}, one line and marker shape for each of "
+            f"{', '.join(map(str, distances))}, under the dashed bound distance = δ; "
+            + ("every distance is at most δ" if below else "some distance exceeds δ"),
+        )
     return fig

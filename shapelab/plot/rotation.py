@@ -14,6 +14,7 @@ from .._toolkit.validate import as_finite_scalar, as_point, as_points, as_positi
 from ..quaternion import Quaternion, qfrom_axis_angle, qrotate
 from ..registration import ICPResult, RigidMotion
 from ._common import axes
+from ._describe import describe
 from ._style import COLORS, PALETTE, new_figure, style
 
 _SHADES = tuple(PALETTE[k] for k in (1, 4, 5))
@@ -141,6 +142,15 @@ def point_sets(
         ax.legend(loc="upper left", markerscale=2.0)
         if title:
             ax.set_title(title)
+        rms = float(np.sqrt(((R - G) ** 2).sum(axis=1).mean())) if R.shape == G.shape else None
+        describe(
+            ax,
+            (f"{title}: " if title else "")
+            + f"{'3D view of ' if three else ''}two point sets, {labels[0]} ({len(R)} dots) and {labels[1]} "
+            f"({len(G)} squares)"
+            + (f", each r_j joined to its g_j by a grey segment (RMS distance {rms:.3g})" if pairs else "")
+            + (f"; RMS distance between paired points {rms:.3g}" if rms is not None and not pairs else ""),
+        )
     return fig
 
 
@@ -250,6 +260,13 @@ def icp_step(
         ax.view_init(elev=elev, azim=azim)
         ax.legend(loc="upper left", fontsize=9, markerscale=1.5)
         ax.set_title(title or f"ICP iteration {k} of {result.n_iter}: MSE = {result.mse[k]:.3g}")
+        describe(
+            ax,
+            f"3D view of ICP iteration {k} of {result.n_iter}: the source ({len(src)} dots) at iteration {k} over the "
+            f"fixed target ({len(tgt)} squares), {len(idx)} closest-point pairs drawn as lines; "
+            f"mean squared error {result.mse[k]:.3g}"
+            + ("; open circles show the source after the next step" if show_next and k < result.n_iter else ""),
+        )
     return fig
 
 
@@ -284,13 +301,14 @@ def icp_convergence(result, *, truth: RigidMotion | None = None, ax=None, mark: 
         colors = [COLORS["ball_edge"], COLORS["accent"], COLORS["mouth"], COLORS["green"]]
         handles = []
         ax2 = ax.twinx() if truth is not None else None
-        for (name, r), color in zip(runs.items(), colors * 4):
+        markers = "os^D"  # each run its own marker, not only its own colour
+        for j, ((name, r), color) in enumerate(zip(runs.items(), colors * 4)):
             it = np.arange(r.n_iter + 1)
             mse = np.where(r.mse > 0, r.mse, np.nan)
             (h,) = ax.plot(
                 it,
                 mse,
-                "o-",
+                markers[j % 4] + "-",
                 color=color,
                 ms=3.5,
                 lw=1.6,
@@ -315,6 +333,19 @@ def icp_convergence(result, *, truth: RigidMotion | None = None, ax=None, mark: 
         ax.legend(handles=handles, loc="upper right", fontsize=9)
         ax.set_title(title or "ICP convergence")
         ax.grid(True, which="major", alpha=0.25)
+        runs_text = "; ".join(
+            f"{name}: {r.n_iter} iterations, MSE from {r.mse[0]:.3g} to {r.mse[-1]:.3g}"
+            + (", converged" if r.converged else ", not converged")
+            for name, r in runs.items()
+        )
+        describe(
+            ax,
+            f"{title or 'ICP convergence'}: the mean squared error against the iteration on a log scale, "
+            f"one line and marker shape per run"
+            + (", the rotation error in degrees dashed on a second axis" if truth is not None else "")
+            + f". {runs_text}"
+            + (f"; iteration {mark} marked" if mark is not None else ""),
+        )
     return fig
 
 
@@ -385,7 +416,15 @@ def rotation_axis(rotation, angle=None, *, points=None, ax=None, title=None, ele
             for end in (p, q):
                 ax.plot(*np.stack([c, end]).T, color=COLORS["muted"], lw=1.0, ls="--")
             ax.scatter(*p, s=60, color=COLORS["red"], depthshade=False, label="r" if j == 0 else None, zorder=5)
-            ax.scatter(*q, s=60, color=COLORS["green"], depthshade=False, label="q r q*" if j == 0 else None, zorder=5)
+            ax.scatter(
+                *q,
+                s=60,
+                color=COLORS["green"],
+                marker="s",
+                depthshade=False,
+                label="q r q*" if j == 0 else None,
+                zorder=5,
+            )
             mid = arc[len(arc) // 2]
             ax.text(*(c + 1.18 * (mid - c)), "θ", color=COLORS["accent"], fontsize=13)
             everything += [circle, p[None], q[None]]
@@ -394,6 +433,12 @@ def rotation_axis(rotation, angle=None, *, points=None, ax=None, title=None, ele
         ax.legend(loc="upper left")
         ax.set_title(
             title or (f"Rotation by θ = {np.degrees(theta):.1f}° about u = ({u[0]:.2f}, {u[1]:.2f}, {u[2]:.2f})")
+        )
+        describe(
+            ax,
+            f"3D view of a rotation by θ = {np.degrees(theta):.1f}° about the axis u = ({u[0]:.2f}, {u[1]:.2f}, "
+            f"{u[2]:.2f}), an arrow through the origin: {len(P)} point{'s' if len(P) != 1 else ''} r (dots) carried "
+            "along an arc of its dotted circle about the axis to q r q* (squares)",
         )
     return fig
 
@@ -442,6 +487,18 @@ def two_stage(source, target, stages: dict, *, size=(12.0, 4.5), elev: float = 2
         legend = ax.get_legend()
         if legend is not None:
             legend.remove()
+    for ax, (title, m) in zip(axes, motions.items(), strict=True):
+        moved = m.apply(source)
+        if moved.shape == target.shape:
+            rms = float(np.sqrt(((moved - target) ** 2).sum(axis=1).mean()))
+            describe(
+                ax,
+                f"3D view, {title}: the source R moved ({len(source)} dots) on the target G (squares), RMS {rms:.3g}",
+            )
+        else:
+            describe(
+                ax, f"3D view, {title}: the source R moved ({len(source)} dots) on the target G ({len(target)} squares)"
+            )
     return fig
 
 
@@ -478,11 +535,28 @@ def displacement(residues, displacements: dict, *, domains: dict | None = None, 
             d = np.asarray(d, float).ravel()
             if d.shape != x.shape:
                 raise ValueError(f"displacements[{label!r}] must have one value per residue")
-            ax.plot(x, d, color=(COLORS["red"], COLORS["green"], COLORS["muted"])[k % 3], lw=1.6, label=label)
+            ax.plot(
+                x,
+                d,
+                color=(COLORS["red"], COLORS["green"], COLORS["muted"])[k % 3],
+                ls=("-", "--", ":")[k % 3],
+                lw=1.6,
+                label=label,
+            )
         ax.set_xlabel("residue")
         ax.set_ylabel(f"displacement ({unit})")
         ax.set_ylim(bottom=0)
         ax.legend(loc="upper center", frameon=False)
         if title:
             ax.set_title(title, pad=18)
+        curves = "; ".join(
+            f"{label}: largest {np.max(d):.2f} {unit} at residue {x[int(np.argmax(d))]:g}, median {np.median(d):.2f} {unit}"
+            for label, d in ((k, np.asarray(v, float).ravel()) for k, v in displacements.items())
+        )
+        describe(
+            ax,
+            (f"{title}: " if title else "")
+            + f"the displacement of each of {len(x)} residues after superposition, one line style per fit. {curves}"
+            + (f"; shaded domains: {', '.join(domains)}" if domains else ""),
+        )
     return fig

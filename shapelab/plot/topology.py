@@ -23,6 +23,7 @@ from .._toolkit.validate import as_finite_scalar, as_tau
 from ..balls import Balls
 from ..filtration import as_filtration
 from ._common import axes, grown_radii, set_3d_view
+from ._describe import describe
 from ._style import COLORS, PALETTE, SLIDE, new_figure, style
 
 __all__ = [
@@ -41,6 +42,32 @@ _SUB = "₀₁₂₃"
 
 
 # ------------------------------------------------------------------ helpers
+#: one line style per homology dimension, so that colour is never the only cue
+_LINESTYLES = ("-", "--", "-.", ":")
+
+
+def _g(x: float) -> str:
+    return "∞" if np.isinf(x) else f"{x:.3g}"
+
+
+def _pairs_summary(P: dict, dims, d) -> str:
+    """Per dimension: how many pairs, how many never die, and the most persistent
+    finite one, e.g. "H₁ holes: 12 pairs, the most persistent born at 0.1, dead at 2.3"."""
+    parts = []
+    for k in dims:
+        a = np.asarray(P[k], dtype=float).reshape(-1, 2)
+        text = f"{_dim_label(k, d)}: {len(a)} pair{'s' if len(a) != 1 else ''}"
+        inf = int(np.isinf(a[:, 1]).sum())
+        if inf:
+            text += f", {inf} never dying"
+        fin = a[np.isfinite(a[:, 1])]
+        if len(fin):
+            j = int(np.argmax(fin[:, 1] - fin[:, 0]))
+            text += f", the most persistent finite one born at {_g(fin[j, 0])} and dead at {_g(fin[j, 1])}"
+        parts.append(text)
+    return "; ".join(parts) if parts else "no pairs"
+
+
 def _dim_color(k: int) -> str:
     return PALETTE[k % len(PALETTE)]
 
@@ -240,6 +267,12 @@ def persistence_diagram(
         ax.set_ylabel(f"death {unit or scale}")
         ax.set_title(title)
         ax.legend(loc="lower right", fontsize=9)
+        describe(
+            ax,
+            f"{title}: birth against death {scale}, one marker shape per dimension. {_pairs_summary(P, dims, d)}"
+            + (f"; features alive at τ = {tau:g} shaded" if tau is not None else "")
+            + (f"; pairs with persistence below {min_persistence:g} greyed" if min_persistence else ""),
+        )
     return fig
 
 
@@ -333,6 +366,13 @@ def barcode(
         ax.tick_params(axis="y", length=0)
         note = f" ({hidden} short bars not shown)" if hidden else ""
         ax.set_title(title + note)
+        describe(
+            ax,
+            f"{title}: one horizontal bar per feature along the growth time τ, grouped and labelled by dimension. "
+            f"{_pairs_summary(P, dims, d)}"
+            + (f"; {hidden} short bars not shown" if hidden else "")
+            + (f"; a dashed line at τ = {tau:g}" if tau is not None else ""),
+        )
     return fig
 
 
@@ -410,6 +450,7 @@ def betti_curve(F_or_curve, *, taus=None, tau=None, log=None, ax=None, title="Be
                 curve[:, k],
                 where="post",
                 color=_dim_color(k),
+                ls=_LINESTYLES[k % len(_LINESTYLES)],
                 lw=1.8,
                 label=f"β{_SUB[k] if k < 4 else k} ({_dim_label(k, d).split(' ', 1)[1]})",
             )
@@ -426,6 +467,17 @@ def betti_curve(F_or_curve, *, taus=None, tau=None, log=None, ax=None, title="Be
         ax.set_ylabel("Betti number" + (" (symlog scale)" if log else ""))
         ax.set_title(title)
         ax.legend(loc="upper right")
+        peaks = [
+            f"β{_SUB[k] if k < 4 else k} peaks at {int(curve[:, k].max())} (τ = {t[int(np.argmax(curve[:, k]))]:.3g}) "
+            f"and ends at {int(curve[-1, k])}"
+            for k in range(curve.shape[1])
+            if not (k == d and not curve[:, k].any()) and len(t)
+        ]
+        describe(
+            ax,
+            f"{title}: step curves of the Betti numbers against the growth time τ from {t[0]:.3g} to "
+            f"{t[-1]:.3g}, one line style per dimension. " + "; ".join(peaks),
+        )
     return fig
 
 
@@ -965,6 +1017,7 @@ def _draw_features(
                 label="lining balls",
             )
         )
+    describe(ax, _features_text(balls, tau, V, Pk, T, nums, title, show_volumes, focus))
     if legend and want_legend:
         with style():
             if own_figure:  # outside, to the right; constrained layout makes room
@@ -972,6 +1025,39 @@ def _draw_features(
             else:  # drawing into a panel of a bigger figure
                 ax.legend(handles=legend, loc="lower left", fontsize=8, framealpha=0.85, frameon=True)
     return fig
+
+
+def _features_text(balls, tau, V, Pk, T, nums, title, show_volumes, focus) -> str:
+    """What :func:`_draw_features` drew, in words."""
+    d = balls.dim
+    void_word = "hole" if d == 2 else "void"
+    kind = "disks" if d == 2 else "balls"
+    view = "" if d == 2 else "3D view of "
+    text = f"{view}{title}: the {len(balls)} {kind} grown to τ = {tau:g}"
+    parts = []
+
+    def size(f):
+        n = len(_cells_of(f))
+        out = f"{n} cell{'s' if n != 1 else ''}"
+        if show_volumes:
+            try:
+                out += f", {_measure_word(d)} {float(_field(f, 'volume')):.2f}"
+            except AttributeError:
+                pass
+        return out
+
+    for i, v in enumerate(V, 1):
+        parts.append(f"{void_word} V{i} ({size(v)})")
+    for i, p in zip(nums, Pk):
+        m = len(np.asarray(_field(p, "mouth")).reshape(-1, d))
+        parts.append(f"pocket P{i} ({size(p)}, a mouth of {m} {'edges' if d == 2 else 'triangles'})")
+    for i, t in enumerate(T, 1):
+        parts.append(f"tunnel {i}: a cycle of {len(_cycle_edges(t))} edges")
+    if parts:
+        text += "; " + ", ".join(parts) + ", each labelled on the figure, lining balls highlighted"
+    if focus:
+        text += "; a close-up"
+    return text
 
 
 def _tag3d(ax, pts, text, color):
@@ -1044,4 +1130,12 @@ def channel_profile(profile, *, reference: dict | None = None, ax=None, title: s
         ax.set_ylim(bottom=0)
         ax.legend(loc="upper center", frameon=False)
         ax.set_title(title or "Free radius along the channel")
+        refs = "; ".join(f"{label}: {float(v):.2f} Å (dashed)" for label, v in (reference or {}).items())
+        describe(
+            ax,
+            f"{title or 'Free radius along the channel'}: the free radius against the position along the axis, "
+            f"from {profile.offsets[0]:.1f} to {profile.offsets[-1]:.1f} Å; the bottleneck, "
+            f"{profile.radius[k]:.2f} Å at {profile.offsets[k]:.1f} Å, marked with a dot"
+            + (f"; reference radii {refs}" if refs else ""),
+        )
     return fig

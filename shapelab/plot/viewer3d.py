@@ -425,6 +425,18 @@ class View3D:
         self.library = library
         blob = json.dumps([data, legend, width, height], sort_keys=True, separators=(",", ":"))
         self.id = "shapelab-view3d-" + hashlib.sha256(blob.encode()).hexdigest()[:12]
+        from ._describe import describe
+
+        # the canvas's text alternative (WCAG 1.1.1): what the view draws, from its legend
+        describe(self, "Interactive 3D view: " + "; ".join(f"{label} ({detail})" for _, label, detail in legend))
+
+    @property
+    def alt(self) -> str:
+        """What the view shows, in words (the canvas's ``aria-label``; see
+        :func:`shapelab.plot.alt_text`)."""
+        from ._describe import alt_text
+
+        return alt_text(self)
 
     def html(self, *, library: bool | None = None) -> str:
         """The view as HTML: ``<div>`` (canvas, note, legend) and its ``<script>``.
@@ -458,9 +470,10 @@ class View3D:
         return (
             f"{lib}"
             f'<div class="shapelab-view3d" id="{self.id}"><style>{_CSS}</style>'
-            f'<div class="shapelab-view3d-canvas" style="width:{self.width}px;max-width:100%;height:{self.height}px"></div>'
+            f'<div class="shapelab-view3d-canvas" role="img" aria-label="{_html.escape(self.alt)}" '
+            f'style="width:{self.width}px;max-width:100%;height:{self.height}px"></div>'
             f'<div class="shapelab-view3d-note"></div>'
-            f'<ul class="shapelab-view3d-legend">{items}</ul>'
+            f'<ul class="shapelab-view3d-legend" aria-label="Legend">{items}</ul>'
             f"<small>Drag to rotate, scroll to zoom, right-drag to move.</small>"
             f"<script>{script}</script></div>"
         )

@@ -10,6 +10,7 @@ from .._toolkit.validate import (
     as_positive_int,
     as_tau,
 )
+from ..plot._describe import alt_text
 from . import _frame
 from .static import StaticFallback
 
@@ -187,6 +188,7 @@ class AlphaExplorer(StaticFallback, W.VBox):
         t = float(self.slider.value) if tau is None else as_tau(tau, finite=True)
         self.view.update(t)
         self.status.value = self.status_text()
+        self.alt = alt_text(self.view.figure)  # what the frame shows (the static player's alt)
         return self
 
     def _on_change(self, change=None):
@@ -379,7 +381,9 @@ class PowerExplorer(StaticFallback, W.VBox):
 
         self.diagram = power_diagram(self.balls, bbox=self._bbox)
         self.status.value = self.status_text()
-        self.image.value = _frame.png(self.figure())
+        fig = self.figure()
+        self.image.value = _frame.png(fig)
+        self.alt = alt_text(fig)  # what the frame shows (the static player's alt)
 
     def __repr__(self):
         return (
@@ -522,7 +526,9 @@ class Complex3DExplorer(StaticFallback, W.VBox):
     def _redraw(self, change=None):
 
         self.status.value = self.status_text()
-        self.image.value = _frame.png(self.figure())
+        fig = self.figure()
+        self.image.value = _frame.png(fig)
+        self.alt = alt_text(fig)  # what the frame shows (the static player's alt)
 
     def __repr__(self):
         return (

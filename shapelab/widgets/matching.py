@@ -9,6 +9,7 @@ import ipywidgets as W
 import numpy as np
 
 from .._toolkit.validate import as_point, as_positive_int
+from ..plot._describe import alt_text
 from . import _frame
 from .static import StaticFallback
 
@@ -122,7 +123,9 @@ class CriticalPointsExplorer(StaticFallback, W.VBox):
         else:
             self.status.value = f"{self.result.n_min} minima, {self.result.n_max} maxima"
         buf = io.BytesIO()
-        self.figure().savefig(buf, format="png", dpi=_DPI)
+        fig = self.figure()
+        fig.savefig(buf, format="png", dpi=_DPI)
+        self.alt = alt_text(fig)  # what the frame shows (the static player's alt)
         self.image.value = buf.getvalue()
 
     def __repr__(self):

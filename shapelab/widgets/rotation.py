@@ -13,6 +13,7 @@ import ipywidgets as W
 import numpy as np
 
 from .._toolkit.validate import as_points, as_positive_int
+from ..plot._describe import alt_text
 from . import _frame
 from .static import StaticFallback
 
@@ -140,7 +141,9 @@ class ICPExplorer(StaticFallback, W.VBox):
     def _redraw(self, change=None):
         self.status.value = self._status_text()
         buf = io.BytesIO()
-        self.figure().savefig(buf, format="png", dpi=_DPI)
+        fig = self.figure()
+        fig.savefig(buf, format="png", dpi=_DPI)
+        self.alt = alt_text(fig)  # what the frame shows (the static player's alt)
         self.image.value = buf.getvalue()
 
     def __repr__(self) -> str:

@@ -24,6 +24,7 @@ import hashlib
 import html
 import json
 import os
+import re
 
 import numpy as np
 
@@ -153,12 +154,13 @@ def static_html(explorer, *, frames: int = FRAMES) -> str:
         raise TypeError(f"{type(explorer).__name__} has no .image frame to precompute")
     start_value = control.value
     values = control_values(control, frames)
-    pngs, lines = [], []
+    pngs, lines, alts = [], [], []
     try:
         for v in values:
             control.value = v  # the explorer's observer redraws the frame and status
             pngs.append(base64.b64encode(bytes(image.value)).decode("ascii"))
             lines.append(status.value if status is not None else "")
+            alts.append(_frame_alt(explorer, control, v, lines[-1]))
     finally:
         control.value = start_value
     start = values.index(start_value) if start_value in values else 0
@@ -174,29 +176,49 @@ def static_html(explorer, *, frames: int = FRAMES) -> str:
         )
         + ". Run the notebook for the live explorer."
     )
-    payload = json.dumps({"frames": pngs, "status": lines, "readout": readouts}, separators=(",", ":"))
+    payload = json.dumps({"frames": pngs, "status": lines, "readout": readouts, "alt": alts}, separators=(",", ":"))
     payload = payload.replace("</", "<\\/")  # never closes the script element early
     uid = "slx-" + hashlib.sha1(payload.encode()).hexdigest()[:12]
+    # accessibility (issue 35, WCAG 2.1 AA): the range input is named by a visible label
+    # and announces the value it stands for (aria-valuetext), not the frame's index; the
+    # arrow keys move it (a native range input); the status line is a live region; every
+    # frame has its own text alternative; the focus is visible
     return (
-        f'<div class="shapelab-static-explorer" id="{uid}" style="max-width:100%">'
+        f'<div class="shapelab-static-explorer" id="{uid}" style="max-width:100%" role="group" '
+        f'aria-label="Explorer along {name}">'
+        f"<style>#{uid} input:focus-visible{{outline:3px solid #0072B2;outline-offset:3px}}</style>"
         f'<div style="display:flex;gap:0.8em;align-items:center">'
-        f'<input type="range" min="0" max="{len(values) - 1}" step="1" value="{start}" '
-        f'aria-label="{name}" style="flex:1 1 auto;max-width:70%">'
-        f'<output style="font-family:monospace">{html.escape(readouts[start])}</output></div>'
-        f'<div class="slx-status">{lines[start]}</div>'
-        f'<img alt="explorer frame" src="data:image/png;base64,{pngs[start]}" '
+        f'<label for="{uid}-in" class="slx-label">{name}</label>'
+        f'<input id="{uid}-in" type="range" min="0" max="{len(values) - 1}" step="1" value="{start}" '
+        f'aria-valuetext="{html.escape(readouts[start])}" style="flex:1 1 auto;max-width:70%">'
+        f'<output for="{uid}-in" style="font-family:monospace">{html.escape(readouts[start])}</output></div>'
+        f'<div class="slx-status" aria-live="polite">{lines[start]}</div>'
+        f'<img alt="{html.escape(alts[start])}" src="data:image/png;base64,{pngs[start]}" '
         f'style="display:block;max-width:100%;height:auto">'
-        f'<p class="slx-note" style="font-size:85%;opacity:0.75">{note}</p>'
+        f'<p class="slx-note" style="font-size:85%">{note}</p>'
         f'<script type="application/json" class="slx-data">{payload}</script>'
         "<script>(function(){"
         f'var r=document.getElementById("{uid}");if(!r)return;'
         'var d=JSON.parse(r.querySelector(".slx-data").textContent);'
         'var i=r.querySelector("input"),o=r.querySelector("output"),'
         's=r.querySelector(".slx-status"),m=r.querySelector("img");'
-        'function show(){var k=+i.value;m.src="data:image/png;base64,"+d.frames[k];'
-        "s.innerHTML=d.status[k];o.textContent=d.readout[k];}"
+        'function show(){var k=+i.value;m.src="data:image/png;base64,"+d.frames[k];m.alt=d.alt[k];'
+        's.innerHTML=d.status[k];o.textContent=d.readout[k];i.setAttribute("aria-valuetext",d.readout[k]);}'
         'i.addEventListener("input",show);})();</script></div>'
     )
+
+
+def _frame_alt(explorer, control, value, status: str) -> str:
+    """A frame's text alternative: what the explorer's figure says it shows
+    (``explorer.alt``, from :func:`shapelab.plot.alt_text`), else the explorer, the
+    control's value and the status line in words."""
+    text = getattr(explorer, "alt", None)
+    if text:
+        return text
+    plain = html.unescape(re.sub(r"<[^>]+>", " ", status or "")).replace("\xa0", " ")
+    plain = " ".join(plain.split())
+    what = f"{type(explorer).__name__} at {control.description or 'value'} = {_readout(control, value)}"
+    return what + (f": {plain}" if plain else "") + "."
 
 
 class StaticFallback:

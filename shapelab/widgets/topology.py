@@ -8,6 +8,7 @@ import ipywidgets as W
 import numpy as np
 
 from .._toolkit.validate import as_finite_scalar, as_tau
+from ..plot._describe import alt_text
 from . import _frame
 from .static import StaticFallback
 
@@ -142,7 +143,9 @@ class PocketExplorer(StaticFallback, W.VBox):
             f"&nbsp;{len(P)} pocket{'' if len(P) == 1 else 's'}, {len(V)} {word}{'' if len(V) == 1 else 's'}"
         )
         buf = io.BytesIO()
-        self.figure().savefig(buf, format="png", dpi=_DPI)
+        fig = self.figure()
+        fig.savefig(buf, format="png", dpi=_DPI)
+        self.alt = alt_text(fig)  # what the frame shows (the static player's alt)
         self.image.value = buf.getvalue()
 
     def __repr__(self):
@@ -295,7 +298,9 @@ class PersistenceExplorer(StaticFallback, W.VBox):
     def _redraw(self, change=None):
 
         self.status.value = self.status_text()
-        self.image.value = _frame.png(self.figure())
+        fig = self.figure()
+        self.image.value = _frame.png(fig)
+        self.alt = alt_text(fig)  # what the frame shows (the static player's alt)
 
     def __repr__(self):
         return f"PersistenceExplorer(dims={self._dims}, threshold={self.threshold:.3f})"

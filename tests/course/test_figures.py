@@ -270,3 +270,17 @@ def test_gallery_links_point_at_lessons():
     assert links
     missing = sorted({ln for ln in links if not (ROOT / "lessons" / f"{ln}.ipynb").exists()})
     assert not missing, f"the gallery links to lessons that do not exist: {missing}"
+
+
+def test_exported_files_carry_the_figures_description(tmp_path):
+    """WCAG 1.1.1 (issue 35): the text alternative travels with the file: the SVG's
+    <title> (read by the gallery page), the PDF's Subject, the PNG's Description."""
+    from PIL import Image
+
+    fig = figures.build("fig23_1i")
+    text = figures.description(fig)
+    assert text and "vertices" in text and "edges" in text
+    svg = figures.save(fig, tmp_path / "f.svg").read_text(encoding="utf-8")
+    assert f"{figures.SVG_TITLE}{text}</title>" in svg and 'role="img"' in svg
+    assert text in Image.open(figures.save(fig, tmp_path / "f.png")).text.get("Description", "")
+    assert b"/Subject" in figures.save(fig, tmp_path / "f.pdf").read_bytes()

@@ -172,7 +172,9 @@ def test_trajectory_volumes_draws_the_longest_tracks():
     top, ax = fig.axes
     assert np.array_equal(top.lines[0].get_xdata(), [0, 20, 40, 60])
     assert np.array_equal(top.lines[0].get_ydata(), m.volume)
-    lines = [ln for ln in ax.lines if ln.get_linestyle() == "-"]
+    # one line style per track (issue 35: colour is not the only cue), markers drawn without a line
+    lines = [ln for ln in ax.lines if ln.get_linestyle() not in ("None", "")]
+    assert [ln.get_linestyle() for ln in lines] == ["-", "--"]
     assert [ln.get_label() for ln in lines] == ["track 0", "track 2"]  # 3 frames, then 2
     assert np.array_equal(lines[0].get_xdata(), [0, 20, 40]) and np.array_equal(lines[0].get_ydata(), [50, 40, 55])
     markers = {(ln.get_marker(), tuple(ln.get_xdata())) for ln in ax.lines if ln.get_linestyle() in ("None", "")}

@@ -88,6 +88,28 @@ def test_the_player_has_changing_frames_and_status(players, name):
 
 
 @pytest.mark.parametrize("name", sorted(EXPLORERS))
+def test_every_frame_says_what_it_shows_and_the_control_is_labelled(players, name):
+    """WCAG 2.1 (issue 35): each frame's alt is the figure's own description (what is
+    drawn, at which value), never a generic word; the range input has a visible label and
+    announces the value it stands for."""
+    from tests._axe import bad_alt
+
+    w, html = players[name]
+    data = _payload(html)
+    assert len(data["alt"]) == len(data["frames"])
+    for alt in data["alt"]:
+        assert bad_alt(alt) is None, alt
+        assert len(alt) > 25, f"too short to say what the frame shows: {alt!r}"
+    assert len(set(data["alt"])) >= 2 or name == "critical", "the frames' descriptions never change"
+    first = re.search(r'<img alt="([^"]*)"', html).group(1)
+    start = data["readout"].index(re.search(r"<output[^>]*>([^<]*)</output>", html).group(1))
+    assert first == __import__("html").escape(data["alt"][start])
+    uid = re.search(r'<input id="([^"]+)"', html).group(1)
+    assert f'<label for="{uid}"' in html
+    assert re.search(r'<input[^>]+aria-valuetext="[^"]+"', html)
+
+
+@pytest.mark.parametrize("name", sorted(EXPLORERS))
 def test_the_player_names_no_url_and_leaves_the_explorer_as_it_was(players, name):
     w, html = players[name]
     assert not re.search(r"https?://", html)

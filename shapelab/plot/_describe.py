@@ -1,0 +1,134 @@
+"""What a figure shows, in words: its text alternative (WCAG 2.1, 1.1.1), made where the
+figure is made.
+
+Every plotting function of :mod:`shapelab.plot` describes what it drew on the axes it
+drew into (what is drawn, the parameter values, the counts); a lesson may refine or
+replace that with :func:`describe`.  :func:`alt_text` reads it back: the figure's own
+description if it has one, else its axes' descriptions, panel by panel.
+
+The same text reaches every place the figure is shown:
+
+- a notebook: when :mod:`shapelab.plot` is imported in an IPython kernel, a figure's
+  PNG output carries it as ``metadata["image/png"]["alt"]`` (:func:`register`);
+- the book (``book/_ext/shapelab_a11y.py``: myst-nb's image gets that ``alt``), the decks
+  (``course/templates/reveal_offline``), the static explorers' frames
+  (:mod:`shapelab.widgets.static`) and the figure export (``course/figures.py``).
+
+>>> from shapelab import plot
+>>> fig, ax = plot.new_figure()
+>>> _ = plot.describe(ax, "Three points on a line")
+>>> plot.alt_text(fig)
+'Three points on a line.'
+>>> _ = plot.describe(fig, "A line through three points", append=False)
+>>> plot.alt_text(fig)
+'A line through three points.'
+"""
+
+from __future__ import annotations
+
+import sys
+
+__all__ = ["describe", "alt_text", "register"]
+
+_ATTR = "_shapelab_alt"
+
+
+_TEX = {
+    r"\tau": "τ",
+    r"\alpha": "α",
+    r"\sigma": "σ",
+    r"\theta": "θ",
+    r"\pi": "π",
+    r"\Pi": "Π",
+    r"\cap": "∩",
+    r"\cup": "∪",
+    r"\infty": "∞",
+    r"\leq": "≤",
+    r"\geq": "≥",
+    r"\mathbb{R}": "ℝ",
+}
+
+
+def _plain(text: str) -> str:
+    """Text without matplotlib's mathtext: ``$K_\\tau$`` reads "K_τ"."""
+    if "$" not in text:
+        return text
+    for tex, plain in _TEX.items():
+        text = text.replace(tex, plain)
+    return text.replace("$", "").replace("\\", "").replace("{", "").replace("}", "")
+
+
+def _sentence(text: str) -> str:
+    text = _plain(" ".join(str(text).split()))
+    return text if not text or text[-1] in ".!?" else text + "."
+
+
+def describe(target, text: str, *, append: bool = False):
+    """Set what ``target`` (a matplotlib Figure or Axes) shows to ``text``; with
+    ``append``, add ``text`` after what it already says.  Returns ``target``.
+
+    A description on the figure takes precedence over its axes' ones
+    (:func:`alt_text`)."""
+    if not isinstance(text, str) or not text.strip():
+        raise ValueError("a figure's description must be a non-empty string")
+    old = getattr(target, _ATTR, None) if append else None
+    setattr(target, _ATTR, _sentence(text) if not old else old + " " + _sentence(text))
+    return target
+
+
+def alt_text(fig) -> str | None:
+    """What ``fig`` shows: its own description, else its axes' descriptions (one axes:
+    its text; several: "2 panels. Left: ...; right: ..." in reading order), else None."""
+    own = getattr(fig, _ATTR, None)
+    if own:
+        return own
+    axes = [ax for ax in getattr(fig, "axes", []) if getattr(ax, _ATTR, None)]
+    if not axes:
+        return None
+    if len(axes) == 1:
+        return getattr(axes[0], _ATTR)
+    names = _panel_names(axes)
+    parts = [f"{name}: {getattr(ax, _ATTR)}" for name, ax in zip(names, axes)]
+    return f"{len(axes)} panels. " + " ".join(parts)
+
+
+def _panel_names(axes) -> list[str]:
+    """Left / right for one row of two, else "Panel 1", "Panel 2", ... in reading order."""
+    try:
+        pos = [ax.get_subplotspec().get_geometry() for ax in axes]
+    except AttributeError:
+        pos = None
+    if pos and len(axes) == 2 and all(p[:2] == (1, 2) for p in pos):
+        return ["Left", "Right"]
+    if pos and len(axes) == 2 and all(p[:2] == (2, 1) for p in pos):
+        return ["Top", "Bottom"]
+    return [f"Panel {i}" for i in range(1, len(axes) + 1)]
+
+
+def _bundle(fig):
+    """The metadata of a figure's PNG output: its description as ``alt``."""
+    text = alt_text(fig)
+    if not text:
+        return None
+    return {}, {"image/png": {"alt": text}}
+
+
+def register(ip=None) -> bool:
+    """Make a figure's PNG output in the IPython kernel ``ip`` (default: the running one,
+    if any) carry :func:`alt_text` as ``metadata["image/png"]["alt"]``.  True if done.
+
+    The PNG itself is still made by the kernel's own formatter (matplotlib-inline's);
+    this only adds metadata, through IPython's mime-bundle formatter, which matplotlib
+    never registers into, so the order of imports does not matter."""
+    if ip is None:
+        if "IPython" not in sys.modules:
+            return False
+        from IPython import get_ipython
+
+        ip = get_ipython()
+    if ip is None or not hasattr(ip, "display_formatter"):
+        return False
+    from matplotlib.figure import Figure
+
+    ip.display_formatter.mimebundle_formatter.for_type(Figure, _bundle)
+    return True
