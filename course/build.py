@@ -164,6 +164,10 @@ def site_lessons(lessons: Path, instructor: bool = False) -> dict:
     totals = {"lessons": 0, "solutions left out": 0, "citations linked": 0}
     for path in sorted(lessons.glob("[0-9][0-9]_*.ipynb")):
         nb = nbformat.read(path, as_version=4)
+        keys = [k for c in nb.cells if c.cell_type == "markdown" for k in citations.cited(c.source)]
+        missing = citations.unknown(keys)
+        if missing:  # the link would lead nowhere on the site
+            raise SystemExit(f"{path.name} cites {', '.join(missing)}, not in {citations.BIB.relative_to(ROOT)}")
         for cell in nb.cells:
             if cell.cell_type == "markdown":
                 totals["citations linked"] += len(citations.CITE.findall(cell.source))

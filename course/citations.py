@@ -62,6 +62,12 @@ def anchor(key: str) -> str:
     return make_id(f"cite-{key}")
 
 
+def unknown(keys, path: Path = BIB) -> list[str]:
+    """The keys among ``keys`` that ``path`` has no entry for."""
+    entries = _database(path).entries
+    return [k for k in dict.fromkeys(keys) if k not in entries]
+
+
 def cited(markdown: str) -> list[str]:
     """The keys ``markdown`` cites, in order, each once."""
     return list(dict.fromkeys(m.group("key") for m in CITE.finditer(markdown)))

@@ -138,6 +138,9 @@ def prepare(nb, with_solutions: bool) -> tuple[nbformat.NotebookNode, Counter]:
             counts["code moved to the notes"] += 1
         counts[t] += 1
     works = list(dict.fromkeys(works))
+    missing = citations.unknown(works)
+    if missing:
+        raise ValueError(f"cites {', '.join(missing)}, not in {citations.BIB.relative_to(ROOT)}")
     if works:
         cells.append(
             nbformat.v4.new_markdown_cell(citations.works_cited(works), metadata={"slideshow": {"slide_type": "slide"}})
@@ -154,8 +157,18 @@ def prepare(nb, with_solutions: bool) -> tuple[nbformat.NotebookNode, Counter]:
 MAX_CODE_LINES = 15
 
 
+#: the characters of code that one line of a slide holds (1280 px wide, the code's font);
+#: a longer line wraps (FIGURE_CSS), and counts as the lines the audience sees
+CODE_WIDTH = 105
+
+
+def _wrapped(lines: list[str]) -> int:
+    return sum(max(1, -(-len(line.expandtabs(4)) // CODE_WIDTH)) for line in lines)
+
+
 def _code_lines(cell) -> int:
-    return len(cell.source.rstrip().splitlines()) if cell.cell_type == "code" else 0
+    """Lines of a code cell's source as the slide shows them (a long line wraps)."""
+    return _wrapped(cell.source.rstrip().splitlines()) if cell.cell_type == "code" else 0
 
 
 def _shown_code_lines(cell) -> int:
@@ -170,7 +183,7 @@ def _shown_code_lines(cell) -> int:
         if line.lstrip().startswith(("```", "~~~")):
             fence = not fence
         elif fence:
-            n += 1
+            n += _wrapped([line])
     return n
 
 
@@ -344,7 +357,8 @@ def exporter():
 
 
 #: added to each deck's <head> (the template, course/templates/reveal_offline, is left as
-#: it is): every raster image is shown at most at half its pixels, so that it stays sharp
+#: it is): code wraps instead of running off the slide's right edge (CODE_WIDTH), and
+#: every raster image is shown at most at half its pixels, so that it stays sharp
 #: at 1280 x 720 (a projector at 1920 x 1080 still gets 1.3 device pixels per pixel).
 #: Figures of a lesson's outputs get that width from prepare() already; this also covers
 #: what the page draws itself (widgets' images).  The works-cited slide is set smaller.
@@ -352,6 +366,7 @@ FIGURE_CSS = """<style id="shapelab-deck-figures">
 .reveal .jp-RenderedImage img { height: auto; max-height: 600px; }
 .reveal .slides section .works-cited, .reveal .slides section li .bibtex-protected { font-size: inherit; }
 .reveal aside.notes pre { font-size: 0.6em; }
+.reveal .jp-InputArea pre { white-space: pre-wrap; overflow-wrap: anywhere; }
 </style>
 <script>
 (function () {

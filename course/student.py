@@ -39,7 +39,7 @@ from pathlib import Path
 
 import nbformat
 
-from course.notebooks import BEGIN, END, SOLUTION_TAG
+from course.notebooks import BEGIN, END, SOLUTION_TAG, slide_type
 
 ROOT = Path(__file__).resolve().parent.parent
 DEFAULT_OUT = ROOT / "dist" / "student"
@@ -202,7 +202,11 @@ def site_notebook(nb) -> tuple[nbformat.NotebookNode, dict]:
     """The course site's page of an executed lesson: as the student edition, no solution
     (markdown solutions dropped, code between the markers replaced by the placeholder,
     that cell's outputs removed, since they are the solution's results), but every other
-    cell keeps its outputs: the site shows the lesson as it ran."""
+    cell keeps its outputs: the site shows the lesson as it ran.
+
+    The speaker notes (``slideshow.slide_type`` ``notes``) are dropped too: tagged
+    ``remove-cell`` they are off the page, but the page's "download .ipynb" button
+    (``_sources/``) would still hand them out, and they can tell an exercise's answer."""
     nb = copy.deepcopy(nb)
     stats = {"exercises": 0, "markdown removed": 0}
     cells = []
@@ -210,6 +214,8 @@ def site_notebook(nb) -> tuple[nbformat.NotebookNode, dict]:
         tags = list(cell.get("metadata", {}).get("tags", []))
         if cell.cell_type == "markdown" and TAG in tags:
             stats["markdown removed"] += 1
+            continue
+        if cell.cell_type == "markdown" and slide_type(cell) == "notes":
             continue
         if cell.cell_type == "code":
             try:

@@ -37,10 +37,16 @@ PROBE = r"""<script>
       var clone = s.cloneNode(true);
       clone.querySelectorAll("aside.notes, script, style, mjx-container, pre, .jp-OutputArea").forEach(function (n) { n.remove(); });
       var text = clone.textContent;
-      var code = 0;
+      var code = 0, cut = 0;
       s.querySelectorAll("pre").forEach(function (p) {
         if (!visible(p) || p.closest(".jp-OutputArea, .output_area, .jp-OutputArea-output")) { return; }
-        code += p.textContent.replace(/\n+$/, "").split("\n").length;
+        // the lines as shown: a long line that wraps is two; one cut off at the right edge
+        // (overflow) is reported apart, the audience cannot read it
+        var cs = getComputedStyle(p), lh = parseFloat(cs.lineHeight) || 1.2 * parseFloat(cs.fontSize);
+        var pad = parseFloat(cs.paddingTop) + parseFloat(cs.paddingBottom);
+        var shown = Math.round((p.clientHeight - pad) / lh);
+        code += Math.max(shown, p.textContent.replace(/\n+$/, "").split("\n").length);
+        if (p.scrollWidth > p.clientWidth + 1) { cut += 1; }
       });
       var imgs = Array.from(s.querySelectorAll("img")).filter(visible).map(function (im) {
         var r = im.getBoundingClientRect();
@@ -59,7 +65,7 @@ PROBE = r"""<script>
         return Math.round((im.getBoundingClientRect().bottom - top) / scale); });
       var title = (s.querySelector("h1,h2,h3") || {}).textContent || "";
       out.push({slide: ix.h + "/" + ix.v, title: title.replace("¶", "").trim().slice(0, 60),
-                roles: (text.match(/\{[a-z:-]+\}`?[A-Za-z0-9_]+/g) || []), code: code, imgs: imgs,
+                roles: (text.match(/\{[a-z:-]+\}`?[A-Za-z0-9_]+/g) || []), code: code, cut: cut, imgs: imgs,
                 headingOnly: heads > 0 && rest.length === 0 && media === 0,
                 height: Math.round((bottom - top) / scale), imgEnds: ends, H: Reveal.getConfig().height});
     });
@@ -97,6 +103,9 @@ def summary(decks: dict[str, list[dict]]) -> dict:
         "slides with raw roles": [f"{n} #{s['slide']}: {s['roles'][:2]}" for n, s in slides if s["roles"]],
         f"slides with > {MAX_CODE_LINES} code lines": [
             f"{n} #{s['slide']} ({s['title']}): {s['code']} lines" for n, s in slides if s["code"] > MAX_CODE_LINES
+        ],
+        "slides with code cut at the right edge": [
+            f"{n} #{s['slide']} ({s['title']})" for n, s in slides if s.get("cut")
         ],
         "raster figures": len(imgs),
         "figures below 2x": [

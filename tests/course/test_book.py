@@ -170,6 +170,12 @@ def test_speaker_notes_stay_off_the_site(site):
     """Speaker notes (tagged remove-cell) are for the decks; students read the site."""
     pages = [p for p in _pages(site) if "Speaker notes." in p.read_text(encoding="utf-8", errors="replace")]
     assert not pages, f"speaker notes on {[str(p.relative_to(site)) for p in pages]}"
+    # nor in the notebooks the pages' download button hands out (lesson 03's notes say
+    # the answer to its exercise on attached edges)
+    sources = sorted((site / "_sources").rglob("*.ipynb"))
+    assert sources, "the site no longer copies its notebooks to _sources/: update this test"
+    given = [p for p in sources if "Speaker notes." in p.read_text(encoding="utf-8", errors="replace")]
+    assert not given, f"speaker notes in {[str(p.relative_to(site)) for p in given]}"
 
 
 def test_no_page_references_the_network(site):

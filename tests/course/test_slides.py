@@ -270,7 +270,8 @@ def test_every_slide_fits_with_all_fragments_shown(probed):
 @pytest.mark.skipif(CHROMIUM is None, reason=SKIP_REASON)
 def test_an_instructor_can_project_every_deck_as_it_is(probed):
     """Issue 36, on every slide of every deck as the audience sees it: no MyST role left
-    as text, at most 15 lines of code, every raster figure at least 2x its displayed
+    as text, at most 15 lines of code (a long line wraps: it counts as the lines it
+    takes, and none runs off the slide), every raster figure at least 2x its displayed
     pixels, no heading alone on a slide, and a last slide listing the works cited."""
     from tests.course.deck_probe import MAX_CODE_LINES, summary
 
@@ -281,6 +282,7 @@ def test_an_instructor_can_project_every_deck_as_it_is(probed):
         for k in (
             "slides with raw roles",
             f"slides with > {MAX_CODE_LINES} code lines",
+            "slides with code cut at the right edge",
             "figures below 2x",
             "heading-only slides",
         )
@@ -347,6 +349,28 @@ def test_a_code_wall_goes_to_the_speaker_notes_and_no_slide_has_more_than_15_lin
     body, _ = slides.exporter().from_notebook_node(deck, resources={"offline": {"vendor": "vendor"}})
     notes_html = body.split('<aside class="notes">', 1)[1].split("</aside>", 1)[0]
     assert "x39" in notes_html and "done" in body
+
+
+def test_a_citation_missing_from_the_bibliography_is_named(slides, tmp_path):
+    from course import build
+
+    nb = nbformat.v4.new_notebook(cells=[_md("Shapes ([Nobody 2099](#cite-nobody2099)).", "slide")])
+    with pytest.raises(ValueError, match="nobody2099"):
+        slides.prepare(nb, with_solutions=False)
+    nbformat.write(nb, tmp_path / "99_bad.ipynb")
+    with pytest.raises(SystemExit, match="99_bad.ipynb cites nobody2099"):
+        build.site_lessons(tmp_path)
+
+
+def test_long_lines_count_as_the_lines_they_wrap_to(slides):
+    """Ten lines of 200 characters are twenty lines on the slide: over 15, so the code
+    goes to the speaker notes; the deck wraps code rather than cutting it at the edge."""
+    wide = nbformat.v4.new_code_cell("\n".join(f"x{i} = '" + "a" * 195 + "'" for i in range(10)))
+    nb = nbformat.v4.new_notebook(cells=[_md("## Wide", "slide"), wide])
+    deck, counts = slides.prepare(nb, with_solutions=False)
+    assert slides._code_lines(wide) == 20
+    assert slides.HIDE_INPUT in deck.cells[1].metadata["tags"] and counts["code moved to the notes"] == 1
+    assert "white-space: pre-wrap" in slides.FIGURE_CSS
 
 
 def test_a_heading_alone_keeps_its_content_and_citations_become_text(slides):

@@ -243,6 +243,21 @@ def test_markdown_solutions_and_outputs_are_removed():
     assert "widgets" not in student.metadata and student.cells[-1].execution_count is None
 
 
+def test_the_sites_page_leaves_out_the_speaker_notes():
+    """The site's pages keep every output but the solutions', and no speaker notes: the
+    page's download button hands out its notebook (lesson 03's notes give an answer)."""
+    notes = nbformat.v4.new_markdown_cell(
+        "**Speaker notes.** Most answer 3, the answer is 5.25.",
+        metadata={"slideshow": {"slide_type": "notes"}, "tags": ["remove-cell", "speaker-notes"]},
+    )
+    shown = nbformat.v4.new_code_cell("print(1)")
+    shown.outputs = [nbformat.v4.new_output("stream", name="stdout", text="1\n")]
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_markdown_cell("# 99 · Notes"), notes, shown])
+    page, _ = se.site_notebook(nb)
+    assert "5.25" not in nbformat.writes(page)
+    assert [c.cell_type for c in page.cells] == ["markdown", "code"] and page.cells[1].outputs
+
+
 # ------------------------------------------------- the instructor's solutions pass
 CHECK_LINE = re.compile(r"^(✓|✗|…)")
 
