@@ -48,18 +48,18 @@ LOG = ROOT / "book" / "_build" / "logs" / "kernels.log"
 BUDGET = 60.0
 
 
-#: the inline backend's figure formats for the executed copies (``--out``: the site and the
-#: decks), e.g. ``retina`` (PNG at twice the pixels, shown at the same size) or ``svg``;
-#: the committed lessons (run in place) keep the kernel's default, as nbval compares them
+#: the inline backend's figure formats of every executed lesson, committed or copied for the
+#: site and the decks: ``retina`` (PNG at twice the pixels, shown at the same size, so sharp
+#: on a projector and a high-resolution screen) unless ``$SHAPELAB_FIGURE_FORMATS`` names
+#: others (``svg``).  nbval does not compare image data, so a student's kernel (plain PNG)
+#: reproduces the committed outputs all the same.
 FIGURE_FORMATS_ENV = "SHAPELAB_FIGURE_FORMATS"
 COPIES_FIGURE_FORMATS = "retina"
 
 
-def kernel_arguments(out_dir: Path | None) -> list[str]:
-    """The kernel's command-line configuration: for copies (``--out``), figures drawn as
-    ``$SHAPELAB_FIGURE_FORMATS`` (default ``retina``); none for the lessons in place."""
-    if out_dir is None:
-        return []
+def kernel_arguments(out_dir: Path | None = None) -> list[str]:
+    """The kernel's command-line configuration: figures drawn as ``$SHAPELAB_FIGURE_FORMATS``
+    (default ``retina``), for the lessons in place and for copies (``--out``) alike."""
     formats = [f.strip() for f in os.environ.get(FIGURE_FORMATS_ENV, COPIES_FIGURE_FORMATS).split(",") if f.strip()]
     return [f"--InlineBackend.figure_formats={f}" for f in formats]
 

@@ -235,8 +235,8 @@ def _png_size(b64) -> tuple[int, int] | None:
 
 def _size_figures(cell) -> None:
     """Each PNG figure shown at most at half its pixels: a sharp figure on the projector
-    (the executed copies of ``course.execute --out`` are drawn at twice the resolution,
-    "retina", so that they keep their size; the committed ones are shown smaller)."""
+    (``course.execute`` draws every lesson's figures at twice the resolution, "retina",
+    so they keep their size; a lesson executed otherwise shows its figures smaller)."""
     for o in cell.get("outputs", []):
         png = o.get("data", {}).get("image/png")
         if png is None:

@@ -113,13 +113,49 @@ def _bundle(fig):
     return {}, {"image/png": {"alt": text}}
 
 
+def _with_alt(png):
+    """matplotlib-inline's PNG formatter ``png``, with the figure's description added to
+    the metadata it returns (``retina`` returns ``{"width", "height"}``, which would
+    otherwise replace the mime-bundle formatter's ``alt``)."""
+
+    def formatter(fig):
+        out = png(fig)
+        text = alt_text(fig)
+        if out is None or not text:
+            return out
+        data, md = out if isinstance(out, tuple) and len(out) == 2 else (out, None)
+        return data, {**(md or {}), "alt": text}
+
+    formatter._shapelab_alt = True
+    return formatter
+
+
+def _wrap_png(ip) -> None:
+    """Wrap the PNG formatter registered for figures, if any and not wrapped yet."""
+    from matplotlib.figure import Figure
+
+    fmt = ip.display_formatter.formatters.get("image/png")
+    if fmt is None:
+        return
+    try:
+        png = fmt.lookup_by_type(Figure)
+    except KeyError:
+        return
+    if not getattr(png, "_shapelab_alt", False):
+        fmt.for_type(Figure, _with_alt(png))
+
+
 def register(ip=None) -> bool:
     """Make a figure's PNG output in the IPython kernel ``ip`` (default: the running one,
     if any) carry :func:`alt_text` as ``metadata["image/png"]["alt"]``.  True if done.
 
-    The PNG itself is still made by the kernel's own formatter (matplotlib-inline's);
-    this only adds metadata, through IPython's mime-bundle formatter, which matplotlib
-    never registers into, so the order of imports does not matter."""
+    The PNG itself is still made by the kernel's own formatter (matplotlib-inline's).
+    Two routes add the description, so that the order of imports and of
+    ``%matplotlib inline`` / ``%config InlineBackend.figure_formats`` does not matter:
+    IPython's mime-bundle formatter, which matplotlib never registers into, gives it for
+    plain PNG; and matplotlib-inline's PNG formatter, wrapped now and again before each
+    cell if the backend has replaced it, keeps it beside the ``width`` and ``height``
+    that ``retina`` figures carry."""
     if ip is None:
         if "IPython" not in sys.modules:
             return False
@@ -131,4 +167,8 @@ def register(ip=None) -> bool:
     from matplotlib.figure import Figure
 
     ip.display_formatter.mimebundle_formatter.for_type(Figure, _bundle)
+    _wrap_png(ip)
+    if hasattr(ip, "events") and not getattr(ip, "_shapelab_alt_hook", False):
+        ip.events.register("pre_run_cell", lambda *args, **kwargs: _wrap_png(ip))
+        ip._shapelab_alt_hook = True
     return True

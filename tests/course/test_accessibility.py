@@ -111,6 +111,37 @@ def test_a_figure_shown_in_a_kernel_carries_its_description_as_alt():
     assert IPython
 
 
+@pytest.mark.parametrize("formats", [[], ["--InlineBackend.figure_formats=retina"]])
+def test_a_figure_in_a_real_kernel_keeps_its_alt_at_either_resolution(formats):
+    """retina PNGs carry width and height as metadata: the alt must survive beside them
+    (the book and the decks are built from copies executed with retina figures)."""
+    nbformat = pytest.importorskip("nbformat")
+    nbclient = pytest.importorskip("nbclient")
+    nb = nbformat.v4.new_notebook()
+    nb.cells = [
+        nbformat.v4.new_code_cell("%matplotlib inline\nimport numpy as np\nfrom shapelab import Balls, plot"),
+        nbformat.v4.new_code_cell("plot.disks(Balls(np.array([[0.0, 0.0], [1.0, 0.0]]), 0.7))"),
+    ]
+    env = {"PYTHONPATH": str(ROOT)}
+    client = nbclient.NotebookClient(nb, kernel_name="python3", extra_arguments=formats, timeout=120)
+    import os as _os
+
+    old = _os.environ.get("PYTHONPATH")
+    _os.environ["PYTHONPATH"] = env["PYTHONPATH"] + (_os.pathsep + old if old else "")
+    try:
+        client.execute()
+    finally:
+        if old is None:
+            _os.environ.pop("PYTHONPATH", None)
+        else:
+            _os.environ["PYTHONPATH"] = old
+    (out,) = [o for o in nb.cells[1].outputs if "image/png" in o.get("data", {})]
+    md = out["metadata"]["image/png"]
+    assert md["alt"].startswith("2 disks")
+    if formats:
+        assert md["width"] > 0 and md["height"] > 0  # retina: shown at half its pixels
+
+
 # -------------------------------------------------------------- in Chromium
 needs_chromium = pytest.mark.skipif(CHROMIUM is None, reason=SKIP_REASON)
 
