@@ -72,7 +72,31 @@ _PROBE = """
     if (deck && (!document.querySelector("script[src*=mathjax]") || mj)) { if (mj) { await mj; } break; }
     await sleep(100);
   }
-  const result = await axe.run(document, {runOnly: {type: "tag", values: %(tags)s}, resultTypes: ["violations"]});
+  const options = {runOnly: {type: "tag", values: %(tags)s}, resultTypes: ["violations"]};
+  let result;
+  if (window.Reveal && window.Reveal.getSlides && document.querySelector(".reveal")) {
+    // axe judges only what is rendered, and reveal.js hides every slide but the current
+    // one: each slide is shown in turn, with all its fragments, and audited
+    window.Reveal.configure({transition: "none", backgroundTransition: "none", fragments: false});
+    const merged = new Map();
+    for (const slide of window.Reveal.getSlides()) {
+      const ix = window.Reveal.getIndices(slide);
+      window.Reveal.slide(ix.h, ix.v);
+      await sleep(30);
+      for (const v of (await axe.run(document, options)).violations) {
+        const seen = merged.get(v.id) || {id: v.id, impact: v.impact, help: v.help, nodes: [], keys: new Set()};
+        for (const n of v.nodes) {
+          const key = n.target.join(" ");
+          if (!seen.keys.has(key)) { seen.keys.add(key); seen.nodes.push(n); }
+        }
+        merged.set(v.id, seen);
+      }
+    }
+    window.Reveal.slide(0, 0);
+    result = {violations: [...merged.values()], slides: window.Reveal.getSlides().length};
+  } else {
+    result = await axe.run(document, options);
+  }
   const images = [...document.querySelectorAll("img")].map((m) => ({
     alt: m.getAttribute("alt"), src: (m.getAttribute("src") || "").slice(0, 80),
     decorative: m.getAttribute("role") === "presentation" || m.getAttribute("aria-hidden") === "true",
@@ -87,7 +111,7 @@ _PROBE = """
   return JSON.stringify({
     violations: result.violations.map((v) => ({id: v.id, impact: v.impact, help: v.help, nodes: v.nodes.length,
                                               targets: v.nodes.slice(0, 3).map((n) => n.target.join(" "))})),
-    images, controls,
+    slides: result.slides || 0, images, controls,
     math: {formulas: document.querySelectorAll("mjx-container").length,
            assistive: document.querySelectorAll("mjx-container mjx-assistive-mml math").length},
   });

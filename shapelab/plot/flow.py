@@ -12,6 +12,10 @@ from ._style import COLORS, PAGE, PALETTE, new_figure, style
 __all__ = ["discrete_flow"]
 
 
+def _n(k: int, word: str) -> str:
+    return f"{k} {word}" + ("" if k == 1 else "s")
+
+
 def discrete_flow(F, tau=0.0, *, ax=None, title=None, legend=True, arrows=True):
     """Draw Edelsbrunner's discrete flow of 2D disks at ``tau`` (Notes §23.1).
 
@@ -143,9 +147,9 @@ def discrete_flow(F, tau=0.0, *, ax=None, title=None, legend=True, arrows=True):
         describe(
             ax,
             f"{title}: the discrete flow of {len(balls)} disks at τ = {flow.tau:g} over {len(S)} triangles, "
-            f"{int((~np.asarray(flow.empty)).sum())} of them in K (grey); {len(flow.pockets) - n_void} pocket "
-            f"region(s) (orange, hatched //), {n_void} void(s) (vermillion, hatched xx), the other empty triangles "
-            f"flowing to the outside (white); {len(sk)} sinks (black dots), {len(mouth)} mouth edges (thick pink)"
-            + (", arrows across the edges the flow crosses" if arrows else ""),
+            f"{int((~np.asarray(flow.empty)).sum())} of them in K (grey); {_n(len(flow.pockets) - n_void, 'pocket')} "
+            f"(orange, hatched //), {_n(n_void, 'void')} (vermillion, hatched xx), the other empty triangles "
+            f"flowing to the outside (white); {_n(len(sk), 'sink')} (black dots), {_n(len(mouth), 'mouth edge')} "
+            "(thick reddish purple)" + (", arrows across the edges the flow crosses" if arrows else ""),
         )
     return fig

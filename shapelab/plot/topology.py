@@ -237,7 +237,14 @@ def persistence_diagram(
             ax.text(lo_, inf_y, " ∞", va="bottom", ha="left", color=COLORS["muted"])
         if tau is not None:
             ax.fill_between(
-                [lo_, tau], tau, hi_, color=COLORS["accent"], alpha=0.12, lw=0, zorder=0, label=f"alive at τ = {tau:g}"
+                [lo_, tau],
+                tau,
+                hi_,
+                color=COLORS["accent"],
+                alpha=0.12,
+                lw=0,
+                zorder=0,
+                label=f"alive at {unit or scale} = {tau:g}",
             )
             ax.axvline(tau, color=COLORS["accent"], lw=1, ls=":")
             ax.axhline(tau, color=COLORS["accent"], lw=1, ls=":")
@@ -269,8 +276,9 @@ def persistence_diagram(
         ax.legend(loc="lower right", fontsize=9)
         describe(
             ax,
-            f"{title}: birth against death {scale}, one marker shape per dimension. {_pairs_summary(P, dims, d)}"
-            + (f"; features alive at τ = {tau:g} shaded" if tau is not None else "")
+            f"{title}: birth against death {unit or scale}, one marker shape per dimension. "
+            f"{_pairs_summary(P, dims, d)}"
+            + (f"; features alive at {unit or scale} = {tau:g} shaded" if tau is not None else "")
             + (f"; pairs with persistence below {min_persistence:g} greyed" if min_persistence else ""),
         )
     return fig
@@ -1017,7 +1025,7 @@ def _draw_features(
                 label="lining balls",
             )
         )
-    describe(ax, _features_text(balls, tau, V, Pk, T, nums, title, show_volumes, focus))
+    describe(ax, _features_text(balls, tau, V, Pk, T, nums, title, show_volumes, focus, bool(legend and want_legend)))
     if legend and want_legend:
         with style():
             if own_figure:  # outside, to the right; constrained layout makes room
@@ -1027,7 +1035,7 @@ def _draw_features(
     return fig
 
 
-def _features_text(balls, tau, V, Pk, T, nums, title, show_volumes, focus) -> str:
+def _features_text(balls, tau, V, Pk, T, nums, title, show_volumes, focus, legend=True) -> str:
     """What :func:`_draw_features` drew, in words."""
     d = balls.dim
     void_word = "hole" if d == 2 else "void"
@@ -1050,11 +1058,25 @@ def _features_text(balls, tau, V, Pk, T, nums, title, show_volumes, focus) -> st
         parts.append(f"{void_word} V{i} ({size(v)})")
     for i, p in zip(nums, Pk):
         m = len(np.asarray(_field(p, "mouth")).reshape(-1, d))
-        parts.append(f"pocket P{i} ({size(p)}, a mouth of {m} {'edges' if d == 2 else 'triangles'})")
+        side = "edge" if d == 2 else "triangle"
+        parts.append(f"pocket P{i} ({size(p)}, a mouth of {m} {side}{'s' if m != 1 else ''})")
     for i, t in enumerate(T, 1):
-        parts.append(f"tunnel {i}: a cycle of {len(_cycle_edges(t))} edges")
+        m = len(_cycle_edges(t))
+        parts.append(f"tunnel {i}: a cycle of {m} edge{'s' if m != 1 else ''}")
     if parts:
-        text += "; " + ", ".join(parts) + ", each labelled on the figure, lining balls highlighted"
+        text += "; " + ", ".join(parts)
+        # what _draw_features tags by name on the figure: in 2D the voids and pockets; in 3D
+        # the pockets, and the voids only beside pockets; a close-up and the tunnels, none
+        if V or Pk:
+            tagged = d == 2 or (not focus and (Pk or not V))
+            where = [w for w, yes in (("in the legend", legend), ("on the figure", tagged)) if yes]
+            if where:
+                text += f", each {void_word if not Pk else 'pocket' if not V else 'feature'} named " + " and ".join(
+                    where
+                )
+            text += ", lining balls highlighted"
+    else:
+        text += "; none of the features is present"
     if focus:
         text += "; a close-up"
     return text

@@ -231,6 +231,20 @@ class StaticFallback:
         The player it embeds.
     """
 
+    @property
+    def alt(self) -> str | None:
+        """What the current frame shows (:func:`shapelab.plot.alt_text` of its figure)."""
+        return self.__dict__.get("_shapelab_alt")
+
+    @alt.setter
+    def alt(self, text: str | None) -> None:
+        # also the live frame's tooltip: ipywidgets draws it as the <img>'s title, which is
+        # its accessible name (the decks copy it into the alt as well)
+        self.__dict__["_shapelab_alt"] = text
+        image = getattr(self, "image", None)
+        if image is not None and hasattr(image, "tooltip"):
+            image.tooltip = text or None
+
     def _repr_mimebundle_(self, **kwargs):
         data = super()._repr_mimebundle_(**kwargs)
         if static_enabled() and isinstance(data, dict):

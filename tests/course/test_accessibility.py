@@ -87,6 +87,41 @@ def test_every_plot_function_describes_its_figure():
     assert plot.alt_text(fig) == "The disks and their barcode."
 
 
+def test_descriptions_say_the_units_and_counts_the_figure_shows():
+    """Regressions: a diagram in ρ said "τ"; "a mouth of 1 edges", "1 pocket region(s)";
+    tunnels "labelled on the figure" with no label drawn."""
+    import shapelab as sl
+    from shapelab import datasets, plot
+
+    F = sl.alpha_filtration(datasets.figure_23_1())
+    text = plot.alt_text(plot.persistence_diagram(F, unit="ρ", tau=0.5))
+    assert "death ρ" in text and "alive at ρ = 0.5" in text and "τ" not in text, text
+    flask = sl.alpha_filtration(datasets.figure_23_2()[0])
+    text = plot.alt_text(plot.pockets(flask))
+    assert "a mouth of 1 edge)" in text and "1 edges" not in text, text
+    text = plot.alt_text(plot.discrete_flow(flask))
+    assert "(s)" not in text.split(": the discrete flow", 1)[1] and "1 pocket (" in text, text
+    from types import SimpleNamespace
+
+    from shapelab.plot.topology import _features_text
+
+    tunnel = SimpleNamespace(cycle=[[0, 1], [1, 2], [2, 0]])
+    text = _features_text(flask.balls, 0.0, [], [], [tunnel], [], "a tunnel", False, False)
+    assert "a cycle of 3 edges" in text and "on the figure" not in text and "lining" not in text, text
+
+
+def test_a_live_explorer_frame_carries_its_description_as_tooltip():
+    """ipywidgets draws the tooltip as the frame's title (its accessible name; the decks copy
+    it into the alt), so the live frame says what it shows, as the static player does."""
+    import shapelab as sl
+    from shapelab import datasets, widgets
+
+    e = widgets.alpha_explorer(sl.alpha_filtration(datasets.figure_23_1()), show_cells=False)
+    assert e.image.tooltip == e.alt and "vertices" in e.alt
+    e.slider.value = 1.0
+    assert e.image.tooltip == e.alt and "τ = 1" in e.alt
+
+
 def test_a_figure_shown_in_a_kernel_carries_its_description_as_alt():
     """The notebook output's metadata (what the book and the decks read)."""
     IPython = pytest.importorskip("IPython")
@@ -218,6 +253,24 @@ def test_every_page_and_deck_was_measured(results, site, decks):
     assert len([u for u in results if u.endswith(".slides.html")]) == len(lessons)
     assert any(u.endswith("/accessibility.html") for u in pages), "no accessibility statement page"
     assert len(pages) >= len(lessons) + 3
+
+
+@needs_chromium
+def test_a_violation_on_a_later_slide_of_a_deck_is_found(decks, tmp_path):
+    """reveal.js hides every slide but the current one and axe judges only what is
+    rendered: the probe must show each slide in turn (it once audited the first alone)."""
+    import re
+
+    deck = sorted(decks.glob("*.slides.html"))[0]
+    page = deck.read_text(encoding="utf-8")
+    last = [m.end() for m in re.finditer(r"<section[^>]*>", page)][-1]
+    planted = tmp_path / deck.name
+    planted.write_text(page[:last] + '<p><img src="planted.png"><input type="text"></p>' + page[last:], "utf-8")
+    (tmp_path / "vendor").symlink_to(decks / "vendor")
+    out = _axe.audit([planted.as_uri()], tmp_path / "profile")[planted.as_uri()]
+    ids = {v["id"] for v in _axe.severe(out)}
+    assert {"image-alt", "label"} <= ids, ids
+    assert out["slides"] > 1
 
 
 @needs_chromium
