@@ -238,12 +238,10 @@ class StaticFallback:
 
     @alt.setter
     def alt(self, text: str | None) -> None:
-        # also the live frame's tooltip: ipywidgets draws it as the <img>'s title, which is
-        # its accessible name (the decks copy it into the alt as well)
+        # not the live Image's tooltip: the offline widget manager of the decks
+        # (@jupyter-widgets/html-manager 1.0.15) cannot draw an Image that has one (it shows
+        # its error widget instead); the decks name a live frame by its status line
         self.__dict__["_shapelab_alt"] = text
-        image = getattr(self, "image", None)
-        if image is not None and hasattr(image, "tooltip"):
-            image.tooltip = text or None
 
     def _repr_mimebundle_(self, **kwargs):
         data = super()._repr_mimebundle_(**kwargs)
