@@ -162,6 +162,18 @@ def strip_source(source: str) -> tuple[str, int]:
     return "\n".join(out), len(blocks)
 
 
+def _strip_code_cell(cell, i: int, tags: list[str]) -> int:
+    """Replace the solutions of code cell ``i`` by their placeholders; how many there were.
+    A cell tagged ``solution`` without markers is refused (its solution would leak)."""
+    try:
+        cell.source, n = strip_source(cell.source)
+    except MarkerError as exc:
+        raise MarkerError(f"cell {i}: {exc}") from None
+    if TAG in tags and n == 0:
+        raise MarkerError(f"cell {i} is tagged 'solution' but has no '# BEGIN SOLUTION' / '# END SOLUTION' markers")
+    return n
+
+
 def student_notebook(nb) -> tuple[nbformat.NotebookNode, dict]:
     """The student edition of an instructor notebook, and counts of what changed."""
     nb = copy.deepcopy(nb)
@@ -174,14 +186,7 @@ def student_notebook(nb) -> tuple[nbformat.NotebookNode, dict]:
             stats["markdown removed"] += 1
             continue
         if cell.cell_type == "code":
-            try:
-                cell.source, n = strip_source(cell.source)
-            except MarkerError as exc:
-                raise MarkerError(f"cell {i}: {exc}") from None
-            if TAG in tags and n == 0:
-                raise MarkerError(
-                    f"cell {i} is tagged 'solution' but has no '# BEGIN SOLUTION' / '# END SOLUTION' markers"
-                )
+            n = _strip_code_cell(cell, i, tags)
             stats["exercises"] += n
             cell.outputs = []
             cell.execution_count = None
@@ -218,14 +223,7 @@ def site_notebook(nb) -> tuple[nbformat.NotebookNode, dict]:
         if cell.cell_type == "markdown" and slide_type(cell) == "notes":
             continue
         if cell.cell_type == "code":
-            try:
-                cell.source, n = strip_source(cell.source)
-            except MarkerError as exc:
-                raise MarkerError(f"cell {i}: {exc}") from None
-            if TAG in tags and n == 0:
-                raise MarkerError(
-                    f"cell {i} is tagged 'solution' but has no '# BEGIN SOLUTION' / '# END SOLUTION' markers"
-                )
+            n = _strip_code_cell(cell, i, tags)
             if n:
                 stats["exercises"] += n
                 cell.outputs = []

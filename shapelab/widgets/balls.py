@@ -10,7 +10,7 @@ from .._toolkit.validate import (
     as_positive_int,
     as_tau,
 )
-from ..plot._describe import alt_text
+from ..plot import alt_text
 from . import _frame
 from .static import StaticFallback
 

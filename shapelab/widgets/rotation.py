@@ -13,7 +13,7 @@ import ipywidgets as W
 import numpy as np
 
 from .._toolkit.validate import as_points, as_positive_int
-from ..plot._describe import alt_text
+from ..plot import alt_text
 from . import _frame
 from .static import StaticFallback
 
