@@ -41,7 +41,7 @@ Modules, one per concept of the notes:
 
 from __future__ import annotations
 
-from ._toolkit.lazy import attach
+from ._toolkit.lazy import attach, moved
 
 __version__ = "0.1.0"
 
@@ -135,3 +135,8 @@ __all__ = sorted(_EXPORTS) + ["__version__"]
 
 
 __getattr__, __dir__ = attach(__name__, _EXPORTS, _SUBMODULES, eager=__all__)
+
+#: modules that moved (issue 33), by their old name: ``import shapelab.power`` still
+#: gives the module now called ``shapelab.triangulation``
+_MOVED: dict[str, str] = {}
+moved(__name__, _MOVED)

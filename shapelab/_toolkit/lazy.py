@@ -10,8 +10,11 @@ a notebook only pays for the modules it uses.  (The Scientific Python
 from __future__ import annotations
 
 import importlib
+import importlib.abc
+import importlib.util
+import sys
 
-__all__ = ["attach"]
+__all__ = ["attach", "moved"]
 
 
 def attach(package: str, exports: dict, submodules=(), eager=()):
@@ -48,3 +51,45 @@ def attach(package: str, exports: dict, submodules=(), eager=()):
         return sorted(set(namespace) | set(exports) | submodules | set(eager))
 
     return __getattr__, __dir__
+
+
+class _Alias(importlib.abc.MetaPathFinder, importlib.abc.Loader):
+    """Imports a module that moved under its old dotted name (the same module object)."""
+
+    def __init__(self, package: str, moves: dict):
+        self.moves = {f"{package}.{old}": f"{package}.{new}" for old, new in moves.items()}
+
+    def target(self, fullname: str):
+        for old, new in self.moves.items():
+            if fullname == old or fullname.startswith(old + "."):
+                return new + fullname[len(old):]
+        return None
+
+    def find_spec(self, fullname, path=None, target=None):
+        new = self.target(fullname)
+        if new is None:
+            return None
+        return importlib.util.spec_from_loader(fullname, self)
+
+    def create_module(self, spec):
+        module = importlib.import_module(self.target(spec.name))
+        spec.loader_state = module.__spec__  # the import system overwrites __spec__
+        return module
+
+    def exec_module(self, module):
+        module.__spec__ = module.__spec__.loader_state
+
+
+def moved(package: str, moves: dict) -> None:
+    """Keep old import paths of ``package``'s moved modules working.
+
+    ``moved("shapelab", {"power": "triangulation"})`` makes ``import shapelab.power``
+    (and ``from shapelab.power import x``) give the module ``shapelab.triangulation``
+    itself, so that code written against an earlier layout keeps running; the file
+    tree shows only the new layout.
+    """
+    for finder in sys.meta_path:
+        if isinstance(finder, _Alias):
+            finder.moves.update(_Alias(package, moves).moves)
+            return
+    sys.meta_path.insert(0, _Alias(package, moves))
