@@ -53,7 +53,14 @@ PREREQUISITES: dict[str, tuple[str, ...]] = {
     "13_icp": ("11_critical_points", "12_hausdorff"),
     "14_quaternions": ("00_start_here",),
     "15_optimal_rotation": ("13_icp", "14_quaternions"),
-    "16_docking": ("04_union_measure", "07_pockets", "10_molecule_case_study", "12_hausdorff", "13_icp", "15_optimal_rotation"),
+    "16_docking": (
+        "04_union_measure",
+        "07_pockets",
+        "10_molecule_case_study",
+        "12_hausdorff",
+        "13_icp",
+        "15_optimal_rotation",
+    ),
     "17_shape_classification": ("01b_homology", "03_alpha_filtration", "06_voids", "09_persistence"),
     "18_binding_sites": ("07_pockets", "07b_pocket_flow", "10_molecule_case_study", "16_docking"),
 }
@@ -68,8 +75,15 @@ PLANNED: dict[str, str] = {
 PARTS: tuple[tuple[str, tuple[str, ...]], ...] = (
     (
         "I · The union of balls",
-        ("00_start_here", "01_power_diagrams", "01b_homology", "02_dual_complex", "03_alpha_filtration",
-         "04_union_measure", "05_dual_complex_3d"),
+        (
+            "00_start_here",
+            "01_power_diagrams",
+            "01b_homology",
+            "02_dual_complex",
+            "03_alpha_filtration",
+            "04_union_measure",
+            "05_dual_complex_3d",
+        ),
     ),
     (
         "II · Voids, pockets, tunnels, persistence",
@@ -210,7 +224,9 @@ def describe() -> str:
     """The figure's text alternative: its layout and every arrow it draws."""
     red = reduction()
     arrows = "; ".join(
-        f"{number(p)} to {', '.join(number(s) for q, s in red if q == p)}" for p in lessons() if any(q == p for q, _ in red)
+        f"{number(p)} to {', '.join(number(s) for q, s in red if q == p)}"
+        for p in lessons()
+        if any(q == p for q, _ in red)
     )
     parts = "; ".join(
         f"{'part ' + name.split(' · ')[0] if ' · ' in name else name.lower()}: lessons {', '.join(number(s) for s in ss)}"
@@ -257,13 +273,29 @@ def figure():
         bend = 0.0 if abs(y1 - y0) < 1e-9 and x1 - x0 <= 1 else 0.12 if y1 >= y0 else -0.12
         ax.add_patch(
             FancyArrowPatch(
-                (x0, y0), (x1, y1), connectionstyle=f"arc3,rad={bend}", arrowstyle="-|>", mutation_scale=16,
-                lw=1.3, color="#555555", shrinkA=22, shrinkB=22, zorder=1,
+                (x0, y0),
+                (x1, y1),
+                connectionstyle=f"arc3,rad={bend}",
+                arrowstyle="-|>",
+                mutation_scale=16,
+                lw=1.3,
+                color="#555555",
+                shrinkA=22,
+                shrinkB=22,
+                zorder=1,
             )
         )
     for s, (x, y) in pos.items():
         ax.text(
-            x, y, number(s), ha="center", va="center", fontsize=15, fontweight="bold", color="white", zorder=3,
+            x,
+            y,
+            number(s),
+            ha="center",
+            va="center",
+            fontsize=15,
+            fontweight="bold",
+            color="white",
+            zorder=3,
             bbox={"boxstyle": "round,pad=0.45", "fc": colours[part_of[s]], "ec": "black", "lw": 1.0},
         )
         lines = textwrap.wrap(title(s), 17)
