@@ -172,6 +172,9 @@ def site_lessons(lessons: Path, instructor: bool = False) -> dict:
             if cell.cell_type == "markdown":
                 totals["citations linked"] += len(citations.CITE.findall(cell.source))
                 cell.source = citations.for_site(cell.source)
+                # a lesson links the book's pages as ../book/page.md (right in JupyterLab);
+                # on the site the lessons sit in book/lessons/
+                cell.source = cell.source.replace("](../book/", "](../")
         if not instructor:
             nb, stats = site_notebook(nb)
             totals["solutions left out"] += stats["exercises"] + stats["markdown removed"]

@@ -52,9 +52,10 @@ def reference_point(points, kind: str = "centroid") -> np.ndarray:
     * The bounding-box centre qualifies with ``c = sqrt(d)``: each coordinate of
       the box's minimum and maximum moves by at most H, so each coordinate of the
       centre does too.
-    * The centroid of a *finite point set* does **not** qualify: piling many
-      points on one side moves the centroid without changing the set, hence
-      without changing H (a duplicate point is the same set).  The ratio of
+    * The centroid of a *finite point set* does **not** qualify: adding k points
+      within eps of one point x of an n-point set moves the set by at most eps in
+      H but moves its centroid a fraction k/(n + k) of the way to x (up to eps).
+      (Repeating x would not do: a repeated point leaves a set unchanged.)  The ratio of
       centroid alignment to the optimum is unbounded; see
       :func:`hausdorff_under_translation`.  The notes call centroids reference
       points without this caveat.  (For convex bodies the Steiner point is a

@@ -174,7 +174,7 @@ QUIZZES: dict[str, tuple[Question, ...]] = {
         _q(
             "For matching finite point sets under translation with the Hausdorff distance, the centroid",
             [
-                "is not a reference point: piling up copies of a point moves it",
+                "is not a reference point: points added close to one point move it far, while the Hausdorff distance hardly changes",
                 "is a reference point",
                 "gives the optimal translation",
                 "is the bounding-box centre",
