@@ -487,10 +487,10 @@ def euler_characteristic(simplices) -> int:
 def positive_simplices(order) -> list:
     """For simplices added one at a time, whether each creates a class or kills one.
 
-    Adding a k-simplex :math:`\sigma` to a complex either raises :math:`\beta_k` by one
-    (its boundary already bounded, so :math:`\sigma` closes a new k-cycle: a **birth**;
-    :math:`\sigma` is *positive*) or lowers :math:`\beta_{k-1}` by one (its boundary
-    was a cycle that did not bound, and now does: a **death**; :math:`\sigma` is
+    Adding a k-simplex :math:`\\sigma` to a complex either raises :math:`\\beta_k` by one
+    (its boundary already bounded, so :math:`\\sigma` closes a new k-cycle: a **birth**;
+    :math:`\\sigma` is *positive*) or lowers :math:`\\beta_{k-1}` by one (its boundary
+    was a cycle that did not bound, and now does: a **death**; :math:`\\sigma` is
     *negative*). A vertex is always positive. Which class dies at a death is
     decided by the elder rule, through the reduction of the boundary matrix (lesson 09).
 

@@ -83,6 +83,8 @@ def simplicial_complex(simplices, positions, *, chain=None, ax=None, title=None,
         ax.set_aspect("equal")
         ax.set_xticks([])
         ax.set_yticks([])
+        for spine in ax.spines.values():
+            spine.set_visible(False)
         if title:
             ax.set_title(title)
     counts = ", ".join(_n(len(by_dim[k]), w) for k, w in ((0, "vertex"), (1, "edge"), (2, "triangle")))
@@ -140,6 +142,8 @@ def boundary_matrix(M, rows, columns, *, ax=None, title=None):
         ax.grid(which="minor", color=COLORS["muted"], lw=0.5)
         ax.grid(which="major", visible=False)
         ax.tick_params(which="minor", length=0)
+        for i, j in zip(*np.nonzero(A)):
+            ax.text(j, i, "1", ha="center", va="center", color="white", fontsize=9)
         if title:
             ax.set_title(title)
     ones = "; ".join(f"column {name(columns[j])} has ones in rows " + ", ".join(name(rows[i]) for i in np.flatnonzero(A[:, j]))
