@@ -11,6 +11,7 @@ Modules, one per concept of the notes:
 ``shapelab.power``            :func:`power_diagram`, :func:`regular_triangulation`, clipped cells
 ``shapelab.filtration``       :func:`alpha_filtration`, :func:`dual_complex`
 ``shapelab.topology``         Betti numbers and persistence of a filtration
+``shapelab.homology``         chains, boundary matrices, Betti numbers over Z/2, by hand
 ``shapelab.cavities``         :func:`voids`, :func:`pockets`, :func:`tunnels`
 ``shapelab.flow``             :func:`discrete_flow`, :func:`flow_pockets`: the literature's pockets
 ``shapelab.freespace``        exact free area/volume of cells (void and pocket volumes)
@@ -102,12 +103,24 @@ _EXPORTS = {
     "report_batch": "batch",
     "trajectory_measures": "trajectory",
     "TrajectoryMeasures": "trajectory",
+    # homology.py: chains, boundary matrices and Betti numbers over Z/2, by hand (lesson 01b)
+    "closure": "homology",
+    "boundary_matrix": "homology",
+    "rank_mod2": "homology",
+    "k_simplices": "homology",
+    "chain_boundary": "homology",
+    "betti_numbers": "homology",
+    "is_cycle": "homology",
+    "is_boundary": "homology",
+    "euler_characteristic": "homology",
+    "positive_simplices": "homology",
 }
 _SUBMODULES = {
     "balls",
     "power",
     "filtration",
     "topology",
+    "homology",
     "cavities",
     "flow",
     "freespace",

@@ -13,6 +13,7 @@ from . import distance as distance
 from . import filtration as filtration
 from . import flow as flow
 from . import freespace as freespace
+from . import homology as homology
 from . import io as io
 from . import matching as matching
 from . import measure as measure
@@ -62,6 +63,16 @@ from .flow import DiscreteFlow as DiscreteFlow
 from .flow import FlowPocket as FlowPocket
 from .flow import discrete_flow as discrete_flow
 from .flow import flow_pockets as flow_pockets
+from .homology import betti_numbers as betti_numbers
+from .homology import boundary_matrix as boundary_matrix
+from .homology import chain_boundary as chain_boundary
+from .homology import closure as closure
+from .homology import euler_characteristic as euler_characteristic
+from .homology import is_boundary as is_boundary
+from .homology import is_cycle as is_cycle
+from .homology import k_simplices as k_simplices
+from .homology import positive_simplices as positive_simplices
+from .homology import rank_mod2 as rank_mod2
 from .io import read_pdb as read_pdb
 from .io import read_structure as read_structure
 from .matching import TranslationMatch as TranslationMatch
@@ -110,9 +121,13 @@ __all__ = [
     "UnionMeasure",
     "Void",
     "alpha_filtration",
+    "betti_numbers",
     "bottleneck_distance",
+    "boundary_matrix",
+    "chain_boundary",
     "channel_profile",
     "classical_mds",
+    "closure",
     "coarse_align",
     "critical_points",
     "curve_persistence",
@@ -120,15 +135,21 @@ __all__ = [
     "discrete_flow",
     "docking_score",
     "dual_complex",
+    "euler_characteristic",
     "flow_pockets",
     "grooves",
     "hausdorff",
     "hausdorff_under_translation",
     "icp",
+    "is_boundary",
+    "is_cycle",
+    "k_simplices",
     "optimal_rotation",
     "pockets",
+    "positive_simplices",
     "power_diagram",
     "power_distance",
+    "rank_mod2",
     "read_pdb",
     "read_structure",
     "reference_point",

@@ -591,8 +591,27 @@ def _later_added(reduce):
     return fn
 
 
+def _rank_over_reals(v, ns):
+    def real_rank(M):  # Gaussian elimination over the reals, not mod 2
+        A = np.asarray(M, dtype=float)
+        return int(np.linalg.matrix_rank(A)) if A.size else 0
+
+    return [*_generic(v), ("the rank over the reals", real_rank)]
+
+
+def _betti_mod2(v, ns):
+    return [*_generic(v), ("the Betti numbers over the rationals", (1, 0, 0)), ("β2 off by one", (*v[:2], v[2] + 1))]
+
+
+def _bounds(v, ns):
+    return [*_generic(v), ("every cycle called a boundary", list(ns["cycle"])), ("nothing bounds", [False] * len(v))]
+
+
 #: ``"lesson stem:name"`` -> ``f(solution's value, the kernel's globals)`` -> [(label, wrong answer)]
 OVERRIDES = {
+    "01b_homology:my_rank_mod2": _rank_over_reals,
+    "01b_homology:betti_rp2": _betti_mod2,
+    "01b_homology:bounds": _bounds,
     "02_dual_complex:my_edge": _edge,
     "03_alpha_filtration:is_attached": _attached,
     "03_alpha_filtration:my_edge_time": _edge_time,

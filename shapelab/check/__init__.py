@@ -25,6 +25,10 @@ _EXPORTS = {
     "euler_characteristic": "topology",
     "betti_numbers": "topology",
     "boundary_reduction": "topology",
+    # homology.py: lesson 01b, chains and Betti numbers by hand
+    "rank_mod2": "homology",
+    "complex_betti": "homology",
+    "cycles_and_boundaries": "homology",
     # matching.py
     "hausdorff": "matching",
     "directed_hausdorff": "matching",

@@ -30,6 +30,9 @@ from .balls import dual_edge as dual_edge
 from .balls import orthogonal_radius as orthogonal_radius
 from .balls import power_distance as power_distance
 from .balls import union_area as union_area
+from .homology import complex_betti as complex_betti
+from .homology import cycles_and_boundaries as cycles_and_boundaries
+from .homology import rank_mod2 as rank_mod2
 from .matching import critical_points as critical_points
 from .matching import directed_hausdorff as directed_hausdorff
 from .matching import hausdorff as hausdorff
@@ -53,9 +56,11 @@ __all__ = [
     "boundary_reduction",
     "buried_area",
     "centroid_alignment",
+    "complex_betti",
     "connected_time",
     "critical_points",
     "curve_pairs",
+    "cycles_and_boundaries",
     "directed_hausdorff",
     "distinct_complexes",
     "dual_edge",
@@ -75,6 +80,7 @@ __all__ = [
     "quaternion_product",
     "quiz",
     "radical_center",
+    "rank_mod2",
     "ring_tunnel",
     "rips_not_nerve",
     "rotation_matrix",

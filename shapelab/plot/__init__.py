@@ -9,6 +9,7 @@ the rest of the library.
 ================  ==============================================================
 ``balls``         disks, power diagrams, dual complexes, filtrations, 3D views
 ``topology``      persistence diagrams, barcodes, Betti curves, voids, pockets
+``homology``      small simplicial complexes, chains, boundary matrices
 ``flow``          the discrete flow in 2D: arrows, sinks, pocket regions
 ``matching``      critical points, Hausdorff witnesses
 ``rotation``      point sets, ICP steps and convergence, rotations in 3D
@@ -41,6 +42,9 @@ _EXPORTS = {
     "pocket_gallery": "topology",
     "tunnels": "topology",
     "channel_profile": "topology",
+    # homology.py: small complexes, chains, boundary matrices (lesson 01b)
+    "simplicial_complex": "homology",
+    "boundary_matrix": "homology",
     # flow.py
     "discrete_flow": "flow",
     # matching.py

@@ -20,6 +20,8 @@ from .balls import power_diagram as power_diagram
 from .batch import batch_summary as batch_summary
 from .batch import trajectory_volumes as trajectory_volumes
 from .flow import discrete_flow as discrete_flow
+from .homology import boundary_matrix as boundary_matrix
+from .homology import simplicial_complex as simplicial_complex
 from .matching import critical_points as critical_points
 from .matching import critical_surface as critical_surface
 from .matching import distance_matrix as distance_matrix
@@ -60,6 +62,7 @@ __all__ = [
     "barcode",
     "batch_summary",
     "betti_curve",
+    "boundary_matrix",
     "channel_profile",
     "complex3d",
     "critical_points",
@@ -83,6 +86,7 @@ __all__ = [
     "point_sets",
     "power_diagram",
     "rotation_axis",
+    "simplicial_complex",
     "stability",
     "trajectory_volumes",
     "tunnels",

@@ -1,0 +1,130 @@
+"""Self-checks for lesson 01b (homology over Z/2): ranks mod 2, Betti numbers of a
+given complex, and which chains are cycles and which are boundaries.
+
+The references are :mod:`shapelab.homology`'s functions, computed here so that the
+lesson shows neither the answer nor the code that finds it.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ._runner import CheckResult, run_check, value
+
+__all__ = ["rank_mod2", "complex_betti", "cycles_and_boundaries"]
+
+
+def _rank_cases():
+    """0/1 matrices: edge cases first (no rows, no columns, zero, one entry, rank
+    deficient over Z/2 but not over the rationals), then boundary matrices of small
+    complexes and seeded random matrices."""
+    from itertools import combinations
+
+    from .. import homology
+
+    yield (np.zeros((0, 0), dtype=np.uint8),)
+    yield (np.zeros((0, 3), dtype=np.uint8),)
+    yield (np.zeros((4, 0), dtype=np.uint8),)
+    yield (np.zeros((3, 3), dtype=np.uint8),)
+    yield (np.array([[0, 0], [0, 1]], dtype=np.uint8),)
+    yield (np.array([[1, 1, 0], [1, 0, 1], [0, 1, 1]], dtype=np.uint8),)   # rank 2 mod 2, 3 over Q
+    yield (np.array([[1, 1], [1, 1], [1, 1]], dtype=np.uint8),)
+    yield (np.eye(5, dtype=np.uint8),)
+    yield (np.array([[0, 1, 1], [0, 1, 1], [0, 0, 1]], dtype=np.uint8),)    # the pivot is not on the diagonal
+    sphere = [s for k in (1, 2, 3) for s in combinations(range(4), k)]
+    torus = homology.closure([tri for i in range(7) for tri in ((i, (i + 1) % 7, (i + 3) % 7), (i, (i + 2) % 7, (i + 3) % 7))])
+    for K in (sphere, torus):
+        for k in (1, 2):
+            yield (homology.boundary_matrix(K, k),)
+    rng = np.random.default_rng(2026)
+    for _ in range(40):
+        m, n = (int(x) for x in rng.integers(1, 13, size=2))
+        p = float(rng.choice([0.15, 0.5, 0.85]))
+        yield ((rng.random((m, n)) < p).astype(np.uint8),)
+    # products of two thin matrices: low rank, many dependent rows
+    for _ in range(10):
+        r = int(rng.integers(1, 5))
+        A = rng.integers(0, 2, size=(int(rng.integers(r, 12)), r))
+        B = rng.integers(0, 2, size=(r, int(rng.integers(r, 12))))
+        yield (((A @ B) % 2).astype(np.uint8),)
+
+
+def rank_mod2(student_fn, *, quiet: bool = False) -> CheckResult:
+    """Check ``student_fn(M) -> int``, the rank of a 0/1 matrix over Z/2.
+
+    Cases: empty and zero matrices, a matrix whose rank differs over Z/2 and over the
+    rationals, boundary matrices of a sphere and a torus, then seeded random
+    matrices (of full and of low rank), against :func:`shapelab.homology.rank_mod2`.
+
+    See Also
+    --------
+    shapelab.homology.rank_mod2 : the reference.
+    """
+    from .. import homology
+
+    def compare(expected, received):
+        if isinstance(received, (bool, np.bool_)) or not isinstance(received, (int, np.integer, float, np.floating)):
+            return False
+        return float(received) == float(expected)
+
+    return run_check(
+        "rank over Z/2",
+        student_fn,
+        list(_rank_cases()),
+        homology.rank_mod2,
+        compare=compare,
+        describe=lambda case: "M =\n  " + np.array2string(np.asarray(case[0]), separator=" ").replace("\n", "\n  "),
+        quiet=quiet,
+    )
+
+
+def complex_betti(betti, simplices) -> CheckResult:
+    """Lesson 01b: the Betti numbers :math:`(\\beta_0, \\dots, \\beta_d)` over Z/2 of the
+    complex ``simplices``, compared entry by entry without showing them.
+
+    See Also
+    --------
+    shapelab.homology.betti_numbers : the reference.
+    """
+    from .. import homology
+
+    expected = homology.betti_numbers(simplices)
+    if betti is None or isinstance(betti, (str, bytes)) or not hasattr(betti, "__len__"):
+        return value("Betti numbers (β0, β1, β2)", betti, expected)
+    return value("Betti numbers (β0, β1, β2)", list(betti), list(expected))
+
+
+def cycles_and_boundaries(cycle, boundary, chains, simplices) -> CheckResult:
+    """Lesson 01b: for each chain of ``chains``, is it a cycle (``cycle[i]``) and is it
+    a boundary in ``simplices`` (``boundary[i]``)?  Both lists are compared entry by
+    entry; a chain claimed to be a boundary but not a cycle gets the hint that every
+    boundary is a cycle.
+
+    See Also
+    --------
+    shapelab.homology.is_cycle : the reference for ``cycle``.
+    shapelab.homology.is_boundary : the reference for ``boundary``.
+    """
+    from .. import homology
+
+    name = "cycles and boundaries"
+    want_c = [homology.is_cycle(c, simplices) for c in chains]
+    want_b = [homology.is_boundary(c, simplices) for c in chains]
+    problems = []
+    for label, got, want in (("cycle", cycle, want_c), ("boundary", boundary, want_b)):
+        if not isinstance(got, (list, tuple, np.ndarray)) or len(got) != len(want):
+            problems.append(f"`{label}` should be a list of {len(want)} truth values, one per chain")
+            continue
+        if not all(isinstance(x, (bool, np.bool_)) for x in got):
+            problems.append(f"`{label}` should hold True or False, one per chain")
+            continue
+        wrong = [i for i, (g, w) in enumerate(zip(got, want)) if bool(g) != w]
+        if wrong:
+            problems.append(f"`{label}`: {len(wrong)} of {len(want)} entries are wrong, the first for chain {wrong[0]}")
+    if isinstance(cycle, (list, tuple, np.ndarray)) and isinstance(boundary, (list, tuple, np.ndarray)):
+        if len(cycle) == len(boundary) == len(chains) and any(bool(b) and not bool(c) for c, b in zip(cycle, boundary)):
+            problems.append("you call a chain a boundary but not a cycle: every boundary is a cycle (∂∂ = 0)")
+    passed = not problems
+    msg = f"✓ {name}: correct." if passed else f"✗ {name}: not quite: " + "; ".join(problems) + "."
+    print(msg)
+    return CheckResult(name, passed, len(chains), msg)
