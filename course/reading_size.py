@@ -39,7 +39,7 @@ ALGORITHMS = {
     "voids": "voids",
     "pockets": "pockets",
     "tunnels": "tunnels",
-    "persistence": "topology.persistence",
+    "persistence": "persistence.persistence",
     "Hausdorff distance": "hausdorff",
     "ICP": "icp",
     "optimal rotation (Horn)": "optimal_rotation",

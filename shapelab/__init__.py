@@ -10,7 +10,7 @@ Modules, one per concept of the notes:
 ``shapelab.balls``            :class:`Balls`, :func:`power_distance` (§23.1)
 ``shapelab.power``            :func:`power_diagram`, :func:`regular_triangulation`, clipped cells
 ``shapelab.filtration``       :func:`alpha_filtration`, :func:`dual_complex`
-``shapelab.topology``         Betti numbers and persistence of a filtration
+``shapelab.persistence``      Betti numbers, persistence: the boundary-matrix reduction
 ``shapelab.homology``         chains, boundary matrices, Betti numbers over Z/2, by hand
 ``shapelab.cavities``         :func:`voids`, :func:`pockets`, :func:`tunnels`
 ``shapelab.flow``             :func:`discrete_flow`, :func:`flow_pockets`: the literature's pockets
@@ -18,8 +18,10 @@ Modules, one per concept of the notes:
 ``shapelab.measure``          :func:`union_measure` (area/volume of a union)
 ``shapelab.oracles``          brute-force and sampling oracles (naive formula, Monte Carlo)
 ``shapelab.quaternion``       :class:`Quaternion` (§23.2, rotations)
-``shapelab.registration``     :func:`optimal_rotation`, :func:`register`, :func:`icp`
-``shapelab.distance``         :func:`hausdorff`, :func:`directed_hausdorff` (§23.2)
+``shapelab.rotation``         :func:`optimal_rotation` (Horn), :func:`register`, :class:`RigidMotion`
+``shapelab.icp``              :func:`icp`: the notes' four steps (the function; module by import)
+``shapelab.registration``     both of the above, re-exported
+``shapelab.hausdorff``        :func:`hausdorff`, :func:`directed_hausdorff` (§23.2; module by import)
 ``shapelab.matching``         :func:`hausdorff_under_translation`, reference points
 ``shapelab.critical``         :func:`critical_points` on curves and surfaces
 ``shapelab.simplification``   :func:`simplify`: ε-simplification along a curve (ELZ 2002)
@@ -72,13 +74,13 @@ _EXPORTS = {
     "DiscreteFlow": "flow",
     "FlowPocket": "flow",
     "Quaternion": "quaternion",
-    "optimal_rotation": "registration",
-    "register": "registration",
-    "RigidMotion": "registration",
-    "icp": "registration",
-    "ICPResult": "registration",
-    "directed_hausdorff": "distance",
-    "hausdorff": "distance",
+    "optimal_rotation": "rotation",
+    "register": "rotation",
+    "RigidMotion": "rotation",
+    "icp": "icp",
+    "ICPResult": "icp",
+    "directed_hausdorff": "hausdorff",
+    "hausdorff": "hausdorff",
     "hausdorff_under_translation": "matching",
     "TranslationMatch": "matching",
     "reference_point": "matching",
@@ -121,6 +123,7 @@ _SUBMODULES = {
     "filtration",
     "topology",
     "homology",
+    "persistence",
     "cavities",
     "flow",
     "freespace",
@@ -128,6 +131,7 @@ _SUBMODULES = {
     "oracles",
     "quaternion",
     "registration",
+    "rotation",
     "distance",
     "matching",
     "critical",
@@ -151,5 +155,5 @@ __getattr__, __dir__ = attach(__name__, _EXPORTS, _SUBMODULES, eager=__all__)
 
 #: modules that moved (issue 33), by their old name: ``import shapelab.power`` still
 #: gives the module now called ``shapelab.triangulation``
-_MOVED: dict[str, str] = {}
+_MOVED: dict[str, str] = {"topology": "persistence", "distance": "hausdorff"}
 moved(__name__, _MOVED)

@@ -19,10 +19,12 @@ from . import matching as matching
 from . import measure as measure
 from . import oracles as oracles
 from . import peers as peers
+from . import persistence as persistence
 from . import plot as plot
 from . import power as power
 from . import quaternion as quaternion
 from . import registration as registration
+from . import rotation as rotation
 from . import simplification as simplification
 from . import topology as topology
 from . import trajectory as trajectory
@@ -46,8 +48,6 @@ from .critical import critical_points as critical_points
 from .diagrams import DiagramMatching as DiagramMatching
 from .diagrams import bottleneck_distance as bottleneck_distance
 from .diagrams import wasserstein_distance as wasserstein_distance
-from .distance import directed_hausdorff as directed_hausdorff
-from .distance import hausdorff as hausdorff
 from .docking import DockedPose as DockedPose
 from .docking import Docking as Docking
 from .docking import DockingScore as DockingScore
@@ -63,6 +63,8 @@ from .flow import DiscreteFlow as DiscreteFlow
 from .flow import FlowPocket as FlowPocket
 from .flow import discrete_flow as discrete_flow
 from .flow import flow_pockets as flow_pockets
+from .hausdorff import directed_hausdorff as directed_hausdorff
+from .hausdorff import hausdorff as hausdorff
 from .homology import betti_numbers as betti_numbers
 from .homology import boundary_matrix as boundary_matrix
 from .homology import chain_boundary as chain_boundary
@@ -73,6 +75,8 @@ from .homology import is_cycle as is_cycle
 from .homology import k_simplices as k_simplices
 from .homology import positive_simplices as positive_simplices
 from .homology import rank_mod2 as rank_mod2
+from .icp import ICPResult as ICPResult
+from .icp import icp as icp
 from .io import read_pdb as read_pdb
 from .io import read_structure as read_structure
 from .matching import TranslationMatch as TranslationMatch
@@ -84,11 +88,9 @@ from .power import PowerDiagram as PowerDiagram
 from .power import power_diagram as power_diagram
 from .power import regular_triangulation as regular_triangulation
 from .quaternion import Quaternion as Quaternion
-from .registration import ICPResult as ICPResult
-from .registration import RigidMotion as RigidMotion
-from .registration import icp as icp
-from .registration import optimal_rotation as optimal_rotation
-from .registration import register as register
+from .rotation import RigidMotion as RigidMotion
+from .rotation import optimal_rotation as optimal_rotation
+from .rotation import register as register
 from .simplification import curve_persistence as curve_persistence
 from .simplification import simplify as simplify
 from .trajectory import TrajectoryMeasures as TrajectoryMeasures

@@ -13,6 +13,7 @@ import importlib
 import importlib.abc
 import importlib.util
 import sys
+import types
 
 __all__ = ["attach", "moved"]
 
@@ -35,7 +36,10 @@ def attach(package: str, exports: dict, submodules=(), eager=()):
     """
     exports = dict(exports)
     submodules = frozenset(submodules)
-    namespace = importlib.import_module(package).__dict__
+    module = importlib.import_module(package)
+    namespace = module.__dict__
+    namespace["_lazy_names"] = frozenset(exports)
+    module.__class__ = _Package
 
     def __getattr__(name: str):
         if name in exports:
@@ -51,6 +55,23 @@ def attach(package: str, exports: dict, submodules=(), eager=()):
         return sorted(set(namespace) | set(exports) | submodules | set(eager))
 
     return __getattr__, __dir__
+
+
+class _Package(types.ModuleType):
+    """A package whose public names win over its submodules of the same name.
+
+    ``shapelab.hausdorff`` is the function, defined in the module ``shapelab.hausdorff``
+    (likewise ``icp``).  Importing a submodule binds it as an attribute of its package;
+    here that binding is skipped when the name is one of the package's lazy exports,
+    so ``shapelab.hausdorff`` stays the function after ``from shapelab.hausdorff import
+    directed_hausdorff``.  (``import shapelab.hausdorff as m`` gives the function too:
+    write ``from shapelab import ...`` or ``importlib.import_module`` for the module.)
+    """
+
+    def __setattr__(self, name, value):
+        if isinstance(value, types.ModuleType) and name in self.__dict__.get("_lazy_names", ()):
+            return
+        super().__setattr__(name, value)
 
 
 class _Alias(importlib.abc.MetaPathFinder, importlib.abc.Loader):

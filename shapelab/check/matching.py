@@ -47,7 +47,7 @@ def directed_hausdorff(fn, *, quiet: bool = False) -> CheckResult:
     shapelab.directed_hausdorff
         The reference.
     """
-    from ..distance import directed_hausdorff as ref
+    from ..hausdorff import directed_hausdorff as ref
 
     return run_check(
         "directed Hausdorff distance",
@@ -68,7 +68,7 @@ def hausdorff(fn, *, quiet: bool = False) -> CheckResult:
     shapelab.hausdorff
         The reference.
     """
-    from ..distance import hausdorff as ref
+    from ..hausdorff import hausdorff as ref
 
     return run_check(
         "Hausdorff distance", fn, _pair_cases(), ref, allclose(1e-9, 1e-9), describe=_describe, quiet=quiet

@@ -210,7 +210,7 @@ def _pairs_from_low(F, B, low) -> dict:
     every non-zero column, ``(value[j], inf)`` for every zero column that is nobody's
     lowest one; zero-length pairs dropped, and those that :func:`shapelab.topology.is_roundoff`
     calls round-off of tied entry times, as :meth:`Filtration.persistence` does."""
-    from shapelab.topology import is_roundoff
+    from shapelab.persistence import is_roundoff
 
     low = np.asarray(low, dtype=np.int64)
     j = np.flatnonzero(low >= 0)
@@ -336,7 +336,7 @@ def boundary_reduction(student_fn, *, quiet: bool = False) -> CheckResult:
     shapelab.filtration.Filtration.boundary_matrix
         The matrix reduced.
     """
-    from shapelab.topology import reduce_boundary
+    from shapelab.persistence import reduce_boundary
 
     cases = [(D,) for D in _hand_made_matrices()]
     try:

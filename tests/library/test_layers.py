@@ -202,7 +202,7 @@ def test_the_checks_can_fail(tmp_path):
     assert layer("shapelab._toolkit.validate") < layer("shapelab.balls")
 
 
-@pytest.mark.parametrize("module", ["shapelab.filtration", "shapelab.topology", "shapelab.cavities"])
+@pytest.mark.parametrize("module", ["shapelab.filtration", "shapelab.persistence", "shapelab.cavities"])
 def test_graph_sees_function_level_imports(module):
     assert module in import_graph()
 

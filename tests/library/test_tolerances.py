@@ -25,7 +25,8 @@ import re
 
 import numpy as np
 
-from shapelab import distance, filtration, measure, topology
+from shapelab import filtration, measure, topology
+from shapelab._engine import hausdorff as distance
 from shapelab._toolkit import tolerances as T
 from shapelab.exact import predicates
 

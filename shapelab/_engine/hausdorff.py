@@ -1,30 +1,4 @@
-"""The Hausdorff distance between point sets, exact and fast (notes §23.2).
-
-The notes define, for two finite point sets R and G,
-
-.. math::
-
-    H(R, G) = \\max\\Big\\{\\max_{g\\in G}\\min_{r\\in R} d(g, r),\\;
-                          \\max_{r\\in R}\\min_{g\\in G} d(r, g)\\Big\\},
-
-the larger of the two *directed* distances
-:math:`h(A, B) = \\max_{a\\in A}\\min_{b\\in B} |a - b|`.  (The notes write
-``d(g, r)`` in one term and ``d(r, g)`` in the other; since ``d`` is symmetric
-this is only cosmetic.)
-
-Public functions
-----------------
-:func:`directed_hausdorff`
-    h(A, B) with a witness pair ``(i, j)``: ``A[i]`` is a point of A farthest
-    from B and ``B[j]`` is its nearest neighbour in B.
-:func:`hausdorff`
-    H(A, B) as a float.
-:func:`hausdorff_kdtree`, :func:`hausdorff_early_break`, :func:`timings`
-    the classical algorithms, for comparison (lesson 12).
-
-Matching under translation, :func:`shapelab.hausdorff_under_translation`, is in
-:mod:`shapelab.matching`.  This module is ``shapelab.distance`` and not
-``shapelab.hausdorff``, so that ``shapelab.hausdorff`` is always the function.
+"""The fast kernels behind :mod:`shapelab.hausdorff` (the engine, not required reading).
 
 The algorithm
 -------------
@@ -97,28 +71,17 @@ and the witness pair is valid.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, NamedTuple
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ._toolkit import tolerances as tol
-from ._toolkit.geometry import kdtree
-from ._toolkit.validate import as_point_pair, as_positive_int
+from .._toolkit import tolerances as tol
+from .._toolkit.geometry import kdtree
 
 if TYPE_CHECKING:  # the tree is built by _toolkit.geometry.kdtree, imported on first use
     from scipy.spatial import cKDTree
 
-__all__ = [
-    "DirectedHausdorff",
-    "directed_hausdorff",
-    "hausdorff",
-    "hausdorff_pair",
-    "hausdorff_kdtree",
-    "hausdorff_early_break",
-    "Timings",
-    "timings",
-]
+__all__ = ["METHODS", "directed"]
 
 _EPS = np.finfo(np.float64).eps
 #: Problems with at most this many point pairs are solved by brute force.
@@ -131,29 +94,6 @@ _GROUP = 8
 _GRID_CELLS = 2048
 #: Point pairs below which the coarse-to-fine stage finishes by brute force.
 _LEAF_PAIRS = 1 << 20
-
-
-class DirectedHausdorff(NamedTuple):
-    """The directed Hausdorff distance h(A, B) with its witness pair.
-
-    Attributes
-    ----------
-    distance : float
-        ``max_a min_b |a - b|``.
-    i : int
-        Index of a point of A realising the maximum.
-    j : int
-        Index of the nearest point of B to ``A[i]``; ``|A[i] - B[j]| == distance``.
-
-    See Also
-    --------
-    directed_hausdorff
-        Computes it.
-    """
-
-    distance: float
-    i: int
-    j: int
 
 
 # --------------------------------------------------------------------------- #
@@ -787,17 +727,8 @@ def _directed_grid(
         gS = gD = None
 
 
-def _validate_pair(A, B) -> tuple[np.ndarray, np.ndarray]:
-    return as_point_pair(A, B)
-
-
-_METHODS = ("auto", "brute", "pruned", "grid")
-
-
-def _check_method(method: str) -> str:
-    if method not in _METHODS:
-        raise ValueError(f"method must be one of {_METHODS}, got {method!r}")
-    return method
+#: the values of the ``method`` seam the engine runs
+METHODS = ("auto", "brute", "pruned", "grid")
 
 
 def _run(src: _Cloud, dst: _Cloud, best: _Best, method: str) -> _Best:
@@ -846,281 +777,9 @@ class _Problem:
         return _directed_grid(self.A, self.B, best, self._grid(0), self._grid(1), clouds)
 
 
-# --------------------------------------------------------------------------- #
-# Public API                                                                   #
-# --------------------------------------------------------------------------- #
-def directed_hausdorff(A, B, *, method: str = "auto") -> DirectedHausdorff:
-    """The directed Hausdorff distance h(A, B) and a witness pair (notes §23.2).
-
-    .. math:: h(A, B) = \\max_{a \\in A} \\min_{b \\in B} |a - b|
-
-    One of the two terms of the notes' H(R, G).  It is not symmetric:
-    ``h(A, B) = 0`` whenever A is a subset of B.
-
-    Parameters
-    ----------
-    A, B : array_like, shape (n, d) and (m, d)
-        Two finite point sets of the same dimension d >= 1.  Duplicates are
-        allowed.
-    method : {"auto", "brute", "pruned", "grid"}
-        ``"auto"`` (default) uses brute force for small problems
-        (n * m <= 2**21) and otherwise the coarse-to-fine stage of the module
-        docstring, which hands over to the pruned algorithm (batched early
-        break, k-d tree) when the sets overlap.  ``"grid"`` is ``"auto"`` without
-        the brute-force shortcut, ``"pruned"`` skips the grid.  All give the same
-        distance, bit for bit.
-
-    Returns
-    -------
-    DirectedHausdorff
-        ``(distance, i, j)``: ``distance == |A[i] - B[j]|`` and ``B[j]`` is a
-        nearest point of B to ``A[i]``.  Unpacks like scipy's result.
-
-    Raises
-    ------
-    ValueError
-        If A or B is empty, not 2-D, not finite, or their dimensions differ.
-
-    See Also
-    --------
-    hausdorff
-        The symmetric distance, the larger of both directions.
-    scipy.spatial.distance.directed_hausdorff
-        SciPy's early-break algorithm.
-
-    Notes
-    -----
-    Exact: equal to ``max_i min_j sqrt(sum((A[i] - B[j])**2))`` computed by brute
-    force (coordinates summed in order).  On 10⁶ × 10⁶ points in 3D,
-    :func:`hausdorff` is faster than the faster of
-    :func:`scipy.spatial.distance.directed_hausdorff` and a two-way
-    :class:`scipy.spatial.cKDTree` query, whether the sets overlap or are far
-    apart (``benchmarks/cases/matching.py``); on small sets the classical
-    algorithm suited to the regime can be a little faster.
-
-    References
-    ----------
-    .. [1] D. P. Huttenlocher, G. A. Klanderman and W. J. Rucklidge, "Comparing images
-           using the Hausdorff distance", *IEEE Trans. Pattern Anal. Mach. Intell.*
-           15(9):850-863, 1993. doi:10.1109/34.232073
-    .. [2] A. A. Taha and A. Hanbury, "An efficient algorithm for calculating the exact
-           Hausdorff distance", *IEEE Trans. Pattern Anal. Mach. Intell.*
-           37(11):2153-2163, 2015. doi:10.1109/TPAMI.2015.2408351
-
-    Examples
-    --------
-    >>> directed_hausdorff([[0.0, 0.0], [3.0, 0.0]], [[0.0, 1.0]])
-    DirectedHausdorff(distance=3.1622776601683795, i=1, j=0)
-    """
-    method = _check_method(method)
-    A, B = _validate_pair(A, B)
-    best = _Problem(A, B, method).directed(False, _Best())
-    return DirectedHausdorff(float(np.sqrt(best.d2)), best.i, best.j)
-
-
-def hausdorff(A, B, *, method: str = "auto") -> float:
-    """The Hausdorff distance H(A, B) of the notes (§23.2).
-
-    .. math:: H(A, B) = \\max\\{h(A, B),\\, h(B, A)\\}
-
-    Symmetric, zero exactly when the two sets (as sets) are equal, and a metric
-    on finite sets.  The second directed distance is computed knowing the first
-    as a lower bound, which prunes most of it.
-
-    Parameters
-    ----------
-    A, B : array_like, shape (n, d) and (m, d)
-        Two finite point sets of the same dimension.
-    method : {"auto", "brute", "pruned", "grid"}
-        See :func:`directed_hausdorff`.
-
-    Returns
-    -------
-    float
-        Equal bit for bit to brute force.
-
-    See Also
-    --------
-    directed_hausdorff
-        One direction, with its witness.
-    hausdorff_under_translation
-        Minimised over translations.
-
-    References
-    ----------
-    .. [1] D. P. Huttenlocher, G. A. Klanderman and W. J. Rucklidge, "Comparing images
-           using the Hausdorff distance", *IEEE Trans. Pattern Anal. Mach. Intell.*
-           15(9):850-863, 1993. doi:10.1109/34.232073
-
-    Examples
-    --------
-    >>> hausdorff([[0.0], [1.0]], [[0.0], [3.0]])
-    2.0
-    """
-    method = _check_method(method)
-    A, B = _validate_pair(A, B)
-    prob = _Problem(A, B, method)
-    best = prob.directed(False, _Best())
-    best = prob.directed(True, _Best(best.d2))
-    return float(np.sqrt(best.d2))
-
-
-def hausdorff_pair(A, B, *, method: str = "auto") -> tuple[DirectedHausdorff, DirectedHausdorff]:
-    """Both directed distances ``(h(A, B), h(B, A))`` with their witnesses.
-
-    Used by :func:`shapelab.plot.matching.hausdorff` to draw the two witness
-    segments; slower than :func:`hausdorff`, which prunes the second direction
-    with the first.
-
-    See Also
-    --------
-    hausdorff
-        The larger of the two.
-    directed_hausdorff
-        One direction.
-
-    References
-    ----------
-    .. [1] D. P. Huttenlocher, G. A. Klanderman and W. J. Rucklidge, "Comparing images
-           using the Hausdorff distance", *IEEE Trans. Pattern Anal. Mach. Intell.*
-           15(9):850-863, 1993. doi:10.1109/34.232073
-    """
-    method = _check_method(method)
-    A, B = _validate_pair(A, B)
-    prob = _Problem(A, B, method)
-    ab = prob.directed(False, _Best())
-    ba = prob.directed(True, _Best())
-    return (DirectedHausdorff(float(np.sqrt(ab.d2)), ab.i, ab.j), DirectedHausdorff(float(np.sqrt(ba.d2)), ba.i, ba.j))
-
-
-# --------------------------------------------------------------------------- #
-# Matching under translation                                                   #
-# --------------------------------------------------------------------------- #
-
-
-def hausdorff_kdtree(A, B) -> float:
-    """H(A, B) by two k-d tree queries (scipy ``cKDTree``, every nearest neighbour).
-
-    The reference "k-d tree" algorithm of the benchmarks: fast when the sets
-    overlap, slow when they are far apart.
-
-    See Also
-    --------
-    hausdorff
-        The library's default.
-    hausdorff_early_break
-        SciPy's early break.
-
-    References
-    ----------
-    .. [1] D. P. Huttenlocher, G. A. Klanderman and W. J. Rucklidge, "Comparing images
-           using the Hausdorff distance", *IEEE Trans. Pattern Anal. Mach. Intell.*
-           15(9):850-863, 1993. doi:10.1109/34.232073
-    """
-    A, B = _validate_pair(A, B)
-    hab = kdtree(B).query(A, k=1, workers=-1)[0].max()
-    hba = kdtree(A).query(B, k=1, workers=-1)[0].max()
-    return float(max(hab, hba))
-
-
-def hausdorff_early_break(A, B, seed: int = 0) -> float:
-    """H(A, B) by scipy's early-break algorithm (Taha & Hanbury), both directions.
-
-    Fast when the sets are far apart, slow when they overlap.
-
-    See Also
-    --------
-    hausdorff
-        The library's default.
-    hausdorff_kdtree
-        Two k-d tree queries.
-
-    References
-    ----------
-    .. [1] A. A. Taha and A. Hanbury, "An efficient algorithm for calculating the exact
-           Hausdorff distance", *IEEE Trans. Pattern Anal. Mach. Intell.*
-           37(11):2153-2163, 2015. doi:10.1109/TPAMI.2015.2408351
-    """
-    from scipy.spatial.distance import directed_hausdorff as _scipy_dh
-
-    A, B = _validate_pair(A, B)
-    return float(max(_scipy_dh(A, B, seed=seed)[0], _scipy_dh(B, A, seed=seed)[0]))
-
-
-@dataclass(frozen=True, eq=False)
-class Timings:
-    """Wall times (best of ``repeat``) and results of several Hausdorff algorithms.
-
-    Attributes
-    ----------
-    seconds : dict
-        ``{name: seconds}``.
-    values : dict
-        ``{name: H(A, B)}``; all equal when the algorithms are exact.
-
-    See Also
-    --------
-    timings
-        Produces it.
-    """
-
-    seconds: dict
-    values: dict
-
-    @property
-    def agree(self) -> bool:
-        """Whether every algorithm returned the same distance (to 1e-12 relative)."""
-        v = np.array(list(self.values.values()))
-        return bool(np.allclose(v, v[0], rtol=tol.DISTANCE_AGREE, atol=0.0))
-
-
-def timings(A, B, *, repeat: int = 3, brute: bool = True) -> Timings:
-    """Time brute force, a k-d tree, scipy's early break and :func:`hausdorff`.
-
-    Each algorithm first runs once untimed (a warm-up: the first k-d tree call
-    imports ``scipy.spatial``, 0.3-0.8 s, which is not the algorithm's cost), then
-    the best of ``repeat`` timed runs is kept.
-
-    Parameters
-    ----------
-    A, B : array_like
-    repeat : int
-        Best of this many timed runs per algorithm, after the untimed warm-up.
-    brute : bool
-        Include brute force (``n * m`` distances; keep the sets small).
-
-    Returns
-    -------
-    Timings
-
-    See Also
-    --------
-    hausdorff
-        The library's default algorithm.
-
-    References
-    ----------
-    .. [1] A. A. Taha and A. Hanbury, "An efficient algorithm for calculating the exact
-           Hausdorff distance", *IEEE Trans. Pattern Anal. Mach. Intell.*
-           37(11):2153-2163, 2015. doi:10.1109/TPAMI.2015.2408351
-    """
-    import time
-
-    A, B = _validate_pair(A, B)
-    repeat = as_positive_int(repeat, "repeat")
-    algos = {}
-    if brute:
-        algos["brute force"] = lambda: hausdorff(A, B, method="brute")
-    algos["k-d tree (scipy)"] = lambda: hausdorff_kdtree(A, B)
-    algos["early break (scipy)"] = lambda: hausdorff_early_break(A, B)
-    algos["shapelab"] = lambda: hausdorff(A, B)
-    seconds, values = {}, {}
-    for name, fn in algos.items():
-        fn()  # warm-up, untimed: first-call imports and allocations are not the algorithm
-        best = np.inf
-        for _ in range(repeat):
-            t0 = time.perf_counter()
-            values[name] = float(fn())
-            best = min(best, time.perf_counter() - t0)
-        seconds[name] = best
-    return Timings(seconds, values)
+def directed(A: np.ndarray, B: np.ndarray, method: str, swap: bool = False, floor2: float = -1.0, problem=None):
+    """``(d2, i, j)``: the squared directed distance h(A, B) (h(B, A) if ``swap``) with its
+    witness, exact; ``floor2`` a known lower bound of the square (pruning only)."""
+    prob = _Problem(A, B, method) if problem is None else problem
+    best = prob.directed(swap, _Best(floor2))
+    return best.d2, best.i, best.j, prob
