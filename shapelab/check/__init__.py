@@ -25,6 +25,8 @@ _EXPORTS = {
     "euler_characteristic": "topology",
     "betti_numbers": "topology",
     "boundary_reduction": "topology",
+    # flow.py: the discrete flow (lesson 07b)
+    "flow_order": "flow",
     # matching.py
     "hausdorff": "matching",
     "directed_hausdorff": "matching",

@@ -41,6 +41,8 @@ _EXPORTS = {
     "pocket_gallery": "topology",
     "tunnels": "topology",
     "channel_profile": "topology",
+    "reduced_matrix": "topology",
+    "voxel_slice": "topology",
     # flow.py
     "discrete_flow": "flow",
     # matching.py
