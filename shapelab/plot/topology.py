@@ -35,6 +35,8 @@ __all__ = [
     "pocket_gallery",
     "tunnels",
     "channel_profile",
+    "reduced_matrix",
+    "voxel_slice",
 ]
 
 _MARKERS = ("o", "s", "^", "D")
