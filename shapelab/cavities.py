@@ -219,7 +219,11 @@ class Pocket(MeasuredRegion):
     mouth_size : float
         Total size of the mouth simplices: length in 2D, area in 3D.
     lining : ndarray, int
-        Balls lining the pocket: vertices of its cells whose balls exist at ``tau``.
+        The pocket's *lining atoms*: the balls at the vertices of its cells that exist
+        at ``tau``.  Not the report's ``lining_atoms``
+        (:class:`shapelab.cavity_report.CavityRow`), its *wall atoms*: the balls whose
+        sphere bounds the free space inside the cells, which a ball can do without
+        being a vertex of them (lesson 07b).
     closes_at : float
         The τ′ > τ at which the mouth closes and the pocket becomes a void.
     fills_at : float

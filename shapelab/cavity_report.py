@@ -62,8 +62,13 @@ class CavityRow:
         Persistence of the feature in the growth parameter τ (Å²): for a void
         ``Void.born``/``Void.dies``, for a pocket ``Pocket.closes_at``/``fills_at``.
     lining_atoms : tuple of int
-        Indices (into the structure's atoms) of the atoms whose SA sphere bounds the
-        cavity: positive wall area inside its cells.
+        The cavity's *wall atoms*, CASTp's sense of lining: indices (into the
+        structure's atoms) of the atoms whose SA sphere bounds the cavity's free space,
+        with positive wall area inside its cells.  A sphere can reach into a cell of
+        which its atom is no vertex, so this is not ``Pocket.lining`` / ``Void.lining``
+        (the *lining atoms*, the cells' vertices): HIV-1 protease's largest pocket
+        (1HVR, probe 1.4 Å) has 58 wall atoms of 26 residues and 36 lining atoms of 23
+        (lesson 07b).
     lining_atom_names : tuple of str
         Their atom names (``""`` for bare balls).
     lining_residues : tuple of (str, str, int)

@@ -148,8 +148,9 @@ class FlowPocket(MeasuredRegion):
         flows to :math:`\\infty` reaches it through open facets and simplices that
         flow there too, never through the region), tested.
     lining : ndarray, int
-        Balls lining the region: vertices of its cells whose balls exist at ``tau``
-        (as for :class:`~shapelab.cavities.Pocket`).
+        The region's *lining atoms*: the balls at the vertices of its cells that exist
+        at ``tau`` (as :attr:`shapelab.cavities.Pocket.lining`; not the report's wall
+        atoms, :class:`shapelab.cavity_report.CavityRow`).
     closes_at, fills_at : float
         The pair ``(born, dies)`` of the most persistent growth-model class rooted in
         the region: the :math:`H_{d-1}` class of the merge tree whose youngest cell (the

@@ -20,7 +20,11 @@ there, and orders them by a small score:
   the atom centres, 0 outside it;
 * **n_lining**: the number of lining atoms.
 
-The *centre* of a cavity is the centroid of its lining atoms, the point the DCA
+The lining atoms here are whatever atoms the caller passes as a cavity's ``lining``;
+:func:`shapelab.report` passes its *wall atoms* (``CavityRow.lining_atoms``: the atoms whose SA sphere bounds
+the cavity's free space), not ``Pocket.lining`` (the vertices of its cells).
+
+The *centre* of a cavity is the centroid of those atoms, the point the DCA
 criterion of binding-site benchmarks measures (a site is found when the centre is
 within 4 Å of a ligand atom; Krivák and Hoksza 2018, P2Rank).
 

@@ -606,6 +606,28 @@ def _betti_mod2(v, ns):
 def _bounds(v, ns):
     return [*_generic(v), ("every cycle called a boundary", list(ns["cycle"])), ("nothing bounds", [False] * len(v))]
 
+def _flow_order(v, ns):
+    def rho(balls, c, weighted):
+        z = balls.centers[c]
+        w = balls.radii[c] ** 2 if weighted else np.zeros(len(c))
+        A = 2 * (z[1:] - z[0])
+        b = (z[1:] ** 2).sum(1) - w[1:] - (z[0] ** 2).sum() + w[0]
+        y = np.linalg.solve(A, b)
+        return float(((y - z[0]) ** 2).sum() - w[0])
+
+    def unweighted(balls, cells):  # the circumradius of the centres: right for one radius only
+        return sorted(range(len(cells)), key=lambda n: rho(balls, cells[n], False))
+
+    def reverse(balls, cells):  # downhill: every arrow backwards
+        return sorted(range(len(cells)), key=lambda n: -rho(balls, cells[n], True))
+
+    return [
+        *_generic(v),
+        ("the order given", lambda balls, cells: list(range(len(cells)))),
+        ("the circumradius of the centres, weights ignored", unweighted),
+        ("the orthosphere's power, largest first", reverse),
+    ]
+
 
 #: ``"lesson stem:name"`` -> ``f(solution's value, the kernel's globals)`` -> [(label, wrong answer)]
 OVERRIDES = {
@@ -618,7 +640,8 @@ OVERRIDES = {
     "06_voids:n_bounded": _bounded_counts,
     "07_pockets:my_closes_at": _closes_at,
     "07_pockets:r_closed": _r_closed,
-    "07_pockets:my_sinks": _flow_sinks,
+    "07b_pocket_flow:my_sinks": _flow_sinks,
+    "07b_pocket_flow:my_flow_order": _flow_order,
     "05_dual_complex_3d:chis": _chis,
     "08_tunnels:is_closed_chain": _closed_chain,
     "09_persistence:betti_from_pairs": _betti_from_pairs,

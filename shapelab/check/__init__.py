@@ -29,6 +29,8 @@ _EXPORTS = {
     "rank_mod2": "homology",
     "complex_betti": "homology",
     "cycles_and_boundaries": "homology",
+    # flow.py: the discrete flow (lesson 07b)
+    "flow_order": "flow",
     # matching.py
     "hausdorff": "matching",
     "directed_hausdorff": "matching",

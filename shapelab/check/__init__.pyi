@@ -30,6 +30,7 @@ from .balls import dual_edge as dual_edge
 from .balls import orthogonal_radius as orthogonal_radius
 from .balls import power_distance as power_distance
 from .balls import union_area as union_area
+from .flow import flow_order as flow_order
 from .homology import complex_betti as complex_betti
 from .homology import cycles_and_boundaries as cycles_and_boundaries
 from .homology import rank_mod2 as rank_mod2
@@ -67,6 +68,7 @@ __all__ = [
     "euler_characteristic",
     "euler_poincare",
     "first_site_rank",
+    "flow_order",
     "flow_sinks",
     "hausdorff",
     "most_exposed_residue",

@@ -45,6 +45,8 @@ _EXPORTS = {
     # homology.py: small complexes, chains, boundary matrices (lesson 01b)
     "simplicial_complex": "homology",
     "boundary_matrix": "homology",
+    "reduced_matrix": "topology",
+    "voxel_slice": "topology",
     # flow.py
     "discrete_flow": "flow",
     # matching.py

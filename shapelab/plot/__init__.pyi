@@ -43,8 +43,10 @@ from .topology import channel_profile as channel_profile
 from .topology import persistence_diagram as persistence_diagram
 from .topology import pocket_gallery as pocket_gallery
 from .topology import pockets as pockets
+from .topology import reduced_matrix as reduced_matrix
 from .topology import tunnels as tunnels
 from .topology import voids as voids
+from .topology import voxel_slice as voxel_slice
 from .viewer3d import view3d as view3d
 
 __all__ = [
@@ -85,6 +87,7 @@ __all__ = [
     "point_clouds",
     "point_sets",
     "power_diagram",
+    "reduced_matrix",
     "rotation_axis",
     "simplicial_complex",
     "stability",
@@ -93,4 +96,5 @@ __all__ = [
     "two_stage",
     "view3d",
     "voids",
+    "voxel_slice",
 ]
