@@ -83,9 +83,10 @@ def regular_triangulation(balls: Balls, *, precision: str = "exact") -> np.ndarr
         (earlier balls slightly larger): the same on every machine, for any input
         (duplicates, co-spherical, collinear or coplanar centres).  ``"fast"``: the
         lower hull of the lifted balls in floating point, read below; equal to
-        ``"exact"`` on generic input (tested), while on degenerate input Qhull breaks
-        ties its own way and may leave flat simplices, and it needs ``d + 1`` centres
-        that span the space.
+        ``"exact"`` on generic input (tested).  On degenerate input (co-circular or
+        co-spherical centres, duplicates) the result may differ: Qhull breaks ties
+        its own way and may leave flat simplices.  It needs ``d + 1`` centres that
+        span the space.
 
     Returns
     -------
@@ -222,9 +223,10 @@ def orthosphere(centers, weights) -> tuple[np.ndarray, np.ndarray]:
     Write :math:`c = z_0 + u` with :math:`u` in the span of the edges
     :math:`a_i = z_i - z_0`.  Equal power to :math:`z_0` and :math:`z_i`,
     :math:`|u - a_i|^2 - w_i = |u|^2 - w_0`, is the linear equation
-    :math:`a_i \\cdot u = \\beta_i = (|a_i|^2 - w_i + w_0)/2`: :math:`j` equations for
-    :math:`u`, solved in the span of the :math:`a_i` (a QR factorisation of the edge
-    matrix, :math:`A^T = QR`, :math:`u = Qy`, :math:`R^T y = \\beta`), and
+    :math:`a_i \\cdot u = \\beta_i = (|a_i|^2 - w_i + w_0)/2`: :math:`j` equations
+    :math:`Au = \\beta` for :math:`u`, square for a top simplex (solved directly),
+    else solved in the span of the :math:`a_i` (a QR factorisation of the edge matrix,
+    :math:`A^T = QR`, :math:`u = Qy`, :math:`R^T y = \\beta`), and
     :math:`\\rho = |u|^2 - w_0` [1]_.  Floating point: the engine solves the same
     system with an error bound and exact fallbacks (:mod:`shapelab._engine.orthospheres`).
 
@@ -247,9 +249,11 @@ def orthosphere(centers, weights) -> tuple[np.ndarray, np.ndarray]:
         return z[..., 0, :].copy(), -w[..., 0]
     A = z[..., 1:, :] - z[..., :1, :]  # the edges a_i as rows, (..., j, d)
     beta = 0.5 * (np.einsum("...ik,...ik->...i", A, A) - w[..., 1:] + w[..., :1])
-    Q, R = np.linalg.qr(np.swapaxes(A, -1, -2))  # A^T = QR, Q (..., d, j)
-    y = np.linalg.solve(np.swapaxes(R, -1, -2), beta[..., None])  # R^T y = beta
-    u = (Q @ y)[..., 0]
+    if A.shape[-2] == A.shape[-1]:  # a top simplex: d equations, d unknowns
+        u = np.linalg.solve(A, beta[..., None])[..., 0]
+    else:  # a face: u in the span of the edges, A^T = QR, u = Q y, R^T y = beta
+        Q, R = np.linalg.qr(np.swapaxes(A, -1, -2))
+        u = (Q @ np.linalg.solve(np.swapaxes(R, -1, -2), beta[..., None]))[..., 0]
     return z[..., 0, :] + u, np.einsum("...k,...k->...", u, u) - w[..., 0]
 
 
