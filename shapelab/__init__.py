@@ -8,7 +8,7 @@ Modules, one per concept of the notes:
 
 ============================  =====================================================
 ``shapelab.balls``            :class:`Balls`, :func:`power_distance` (§23.1)
-``shapelab.power``            :func:`power_diagram`, :func:`regular_triangulation`, clipped cells
+``shapelab.triangulation``    :func:`power_diagram`, :func:`regular_triangulation`, :func:`orthosphere`
 ``shapelab.filtration``       :func:`alpha_filtration`, :func:`dual_complex`
 ``shapelab.persistence``      Betti numbers, persistence: the boundary-matrix reduction
 ``shapelab.homology``         chains, boundary matrices, Betti numbers over Z/2, by hand
@@ -51,9 +51,10 @@ __version__ = "0.1.0"
 _EXPORTS = {
     "Balls": "balls",
     "power_distance": "balls",
-    "power_diagram": "power",
-    "PowerDiagram": "power",
-    "regular_triangulation": "power",
+    "power_diagram": "triangulation",
+    "PowerDiagram": "triangulation",
+    "regular_triangulation": "triangulation",
+    "orthosphere": "triangulation",
     "alpha_filtration": "filtration",
     "dual_complex": "filtration",
     "Filtration": "filtration",
@@ -119,6 +120,8 @@ _EXPORTS = {
 }
 _SUBMODULES = {
     "balls",
+    "triangulation",
+    "predicates",
     "power",
     "filtration",
     "topology",
@@ -155,5 +158,5 @@ __getattr__, __dir__ = attach(__name__, _EXPORTS, _SUBMODULES, eager=__all__)
 
 #: modules that moved (issue 33), by their old name: ``import shapelab.power`` still
 #: gives the module now called ``shapelab.triangulation``
-_MOVED: dict[str, str] = {"topology": "persistence", "distance": "hausdorff"}
+_MOVED: dict[str, str] = {"power": "triangulation", "exact": "_engine", "topology": "persistence", "distance": "hausdorff"}
 moved(__name__, _MOVED)

@@ -22,12 +22,14 @@ from . import peers as peers
 from . import persistence as persistence
 from . import plot as plot
 from . import power as power
+from . import predicates as predicates
 from . import quaternion as quaternion
 from . import registration as registration
 from . import rotation as rotation
 from . import simplification as simplification
 from . import topology as topology
 from . import trajectory as trajectory
+from . import triangulation as triangulation
 from . import widgets as widgets
 from .balls import Balls as Balls
 from .balls import power_distance as power_distance
@@ -84,9 +86,6 @@ from .matching import hausdorff_under_translation as hausdorff_under_translation
 from .matching import reference_point as reference_point
 from .measure import UnionMeasure as UnionMeasure
 from .measure import union_measure as union_measure
-from .power import PowerDiagram as PowerDiagram
-from .power import power_diagram as power_diagram
-from .power import regular_triangulation as regular_triangulation
 from .quaternion import Quaternion as Quaternion
 from .rotation import RigidMotion as RigidMotion
 from .rotation import optimal_rotation as optimal_rotation
@@ -95,6 +94,10 @@ from .simplification import curve_persistence as curve_persistence
 from .simplification import simplify as simplify
 from .trajectory import TrajectoryMeasures as TrajectoryMeasures
 from .trajectory import trajectory_measures as trajectory_measures
+from .triangulation import PowerDiagram as PowerDiagram
+from .triangulation import orthosphere as orthosphere
+from .triangulation import power_diagram as power_diagram
+from .triangulation import regular_triangulation as regular_triangulation
 
 __version__: str
 
@@ -147,6 +150,7 @@ __all__ = [
     "is_cycle",
     "k_simplices",
     "optimal_rotation",
+    "orthosphere",
     "pockets",
     "positive_simplices",
     "power_diagram",

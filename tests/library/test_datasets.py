@@ -681,7 +681,7 @@ def test_l99a_ligand_sits_inside_the_receptor():
 
 def test_alpha_filtration_on_a_shipped_structure():
     from shapelab import alpha_filtration
-    from shapelab.power import triangulation_report
+    from shapelab.triangulation import triangulation_report
 
     s = D.structure("1grm", probe=1.4)
     heavy = s.balls

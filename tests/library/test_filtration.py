@@ -386,7 +386,7 @@ def test_certificate_of_the_floating_point_orthospheres():
     and power (near 0 against the weights) vary over many orders of magnitude."""
     from fractions import Fraction as Q
 
-    from shapelab.filtration import _RTOL, _orthospheres
+    from shapelab._engine.orthospheres import _RTOL, _orthospheres
 
     rng = np.random.default_rng(123)
     rows, ws = [], []

@@ -4,7 +4,9 @@ inside functions (which hide a cycle from Python but not from a reader).
 The layers, bottom to top (a module may import only from its own layer or below):
 
 0. ``shapelab._toolkit``: validation, tolerances, geometry helpers, lazy exports;
-1. geometry: ``balls``, ``exact`` (predicates, certification, incremental), ``power``;
+1. geometry: ``balls``, the engine ``_engine`` (exact predicates, certification,
+   incremental, blocks, certified orthospheres and entry times), ``predicates``,
+   ``triangulation``;
 2. ``filtration`` and what is computed from a filtration or from balls;
 3. presentation and programs: ``plot``, ``widgets``, ``check``, ``cli``.
 
@@ -27,7 +29,7 @@ import pytest
 
 PKG = Path(__file__).resolve().parents[2] / "shapelab"
 
-LAYER_1 = {"balls", "exact", "power"}
+LAYER_1 = {"balls", "_engine", "predicates", "triangulation"}
 LAYER_3 = {"plot", "widgets", "check", "cli", "__main__"}
 
 

@@ -52,8 +52,8 @@ of that input: unique, and consistent across all tests.  Of two balls with the s
 centre and radius the earlier one wins (its weight is larger by :math:`\\varepsilon`),
 as in :func:`shapelab.regular_triangulation`'s treatment of duplicates.
 
-This module only answers signs; :mod:`shapelab.exact.certify` checks a triangulation with
-them and :mod:`shapelab.exact.incremental` builds one with them.
+This module only answers signs; :mod:`shapelab._engine.certify` checks a triangulation with
+them and :mod:`shapelab._engine.incremental` builds one with them.
 """
 
 from __future__ import annotations
@@ -260,7 +260,7 @@ class WeightedPoints:
 
     See Also
     --------
-    shapelab.exact.certify.certify
+    shapelab._engine.certify.certify
         Uses the predicates on these points.
 
     References
@@ -271,6 +271,23 @@ class WeightedPoints:
     .. [2] H. Edelsbrunner and E. P. Mücke, "Simulation of Simplicity: a technique to
            cope with degenerate cases in geometric algorithms", *ACM Trans. Graph.*
            9(1):66-104, 1990. doi:10.1145/77635.77639
+
+    Examples
+    --------
+    The corners of the unit square and its centre, as points (radius 0):
+
+    >>> import numpy as np
+    >>> from shapelab.predicates import WeightedPoints
+    >>> P = WeightedPoints(np.array([[0., 0], [1, 0], [1, 1], [0, 1], [0.5, 0.5]]), np.zeros(5))
+    >>> P.orient(np.array([[0, 1, 2], [0, 2, 1]])).tolist()  # counter-clockwise, clockwise
+    [1, -1]
+
+    The power test of the triangle (0, 1, 2) against the fourth corner is an exact tie
+    (four co-circular points), broken by Simulation of Simplicity; the centre lies inside
+    the circumcircle, below the lifted plane (negative: in conflict):
+
+    >>> P.power(np.array([[0, 1, 2, 3], [0, 1, 2, 4]])).tolist()
+    [1, -1]
     """
 
     def __init__(self, coords, radii, axes=None, priority=None):

@@ -4,7 +4,7 @@ Qhull computes the lower hull of the lifted balls in floating point, and on
 co-spherical or nearly degenerate input its answer can be wrong in ways that depend
 on the last bits of the coordinates (overlapping tetrahedra, facets that are not
 locally regular).  :func:`certify` checks an answer with the exact predicates of
-:mod:`shapelab.exact.predicates` (ties broken by Simulation of Simplicity), so that an
+:mod:`shapelab._engine.predicates` (ties broken by Simulation of Simplicity), so that an
 answer that passes is *the* regular triangulation of the (symbolically perturbed)
 input, whatever machine computed it:
 
@@ -56,7 +56,7 @@ class Certificate:
         ``i``-th vertex, or -1 on the boundary (computed, not taken from Qhull).
     counts : dict
         How many tests were decided by the floating-point filter and how many
-        exactly (see :attr:`shapelab.exact.predicates.WeightedPoints.stats`).
+        exactly (see :attr:`shapelab._engine.predicates.WeightedPoints.stats`).
 
     See Also
     --------
@@ -256,7 +256,7 @@ def certify(P: WeightedPoints, simp: np.ndarray, neighbors=None, order=None) -> 
     --------
     regular_triangulation
         Certifies Qhull's candidate with this.
-    shapelab.exact.incremental.incremental_triangulation
+    shapelab._engine.incremental.incremental_triangulation
         The exact fallback when it fails.
 
     References
@@ -447,7 +447,7 @@ def _count_cover(P: WeightedPoints, simp, s) -> int:
 # Local repair of a candidate regular triangulation (Notes §23.1).
 #
 # Where Qhull's floating-point lower hull fails its exact certificate
-# (:mod:`shapelab.exact.certify`), the failure is usually *local*: a few flat
+# (:mod:`shapelab._engine.certify`), the failure is usually *local*: a few flat
 # tetrahedra where Qhull triangulated a merged facet of exactly co-planar or
 # co-spherical centres (coordinates rounded to 0.001 Å), a few facets that are not
 # locally regular under Simulation of Simplicity.  Instead of recomputing the whole
@@ -462,7 +462,7 @@ def _count_cover(P: WeightedPoints, simp, s) -> int:
 #    grown by one ring of vertex stars per further attempt;
 # 3. the regular triangulation of the cavity's vertices (and of the balls left out that
 #    lie in it) is computed by the exact incremental algorithm
-#    (:func:`shapelab.exact.incremental.incremental_triangulation`) with the *same*
+#    (:func:`shapelab._engine.incremental.incremental_triangulation`) with the *same*
 #    predicates and the same symbolic perturbation as the global one;
 # 4. its simplices inside the cavity (a flood fill from the cavity's boundary facets,
 #    each of which must appear in it) replace the cavity;
@@ -510,7 +510,7 @@ def failing_simplices(P: WeightedPoints, simp: np.ndarray, order=None, neighbors
     --------
     repair
         Re-triangulates the neighbourhood of these simplices.
-    shapelab.exact.certify.certify
+    shapelab._engine.certify.certify
         The complete check; a candidate with no failing simplex can still fail it
         (a boundary that is not closed, a double cover).
     """
@@ -926,7 +926,7 @@ def repair(
     Returns
     -------
     (simp, certificate, info) or None
-        The certified triangulation, its :class:`~shapelab.exact.certify.Certificate`
+        The certified triangulation, its :class:`~shapelab._engine.certify.Certificate`
         and a dict (``attempts``, ``cavity_simplices``, ``cavity_points``); ``None``
         if no attempt certifies (the caller then runs the whole-input exact road).
 
@@ -934,9 +934,9 @@ def repair(
     --------
     failing_simplices
         Where the cavity starts.
-    shapelab.exact.incremental.incremental_triangulation
+    shapelab._engine.incremental.incremental_triangulation
         Re-triangulates the cavity, and the whole input if this fails.
-    shapelab.exact.certify.certify
+    shapelab._engine.certify.certify
         The conditions the repaired triangulation must pass (re-checked only where
         the stitch changed them, the global ones whole).
 

@@ -1,11 +1,11 @@
 """The regular triangulation by exact incremental insertion (Notes §23.1).
 
 The fallback of :func:`shapelab.regular_triangulation` where Qhull's floating-point
-lower hull fails its certificate (:mod:`shapelab.exact.certify`): co-spherical centres
+lower hull fails its certificate (:mod:`shapelab._engine.certify`): co-spherical centres
 (cages, grids), lattices with noise at round-off level, nearly flat configurations.
 It is the classic algorithm of Bowyer and Watson, for weighted points as in
 Edelsbrunner and Shah (1996), with every decision taken by the exact predicates of
-:mod:`shapelab.exact.predicates` and ties broken by Simulation of Simplicity, so its output
+:mod:`shapelab._engine.predicates` and ties broken by Simulation of Simplicity, so its output
 is the unique regular triangulation of the perturbed input: the same for every
 insertion order and on every machine.
 
@@ -201,7 +201,7 @@ def incremental_triangulation(P: WeightedPoints, order=None):
     --------
     regular_triangulation
         The public entry point; certified Qhull first.
-    shapelab.exact.certify.certify
+    shapelab._engine.certify.certify
         The check that decides when this is needed.
 
     References

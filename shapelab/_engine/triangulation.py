@@ -1,4 +1,10 @@
-"""Regular triangulations and power diagrams of balls (Notes §23.1).
+"""The exact machinery behind the regular triangulation (Notes §23.1): what
+:func:`shapelab.regular_triangulation` and :func:`shapelab.power_diagram` run with
+``precision="exact"`` (the default).
+
+The readable algorithm is in :mod:`shapelab.triangulation`; this module computes the
+same lower hull of the lifted balls, certifies it exactly and repairs it, so that the
+answer is the same on every machine.  A student may skip it.
 
 The power diagram :math:`\\Pi(\\mathbb{P})` assigns to each ball :math:`B_i` the cell
 
@@ -19,14 +25,14 @@ the set of centers"; for balls of different radii that is imprecise: it is the
 Implementation notes
 --------------------
 * **Exact combinatorics.**  Qhull's lower hull is a floating-point *candidate*.
-  :mod:`shapelab.exact.certify` checks it with exact predicates (:mod:`shapelab.exact.predicates`:
+  :mod:`shapelab._engine.certify` checks it with exact predicates (:mod:`shapelab._engine.predicates`:
   a floating-point filter, then Python integers on the input's own binary values
   where the filter cannot decide; ties broken by Simulation of Simplicity on the
   heights, by input order): a tiling of the hull, every interior facet locally
   regular, every ball left out hidden.  Where the certificate fails, the failure is
-  repaired *locally* (:func:`shapelab.exact.certify.repair`): the simplices that fail
+  repaired *locally* (:func:`shapelab._engine.certify.repair`): the simplices that fail
   and their neighbourhood are re-triangulated by the exact incremental algorithm of
-  :mod:`shapelab.exact.incremental` on their points alone, stitched in, and the whole
+  :mod:`shapelab._engine.incremental` on their points alone, stitched in, and the whole
   is certified again (rounded coordinates, exact translates in a water box, a grid
   patch).  Where the failures are everywhere (grids, co-spherical cages), Qhull's
   ties are not Simulation of Simplicity's: a second candidate lowers each lifted
@@ -39,7 +45,7 @@ Implementation notes
   round-off noise, or with duplicates of a larger radius later in the input), the
   exact incremental algorithm computes the whole triangulation.
   Either way the result is the unique regular triangulation of the perturbed input:
-  the same on every CPU, BLAS and Qhull build.  :func:`triangulation_report` says
+  the same on every CPU, BLAS and Qhull build.  :func:`shapelab.triangulation.triangulation_report` says
   which road was taken.
 * **Blocks (threads), opt-in.**  For 3D input of at least 20,000 balls when
   ``SHAPELAB_THREADS`` is set to 2 or more in the environment, the candidate is computed in slabs
@@ -61,7 +67,7 @@ Implementation notes
   :math:`s^2`, and translation does not change them.  This keeps Qhull's relative
   precision for inputs offset by :math:`10^6` or scaled by :math:`10^{-6}`.
 * **Lower dimension.**  The affine dimension of the centres is decided exactly
-  (:func:`shapelab.exact.predicates.affine_basis`: orientation minors, filtered, then in
+  (:func:`shapelab._engine.predicates.affine_basis`: orientation minors, filtered, then in
   Python integers), never by a rank threshold.  If the centres span an affine
   subspace of dimension :math:`k < d` *exactly* (collinear or coplanar input), they
   are expressed in an orthonormal basis of that subspace (SVD) for Qhull and
@@ -72,7 +78,7 @@ Implementation notes
   point, 1e-12 noise) are full-dimensional, as in GUDHI's exact alpha complex: their
   triangulation has flat-looking slivers, which Qhull often misses (an empty or
   rejected candidate); the exact incremental algorithm computes it then.
-* **Qhull options** ``Qt Qbb Q12 Q5 Q8`` (``scipy.spatial.ConvexHull``, which
+* **Qhull options** ``Qt Qbb Q12 Q5 Q8`` (the public ``scipy.spatial.ConvexHull``, which
   always adds ``Qt``): ``Qt`` triangulates merged (non-simplicial) facets, which arise
   for cospherical input such as integer grids (where it can leave flat or
   overlapping tetrahedra, which the certificate rejects); ``Qbb`` rescales the last
@@ -100,29 +106,15 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
-from ._toolkit import tolerances as tol
-from ._toolkit.geometry import morton_order
-from ._toolkit.threads import thread_count
-from ._toolkit.validate import (
-    as_bbox,
-    as_positive_int,
-    as_tau,
-    check_balls,
-    default_bbox,
-)
-from .balls import Balls
-from .exact.certify import certify, facet_adjacency, repair
-from .exact.incremental import incremental_triangulation
-from .exact.predicates import WeightedPoints, affine_basis, det, projection_axes
+from .._toolkit import tolerances as tol
+from .._toolkit.geometry import morton_order
+from .._toolkit.threads import thread_count
+from ..balls import Balls
+from .certify import certify, facet_adjacency, repair
+from .incremental import incremental_triangulation
+from .predicates import WeightedPoints, affine_basis, det, projection_axes
 
-__all__ = [
-    "regular_triangulation",
-    "power_diagram",
-    "PowerDiagram",
-    "triangulation_report",
-    "TriangulationReport",
-    "clipped_cells",
-]
+__all__ = ["TriangulationReport", "orthocentres", "triangulate", "triangulate_local"]
 
 _QHULL_OPTIONS = "Qt Qbb Q12 Q5 Q8"
 # a rejected candidate with more failing simplices than this fraction is not repaired
@@ -233,29 +225,15 @@ def _flat_rows(x: np.ndarray, simp: np.ndarray) -> np.ndarray:
 
 
 def _qhull_facets(points: np.ndarray):
-    """Facets of the convex hull of ``points`` (Qhull, options ``_QHULL_OPTIONS``):
-    simplices, neighbours and hyperplane equations, as ``scipy.spatial.ConvexHull``
-    gives them.
+    """Facets of the convex hull of ``points`` (Qhull through the public
+    ``scipy.spatial.ConvexHull``, options ``_QHULL_OPTIONS``): simplices, neighbours
+    and hyperplane equations.
 
-    ``ConvexHull`` also computes the hull's volume and area, which we never use and
-    which cost ~15 % of the time; scipy's Qhull wrapper underneath it does not.
-    That wrapper is private, so this falls back to ``ConvexHull`` if it changes
-    (``tests/library/test_power.py`` checks that both give the same arrays)."""
-    try:
-        from scipy.spatial._qhull import _Qhull
-
-        q = _Qhull(b"i", points, _QHULL_OPTIONS.encode(), required_options=b"Qt")
-    except QhullError:
-        raise
-    except Exception:  # pragma: no cover - a scipy without the private wrapper
-        hull = ConvexHull(points, qhull_options=_QHULL_OPTIONS)
-        return hull.simplices, hull.neighbors, hull.equations
-    try:
-        q.triangulate()
-        simplices, neighbors, equations = q.get_simplex_facet_array()[:3]
-    finally:
-        q.close()
-    return simplices, neighbors, equations
+    ``ConvexHull`` also computes the hull's volume and area, which we never use (~15 %
+    of Qhull's time); scipy's Qhull wrapper underneath it would skip them, but it is
+    private, and a private import breaks with any scipy release."""
+    hull = ConvexHull(points, qhull_options=_QHULL_OPTIONS)
+    return hull.simplices, hull.neighbors, hull.equations
 
 
 def _hull_once(x: np.ndarray, h: np.ndarray, perm: np.ndarray):
@@ -300,7 +278,7 @@ def _lower_hull(x: np.ndarray, w: np.ndarray):
     ascending in each row), or ``None`` if Qhull gives up.
 
     The answer is computed in floating point and is only a *candidate*:
-    :func:`triangulate_local` certifies it exactly (:mod:`shapelab.exact.certify`).  On
+    :func:`triangulate_local` certifies it exactly (:mod:`shapelab._engine.certify`).  On
     co-spherical input (cages, grids) Qhull merges facets and ``Qt`` triangulates
     the merged ones, which can leave overlapping or flat tetrahedra; the certificate
     rejects such an answer and the exact incremental algorithm takes over.
@@ -699,10 +677,10 @@ class TriangulationReport:
     method : str
         ``"qhull"`` (Qhull's lower hull passed the exact certificate),
         ``"repaired"`` (it did not; the simplices that failed and their neighbourhood
-        were re-triangulated exactly, :func:`shapelab.exact.certify.repair`, and the
+        were re-triangulated exactly, :func:`shapelab._engine.certify.repair`, and the
         result passed the certificate) or ``"incremental"`` (the local repair did not
         certify either, or Qhull failed, and the exact incremental algorithm of
-        :mod:`shapelab.exact.incremental` computed the whole triangulation).
+        :mod:`shapelab._engine.incremental` computed the whole triangulation).
     reason : str
         Why Qhull's answer was rejected ("" if it was not); for ``"incremental"``
         after a failed repair it ends with "the local repair did not certify".
@@ -824,8 +802,7 @@ def _tiebreak_repair(P: WeightedPoints, fr: _Frame, simp=None, nbr=None, perm=No
 def triangulate_local(balls: Balls, report: bool = False):
     """Frame, top simplices in frame-local indices and their neighbours (and, with
     ``report``, the :class:`TriangulationReport`).  Shared with
-    :mod:`shapelab.filtration`, which builds the filtration in the same frame; not in
-    ``__all__``."""
+    :mod:`shapelab._engine.alpha`, which builds the filtration in the same frame."""
     fr = _frame(balls)
     rep = TriangulationReport("trivial", "", {})
     if fr.k < 0:
@@ -847,34 +824,7 @@ def triangulate_local(balls: Balls, report: bool = False):
     return (*out, rep) if report else out
 
 
-def triangulation_report(balls: Balls) -> TriangulationReport:
-    """How the regular triangulation of ``balls`` is computed and certified
-    (Notes §23.1): Qhull's answer certified exactly, or the exact incremental
-    algorithm where the certificate failed; see :class:`TriangulationReport`.
-
-    See Also
-    --------
-    regular_triangulation
-        The triangulation itself.
-    shapelab.exact.certify.certify
-        The exact check of Qhull's candidate.
-    shapelab.exact.incremental.incremental_triangulation
-        The exact fallback.
-
-    References
-    ----------
-    .. [1] H. Edelsbrunner and N. R. Shah, "Incremental topological flipping works for
-           regular triangulations", *Algorithmica* 15:223-241, 1996.
-           doi:10.1007/BF01975867
-    .. [2] H. Edelsbrunner and E. P. Mücke, "Simulation of Simplicity: a technique to
-           cope with degenerate cases in geometric algorithms", *ACM Trans. Graph.*
-           9(1):66-104, 1990. doi:10.1145/77635.77639
-    """
-    check_balls(balls)
-    return triangulate_local(balls, report=True)[3]
-
-
-def _triangulate(balls: Balls):
+def triangulate(balls: Balls):
     """Frame and top simplices (input indices, rows ascending, lexsorted)."""
     fr, simp, _ = triangulate_local(balls)
     tri = fr.keep[simp].astype(np.int64)
@@ -884,115 +834,7 @@ def _triangulate(balls: Balls):
     return fr, tri
 
 
-def regular_triangulation(balls: Balls) -> np.ndarray:
-    """The regular (weighted Delaunay) triangulation DT of the balls (Notes §23.1).
-
-    Parameters
-    ----------
-    balls : Balls
-
-    Returns
-    -------
-    ndarray of int64, shape (m, k+1)
-        Top simplices, indices into ``balls``; ``k`` is the affine dimension of the
-        centres (``k = d`` normally, less for collinear/coplanar input, 0 for a single
-        distinct centre).  Vertices ascend within each row and rows are sorted
-        lexicographically.  Hidden balls never appear.
-
-    See Also
-    --------
-    power_diagram
-        Its dual: the cells of the balls.
-    alpha_filtration
-        The growth model's filtration of this triangulation.
-    triangulation_report
-        Which road (certified Qhull or exact incremental) was taken.
-
-    Notes
-    -----
-    Computed by the lifting map :math:`z \\mapsto (z, |z|^2 - r^2)` and the lower
-    convex hull (Qhull), certified with exact predicates, see the module docstring.
-    For cospherical input (grids, cages) DT is not unique; the one returned is that
-    of the input with its weights perturbed symbolically (Simulation of Simplicity,
-    earlier balls slightly larger), so it depends on the input alone, never on the
-    machine.
-
-    References
-    ----------
-    .. [1] F. Aurenhammer, "Power diagrams: properties, algorithms and applications",
-           *SIAM J. Comput.* 16(1):78-96, 1987. doi:10.1137/0216006
-    .. [2] H. Edelsbrunner and N. R. Shah, "Incremental topological flipping works for
-           regular triangulations", *Algorithmica* 15:223-241, 1996.
-           doi:10.1007/BF01975867
-    .. [3] H. Edelsbrunner and E. P. Mücke, "Simulation of Simplicity: a technique to
-           cope with degenerate cases in geometric algorithms", *ACM Trans. Graph.*
-           9(1):66-104, 1990. doi:10.1145/77635.77639
-    .. [4] C. B. Barber, D. P. Dobkin and H. Huhdanpaa, "The Quickhull algorithm for
-           convex hulls", *ACM Trans. Math. Softw.* 22(4):469-483, 1996.
-           doi:10.1145/235815.235821
-
-    Examples
-    --------
-    The four corners of a square are cocircular: two triangulations are regular, and
-    the perturbation picks the one with the diagonal at the first corner.
-
-    >>> regular_triangulation(Balls([[0, 0], [1, 0], [1, 1], [0, 1]], 0.0)).tolist()
-    [[0, 1, 2], [0, 2, 3]]
-    """
-    check_balls(balls)
-    return _triangulate(balls)[1]
-
-
-# ----------------------------------------------------------------------------------
-# Power diagram
-# ----------------------------------------------------------------------------------
-@dataclass(frozen=True, eq=False)
-class PowerDiagram:
-    """The power diagram :math:`\\Pi(\\mathbb{P})` of a set of balls (Notes §23.1).
-
-    Attributes
-    ----------
-    balls : Balls
-        The input.
-    hidden : ndarray of bool, shape (n,)
-        True for balls whose cell is empty (they are not vertices of DT; this
-        includes all but one of several balls with the same centre).
-    vertices : ndarray, shape (p, d)
-        The finite vertices of the diagram: the orthocentres (centres of the
-        smallest orthogonal spheres) of the top simplices of DT, in the order of
-        :func:`regular_triangulation`'s rows.  Empty if the centres are not in
-        general dimension (collinear in 2D, coplanar in 3D).
-    cells : tuple of ndarray, one per ball
-        2D: the cell :math:`\\Pi(B_i)` clipped to ``bbox`` as a counter-clockwise
-        polygon of shape (k_i, 2) (no repeated closing vertex); (0, 2) for hidden
-        balls and for cells that miss the box.  3D: int64 indices into ``vertices``
-        of the cell's finite vertices, ascending ((0,) for hidden balls).
-    adjacency : ndarray of int64, shape (e, 2)
-        Pairs ``i < j`` of balls whose cells share a facet: the edges of DT, sorted.
-    bbox : ndarray, shape (2, d)
-        ``[lower corner, upper corner]`` of the clipping box.
-    unbounded : ndarray of bool, shape (n,)
-        True for the (non-hidden) balls whose cell is unbounded, i.e. whose centre
-        is on the boundary of the convex hull of the centres.
-
-    See Also
-    --------
-    power_diagram
-        Builds it.
-    regular_triangulation
-        Its dual triangulation.
-    """
-
-    balls: Balls
-    hidden: np.ndarray
-    vertices: np.ndarray
-    cells: tuple
-    adjacency: np.ndarray
-    bbox: np.ndarray
-    unbounded: np.ndarray
-
-
-def _orthocentres(balls: Balls, tri: np.ndarray) -> np.ndarray:
+def orthocentres(balls: Balls, tri: np.ndarray) -> np.ndarray:
     """Orthocentres of full-dimensional simplices, in input coordinates."""
     if tri.shape[0] == 0 or tri.shape[1] != balls.dim + 1:
         return np.zeros((0, balls.dim))
@@ -1036,256 +878,3 @@ def _orthocentre_exact(balls: Balls, row) -> np.ndarray:
         Ma = [r[:a] + [rhs[j]] + r[a + 1 :] for j, r in enumerate(M)]
         out.append(float(det(Ma) / D))
     return np.array(out)
-
-
-def _clip_polygon(poly: list, a0: float, a1: float, c: float) -> list:
-    """Sutherland–Hodgman: keep the part of a convex polygon with a0*x + a1*y <= c."""
-    if not poly:
-        return poly
-    out = []
-    m = len(poly)
-    vals = [a0 * x + a1 * y - c for x, y in poly]
-    for t in range(m):
-        p, q = poly[t], poly[(t + 1) % m]
-        fp, fq = vals[t], vals[(t + 1) % m]
-        if fp <= 0:
-            out.append(p)
-        if (fp < 0 < fq) or (fq < 0 < fp):
-            s = fp / (fp - fq)
-            out.append((p[0] + s * (q[0] - p[0]), p[1] + s * (q[1] - p[1])))
-    return out
-
-
-def power_diagram(balls: Balls, *, bbox=None) -> PowerDiagram:
-    """The power diagram of the balls (Notes §23.1): cells, hidden balls, adjacency.
-
-    Parameters
-    ----------
-    balls : Balls
-    bbox : array_like, shape (2, d), optional
-        Clipping box ``[[xmin, ymin], [xmax, ymax]]`` (3D: three columns) for the
-        2D polygons.  Default: the bounding box of the balls padded by 10 %.
-
-    Returns
-    -------
-    PowerDiagram
-
-    See Also
-    --------
-    power_distance
-        The distance whose minimisation defines the cells.
-    regular_triangulation
-        The dual triangulation.
-    clipped_cells
-        Cells clipped to the grown disks.
-
-    Notes
-    -----
-    The cell :math:`\\Pi(B_i) = \\{x : \\pi_i(x) \\le \\pi_j(x)\\ \\forall j\\}` is an
-    intersection of half-planes; since :math:`\\pi_i - \\pi_j` is affine in x
-    (the :math:`|x|^2` cancels), the constraints are
-    :math:`2x\\cdot(z_j - z_i) \\le |z_j|^2 - r_j^2 - |z_i|^2 + r_i^2`.  Only the
-    DT neighbours ``j`` of ``i`` matter.  In 2D each cell is clipped from the box by
-    these half-planes; in 3D the cell is described by its vertices (orthocentres of
-    the incident tetrahedra) and ``unbounded`` flags the cells on the hull.
-
-    References
-    ----------
-    .. [1] F. Aurenhammer, "Power diagrams: properties, algorithms and applications",
-           *SIAM J. Comput.* 16(1):78-96, 1987. doi:10.1137/0216006
-    .. [2] H. Edelsbrunner, "The union of balls and its dual shape", *Discrete Comput.
-           Geom.* 13:415-440, 1995. doi:10.1007/BF02574053
-    """
-    check_balls(balls)
-    d = balls.dim
-    n = len(balls)
-    box = default_bbox(balls) if bbox is None else as_bbox(bbox, d)
-    fr, tri = _triangulate(balls)
-    present = np.zeros(n, dtype=bool)
-    present[tri.ravel()] = True
-    hidden = ~present
-    # DT edges
-    k = tri.shape[1] - 1
-    if k >= 1:
-        pairs = np.concatenate([tri[:, [a, b]] for a in range(k + 1) for b in range(a + 1, k + 1)])
-        adjacency = np.unique(pairs, axis=0).astype(np.int64)
-    else:
-        adjacency = np.zeros((0, 2), dtype=np.int64)
-    # boundary (unbounded) cells: vertices of hull facets of DT, or everything if flat
-    unbounded = np.zeros(n, dtype=bool)
-    if k < d:
-        unbounded[present] = True
-    else:
-        fac = np.sort(np.concatenate([np.delete(tri, j, axis=1) for j in range(d + 1)]), axis=1)
-        u, cnt = np.unique(fac, axis=0, return_counts=True)
-        unbounded[u[cnt == 1].ravel()] = True
-    vertices = _orthocentres(balls, tri)
-    vertices.flags.writeable = False
-    if d == 2:
-        origin = balls.centers.mean(axis=0)
-        z = balls.centers - origin
-        w = balls.weights
-        zz = np.einsum("ij,ij->i", z, z) - w
-        lo, hi = box - origin
-        square = [(lo[0], lo[1]), (hi[0], lo[1]), (hi[0], hi[1]), (lo[0], hi[1])]
-        nbrs = [[] for _ in range(n)]
-        for a, b in adjacency.tolist():
-            nbrs[a].append(b)
-            nbrs[b].append(a)
-        cells = []
-        for i in range(n):
-            if hidden[i]:
-                cells.append(np.zeros((0, 2)))
-                continue
-            poly = list(square)
-            zi = z[i]
-            for j in nbrs[i]:
-                a = 2.0 * (z[j] - zi)
-                poly = _clip_polygon(poly, float(a[0]), float(a[1]), float(zz[j] - zz[i]))
-            arr = np.asarray(poly, dtype=float).reshape(-1, 2) + origin
-            arr.flags.writeable = False
-            cells.append(arr)
-    else:
-        cells = [np.zeros(0, dtype=np.int64) for _ in range(n)]
-        if tri.shape[0] and k == d:
-            m = tri.shape[0]
-            owner = tri.ravel()
-            simp = np.repeat(np.arange(m, dtype=np.int64), d + 1)
-            order = np.lexsort((simp, owner))
-            owner, simp = owner[order], simp[order]
-            starts = np.searchsorted(owner, np.arange(n + 1))
-            cells = [simp[starts[i] : starts[i + 1]] for i in range(n)]
-        for c in cells:
-            c.flags.writeable = False
-    for a in (hidden, adjacency, box, unbounded):
-        a.flags.writeable = False
-    return PowerDiagram(balls, hidden, vertices, tuple(cells), adjacency, box, unbounded)
-
-
-# ======================================== the cells B_i ∩ Π(B_i), for drawing
-def _clip_convex_by_disk(poly, cx, cy, r, step):
-    """Polygon approximating (convex polygon) ∩ (disk), counter-clockwise.
-
-    Edges of the polygon inside the disk are kept exactly; between the point where
-    the boundary leaves the disk and where it re-enters, the circle is followed with
-    points every ``step`` radians."""
-    import math
-
-    k = len(poly)
-    if k < 3 or r <= 0:
-        return np.zeros((0, 2))
-    r2 = r * r
-    out = []
-    leave = None  # angle where the boundary left the disk
-    first_entry = None
-
-    def arc_to(a0, a1):
-        span = (a1 - a0) % (2 * math.pi)
-        m = int(span / step)
-        for j in range(1, m + 1):
-            a = a0 + span * j / (m + 1)
-            out.append((cx + r * math.cos(a), cy + r * math.sin(a)))
-
-    for t in range(k):
-        px, py = poly[t]
-        qx, qy = poly[(t + 1) % k]
-        dx, dy = qx - px, qy - py
-        fx, fy = px - cx, py - cy
-        a = dx * dx + dy * dy
-        b = fx * dx + fy * dy
-        c = fx * fx + fy * fy - r2
-        if c <= 0:
-            out.append((px, py))
-        if a == 0:
-            continue
-        disc = b * b - a * c
-        if disc <= 0:
-            continue
-        sq = math.sqrt(disc)
-        s0, s1 = (-b - sq) / a, (-b + sq) / a
-        if 0 < s0 < 1 and c > 0:  # enters the disk on this edge
-            ang = math.atan2(fy + s0 * dy, fx + s0 * dx)
-            if leave is None:
-                first_entry = ang if first_entry is None else first_entry
-            else:
-                arc_to(leave, ang)
-                leave = None
-            out.append((px + s0 * dx, py + s0 * dy))
-        if 0 < s1 < 1 and (px + dx - cx) ** 2 + (py + dy - cy) ** 2 > r2:  # leaves the disk
-            out.append((px + s1 * dx, py + s1 * dy))
-            leave = math.atan2(fy + s1 * dy, fx + s1 * dx)
-    if leave is not None and first_entry is not None:
-        arc_to(leave, first_entry)
-    if not out:
-        # no vertex inside and no crossing: the disk is inside the polygon or misses it
-        inside = all(
-            (poly[(t + 1) % k][0] - poly[t][0]) * (cy - poly[t][1])
-            - (poly[(t + 1) % k][1] - poly[t][1]) * (cx - poly[t][0])
-            >= 0
-            for t in range(k)
-        )
-        if not inside:
-            return np.zeros((0, 2))
-        m = max(int(2 * math.pi / step), 8)
-        ang = np.linspace(0, 2 * math.pi, m, endpoint=False)
-        return np.column_stack([cx + r * np.cos(ang), cy + r * np.sin(ang)])
-    return np.array(out)
-
-
-def clipped_cells(balls: Balls, *, tau=0.0, diagram=None, arc_resolution: int = 96):
-    """The cells :math:`B_i(\\tau) \\cap \\Pi(B_i)` of disks as polygons (Notes §23.1).
-
-    The power diagram partitions the union into these convex pieces, "the cells
-    contained in :math:`\\bigcup B_i`"; their areas are ``union_measure(...).
-    ball_measure``.  Circular arcs are sampled with ``arc_resolution`` points per full
-    turn (the polygons are inscribed, so their areas are slightly smaller).
-
-    Parameters
-    ----------
-    balls : Balls
-        2D balls.
-    tau : float
-        Growth time (the power diagram does not change with τ).
-    diagram : PowerDiagram, optional
-        ``power_diagram(balls)`` if already computed; its box must contain the disks.
-    arc_resolution : int
-
-    Returns
-    -------
-    tuple of ndarray
-        One (k_i, 2) counter-clockwise polygon per ball, (0, 2) when empty.
-
-    See Also
-    --------
-    power_diagram
-        The unclipped cells.
-    dual_complex
-        The nerve of these clipped cells.
-    shapelab.oracles.sampled_nerve
-        The same nerve by sampling, an oracle.
-
-    References
-    ----------
-    .. [1] H. Edelsbrunner, "The union of balls and its dual shape", *Discrete Comput.
-           Geom.* 13:415-440, 1995. doi:10.1007/BF02574053
-    """
-    check_balls(balls)
-    if balls.dim != 2:
-        raise ValueError(f"clipped_cells works with disks (2D), got balls of dimension {balls.dim}")
-    t = as_tau(tau, finite=True)
-    res = as_positive_int(arc_resolution, "arc_resolution", minimum=8)
-    if diagram is None:
-        w = balls.weights + max(t, 0.0)
-        lo = (balls.centers - np.sqrt(w)[:, None]).min(axis=0) - 1.0 if len(balls) else np.zeros(2)
-        hi = (balls.centers + np.sqrt(w)[:, None]).max(axis=0) + 1.0 if len(balls) else np.ones(2)
-        diagram = power_diagram(balls, bbox=np.array([lo, hi]))
-    w = balls.weights + t
-    step = 2 * np.pi / res
-    out = []
-    for i, cell in enumerate(diagram.cells):
-        if w[i] <= 0 or len(cell) < 3:
-            out.append(np.zeros((0, 2)))
-            continue
-        cx, cy = balls.centers[i]
-        out.append(_clip_convex_by_disk(cell.tolist(), float(cx), float(cy), float(np.sqrt(w[i])), step))
-    return tuple(out)
