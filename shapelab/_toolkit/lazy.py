@@ -14,7 +14,7 @@ import importlib.abc
 import importlib.util
 import sys
 
-__all__ = ["attach", "moved"]
+__all__ = ["attach", "moved", "keep_functions"]
 
 
 def attach(package: str, exports: dict, submodules=(), eager=()):
@@ -93,3 +93,23 @@ def moved(package: str, moves: dict) -> None:
             finder.moves.update(_Alias(package, moves).moves)
             return
     sys.meta_path.insert(0, _Alias(package, moves))
+
+
+def keep_functions(package: str, names) -> None:
+    """Keep ``package.name`` the function of that name when a submodule of the same name
+    is imported (``shapelab.report``, the function, is defined in the module
+    ``shapelab.report``; the import system would otherwise set the package's
+    attribute to the module).  ``import shapelab.report`` still loads the module;
+    ``importlib.import_module("shapelab.report")`` and ``sys.modules`` give it."""
+    import types
+
+    module = sys.modules[package]
+    names = frozenset(names)
+
+    class _Package(types.ModuleType):
+        def __setattr__(self, name, value):
+            if name in names and isinstance(value, types.ModuleType):
+                return  # the function stays (imported lazily on first access)
+            super().__setattr__(name, value)
+
+    module.__class__ = _Package

@@ -872,7 +872,7 @@ def first_site_rank(
        accurate prediction of ligand binding sites from protein structure",
        *J. Cheminform.* 10:39, 2018 (the DCA criterion).
     """
-    from ..cavity_report import report
+    from ..report import report
 
     rows = report(structure, probe, method=method).rows
     atoms = structure.balls.centers if hasattr(structure, "balls") else structure.centers

@@ -9,7 +9,8 @@ import weakref
 import numpy as np
 
 import shapelab as sl
-from shapelab import _pockets, cavities, filtration
+from shapelab import cavities, filtration
+from shapelab.cavities import complement as _pockets
 from shapelab import _topology as topology  # the implementation holds summary()
 
 

@@ -894,7 +894,7 @@ def report(
 
 
 # ============================================================ not a program
-if __name__ == "__main__":  # python -m shapelab.cavity_report: say where the command line is
+if __name__ == "__main__":  # python -m shapelab.report: say where the command line is
     import sys
 
-    sys.exit("shapelab.cavity_report is the report, not a program: run python -m shapelab report FILE")
+    sys.exit("shapelab.report is the report, not a program: run python -m shapelab report FILE")
