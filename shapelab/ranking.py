@@ -228,7 +228,7 @@ def pocket_features(balls, lining, *, volume, area, mouth_area, persistence, rea
     --------
     rank_score
         Orders cavities by these features.
-    shapelab.report.report
+    shapelab.report
         Computes them with ``rank="score"``.
 
     References

@@ -739,7 +739,7 @@ def report(
     from .cavities import pockets as find_pockets
     from .cavities import voids as find_voids
     from .filtration import alpha_filtration
-    from .freespace import free_area, free_space
+    from .cavities.freespace import free_area, free_space
     from .io import PDBStructure, radius_notes
     from .ranking import DEFAULT_MIN_PERSISTENCE, DEFAULT_MIN_VOLUME, pocket_features, rank_order, rank_score
 

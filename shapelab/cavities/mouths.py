@@ -114,6 +114,11 @@ class MeasuredRegion:
 
     The subclass is a dataclass with ``cells``, ``mouth``, ``closes_at``, ``fills_at``,
     ``tau`` and ``balls``; one source for both pocket definitions.
+
+    See Also
+    --------
+    shapelab.cavities.Pocket, shapelab.cavities.FlowPocket
+        The two kinds of pocket.
     """
 
     @property

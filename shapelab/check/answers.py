@@ -219,7 +219,7 @@ def flow_sinks(student) -> CheckResult:
     """
     from ..balls import Balls
     from ..filtration import alpha_filtration
-    from ..flow import discrete_flow
+    from ..cavities.flow import discrete_flow
     from ._runner import run_check
 
     rng = np.random.default_rng(7)

@@ -90,11 +90,22 @@ def _call_targets(current: str, is_package: bool, node: ast.Call) -> list[str] |
     return [target]
 
 
+def moved_modules(root: Path = PKG) -> dict[str, str]:
+    """``{"shapelab.flow": "shapelab.cavities.flow", ...}``: the old paths of moved
+    modules (``shapelab._MOVED``), which import the new module itself."""
+    init = root / "__init__.py"
+    for node in ast.walk(ast.parse(init.read_text(encoding="utf-8"))):
+        target = node.target if isinstance(node, ast.AnnAssign) else (node.targets[0] if isinstance(node, ast.Assign) else None)
+        if isinstance(target, ast.Name) and target.id == "_MOVED" and isinstance(node.value, ast.Dict):
+            return {f"{root.name}.{k}": f"{root.name}.{v}" for k, v in ast.literal_eval(node.value).items()}
+    return {}
+
+
 def import_graph(root: Path = PKG, dynamic: list | None = None) -> dict[str, set[str]]:
     """The import graph of the package; ``dynamic`` collects (module, line) of imports
     whose name is not a literal."""
     modules = {module_name(p, root): p for p in root.rglob("*.py")}
-    exports = lazy_exports(root)
+    exports = {**moved_modules(root), **lazy_exports(root)}
     graph: dict[str, set[str]] = {m: set() for m in modules}
     for m, p in modules.items():
         tree = ast.parse(p.read_text(encoding="utf-8"))
