@@ -110,6 +110,8 @@ _SUBMODULES = {
     "filtration",
     "topology",
     "cavities",
+    "flow",  # moved: shapelab.cavities.flow (_MOVED)
+    "freespace",  # moved: shapelab.cavities.freespace (_MOVED)
     "measure",
     "oracles",
     "quaternion",
@@ -125,6 +127,7 @@ _SUBMODULES = {
     "check",
     "simplification",
     "report",
+    "cavity_report",  # moved: shapelab.report (_MOVED)
     "batch",
     "trajectory",
     "cli",

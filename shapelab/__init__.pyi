@@ -4,12 +4,15 @@ from __future__ import annotations
 from . import balls as balls
 from . import batch as batch
 from . import cavities as cavities
+from . import cavity_report as cavity_report
 from . import check as check
 from . import cli as cli
 from . import critical as critical
 from . import datasets as datasets
 from . import distance as distance
 from . import filtration as filtration
+from . import flow as flow
+from . import freespace as freespace
 from . import io as io
 from . import matching as matching
 from . import measure as measure

@@ -738,8 +738,8 @@ def report(
     from .balls import Balls
     from .cavities import pockets as find_pockets
     from .cavities import voids as find_voids
-    from .filtration import alpha_filtration
     from .cavities.freespace import free_area, free_space
+    from .filtration import alpha_filtration
     from .io import PDBStructure, radius_notes
     from .ranking import DEFAULT_MIN_PERSISTENCE, DEFAULT_MIN_VOLUME, pocket_features, rank_order, rank_score
 

@@ -21,7 +21,6 @@ C_ = 64.0  # generous against the ~24 roundings of the 3D expression (see the mo
 TINY_ = FILTER_UNDERFLOW  # below this a float bound may be spoilt by underflow: decide exactly
 
 
-
 def exact_values(x, name, ndim):
     """``x`` (a number, list or array of depth ``ndim``) as nested lists of Fractions,
     finite, each float taken exactly; a clear error naming ``name`` otherwise."""
@@ -145,5 +144,3 @@ def scaled_integers(z, w, balls):
     Zi = {b: [num << (k - den.bit_length() + 1) for num, den in row] for b, row in zr.items()}
     Wi = {b: num << (2 * k - den.bit_length() + 1) for b, (num, den) in wr.items()}
     return Zi, Wi
-
-

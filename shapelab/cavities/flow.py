@@ -119,6 +119,7 @@ from .mouths import MeasuredRegion
 
 __all__ = ["DiscreteFlow", "FlowPocket", "discrete_flow", "flow_pockets", "flow_side_exact", "orthocentre_beyond"]
 
+
 # ============================================================================ results
 @dataclass(frozen=True, eq=False)
 class FlowPocket(MeasuredRegion):
@@ -517,8 +518,11 @@ def discrete_flow(F, tau: float = 0.0, *, precision: str = "exact") -> DiscreteF
             readonly(np.zeros(0, dtype=np.int64)),
             (),
         )
-    st = derived(F, "flow.static", _static) if precision == "exact" else {
-        "neighbour": _neighbours(F), "beyond": orthocentre_beyond(F)}
+    st = (
+        derived(F, "flow.static", _static)
+        if precision == "exact"
+        else {"neighbour": _neighbours(F), "beyond": orthocentre_beyond(F)}
+    )
     nb, beyond = st["neighbour"], st["beyond"]
     B = np.asarray(F.boundary(d), dtype=np.int64)
     empty = np.asarray(F.values(d)) > tau

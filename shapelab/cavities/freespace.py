@@ -30,9 +30,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._engine import freespace as _engine
+from .._toolkit.validate import check_balls
 from ..balls import Balls, power_distance
 from ..filtration import as_filtration
-from .._toolkit.validate import check_balls
 from .complement import vertex_values
 
 __all__ = ["free_area", "free_measure", "free_space", "FreeSpace", "void_measure", "vertex_values", "free_points"]

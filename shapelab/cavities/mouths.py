@@ -15,8 +15,8 @@ and a face into a crevice is no opening.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from functools import cached_property
-from typing import Callable
 
 import numpy as np
 from scipy.sparse import coo_matrix

@@ -91,7 +91,6 @@ class Pocket(MeasuredRegion):
         )
 
 
-
 def pockets(
     F, tau: float = 0.0, *, min_persistence: float = 0.0, method: str = "growth", precision: str = "exact"
 ) -> tuple:
@@ -265,5 +264,3 @@ def pockets(
         )
     out.sort(key=lambda p: (-(p.fills_at - p.closes_at), p.closes_at, int(p.cell_ids[0])))
     return tuple(out)
-
-

@@ -93,7 +93,6 @@ class Tunnel:
         )
 
 
-
 def _build_h1_cycles(F):
     return reduce_h1(summary(F), F, compress=False)
 

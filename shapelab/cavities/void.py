@@ -82,7 +82,6 @@ class Void:
         )
 
 
-
 def voids(F, tau=0.0) -> tuple:
     """The voids (holes in 2D) of the union of the balls grown to ``tau``.
 

@@ -12,8 +12,8 @@ that does not answer fails the test instead of hanging CI.  Skips without dask.d
 
 from __future__ import annotations
 
-import importlib
 import filecmp
+import importlib
 import os
 import shutil
 import signal

@@ -262,3 +262,13 @@ def test_the_version_and_dynamic_imports(tmp_path):
     g = import_graph(pkg, dynamic=dynamic)
     assert g["shapelab._toolkit.validate"] == set()
     assert dynamic == [("shapelab._toolkit.validate", 5)]
+
+
+def test_cavities_is_a_subpackage_of_the_core_layer():
+    """``shapelab.cavities`` (issue 33) is one layer, the core's (2): its modules may
+    import the filtration, never plot, widgets, check or the command line."""
+    graph = import_graph()
+    subs = [m for m in graph if m.startswith("shapelab.cavities.")]
+    assert {"shapelab.cavities.void", "shapelab.cavities.pocket", "shapelab.cavities.tunnel"} <= set(subs)
+    assert all(layer(m) == 2 for m in subs + ["shapelab.cavities"])
+    assert not [(m, t) for m in subs for t in graph[m] if layer(t) > 2]
