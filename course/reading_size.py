@@ -39,6 +39,7 @@ ALGORITHMS = {
     "voids": "voids",
     "pockets": "pockets",
     "tunnels": "tunnels",
+    "discrete flow": "discrete_flow",
     "persistence": "persistence.persistence",
     "Hausdorff distance": "hausdorff",
     "ICP": "icp",

@@ -12,9 +12,10 @@ Modules, one per concept of the notes:
 ``shapelab.filtration``       :func:`alpha_filtration`, :func:`dual_complex`
 ``shapelab.persistence``      Betti numbers, persistence: the boundary-matrix reduction
 ``shapelab.homology``         chains, boundary matrices, Betti numbers over Z/2, by hand
-``shapelab.cavities``         :func:`voids`, :func:`pockets`, :func:`tunnels`
-``shapelab.flow``             :func:`discrete_flow`, :func:`flow_pockets`: the literature's pockets
-``shapelab.freespace``        exact free area/volume of cells (void and pocket volumes)
+``shapelab.cavities``         :func:`voids`, :func:`pockets`, :func:`tunnels`, grooves, mouths;
+                              ``cavities.flow``: :func:`discrete_flow`, :func:`flow_pockets`
+                              (the literature's pockets); ``cavities.freespace``: exact free
+                              area/volume of cells (void and pocket volumes)
 ``shapelab.measure``          :func:`union_measure` (area/volume of a union)
 ``shapelab.oracles``          brute-force and sampling oracles (naive formula, Monte Carlo)
 ``shapelab.quaternion``       :class:`Quaternion` (§23.2, rotations)
@@ -30,7 +31,7 @@ Modules, one per concept of the notes:
 ``shapelab.docking``          :func:`docking_score`, :class:`Docking`: buried area minus clashes, two-stage docking
 ``shapelab.features``         :func:`coarse_align`: starts for ICP from pose-free features
 ``shapelab.io``               :func:`read_structure` (PDB, mmCIF), :func:`read_pdb`
-``shapelab.cavity_report``    :func:`report`: CASTp-style table of voids and pockets
+``shapelab.report``           :func:`report`: CASTp-style table of voids and pockets
 ``shapelab.batch``            :func:`report_batch`: many structures at once, in parallel, resumable
 ``shapelab.trajectory``       :func:`trajectory_measures`: area, volume, cavities of MD frames (MDAnalysis)
 ``shapelab.cli``              ``python -m shapelab report FILE...``: the command line
@@ -61,19 +62,19 @@ _EXPORTS = {
     "Complex": "filtration",
     "union_measure": "measure",
     "UnionMeasure": "measure",
-    "voids": "cavities",
-    "pockets": "cavities",
-    "tunnels": "cavities",
-    "grooves": "cavities",
-    "channel_profile": "cavities",
-    "Void": "cavities",
-    "Pocket": "cavities",
-    "Tunnel": "cavities",
-    "Cavity": "cavities",
-    "discrete_flow": "flow",
-    "flow_pockets": "flow",
-    "DiscreteFlow": "flow",
-    "FlowPocket": "flow",
+    "voids": "cavities.void",
+    "pockets": "cavities.pocket",
+    "tunnels": "cavities.tunnel",
+    "grooves": "cavities.tunnel",
+    "channel_profile": "cavities.tunnel",
+    "Void": "cavities.void",
+    "Pocket": "cavities.pocket",
+    "Tunnel": "cavities.tunnel",
+    "Cavity": "cavities.cavity",
+    "discrete_flow": "cavities.flow",
+    "flow_pockets": "cavities.flow",
+    "DiscreteFlow": "cavities.flow",
+    "FlowPocket": "cavities.flow",
     "Quaternion": "quaternion",
     "optimal_rotation": "rotation",
     "register": "rotation",
@@ -101,8 +102,8 @@ _EXPORTS = {
     "DockedPose": "docking",
     "curve_persistence": "simplification",
     "simplify": "simplification",
-    "report": "cavity_report",
-    "CavityReport": "cavity_report",
+    "report": "report",
+    "CavityReport": "report",
     "report_batch": "batch",
     "trajectory_measures": "trajectory",
     "TrajectoryMeasures": "trajectory",
@@ -128,8 +129,8 @@ _SUBMODULES = {
     "homology",
     "persistence",
     "cavities",
-    "flow",
-    "freespace",
+    "flow",  # moved: shapelab.cavities.flow (_MOVED)
+    "freespace",  # moved: shapelab.cavities.freespace (_MOVED)
     "measure",
     "oracles",
     "quaternion",
@@ -145,7 +146,8 @@ _SUBMODULES = {
     "widgets",
     "check",
     "simplification",
-    "cavity_report",
+    "report",
+    "cavity_report",  # moved: shapelab.report (_MOVED)
     "batch",
     "trajectory",
     "cli",
@@ -158,5 +160,14 @@ __getattr__, __dir__ = attach(__name__, _EXPORTS, _SUBMODULES, eager=__all__)
 
 #: modules that moved (issue 33), by their old name: ``import shapelab.power`` still
 #: gives the module now called ``shapelab.triangulation``
-_MOVED: dict[str, str] = {"power": "triangulation", "exact": "_engine", "topology": "persistence", "distance": "hausdorff"}
+_MOVED: dict[str, str] = {
+    "power": "triangulation",
+    "exact": "_engine",
+    "topology": "persistence",
+    "distance": "hausdorff",
+    "flow": "cavities.flow",
+    "freespace": "cavities.freespace",
+    "cavity_report": "report",
+}
 moved(__name__, _MOVED)
+#: ``shapelab.report`` is the function, also once its module ``shapelab.report`` is imported

@@ -62,7 +62,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from . import _topology
+from ._engine import persistence as _topology
 from ._engine import alpha as engine
 from ._toolkit.validate import as_bbox, as_precision, as_tau, check_balls, freeze
 from .balls import Balls

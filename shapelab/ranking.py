@@ -201,7 +201,7 @@ def pocket_features(balls, lining, *, volume, area, mouth_area, persistence, rea
     """The features of :class:`PocketFeatures` for ``m`` cavities of one structure (Notes §23.1).
 
     Works the same for every pocket definition: it needs only each cavity's lining
-    atoms and its measures (the columns of a :class:`shapelab.cavity_report.CavityRow`),
+    atoms and its measures (the columns of a :class:`shapelab.report.CavityRow`),
     so the growth model's pockets, the discrete flow's pockets and voids are ranked
     alike.
 
@@ -232,7 +232,7 @@ def pocket_features(balls, lining, *, volume, area, mouth_area, persistence, rea
     --------
     rank_score
         Orders cavities by these features.
-    shapelab.cavity_report.report
+    shapelab.report
         Computes them with ``rank="score"``.
 
     References

@@ -61,7 +61,7 @@ class _Package(types.ModuleType):
     """A package whose public names win over its submodules of the same name.
 
     ``shapelab.hausdorff`` is the function, defined in the module ``shapelab.hausdorff``
-    (likewise ``icp``).  Importing a submodule binds it as an attribute of its package;
+    (likewise ``icp`` and ``report``).  Importing a submodule binds it as an attribute of its package;
     here that binding is skipped when the name is one of the package's lazy exports,
     so ``shapelab.hausdorff`` stays the function after ``from shapelab.hausdorff import
     directed_hausdorff``.  (``import shapelab.hausdorff as m`` gives the function too:

@@ -219,7 +219,7 @@ def flow_sinks(student) -> CheckResult:
     """
     from ..balls import Balls
     from ..filtration import alpha_filtration
-    from ..flow import discrete_flow
+    from ..cavities.flow import discrete_flow
     from ._runner import run_check
 
     rng = np.random.default_rng(7)
@@ -872,7 +872,7 @@ def first_site_rank(
        accurate prediction of ligand binding sites from protein structure",
        *J. Cheminform.* 10:39, 2018 (the DCA criterion).
     """
-    from ..cavity_report import report
+    from ..report import report
 
     rows = report(structure, probe, method=method).rows
     atoms = structure.balls.centers if hasattr(structure, "balls") else structure.centers

@@ -50,7 +50,7 @@ def discrete_flow(F, tau=0.0, *, ax=None, title=None, legend=True, arrows=True):
        construction of pockets in macromolecules", Discrete Appl. Math. 88 (1998) 83-102.
     """
     from ..filtration import as_filtration
-    from ..flow import discrete_flow as compute_flow
+    from ..cavities.flow import discrete_flow as compute_flow
 
     F = as_filtration(F, "plot.discrete_flow")
     balls = F.balls

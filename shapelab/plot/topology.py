@@ -913,7 +913,7 @@ def _pocket_color(i: int) -> str:
 def _draw_features(
     F, tau, V, Pk, T, *, ax, show_complex, elev, azim, title, show_volumes=None, legend=True, focus=False, numbers=None
 ):
-    from ..freespace import free_points
+    from ..cavities.freespace import free_points
 
     balls = F.balls
     d = balls.dim

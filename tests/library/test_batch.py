@@ -32,7 +32,7 @@ SHIPPED = ["globule.pdb", "1hvr.pdb.gz", "t4l_l99a_receptor.pdb.gz"]
 STEMS = {"globule.pdb": "globule", "1hvr.pdb.gz": "1hvr", "t4l_l99a_receptor.pdb.gz": "t4l_l99a_receptor"}
 BAD = "ATOM      1  CA  ALA A   1      1.000   xyz     3.000  1.00  0.00           C\n"
 cli = importlib.import_module("shapelab.cli")
-report_module = importlib.import_module("shapelab.cavity_report")
+report_module = importlib.import_module("shapelab.report")
 
 
 def run_cli(args, cwd):

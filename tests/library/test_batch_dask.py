@@ -13,6 +13,7 @@ that does not answer fails the test instead of hanging CI.  Skips without dask.d
 from __future__ import annotations
 
 import filecmp
+import importlib
 import os
 import shutil
 import signal
@@ -315,7 +316,7 @@ class _DieOn(distributed.WorkerPlugin):
     name = "shapelab-test-die-on"
 
     def setup(self, worker):
-        import shapelab.cavity_report as cr
+        cr = importlib.import_module("shapelab.report")
 
         real = getattr(cr.report, "real", cr.report)
 

@@ -92,11 +92,22 @@ def _call_targets(current: str, is_package: bool, node: ast.Call) -> list[str] |
     return [target]
 
 
+def moved_modules(root: Path = PKG) -> dict[str, str]:
+    """``{"shapelab.flow": "shapelab.cavities.flow", ...}``: the old paths of moved
+    modules (``shapelab._MOVED``), which import the new module itself."""
+    init = root / "__init__.py"
+    for node in ast.walk(ast.parse(init.read_text(encoding="utf-8"))):
+        target = node.target if isinstance(node, ast.AnnAssign) else (node.targets[0] if isinstance(node, ast.Assign) else None)
+        if isinstance(target, ast.Name) and target.id == "_MOVED" and isinstance(node.value, ast.Dict):
+            return {f"{root.name}.{k}": f"{root.name}.{v}" for k, v in ast.literal_eval(node.value).items()}
+    return {}
+
+
 def import_graph(root: Path = PKG, dynamic: list | None = None) -> dict[str, set[str]]:
     """The import graph of the package; ``dynamic`` collects (module, line) of imports
     whose name is not a literal."""
     modules = {module_name(p, root): p for p in root.rglob("*.py")}
-    exports = lazy_exports(root)
+    exports = {**moved_modules(root), **lazy_exports(root)}
     graph: dict[str, set[str]] = {m: set() for m in modules}
     for m, p in modules.items():
         tree = ast.parse(p.read_text(encoding="utf-8"))
@@ -253,3 +264,13 @@ def test_the_version_and_dynamic_imports(tmp_path):
     g = import_graph(pkg, dynamic=dynamic)
     assert g["shapelab._toolkit.validate"] == set()
     assert dynamic == [("shapelab._toolkit.validate", 5)]
+
+
+def test_cavities_is_a_subpackage_of_the_core_layer():
+    """``shapelab.cavities`` (issue 33) is one layer, the core's (2): its modules may
+    import the filtration, never plot, widgets, check or the command line."""
+    graph = import_graph()
+    subs = [m for m in graph if m.startswith("shapelab.cavities.")]
+    assert {"shapelab.cavities.void", "shapelab.cavities.pocket", "shapelab.cavities.tunnel"} <= set(subs)
+    assert all(layer(m) == 2 for m in subs + ["shapelab.cavities"])
+    assert not [(m, t) for m in subs for t in graph[m] if layer(t) > 2]

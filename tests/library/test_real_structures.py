@@ -14,7 +14,7 @@ import pytest
 
 import shapelab as sl
 from shapelab import datasets
-from shapelab import freespace as FS
+from shapelab.cavities import freespace as FS
 from shapelab.triangulation import triangulation_report
 
 from .._oracles import bottleneck

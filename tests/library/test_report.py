@@ -1,4 +1,4 @@
-"""shapelab.report (shapelab.cavity_report, and the command line shapelab.cli): the CASTp-style table of voids and pockets (Notes §23.1).
+"""shapelab.report (shapelab.report, and the command line shapelab.cli): the CASTp-style table of voids and pockets (Notes §23.1).
 
 Oracles are independent of the report's own computation: β₂ of the filtration, the
 fractional inclusion–exclusion of ``Void.volume``, a seeded jittered-grid flood fill
@@ -27,7 +27,7 @@ import shapelab as sl
 from shapelab.datasets import bowl, structure, structure_path
 
 ROOT = Path(__file__).resolve().parents[2]
-report_module = importlib.import_module("shapelab.cavity_report")
+report_module = importlib.import_module("shapelab.report")
 cli = importlib.import_module("shapelab.cli")
 
 
@@ -666,7 +666,7 @@ def test_import_changes_no_global_state():
     program: the command line lives in shapelab.cli alone."""
     code = (
         "import warnings, sys; before = list(warnings.filters); "
-        "import shapelab, shapelab.cavity_report; shapelab.report; "
+        "import shapelab, shapelab.report; shapelab.report; "
         "assert warnings.filters == before, warnings.filters[:3]; "
         "assert 'shapelab.cli' not in sys.modules"
     )
@@ -686,12 +686,12 @@ def test_import_changes_no_global_state():
     "module, code, words",
     [
         ("shapelab.cli", 0, "usage: python -m shapelab"),
-        ("shapelab.cavity_report", 1, "python -m shapelab report FILE"),
+        ("shapelab.report", 1, "python -m shapelab report FILE"),
     ],
 )
 def test_running_a_module_is_never_a_silent_no_op(module, code, words):
     """``python -m shapelab.cli --help`` printed nothing and ``python -m
-    shapelab.cavity_report FILE`` did nothing, both with status 0 (issue 22, review)."""
+    shapelab.report FILE`` did nothing, both with status 0 (issue 22, review)."""
     env = dict(os.environ, PYTHONPATH=str(ROOT))
     r = subprocess.run([sys.executable, "-m", module, "--help"], env=env, capture_output=True, text=True, timeout=120)
     assert r.returncode == code and words in r.stdout + r.stderr, (r.returncode, r.stdout, r.stderr)

@@ -1,50 +1,23 @@
-"""What the two pocket definitions share (Notes §23.1): the merge tree of the free
-space, the components of the complement of :math:`K_\\tau`, the lining balls of a set
-of cells, and the *mouth* of a region -- the faces through which it opens to the
-outside.  Used by :mod:`shapelab.cavities` (growth-model pockets) and by
-:mod:`shapelab.flow` (the discrete flow's pockets), so that both measure a pocket the
-same way.
-
-Mouths (Notes §23.1; CASTp's "mouth openings")
-----------------------------------------------
-Let :math:`R` be a set of top simplices (*cells*) of the Delaunay triangulation, none
-in :math:`K_\\tau`, all in the outside component of the complement (a pocket's
-region).  Glue the cells not in :math:`K_\\tau` and the outside node :math:`\\infty`
-along the :math:`(d-1)`-faces not in :math:`K_\\tau` (the dual graph of the
-complement) and delete :math:`R`.  The component of :math:`\\infty` in what is left is
-the rest of the outside, :math:`O_R`; the other components are *crevices*: free cells
-reachable from :math:`\\infty` only through :math:`R` (dents in the pocket's own wall).
-The mouth of :math:`R` is the set of faces not in :math:`K_\\tau` with one side in
-:math:`R` and the other in :math:`O_R`.  It is the cut between :math:`R` and
-:math:`\\infty`: every path from :math:`R` to :math:`\\infty` through the complement
-leaves :math:`R` for the last time through a mouth face, so closing the mouth faces
-seals :math:`R` (with its crevices) off, and a face into a crevice is no opening.
+"""The cavities' machinery (not required reading): the merge tree of the complement
+of the filtration, run backwards in one union-find pass, and the certified search for
+a region's mouth.  The public definitions are in :mod:`shapelab.cavities`
+(``complement``, ``mouths``); these compute the same sets faster.  Functions take the
+filtration's summary ``S`` (its values, the dual graph of the cells ``S.cell_dual``,
+the positive facets ``S.pos_facets``) and the filtration ``F`` by duck typing.
 """
 
 from __future__ import annotations
 
 from array import array
 from dataclasses import dataclass
-from functools import cached_property
 
 import numpy as np
 from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import breadth_first_order, connected_components, depth_first_order, dijkstra
+from scipy.sparse.csgraph import breadth_first_order, depth_first_order, dijkstra
 
-from ._toolkit.derived import derived
-from ._toolkit.unionfind import elder_merges
-from ._topology import summary
-from .freespace import free_measure
+from .._toolkit.unionfind import elder_merges
 
-__all__ = [
-    "MergeTree",
-    "merge_tree",
-    "leaf_run",
-    "complement_labels",
-    "lining_of",
-    "OutsideGraph",
-    "simplex_sizes",
-]
+__all__ = ["MergeTree", "build_merge_tree", "leaf_run", "cells_at_closing", "OutsideGraph"]
 
 
 # ===================================================================== merge tree
@@ -62,8 +35,9 @@ class MergeTree:
     hi: np.ndarray
 
 
-def build_merge_tree(F) -> MergeTree:
-    S = summary(F)
+def build_merge_tree(S) -> MergeTree:
+    """The merge tree of the complement's cells in reverse filtration order (the
+    dual :math:`H_0`): when each void is sealed, and its cells at every moment."""
     k = S.k
     n = S.values[k].shape[0]
     N = n + 1
@@ -122,10 +96,6 @@ def build_merge_tree(F) -> MergeTree:
     )
 
 
-def merge_tree(F) -> MergeTree:
-    return derived(F, "cavities.merge_tree", build_merge_tree)
-
-
 def leaf_run(T: MergeTree, node: int):
     """Leaf run [lo, hi) of a tree node (leaves are 0..n_cells, merges above)."""
     N = T.n_cells + 1
@@ -134,33 +104,6 @@ def leaf_run(T: MergeTree, node: int):
         return p, p + 1
     m = node - N
     return int(T.lo[m]), int(T.hi[m])
-
-
-def complement_labels(F, S, tau: float):
-    """Labels of the components of the complement of K_tau (cells + outside node)."""
-    k = S.k
-    n = S.values[k].shape[0]
-    u, v = S.cell_dual
-    m = S.values[k - 1] > tau
-    g = coo_matrix((np.ones(int(m.sum()), dtype=np.int8), (u[m], v[m])), shape=(n + 1, n + 1))
-    _, lab = connected_components(g, directed=False)
-    free = np.append(S.values[k] > tau, True)
-    return lab, free
-
-
-def lining_of(cells: np.ndarray, tau: float, vval: np.ndarray) -> np.ndarray:
-    verts = np.unique(cells)
-    return verts[vval[verts] <= tau]
-
-
-def simplex_sizes(centers: np.ndarray) -> np.ndarray:
-    """Lengths (2D) or areas (3D) of facets given as ``(q, d, d)`` vertex coordinates."""
-    c = np.asarray(centers, dtype=np.float64)
-    if c.shape[0] == 0:
-        return np.zeros(0)
-    if c.shape[1] == 2:
-        return np.linalg.norm(c[:, 1] - c[:, 0], axis=1)
-    return 0.5 * np.linalg.norm(np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0]), axis=1)
 
 
 class OutsideGraph:
@@ -175,8 +118,7 @@ class OutsideGraph:
     it saw are in :math:`O_R`) or exhausts a crevice.
     """
 
-    def __init__(self, F, tau: float):
-        S = summary(F)
+    def __init__(self, S, F, tau: float):
         k = S.k
         n = S.values[k].shape[0]
         self.n = n
@@ -269,37 +211,15 @@ class OutsideGraph:
         return uf[ok]
 
 
-class MeasuredRegion:
-    """What :class:`shapelab.Pocket` and :class:`shapelab.FlowPocket` both measure of a
-    region of Delaunay cells at ``tau``: the times of the :class:`shapelab.Cavity`
-    protocol, the free volume and the size of the mouth (Notes §23.1).
-
-    The subclass is a dataclass with ``cells``, ``mouth``, ``closes_at``, ``fills_at``,
-    ``tau`` and ``balls``; one source for both pocket definitions.
-    """
-
-    @property
-    def born(self) -> float:
-        """``closes_at``: when the region becomes a void (the :class:`shapelab.Cavity` protocol)."""
-        return self.closes_at
-
-    @property
-    def dies(self) -> float:
-        """``fills_at``: when that void is filled (the :class:`shapelab.Cavity` protocol)."""
-        return self.fills_at
-
-    @property
-    def persistence(self) -> float:
-        """``fills_at - closes_at``: how long the region lives as a void (for a flow pocket,
-        0 only at a tie: a sink's orthocentre on one of its facets)."""
-        return self.fills_at - self.closes_at
-
-    @cached_property
-    def volume(self) -> float:
-        """Free space of the region at ``tau`` (exact power-cell decomposition)."""
-        return float(free_measure(self.balls, self.tau, self.cells).sum())
-
-    @cached_property
-    def mouth_size(self) -> float:
-        """Total size of the mouth simplices: length in 2D, area in 3D."""
-        return float(simplex_sizes(self.balls.centers[self.mouth]).sum())
+def cells_at_closing(T: MergeTree, r: int) -> np.ndarray:
+    """The cells (ascending) of the void rooted at cell ``r`` at the moment it is sealed,
+    ``T.kill_value[r]``: the leaf run of its tree node, merges at exactly that value
+    undone (they happen at the same time)."""
+    N = T.n_cells + 1
+    bb = float(T.kill_value[r])
+    node = int(T.kill_node[r])
+    while node >= N and T.value[node - N] <= bb:
+        lo, hi = leaf_run(T, int(T.left[node - N]))
+        node = int(T.left[node - N]) if lo <= T.pos[r] < hi else int(T.right[node - N])
+    lo, hi = leaf_run(T, node)
+    return np.sort(T.order[lo:hi])

@@ -743,8 +743,8 @@ def report(
     from .balls import Balls
     from .cavities import pockets as find_pockets
     from .cavities import voids as find_voids
+    from .cavities.freespace import free_area, free_space
     from .filtration import alpha_filtration
-    from .freespace import free_area, free_space
     from .io import PDBStructure, radius_notes
     from .ranking import DEFAULT_MIN_PERSISTENCE, DEFAULT_MIN_VOLUME, pocket_features, rank_order, rank_score
 
@@ -899,7 +899,7 @@ def report(
 
 
 # ============================================================ not a program
-if __name__ == "__main__":  # python -m shapelab.cavity_report: say where the command line is
+if __name__ == "__main__":  # python -m shapelab.report: say where the command line is
     import sys
 
-    sys.exit("shapelab.cavity_report is the report, not a program: run python -m shapelab report FILE")
+    sys.exit("shapelab.report is the report, not a program: run python -m shapelab report FILE")

@@ -103,27 +103,21 @@ not depend on τ and are kept on the filtration.
 
 from __future__ import annotations
 
-import numbers
 from dataclasses import dataclass, field
-from fractions import Fraction
 
 import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import breadth_first_order, connected_components
 
-from ._pockets import MeasuredRegion, lining_of, merge_tree
-from ._toolkit.derived import derived
-from ._toolkit.tolerances import FILTER_UNDERFLOW
-from ._toolkit.validate import as_tau, readonly
-from ._topology import is_roundoff
-from .filtration import as_filtration
-from .freespace import vertex_values
+from .._engine import flow as _engine
+from .._toolkit.derived import derived
+from .._toolkit.validate import as_tau, readonly
+from .._engine.persistence import is_roundoff
+from ..filtration import as_filtration
+from .complement import lining_of, merge_tree, vertex_values
+from .mouths import MeasuredRegion
 
-__all__ = ["DiscreteFlow", "FlowPocket", "discrete_flow", "flow_pockets", "flow_side_exact"]
-
-_U = 2.0**-53
-_C = 64.0  # generous against the ~24 roundings of the 3D expression (see the module docstring)
-_TINY = FILTER_UNDERFLOW  # below this a float bound may be spoilt by underflow: decide exactly
+__all__ = ["DiscreteFlow", "FlowPocket", "discrete_flow", "flow_pockets", "flow_side_exact", "orthocentre_beyond"]
 
 
 # ============================================================================ results
@@ -352,148 +346,23 @@ def flow_side_exact(z_facet, w_facet, z_apex, w_apex) -> int:
     >>> flow_side_exact([[-1.0, 0.0], [1.0, 0.0]], [0.0, 0.0], [0.0, 1.0], 0.0)  # right angle
     0
     """
-    Z = _exact(z_facet, "z_facet", 2)
+    Z = _engine.exact_values(z_facet, "z_facet", 2)
     d = len(Z)
     if d not in (2, 3) or any(len(row) != d for row in Z):
         raise ValueError(
             f"flow_side_exact: z_facet must hold the centres of a facet's d balls, shape (d, d) with "
             f"d = 2 or 3, got shape ({d}, {', '.join(sorted({str(len(row)) for row in Z}))})"
         )
-    W = _exact(w_facet, "w_facet", 1)
+    W = _engine.exact_values(w_facet, "w_facet", 1)
     if len(W) != d:
         raise ValueError(f"flow_side_exact: w_facet must hold {d} weights, one per facet ball, got {len(W)}")
-    A = _exact(z_apex, "z_apex", 1)
+    A = _engine.exact_values(z_apex, "z_apex", 1)
     if len(A) != d:
         raise ValueError(f"flow_side_exact: z_apex must be a point of dimension {d}, got {len(A)} coordinates")
-    (wa,) = _exact([w_apex], "w_apex", 1)
-    if _flow_gram(Z) == 0:
+    (wa,) = _engine.exact_values([w_apex], "w_apex", 1)
+    if _engine.gram(Z) == 0:
         raise ValueError("flow_side_exact: the centres z_facet are affinely dependent (a degenerate facet)")
-    return _sign(_flow_value(Z, W, A, wa))
-
-
-def _exact(x, name, ndim):
-    """``x`` (a number, list or array of depth ``ndim``) as nested lists of Fractions,
-    finite, each float taken exactly; a clear error naming ``name`` otherwise."""
-    if isinstance(x, (str, bytes)):
-        raise TypeError(f"flow_side_exact: {name} must hold numbers, got {type(x).__name__}")
-    if ndim == 0 or not hasattr(x, "__len__"):
-        if ndim:
-            raise ValueError(f"flow_side_exact: {name} must be an array of depth {ndim}, got a scalar {x!r}")
-        if isinstance(x, Fraction):
-            return x
-        if isinstance(x, (bool, np.bool_)) or not isinstance(x, (numbers.Integral, numbers.Real)):
-            raise TypeError(f"flow_side_exact: {name} must hold real numbers, got {type(x).__name__}")
-        v = float(x)
-        if not np.isfinite(v):
-            raise ValueError(f"flow_side_exact: {name} must be finite, got {v!r}")
-        return Fraction(v)
-    return [_exact(e, name, ndim - 1) for e in x]
-
-
-def _flow_gram(Z):
-    """The Gram determinant of the facet's edge vectors (exact for Fractions)."""
-    U = [[Z[i][c] - Z[0][c] for c in range(len(Z[0]))] for i in range(1, len(Z))]
-    if len(U) == 1:
-        return _dot(U[0], U[0])
-    return _dot(U[0], U[0]) * _dot(U[1], U[1]) - _dot(U[0], U[1]) ** 2
-
-
-def _sign(x) -> int:
-    return (x > 0) - (x < 0)
-
-
-def _dot(a, b):
-    s = a[0] * b[0]
-    for i in range(1, len(a)):
-        s = s + a[i] * b[i]
-    return s
-
-
-def _flow_value(Z, W, A, wa, absmode=False):
-    """``D (pi_a(y_nu) - rho_nu)``, or with ``absmode`` its error-bound companion (the
-    same expansion on absolute values, every sign ``+``), for scalars or numpy arrays."""
-    p, wp = Z[0], W[0]
-    d = len(p)
-    U = [[Z[i][c] - p[c] for c in range(d)] for i in range(1, len(Z))]
-    v = [A[c] - p[c] for c in range(d)]
-    if absmode:
-        U = [[abs(e) for e in u] for u in U]
-        v = [abs(e) for e in v]
-    vv = _dot(v, v)
-    if len(U) == 1:
-        (u,) = U
-        G11 = _dot(u, u)
-        c1 = _dot(u, v)
-        if absmode:
-            return G11 * (vv + wa + wp) + (G11 + wp + W[1]) * c1
-        return G11 * (vv - wa + wp) - (G11 + wp - W[1]) * c1
-    u1, u2 = U
-    G11, G12, G22 = _dot(u1, u1), _dot(u1, u2), _dot(u2, u2)
-    c1, c2 = _dot(u1, v), _dot(u2, v)
-    if absmode:
-        D = G11 * G22 + G12 * G12
-        return (
-            D * (vv + wa + wp) + (G11 + wp + W[1]) * (G22 * c1 + G12 * c2) + (G22 + wp + W[2]) * (G11 * c2 + G12 * c1)
-        )
-    D = G11 * G22 - G12 * G12
-    b1, b2 = G11 + wp - W[1], G22 + wp - W[2]
-    return D * (vv - wa + wp) - (b1 * (G22 * c1 - G12 * c2) + b2 * (G11 * c2 - G12 * c1))
-
-
-def _beyond(F) -> np.ndarray:
-    """``(n, d+1)`` int8: the sign for top simplex ``i`` and its facet opposite vertex
-    ``j`` (``-1``: the orthocentre is strictly beyond that facet)."""
-    balls = F.balls
-    d = balls.dim
-    S = np.asarray(F.simplices(d), dtype=np.int64)
-    n = S.shape[0]
-    out = np.zeros((n, d + 1), dtype=np.int8)
-    if n == 0:
-        return out
-    z = np.asarray(balls.centers, dtype=np.float64)
-    # the filtration's own weights (r*r rounded once, then taken as exact), so that a
-    # facet is crossed exactly when the filtration finds it attached by this coface
-    w = np.asarray(balls.weights, dtype=np.float64)
-    for j in range(d + 1):
-        fcols = [c for c in range(d + 1) if c != j]
-        Zc = [[z[S[:, c], k] for k in range(d)] for c in fcols]
-        Wc = [w[S[:, c]] for c in fcols]
-        A = [z[S[:, j], k] for k in range(d)]
-        wa = w[S[:, j]]
-        with np.errstate(all="ignore"):
-            val = _flow_value(Zc, Wc, A, wa)
-            bound = _C * _U * _flow_value(Zc, Wc, A, wa, absmode=True)
-        ok = (np.abs(val) > bound) & (bound > _TINY) & np.isfinite(val) & np.isfinite(bound)
-        out[:, j] = np.where(ok, np.sign(np.where(ok, val, 0.0)), 0)
-        undecided = np.flatnonzero(~ok)
-        if undecided.size == 0:
-            continue
-        Zi, Wi = _scaled_integers(z, w, np.unique(S[undecided]))
-        for i in undecided.tolist():
-            row = S[i].tolist()
-            Zf = [Zi[row[c]] for c in fcols]
-            Wf = [Wi[row[c]] for c in fcols]
-            out[i, j] = _sign(_flow_value(Zf, Wf, Zi[row[j]], Wi[row[j]]))
-    return out
-
-
-def _scaled_integers(z, w, balls):
-    """The centres and weights of ``balls`` as Python integers ``z * 2**k`` and
-    ``w * 2**(2k)``, one ``k`` making every one of them an integer (floats are dyadic
-    rationals).  ``_flow_value`` is homogeneous (degree 4 in 2D, 6 in 3D, a weight
-    counting 2), so on these integers it is the exact value times a positive power of
-    two: the same sign as with :class:`fractions.Fraction`, at a fraction of the cost
-    (a grid-like input leaves a third of its decisions to the exact road)."""
-    zr = {b: [float(c).as_integer_ratio() for c in z[b]] for b in balls.tolist()}
-    wr = {b: float(w[b]).as_integer_ratio() for b in balls.tolist()}
-    k = max(
-        [0]
-        + [den.bit_length() - 1 for row in zr.values() for _, den in row]
-        + [(den.bit_length()) // 2 for _, den in wr.values()]
-    )
-    Zi = {b: [num << (k - den.bit_length() + 1) for num, den in row] for b, row in zr.items()}
-    Wi = {b: num << (2 * k - den.bit_length() + 1) for b, (num, den) in wr.items()}
-    return Zi, Wi
+    return _engine.sign(_engine.flow_value(Z, W, A, wa))
 
 
 def _neighbours(F) -> np.ndarray:
@@ -517,11 +386,55 @@ def _neighbours(F) -> np.ndarray:
 
 
 def _static(F):
-    return {"beyond": _beyond(F), "neighbour": _neighbours(F)}
+    return {"beyond": _engine.beyond(F), "neighbour": _neighbours(F)}
+
+
+def orthocentre_beyond(F) -> np.ndarray:
+    """``(n, d+1)`` int8, in plain floating point: ``-1`` where top simplex ``i`` flows
+    across its facet opposite vertex ``j`` (module docstring, *Flow*), else ``+1``.
+
+    The facet's orthocentre :math:`y_\\nu` is the point of its affine hull with equal
+    power :math:`\\rho_\\nu` to its balls; the simplex flows across it when its apex
+    :math:`a` attaches it, :math:`\\pi_a(y_\\nu) < \\rho_\\nu`.  The exact path
+    (``precision="exact"``) decides the same sign with a certified error bound and
+    integer arithmetic where the floats cannot (``shapelab._engine.flow``).
+
+    See Also
+    --------
+    discrete_flow
+        Uses it with ``precision="fast"``.
+
+    Examples
+    --------
+    An obtuse triangle of three points flows across its long edge (opposite vertex 2):
+
+    >>> import shapelab as sl
+    >>> F = sl.alpha_filtration(sl.Balls([[-1.0, 0.0], [1.0, 0.0], [0.0, 0.1]], 0.0))
+    >>> orthocentre_beyond(F).tolist()
+    [[1, 1, -1]]
+    """
+    balls = F.balls
+    d = balls.dim
+    S = np.asarray(F.simplices(d), dtype=np.int64)
+    z, w = balls.centers, balls.weights
+    out = np.ones((S.shape[0], d + 1), dtype=np.int8)
+    for j in range(d + 1):
+        facet = S[:, [c for c in range(d + 1) if c != j]]
+        p0, w0 = z[facet[:, 0]], w[facet[:, 0]]
+        E = z[facet[:, 1:]] - p0[:, None, :]  # (n, d-1, d): the facet's edge vectors
+        b = 0.5 * (np.einsum("nkd,nkd->nk", E, E) + w0[:, None] - w[facet[:, 1:]])
+        # y = p0 + E^T lam with E E^T lam = b: the orthocentre in the facet's hull
+        lam = np.linalg.solve(np.einsum("nkd,nld->nkl", E, E), b[..., None])[..., 0]
+        x = np.einsum("nkd,nk->nd", E, lam)
+        rho = np.einsum("nd,nd->n", x, x) - w0
+        apex = z[S[:, j]] - p0
+        power = np.einsum("nd,nd->n", x - apex, x - apex) - w[S[:, j]]
+        out[:, j] = np.where(power < rho, -1, 1)
+    return out
 
 
 # ======================================================================= the flow
-def discrete_flow(F, tau=0.0) -> DiscreteFlow:
+def discrete_flow(F, tau: float = 0.0, *, precision: str = "exact") -> DiscreteFlow:
     """Edelsbrunner's discrete flow on the empty simplices of :math:`K_\\tau`
     (Notes §23.1; [1]_).
 
@@ -542,6 +455,14 @@ def discrete_flow(F, tau=0.0) -> DiscreteFlow:
     tau : float, default 0.0
         The growth time of the complex (radii :math:`\\sqrt{r_i^2 + \\tau}`).  CASTp's
         complex is that of the balls grown by the probe, at ``tau = 0``.
+    precision : {"exact", "fast"}, default "exact"
+        ``"exact"``: every flow decision is the exact sign of its polynomial (a
+        floating-point filter with a certified error bound, integer arithmetic where
+        it cannot decide; ``shapelab._engine.flow``), so the flow never disagrees with
+        the filtration's own attachment test, and is kept on ``F``.  ``"fast"``: the
+        plain test :func:`orthocentre_beyond` in floating point, the lines to read;
+        the same flow on generic input (tested), possibly not at ties (a right
+        triangle).
 
     Returns
     -------
@@ -581,6 +502,8 @@ def discrete_flow(F, tau=0.0) -> DiscreteFlow:
     """
     F = as_filtration(F, "discrete_flow")
     tau = as_tau(tau)
+    if precision not in ("exact", "fast"):
+        raise ValueError(f'discrete_flow: precision must be "exact" or "fast", got {precision!r}')
     d = F.balls.dim
     n = len(F.values(d)) if int(F.dimension) == d else 0
     if n == 0:
@@ -596,7 +519,11 @@ def discrete_flow(F, tau=0.0) -> DiscreteFlow:
             readonly(np.zeros(0, dtype=np.int64)),
             (),
         )
-    st = derived(F, "flow.static", _static)
+    st = (
+        derived(F, "flow.static", _static)
+        if precision == "exact"
+        else {"neighbour": _neighbours(F), "beyond": orthocentre_beyond(F)}
+    )
     nb, beyond = st["neighbour"], st["beyond"]
     B = np.asarray(F.boundary(d), dtype=np.int64)
     empty = np.asarray(F.values(d)) > tau
@@ -680,7 +607,7 @@ def _region_pair(F, cid, cv, kill):
     return float(kill[r]), float(cv[r])
 
 
-def flow_pockets(F, tau=0.0) -> tuple:
+def flow_pockets(F, tau: float = 0.0, *, precision: str = "exact") -> tuple:
     """The pockets and voids of the discrete flow at ``tau`` (Notes §23.1; [1]_, [2]_).
 
     Shorthand for ``discrete_flow(F, tau).pockets``: the empty top simplices that do
@@ -692,6 +619,8 @@ def flow_pockets(F, tau=0.0) -> tuple:
     F : Filtration
         ``alpha_filtration(balls)`` of 2D or 3D balls (or the :class:`~shapelab.Balls`).
     tau : float, default 0.0
+    precision : {"exact", "fast"}, default "exact"
+        As for :func:`discrete_flow`.
 
     Returns
     -------
@@ -719,4 +648,4 @@ def flow_pockets(F, tau=0.0) -> tuple:
     >>> sl.flow_pockets(sl.Balls(3 * np.c_[np.cos(t), np.sin(t)], 0.9))
     (FlowPocket(void, cells=10, sinks=1, mouth=0, tau=0),)
     """
-    return discrete_flow(as_filtration(F, "flow_pockets"), tau).pockets
+    return discrete_flow(as_filtration(F, "flow_pockets"), tau, precision=precision).pockets

@@ -1,23 +1,8 @@
-"""Free space of a union of balls: the exact area or volume of cells the balls miss.
-
-Notes §23.1, "Voids and pockets": the free space of a void or pocket is the part of
-its Delaunay cells that no grown ball covers.  :mod:`shapelab.cavities` finds the
-cells; this module measures them.
-
-``void_measure`` (behind ``Void.volume``) is the fractional inclusion–exclusion over a
-void's cells (Edelsbrunner & Fu; Liang et al. 1998): for every cell :math:`t`,
-:math:`\\mathrm{vol}(t) - \\sum_{v} \\tfrac{\\Omega_v}{4\\pi}\\mathrm{vol}(B_v)
-+ \\sum_{e \\in K} \\tfrac{\\varphi_e}{2\\pi}\\mathrm{vol}(B_a \\cap B_b)
-- \\sum_{f \\in K} \\tfrac12 \\mathrm{vol}(B_a \\cap B_b \\cap B_c)`, with solid angles
-:math:`\\Omega` and dihedral angles :math:`\\varphi` of the cell (in 2D: angles and
-half lenses).  Summed over the cells of a void it is exact; the tests check it
-against an independent exact computation (:func:`free_measure`) and Monte Carlo.
-The same sum is *not* exact for a pocket, whose mouth is not covered by the balls
-(ball caps poke through it), so ``Pocket.volume`` uses :func:`free_measure`, the exact
-power-cell decomposition :math:`U \\cap t = \\bigsqcup_i B_i \\cap \\Pi_i \\cap t`, each
-piece a ball clipped by a convex polytope, integrated in closed form.
-:func:`free_space` adds the wall (the union's boundary inside each cell) and
-:func:`free_area` the free area of triangles in space (a pocket's mouth).
+"""The exact free-space integration (not required reading): the measure of cells that
+no grown ball covers, and of triangles in space, by the power-cell decomposition
+integrated in closed form, vectorised and threaded; and the fractional
+inclusion--exclusion behind a void's volume.  The public functions, their
+definitions and their documentation are in :mod:`shapelab.cavities.freespace`.
 
 How the exact measure runs: every (cell, ball) piece at once.  A k-d tree gives the
 balls that reach each cell; the planes that may cut a piece are the power planes of
@@ -26,37 +11,23 @@ less those that miss the ball, the cell, or the cap the cell could reach, and le
 repeats; the pieces are grouped by plane count and clipped together (vertices by
 Cramer's rule on plane triples, faces ordered by angle, one closed-form integral per
 edge).  On the 1FMO report (2,792 atoms) that is about 11,000 pieces in 0.3 s.
+Functions take the balls and the filtration ``F`` (or ``None``) by duck typing and
+return plain arrays.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from functools import lru_cache
 from itertools import combinations
 
 import numpy as np
 
-from ._toolkit import tolerances as tol
-from ._toolkit.derived import derived
-from ._toolkit.geometry import cross_rows
-from ._toolkit.validate import as_tau, check_balls
-from .balls import Balls, power_distance
-from .filtration import as_filtration
+from .._toolkit import tolerances as tol
+from .._toolkit.derived import derived
+from .._toolkit.geometry import cross_rows
+from .._toolkit.validate import as_tau, check_balls
 
-__all__ = ["free_area", "free_measure", "free_space", "FreeSpace", "void_measure", "vertex_values", "free_points"]
-
-
-def vertex_values(F, n_balls: int) -> np.ndarray:
-    """Entry time of every ball in ``F`` (``inf`` for a ball that never enters).
-
-    See Also
-    --------
-    alpha_filtration
-        The filtration whose vertex values these are.
-    """
-    out = np.full(n_balls, np.inf)
-    out[np.asarray(F.simplices(0), dtype=np.int64).ravel()] = F.values(0)
-    return out
+__all__ = ["free_space", "free_area", "void_measure"]
 
 
 # ============================================================ fractional measure
@@ -213,29 +184,13 @@ def _edge_lookup(F):
     return derived(F, "cavities.edge_keys", _build_edge_lookup)
 
 
-def void_measure(F, tau: float, cell_ids: np.ndarray) -> np.ndarray:
-    """Fractional inclusion–exclusion free measure of each cell (exact summed over a
-    void; see the module docstring) of the filtration ``F`` at ``tau``; ``cell_ids``
-    index its top simplices.
-
-    See Also
-    --------
-    free_measure
-        The exact free measure of simplices.
-    shapelab.cavities.Void
-        A void's volume.
-
-    References
-    ----------
-    .. [1] J. Liang, H. Edelsbrunner, P. Fu, P. V. Sudhakar and S. Subramaniam,
-           "Analytical shape computation of macromolecules: II. Inaccessible cavities in
-           proteins", *Proteins* 33(1):18-29, 1998.
-    """
+def void_measure(F, tau: float, cell_ids: np.ndarray, vval: np.ndarray) -> np.ndarray:
+    """Fractional inclusion--exclusion free measure of each cell of ``F`` at ``tau``
+    (``vval``: the balls' entry times); see :func:`shapelab.cavities.freespace.void_measure`."""
     balls = F.balls
     k = int(F.dimension)
     simp = np.asarray(F.simplices(k), dtype=np.int64)[cell_ids]
     W = balls.weights
-    vval = vertex_values(F, len(balls))
     X = balls.centers[simp]
     X = X - X.mean(axis=1, keepdims=True)
     r2 = W[simp] + tau
@@ -735,120 +690,6 @@ def _measure_pairs(X, As, bs, scale, pm, Z, R, row, D, Rj, beaten, boundary):
     return meas, wall
 
 
-def free_measure(F, tau, cells) -> np.ndarray:
-    """Exact free measure (area in 2D, volume in 3D) of simplices not covered by the balls.
-
-    For each simplex :math:`t` (a row of ``cells``, ball indices) returns
-    :math:`\\mathrm{vol}(t) - \\mathrm{vol}(t \\cap U_\\tau)`, where :math:`U_\\tau` is
-    the union of all balls grown to ``tau`` (Notes §23.1).  Uses the power-diagram
-    decomposition :math:`U \\cap t = \\bigsqcup_i B_i \\cap \\Pi_i \\cap t` (Notes §23.1,
-    :math:`U \\cap \\Pi(B_i) = B_i \\cap \\Pi(B_i)`): each piece is a ball clipped by a
-    convex polytope, whose volume is a sum over its faces and their edges of
-    closed-form integrals (no sampling).  All (simplex, ball) pieces are measured at
-    once, vectorised: about 20 µs per piece (the report of a 2800-atom protein
-    measures some 11,000 of them in its two models).
-
-    Parameters
-    ----------
-    F : Filtration or Balls
-        The balls' :func:`~shapelab.alpha_filtration`, or the balls: with a
-        filtration only the planes
-        of its edges in :math:`K_\\tau` cut the power cells (by duality those are
-        all the facets of :math:`B_i \\cap \\Pi_i`), which is several times faster
-        on molecules, where many balls overlap each one.  The result is the same.
-    tau : float
-    cells : array_like, shape (m, d+1), int
-        Simplices as ball indices (any simplices, not only Delaunay ones).
-
-    Returns
-    -------
-    ndarray, shape (m,)
-
-    See Also
-    --------
-    free_space
-        The same with the wall.
-    union_measure
-        The measure of the union itself.
-
-    References
-    ----------
-    .. [1] J. Liang, H. Edelsbrunner, P. Fu, P. V. Sudhakar and S. Subramaniam,
-           "Analytical shape computation of macromolecules: II. Inaccessible cavities in
-           proteins", *Proteins* 33(1):18-29, 1998.
-    """
-    return _free_space(F, tau, cells, False).measure
-
-
-@dataclass(frozen=True, eq=False)
-class FreeSpace:
-    """Free measure and wall of simplices (see :func:`free_space`).
-
-    Attributes
-    ----------
-    measure : ndarray, shape (m,)
-        Free volume (area in 2D) of each simplex: as :func:`free_measure`.
-    wall : ndarray, shape (m,)
-        Measure of :math:`\\partial U_\\tau \\cap t`: the area (length in 2D) of the
-        union's boundary inside each simplex.
-    contact_cell, contact_ball, contact_wall : ndarray, shape (q,)
-        The wall split by ball: simplex row, ball index and the measure of
-        :math:`\\partial B_i \\cap \\Pi_i \\cap t` (positive entries only); summed per
-        simplex they give ``wall``.
-
-    See Also
-    --------
-    free_space
-        Produces it.
-    """
-
-    measure: np.ndarray
-    wall: np.ndarray
-    contact_cell: np.ndarray
-    contact_ball: np.ndarray
-    contact_wall: np.ndarray
-
-
-def free_space(F, tau, cells) -> FreeSpace:
-    """Exact free measure and wall of simplices: :func:`free_measure` plus the boundary.
-
-    The wall of a simplex :math:`t` is :math:`\\partial U_\\tau \\cap t
-    = \\bigsqcup_i \\partial B_i \\cap \\Pi_i \\cap t` (a point of sphere i inside its
-    power cell is on the boundary of the union).  Each piece comes from the same
-    clipped ball as the volume, by the divergence theorem about the ball's centre
-    (:math:`d\\,\\mathrm{vol}(B \\cap Q) = r\\,|\\partial B \\cap Q| + \\sum_f h_f |f \\cap B|`,
-    the facet parts being disks (chords in 2D) clipped by a polygon, in closed form):
-    exact, no sampling.  Summed over the cells of a void it is the void's surface
-    area (Notes §23.1, "Voids and pockets").
-
-    Parameters
-    ----------
-    balls : Balls or Filtration
-        As for :func:`free_measure`.
-    tau : float
-    cells : array_like, shape (m, d+1), int
-        Simplices as ball indices (any simplices, not only Delaunay ones).
-
-    Returns
-    -------
-    FreeSpace
-
-    See Also
-    --------
-    free_measure
-        The measure alone.
-    free_area
-        The free area of mouth triangles.
-
-    References
-    ----------
-    .. [1] J. Liang, H. Edelsbrunner, P. Fu, P. V. Sudhakar and S. Subramaniam,
-           "Analytical shape computation of macromolecules: II. Inaccessible cavities in
-           proteins", *Proteins* 33(1):18-29, 1998.
-    """
-    return _free_space(F, tau, cells, True)
-
-
 # the default thread count stops here, so that memory stays bounded on many-core machines
 # (each thread holds one slice's temporaries); SHAPELAB_THREADS may ask for more
 _DEFAULT_THREADS_CAP = 4
@@ -859,7 +700,7 @@ def _threads(n_tasks: int) -> int:
     most four by default (``SHAPELAB_THREADS`` in the environment overrides it; 1 runs them in the calling
     thread), never more than there are slices, and 1 when called from a thread other
     than the main one (a Dask worker's or a caller's own pool: no pools in pools)."""
-    from ._toolkit.threads import thread_count
+    from .._toolkit.threads import thread_count
 
     return thread_count(n_tasks, cap=_DEFAULT_THREADS_CAP)
 
@@ -881,14 +722,6 @@ def _each(fn, starts) -> None:
     with ThreadPoolExecutor(max_workers=n) as pool:
         for _ in pool.map(fn, starts):  # re-raises a slice's error (map cancels the slices not started)
             pass
-
-
-def _balls_of(F, who):
-    """``(balls, F)``: the balls, and the filtration when one was given (else None)."""
-    if isinstance(F, Balls):
-        return F, None
-    F = as_filtration(F, who)
-    return F.balls, F
 
 
 def _within(tree, live, points, radius):
@@ -938,10 +771,12 @@ def _neighbours(F, tau, C, R, live, tree, rmax):
     return start, count, dst
 
 
-def _free_space(F, tau, cells, boundary):
+def free_space(balls, F, tau, cells, boundary: bool) -> tuple:
+    """``(measure, wall, contact_cell, contact_ball, contact_wall)`` of the simplices
+    ``cells`` (see :func:`shapelab.cavities.freespace.free_space`); ``F`` is the
+    filtration or ``None``."""
     from scipy.spatial import cKDTree
 
-    balls, F = _balls_of(F, "free_space")
     check_balls(balls)
     tau = as_tau(tau)
     d = balls.dim
@@ -953,7 +788,7 @@ def _free_space(F, tau, cells, boundary):
     M = cells.shape[0]
     empty = np.zeros(0, dtype=np.int64)
     if M == 0 or tau == np.inf:  # at τ = inf the balls cover everything
-        return FreeSpace(np.zeros(M), np.zeros(M), empty, empty, np.zeros(0))
+        return (np.zeros(M), np.zeros(M), empty, empty, np.zeros(0))
     w = balls.weights + tau
     R_all = np.sqrt(np.maximum(w, 0.0))
     C = balls.centers
@@ -966,7 +801,7 @@ def _free_space(F, tau, cells, boundary):
     live = np.flatnonzero(w > 0)
     good = np.flatnonzero(out > 0)
     if live.size == 0 or good.size == 0:
-        return FreeSpace(out, np.zeros(M), empty, empty, np.zeros(0))
+        return (out, np.zeros(M), empty, empty, np.zeros(0))
     tree = cKDTree(C[live])
     rmax = float(R_all[live].max())
     # (cell, ball) pairs: balls that reach the cell, and not beyond one of its facets;
@@ -1002,52 +837,17 @@ def _free_space(F, tau, cells, boundary):
     out -= np.bincount(pm, weights=covered, minlength=M)
     wall = np.bincount(pm, weights=wall_p, minlength=M) if boundary else np.zeros(M)
     if not boundary:
-        return FreeSpace(out, wall, empty, empty, np.zeros(0))
+        return (out, wall, empty, empty, np.zeros(0))
     hit = np.flatnonzero(wall_p > 0)
     order = hit[np.lexsort((ball[hit], pm[hit]))]
-    return FreeSpace(out, wall, pm[order], ball[order], wall_p[order])
+    return (out, wall, pm[order], ball[order], wall_p[order])
 
 
-def free_area(F, tau, triangles) -> FreeSpace:
-    """Exact free area and rim of triangles in space: a pocket's mouth (Notes §23.1).
-
-    The union cut by a triangle's plane is a union of disks, the sections of the
-    balls (squared radii :math:`w_j + \\tau - h_j^2`, :math:`h_j` the height of
-    centre j over the plane), and the power diagram of the sections is the section
-    of the power diagram.  So the area of the triangle that no ball covers, and the
-    length of the section circles inside it, are :func:`free_space` of the triangle
-    among those disks, in the triangle's plane: exact, no sampling.
-
-    Parameters
-    ----------
-    F : Filtration or Balls
-        3-dimensional; as for :func:`free_measure`.
-    tau : float
-    triangles : array_like, shape (m, 3), int
-        Triangles as ball indices.
-
-    Returns
-    -------
-    FreeSpace
-        ``measure`` the free area of each triangle, ``wall`` the length of
-        :math:`\\partial U_\\tau` inside it, split by ball in the ``contact_*`` arrays.
-
-    See Also
-    --------
-    free_space
-        Free measure of full-dimensional simplices.
-    pockets
-        Pockets whose mouths this measures.
-
-    References
-    ----------
-    .. [1] J. Liang, H. Edelsbrunner and C. Woodward, "Anatomy of protein pockets and
-           cavities: measurement of binding site geometry and implications for ligand
-           design", *Protein Sci.* 7(9):1884-1897, 1998. doi:10.1002/pro.5560070905
-    """
+def free_area(balls, F, tau, triangles) -> tuple:
+    """``(measure, wall, contact_cell, contact_ball, contact_wall)`` of triangles in
+    space (see :func:`shapelab.cavities.freespace.free_area`)."""
     from scipy.spatial import cKDTree
 
-    balls, F = _balls_of(F, "free_area")
     check_balls(balls)
     tau = as_tau(tau)
     if balls.dim != 3:
@@ -1060,7 +860,7 @@ def free_area(F, tau, triangles) -> FreeSpace:
     M = tri.shape[0]
     empty = np.zeros(0, dtype=np.int64)
     if M == 0 or tau == np.inf:
-        return FreeSpace(np.zeros(M), np.zeros(M), empty, empty, np.zeros(0))
+        return (np.zeros(M), np.zeros(M), empty, empty, np.zeros(0))
     C = balls.centers
     w = balls.weights + tau
     T = C[tri.astype(np.int64)]
@@ -1080,7 +880,7 @@ def free_area(F, tau, triangles) -> FreeSpace:
     live = np.flatnonzero(w > 0)
     good = np.flatnonzero(out > 0)
     if live.size == 0 or good.size == 0:
-        return FreeSpace(out, np.zeros(M), empty, empty, np.zeros(0))
+        return (out, np.zeros(M), empty, empty, np.zeros(0))
     tree = cKDTree(C[live])
     rmax = float(np.sqrt(w[live].max()))
     k, ball = _within(tree, live, o[good], scale[good] + rmax)
@@ -1117,43 +917,4 @@ def free_area(F, tau, triangles) -> FreeSpace:
     wall = np.bincount(pm, weights=wall_p, minlength=M)
     hit = np.flatnonzero(wall_p > 0)
     order = hit[np.lexsort((ball[hit], pm[hit]))]
-    return FreeSpace(out, wall, pm[order], ball[order], wall_p[order])
-
-
-def free_points(F, tau, cells, n_points, rng) -> np.ndarray:
-    """Points of the free space inside ``cells`` (uniform in the cells, then kept where
-    no ball grown to τ covers them, by :func:`shapelab.power_distance`): a picture of a
-    void's shape for :func:`shapelab.plot.voids`, not a measurement.
-
-    Parameters
-    ----------
-    F : Filtration or Balls
-        The balls (a filtration's ``.balls`` are used).
-    tau : float
-    cells : int array (m, d+1)
-        Simplices as ball indices.
-    n_points : int
-        Points drawn in the cells before the covered ones are dropped.
-    rng : numpy.random.Generator
-
-    Returns
-    -------
-    ndarray (k, d)
-
-    See Also
-    --------
-    free_measure
-        The exact measure these points sample.
-    """
-    balls = check_balls(_balls_of(F, "free_points")[0], "F")
-    X = balls.centers[cells]  # (m, d+1, d)
-    E = X[:, 1:] - X[:, :1]
-    vol = np.abs(np.linalg.det(E))
-    if not len(cells) or vol.sum() <= 0:
-        return np.zeros((0, balls.dim))
-    k = rng.multinomial(n_points, vol / vol.sum())
-    idx = np.repeat(np.arange(len(cells)), k)
-    w = rng.dirichlet(np.ones(balls.dim + 1), size=len(idx))
-    pts = np.einsum("mk,mkd->md", w, X[idx])
-    keep = power_distance(pts, balls).min(axis=1) > tau if len(pts) else np.zeros(0, bool)
-    return pts[keep]
+    return (out, wall, pm[order], ball[order], wall_p[order])
