@@ -39,6 +39,11 @@ from .rotation import centroid_alignment as centroid_alignment
 from .rotation import optimal_rotation as optimal_rotation
 from .rotation import quaternion_product as quaternion_product
 from .rotation import rotation_matrix as rotation_matrix
+from .theory import chain_volume as chain_volume
+from .theory import morse_maximum as morse_maximum
+from .theory import tie_break as tie_break
+from .theory import wasserstein_by_hand as wasserstein_by_hand
+from .theory import wilson as wilson
 from .topology import betti_numbers as betti_numbers
 from .topology import boundary_reduction as boundary_reduction
 from .topology import euler_characteristic as euler_characteristic
@@ -53,6 +58,7 @@ __all__ = [
     "boundary_reduction",
     "buried_area",
     "centroid_alignment",
+    "chain_volume",
     "connected_time",
     "critical_points",
     "curve_pairs",
@@ -64,6 +70,7 @@ __all__ = [
     "first_site_rank",
     "flow_sinks",
     "hausdorff",
+    "morse_maximum",
     "most_exposed_residue",
     "most_spread_class",
     "mouth_closing",
@@ -80,9 +87,12 @@ __all__ = [
     "rotation_matrix",
     "show_quiz",
     "standard_error_factor",
+    "tie_break",
     "torus_viewpoints",
     "union_area",
     "void_components",
     "void_count",
     "void_radii",
+    "wasserstein_by_hand",
+    "wilson",
 ]
