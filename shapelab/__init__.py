@@ -151,6 +151,11 @@ _SUBMODULES = {
     "batch",
     "trajectory",
     "cli",
+    "morse",
+    "intersections",
+    "general_position",
+    "assignment",
+    "intervals",
 }
 
 __all__ = sorted(_EXPORTS) + ["__version__"]

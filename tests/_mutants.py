@@ -630,6 +630,52 @@ def _flow_order(v, ns):
 
 
 #: ``"lesson stem:name"`` -> ``f(solution's value, the kernel's globals)`` -> [(label, wrong answer)]
+
+# ---- the theory sections (issue 34): the plausible mistakes of each exercise -----------
+
+
+def _y_max(v, ns):
+    z = ns["three"].centers
+    circumcentre = np.linalg.solve(2 * (z[1:] - z[0]), (z[1:] ** 2).sum(axis=1) - (z[0] ** 2).sum())
+    return [*_generic(v), ("the circumcentre (radii ignored)", circumcentre), ("the centroid", z.mean(axis=0))]
+
+
+def _f_max(v, ns):
+    r = ns["three"].radii
+    return [*_generic(v), ("the squared distance, without the weight", v + float(r[0]) ** 2)]
+
+
+def _triangles(v, ns):
+    balls = ns["hexagon"]
+    around = np.argsort(np.arctan2(balls.centers[:, 1], balls.centers[:, 0]))
+
+    def fan(first):
+        rest = np.roll(around, -int(np.flatnonzero(around == first)[0]))[1:]
+        return [[first, int(a), int(b)] for a, b in zip(rest[:-1], rest[1:])]
+
+    return [*_generic(v), ("a fan from the last ball", fan(len(around) - 1)), ("a fan from ball 1", fan(1))]
+
+
+def _chain_volume(v, ns):
+    r = ns["chain"].radii
+    balls = 4 / 3 * np.pi * float((r**3).sum())
+    return [*_generic(v), ("the balls alone, no lens", balls)]
+
+
+def _w1(v, ns):
+    return [*_generic(v), ("the bottleneck distance", 1.0), ("the 2-Wasserstein distance", float(np.sqrt(1.25)))]
+
+
+def _wilson(v, ns):
+    k, n = ns["k"], ns["n"]
+    p = k / n
+    half = 1.959964 * np.sqrt(p * (1 - p) / n)
+    from scipy.stats import beta
+
+    exact = (float(beta.ppf(0.025, k, n - k + 1)), float(beta.ppf(0.975, k + 1, n - k)))
+    return [*_generic(v), ("the Wald interval", (p - half, p + half)), ("the Clopper–Pearson interval", exact)]
+
+
 OVERRIDES = {
     "01b_homology:my_rank_mod2": _rank_over_reals,
     "01b_homology:betti_rp2": _betti_mod2,
@@ -661,6 +707,12 @@ OVERRIDES = {
     "17_shape_classification:spread": _class_spreads,
     "17_shape_classification:rips_gap": _rips_gap,
     "18_binding_sites:first_rank": _first_site_rank,
+    "11_critical_points:y_max": _y_max,
+    "11_critical_points:f_max": _f_max,
+    "05_dual_complex_3d:triangles": _triangles,
+    "04_union_measure:chain_volume": _chain_volume,
+    "17_shape_classification:w1": _w1,
+    "18_binding_sites:interval": _wilson,
 }
 
 

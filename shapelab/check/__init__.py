@@ -61,6 +61,12 @@ _EXPORTS = {
     "void_radii": "answers",
     "void_components": "answers",
     "first_site_rank": "answers",
+    # theory.py: the theory sections of issue 34
+    "morse_maximum": "theory",
+    "tie_break": "theory",
+    "chain_volume": "theory",
+    "wasserstein_by_hand": "theory",
+    "wilson": "theory",
     # quizzes.py: the end-of-part quizzes
     "quiz": "quizzes",
     "show_quiz": "quizzes",

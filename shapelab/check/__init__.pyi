@@ -43,6 +43,11 @@ from .rotation import centroid_alignment as centroid_alignment
 from .rotation import optimal_rotation as optimal_rotation
 from .rotation import quaternion_product as quaternion_product
 from .rotation import rotation_matrix as rotation_matrix
+from .theory import chain_volume as chain_volume
+from .theory import morse_maximum as morse_maximum
+from .theory import tie_break as tie_break
+from .theory import wasserstein_by_hand as wasserstein_by_hand
+from .theory import wilson as wilson
 from .topology import betti_numbers as betti_numbers
 from .topology import boundary_reduction as boundary_reduction
 from .topology import euler_characteristic as euler_characteristic
@@ -57,6 +62,7 @@ __all__ = [
     "boundary_reduction",
     "buried_area",
     "centroid_alignment",
+    "chain_volume",
     "complex_betti",
     "connected_time",
     "critical_points",
@@ -71,6 +77,7 @@ __all__ = [
     "flow_order",
     "flow_sinks",
     "hausdorff",
+    "morse_maximum",
     "most_exposed_residue",
     "most_spread_class",
     "mouth_closing",
@@ -88,9 +95,12 @@ __all__ = [
     "rotation_matrix",
     "show_quiz",
     "standard_error_factor",
+    "tie_break",
     "torus_viewpoints",
     "union_area",
     "void_components",
     "void_count",
     "void_radii",
+    "wasserstein_by_hand",
+    "wilson",
 ]
