@@ -107,7 +107,7 @@ _EXPORTS = {
     "report_batch": "batch",
     "trajectory_measures": "trajectory",
     "TrajectoryMeasures": "trajectory",
-    # homology.py: chains, boundary matrices and Betti numbers over Z/2, by hand (lesson 01b)
+    # homology.py: chains, boundary matrices and Betti numbers over Z/2, by hand (lesson 02)
     "closure": "homology",
     "boundary_matrix": "homology",
     "rank_mod2": "homology",

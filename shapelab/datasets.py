@@ -251,7 +251,7 @@ def nanotube(
     With ``slit`` > 0 the atoms whose arc position :math:`R\\theta` lies within
     ``slit``/2 of the line θ = 0 are removed along the whole length: the tube becomes
     a **groove** (a gutter) that turns into a tunnel when its lips close as the
-    balls grow — if the slit is narrow enough (lesson 08).
+    balls grow — if the slit is narrow enough (lesson 10).
 
     Parameters
     ----------
@@ -798,7 +798,7 @@ def swiss_cheese(*, spacing=1.0, disk_radius=0.65):
     The slit has the largest area and the smallest persistence: its rows touch at
     τ = 3/4 − 0.65² ≈ 0.33, cutting it into 1 × √3 rectangles, all filled at
     τ = 1 − 0.65² ≈ 0.58, long before even the smallest round hole.  Persistence
-    measures a hole's *thickness*, not its size (lesson 09).
+    measures a hole's *thickness*, not its size (lesson 11).
 
     Returns
     -------
@@ -878,7 +878,7 @@ def mixed_dent(*, small_radius=0.3, big_radius=3.0, bowl_radius=3.0, gap=3.6):
       faster (:math:`dr/d\\tau = 1/(2r)`); the bowl fills from below before the big disks
       meet (they would at τ = (gap/2 + 3)² − 9 ≈ 14): never a void, no pocket.
 
-    Whether a dent is a pocket depends on how the balls grow (lesson 07).
+    Whether a dent is a pocket depends on how the balls grow (lesson 08).
 
     Returns
     -------
@@ -1110,7 +1110,7 @@ def trajectory_files(name: str = "adk-dims") -> tuple[Path, Path]:
 def noisy_sphere(n: int, *, noise: float = 0.01, center=(0.0, 0.0, 0.0), seed=0) -> np.ndarray:
     """``n`` points of the unit sphere (uniform directions) plus isotropic Gaussian
     noise of standard deviation ``noise``, moved to ``center``; deterministic in
-    ``seed``.  The data of the benchmarks and of lesson 12.
+    ``seed``.  The data of the benchmarks and of lesson 14.
 
     See Also
     --------
@@ -1129,7 +1129,7 @@ def noisy_sphere(n: int, *, noise: float = 0.01, center=(0.0, 0.0, 0.0), seed=0)
 
 
 # --------------------------------------------------------------------------- curves and meshes
-# (critical points, lessons 11 and 12)
+# (critical points, lessons 13 and 14)
 def ellipse_curve(a: float = 2.0, b: float = 1.0, center=(0.0, 0.0)) -> Callable:
     """The ellipse ``t -> center + (a cos t, b sin t)`` as a vectorised function.
 
@@ -1315,7 +1315,7 @@ def torus(n_major: int = 24, n_minor: int = 12, *, R: float = 1.0, r: float = 0.
     return V, F
 
 
-# --------------------------------------------------------------------------- shapes for ICP (lesson 13)
+# --------------------------------------------------------------------------- shapes for ICP (lesson 15)
 def sample_shape(kind: str, n: int, *, seed: int = 0) -> np.ndarray:
     """Random points on a closed test surface, for ICP demos, tests and benchmarks.
 
@@ -1382,7 +1382,7 @@ def sample_shape(kind: str, n: int, *, seed: int = 0) -> np.ndarray:
 def shape_family(
     kinds=("sphere", "ellipsoid", "cube", "torus"), per_class: int = 5, n: int = 400, *, noise=0.02, seed=0
 ):
-    """A family of sampled shapes in classes, for shape classification (lesson 17).
+    """A family of sampled shapes in classes, for shape classification (lesson 19).
 
     Each member is :func:`sample_shape` of its kind with its own sampling, turned by a
     random rotation, scaled by a factor in [0.95, 1.05] and moved by Gaussian noise of

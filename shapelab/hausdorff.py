@@ -20,7 +20,7 @@ Public functions
 :func:`hausdorff`
     H(A, B) as a float.
 :func:`hausdorff_kdtree`, :func:`hausdorff_early_break`, :func:`timings`
-    the classical algorithms, for comparison (lesson 12).
+    the classical algorithms, for comparison (lesson 14).
 
 Matching under translation, :func:`shapelab.hausdorff_under_translation`, is in
 :mod:`shapelab.matching`.  (``shapelab.hausdorff`` is the function; the package keeps it

@@ -1,4 +1,4 @@
-"""Simplicial homology over :math:`\\mathbb{Z}/2`, small and by hand (lesson 01b).
+"""Simplicial homology over :math:`\\mathbb{Z}/2`, small and by hand (lesson 02).
 
 A **simplicial complex** is a finite set of simplices, each a set of vertices, closed
 under taking faces: with a simplex, every one of its facets is in the complex. Here a
@@ -190,7 +190,7 @@ def boundary_matrix(simplices, k: int) -> np.ndarray:
     --------
     rank_mod2 : its rank over Z/2.
     betti_numbers : what the ranks give.
-    shapelab.filtration.Filtration.boundary_matrix : all dimensions at once, in filtration order (lesson 09).
+    shapelab.filtration.Filtration.boundary_matrix : all dimensions at once, in filtration order (lesson 11).
 
     References
     ----------
@@ -492,7 +492,7 @@ def positive_simplices(order) -> list:
     :math:`\\sigma` is *positive*) or lowers :math:`\\beta_{k-1}` by one (its boundary
     was a cycle that did not bound, and now does: a **death**; :math:`\\sigma` is
     *negative*). A vertex is always positive. Which class dies at a death is
-    decided by the elder rule, through the reduction of the boundary matrix (lesson 09).
+    decided by the elder rule, through the reduction of the boundary matrix (lesson 11).
 
     Parameters
     ----------

@@ -206,7 +206,7 @@ def icp(
         from ``init`` the cost never increases and it ends (up to ``tol``) at a fixed
         point, a local minimum of the closest-point cost when the closest points
         there are unique.  Which one depends on ``init`` (near the boundary of two
-        basins even on the last bits of the arithmetic, lesson 13); nothing makes it
+        basins even on the last bits of the arithmetic, lesson 15); nothing makes it
         the global minimum.
     max_distance : float, optional
         Pairs farther apart than this are left out of step 2 (Open3D's

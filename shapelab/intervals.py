@@ -1,4 +1,4 @@
-r"""Confidence intervals for a proportion :math:`k/n` (lesson 18's recall figures).
+r"""Confidence intervals for a proportion :math:`k/n` (lesson 20's recall figures).
 
 A recall "found the site in :math:`k` of :math:`n` structures" estimates a success
 probability :math:`p`.  A 95 % confidence interval is a rule that, applied to

@@ -516,7 +516,7 @@ def persistence(F, *, field: int = 2, method: Literal["fast", "reduction"] = "fa
     ties the rim to twice the core otherwise, so two loops may exchange their deaths.
     The pairs of two fields differ only where some 2-chain's boundary is a multiple of a
     cycle (relative to an earlier complex), as the band's is; real structures have such
-    chains (lesson 09: 3MHT).
+    chains (lesson 11: 3MHT).
 
     Tunnels and their representative cycles (:func:`shapelab.tunnels`) are computed in
     :math:`\\mathbb{Z}/2`.

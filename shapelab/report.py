@@ -68,7 +68,7 @@ class CavityRow:
         which its atom is no vertex, so this is not ``Pocket.lining`` / ``Void.lining``
         (the *lining atoms*, the cells' vertices): HIV-1 protease's largest pocket
         (1HVR, probe 1.4 Å) has 58 wall atoms of 26 residues and 36 lining atoms of 23
-        (lesson 07b).
+        (lesson 09).
     lining_atom_names : tuple of str
         Their atom names (``""`` for bare balls).
     lining_residues : tuple of (str, str, int)

@@ -1,7 +1,7 @@
 """Topological simplification by persistence, for functions on a curve.
 
 Notes §23.1 end with *topological simplification*: keep the features that persist and
-drop the others.  Lesson 09 does this with a threshold on the persistence diagram.
+drop the others.  Lesson 11 does this with a threshold on the persistence diagram.
 Edelsbrunner, Letscher and Zomorodian (2002) mean more: a *simplification* is a new
 **function** ``g`` close to ``f`` whose critical points are exactly the persistent ones.
 On a curve (a path or a closed polygon, as in §23.2's critical points of
@@ -175,7 +175,7 @@ def curve_persistence(values, *, closed: bool = True) -> CurvePersistence:
     The piecewise-linear function on the path or cycle graph, filtered by sublevel
     sets (lower-star filtration): components are born at minima and die at maxima,
     where the younger of the two merging components dies (the elder rule, notes §23.1
-    and lesson 09).  Union–find over the vertices in increasing order, O(n log n).
+    and lesson 11).  Union–find over the vertices in increasing order, O(n log n).
 
     References
     ----------

@@ -228,7 +228,7 @@ def _most_spread(v, ns):
 
 
 def _class_spreads(v, ns):
-    """Lesson 17's per-class spreads, read the wrong way (each lands on the right class)."""
+    """Lesson 19's per-class spreads, read the wrong way (each lands on the right class)."""
     labels = list(ns["labels"])
 
     def per_class(M, stat):
@@ -249,7 +249,7 @@ def _class_spreads(v, ns):
 
 
 def _first_site_rank(v, ns):
-    """Lesson 18: the flow's first rank at the ligand; wrong ranks a student may give: the
+    """Lesson 20: the flow's first rank at the ligand; wrong ranks a student may give: the
     growth model's (the table above the exercise), the first *row* of the flow's table,
     a 0-based index, one too many."""
     growth = next(r.id for r in ns["t4l_growth"].rows if ns["distance_to_ligand"](r, ns["t4l"], ns["xylene"]) <= 4.0)
@@ -677,42 +677,42 @@ def _wilson(v, ns):
 
 
 OVERRIDES = {
-    "01b_homology:my_rank_mod2": _rank_over_reals,
-    "01b_homology:betti_rp2": _betti_mod2,
-    "01b_homology:bounds": _bounds,
-    "02_dual_complex:my_edge": _edge,
-    "03_alpha_filtration:is_attached": _attached,
-    "03_alpha_filtration:my_edge_time": _edge_time,
-    "06_voids:n_bounded": _bounded_counts,
-    "07_pockets:my_closes_at": _closes_at,
-    "07_pockets:r_closed": _r_closed,
-    "07b_pocket_flow:my_sinks": _flow_sinks,
-    "07b_pocket_flow:my_flow_order": _flow_order,
-    "05_dual_complex_3d:chis": _chis,
-    "08_tunnels:is_closed_chain": _closed_chain,
-    "09_persistence:betti_from_pairs": _betti_from_pairs,
-    "09_persistence:eps_one_pocket": _eps_one_pocket,
-    "09_persistence:my_reduce": _reduce,
-    "10_molecule_case_study:pocket_residues": _residues,
-    "10_molecule_case_study:most_exposed": _most_exposed,
-    "10_molecule_case_study:voids_after": _voids_after,
-    "10_molecule_case_study:v_before": _v_before,
-    "11_critical_points:viewpoints": _viewpoints,
-    "11_critical_points:my_maxima": _maxima,
-    "11_critical_points:my_minima": _minima,
-    "13_icp:best": _icp_best,
-    "13_icp:my_icp_step": _icp_step,
-    "15_optimal_rotation:my_rotation": _horn_rotation,
-    "17_shape_classification:most_spread": _most_spread,
-    "17_shape_classification:spread": _class_spreads,
-    "17_shape_classification:rips_gap": _rips_gap,
-    "18_binding_sites:first_rank": _first_site_rank,
-    "11_critical_points:y_max": _y_max,
-    "11_critical_points:f_max": _f_max,
-    "05_dual_complex_3d:triangles": _triangles,
-    "04_union_measure:chain_volume": _chain_volume,
-    "17_shape_classification:w1": _w1,
-    "18_binding_sites:interval": _wilson,
+    "02_homology:my_rank_mod2": _rank_over_reals,
+    "02_homology:betti_rp2": _betti_mod2,
+    "02_homology:bounds": _bounds,
+    "03_dual_complex:my_edge": _edge,
+    "04_alpha_filtration:is_attached": _attached,
+    "04_alpha_filtration:my_edge_time": _edge_time,
+    "07_voids:n_bounded": _bounded_counts,
+    "08_pockets:my_closes_at": _closes_at,
+    "08_pockets:r_closed": _r_closed,
+    "09_pocket_flow:my_sinks": _flow_sinks,
+    "09_pocket_flow:my_flow_order": _flow_order,
+    "06_dual_complex_3d:chis": _chis,
+    "10_tunnels:is_closed_chain": _closed_chain,
+    "11_persistence:betti_from_pairs": _betti_from_pairs,
+    "11_persistence:eps_one_pocket": _eps_one_pocket,
+    "11_persistence:my_reduce": _reduce,
+    "12_molecule_case_study:pocket_residues": _residues,
+    "12_molecule_case_study:most_exposed": _most_exposed,
+    "12_molecule_case_study:voids_after": _voids_after,
+    "12_molecule_case_study:v_before": _v_before,
+    "13_critical_points:viewpoints": _viewpoints,
+    "13_critical_points:my_maxima": _maxima,
+    "13_critical_points:my_minima": _minima,
+    "15_icp:best": _icp_best,
+    "15_icp:my_icp_step": _icp_step,
+    "17_optimal_rotation:my_rotation": _horn_rotation,
+    "19_shape_classification:most_spread": _most_spread,
+    "19_shape_classification:spread": _class_spreads,
+    "19_shape_classification:rips_gap": _rips_gap,
+    "20_binding_sites:first_rank": _first_site_rank,
+    "13_critical_points:y_max": _y_max,
+    "13_critical_points:f_max": _f_max,
+    "06_dual_complex_3d:triangles": _triangles,
+    "05_union_measure:chain_volume": _chain_volume,
+    "19_shape_classification:w1": _w1,
+    "20_binding_sites:interval": _wilson,
 }
 
 

@@ -49,7 +49,7 @@ class Pocket(MeasuredRegion):
         The pocket's *lining atoms*: the balls at the vertices of its cells that exist
         at ``tau``.  Not the report's ``lining_atoms`` (:class:`shapelab.report.CavityRow`),
         its *wall atoms*: the balls whose sphere bounds the free space inside the cells,
-        which a ball can do without being a vertex of them (lesson 07b).
+        which a ball can do without being a vertex of them (lesson 09).
     closes_at : float
         The τ′ > τ at which the mouth closes and the pocket becomes a void.
     fills_at : float

@@ -25,11 +25,11 @@ _EXPORTS = {
     "euler_characteristic": "topology",
     "betti_numbers": "topology",
     "boundary_reduction": "topology",
-    # homology.py: lesson 01b, chains and Betti numbers by hand
+    # homology.py: lesson 02, chains and Betti numbers by hand
     "rank_mod2": "homology",
     "complex_betti": "homology",
     "cycles_and_boundaries": "homology",
-    # flow.py: the discrete flow (lesson 07b)
+    # flow.py: the discrete flow (lesson 09)
     "flow_order": "flow",
     # matching.py
     "hausdorff": "matching",

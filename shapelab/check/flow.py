@@ -1,4 +1,4 @@
-"""Self-checks on the discrete flow (lesson 07b; Notes §23.1, "Voids and pockets")."""
+"""Self-checks on the discrete flow (lesson 09; Notes §23.1, "Voids and pockets")."""
 
 from __future__ import annotations
 
@@ -37,7 +37,7 @@ class _Arrows:
 
 
 def flow_order(student) -> CheckResult:
-    """Lesson 07b: ``student(balls, cells)`` returns an order of the empty top
+    """Lesson 09: ``student(balls, cells)`` returns an order of the empty top
     simplices ``cells`` (an ``(m, d+1)`` array of ball indices, in random order: the
     top simplices of the regular triangulation not in :math:`K_\\tau`) in which every
     simplex comes before each simplex it flows into: a list of the indices

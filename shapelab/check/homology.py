@@ -1,4 +1,4 @@
-"""Self-checks for lesson 01b (homology over Z/2): ranks mod 2, Betti numbers of a
+"""Self-checks for lesson 02 (homology over Z/2): ranks mod 2, Betti numbers of a
 given complex, and which chains are cycles and which are boundaries.
 
 The references are :mod:`shapelab.homology`'s functions, computed here so that the
@@ -79,7 +79,7 @@ def rank_mod2(student_fn, *, quiet: bool = False) -> CheckResult:
 
 
 def complex_betti(betti, simplices) -> CheckResult:
-    """Lesson 01b: the Betti numbers :math:`(\\beta_0, \\dots, \\beta_d)` over Z/2 of the
+    """Lesson 02: the Betti numbers :math:`(\\beta_0, \\dots, \\beta_d)` over Z/2 of the
     complex ``simplices``, compared entry by entry without showing them.
 
     See Also
@@ -95,7 +95,7 @@ def complex_betti(betti, simplices) -> CheckResult:
 
 
 def cycles_and_boundaries(cycle, boundary, chains, simplices) -> CheckResult:
-    """Lesson 01b: for each chain of ``chains``, is it a cycle (``cycle[i]``) and is it
+    """Lesson 02: for each chain of ``chains``, is it a cycle (``cycle[i]``) and is it
     a boundary in ``simplices`` (``boundary[i]``)?  Both lists are compared entry by
     entry; a chain claimed to be a boundary but not a cycle gets the hint that every
     boundary is a cycle.

@@ -1,5 +1,5 @@
 """Self-checks for the exercises on the Hausdorff distance and critical points
-(notes §23.2; lessons 11–12).
+(notes §23.2; lessons 13–14).
 
 Each check runs *your* function on edge cases first (single points, identical
 sets, duplicates, one dimension, a set inside the other), then on random sets, and

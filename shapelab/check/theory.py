@@ -1,6 +1,6 @@
 """Self-checks for the theory sections (issue 34): Morse theory of the power distance
-(lesson 11), general position (lesson 05), the short formula's closed forms (lesson 04),
-diagram distances as assignments (lesson 17) and confidence intervals (lesson 18).
+(lesson 13), general position (lesson 06), the short formula's closed forms (lesson 05),
+diagram distances as assignments (lesson 19) and confidence intervals (lesson 20).
 
 Each check computes its reference itself and says how a wrong answer is off, never
 what it should be.
@@ -21,7 +21,7 @@ def _done(name: str, passed: bool, msg: str) -> CheckResult:
 
 
 def morse_maximum(position, critical_value, balls) -> CheckResult:
-    """Lesson 11: the maximum of the power distance :math:`f = \\min_i \\pi_i` of three
+    """Lesson 13: the maximum of the power distance :math:`f = \\min_i \\pi_i` of three
     disks whose orthocentre lies inside their triangle: its position (the orthocentre)
     and its value (the triangle's entry time).
 
@@ -42,7 +42,7 @@ def morse_maximum(position, critical_value, balls) -> CheckResult:
 
 
 def tie_break(triangles, balls) -> CheckResult:
-    """Lesson 05: the triangles the library's regular triangulation picks for cocircular
+    """Lesson 06: the triangles the library's regular triangulation picks for cocircular
     centres (a tie broken by Simulation of Simplicity), compared as a set of sets with
     :func:`shapelab.regular_triangulation`.
 
@@ -71,7 +71,7 @@ def tie_break(triangles, balls) -> CheckResult:
 
 
 def chain_volume(volume, balls) -> CheckResult:
-    """Lesson 04: the volume of the union of a chain of balls, from the closed forms of
+    """Lesson 05: the volume of the union of a chain of balls, from the closed forms of
     the short formula's terms; the reference is :func:`shapelab.union_measure`.
 
     See Also
@@ -84,7 +84,7 @@ def chain_volume(volume, balls) -> CheckResult:
 
 
 def wasserstein_by_hand(w1, D1, D2) -> CheckResult:
-    """Lesson 17: the 1-Wasserstein distance between two small diagrams, to 1e-6;
+    """Lesson 19: the 1-Wasserstein distance between two small diagrams, to 1e-6;
     the reference is :func:`shapelab.wasserstein_distance` with ``p=1``.
 
     See Also
@@ -97,7 +97,7 @@ def wasserstein_by_hand(w1, D1, D2) -> CheckResult:
 
 
 def wilson(interval, k, n, confidence=0.95) -> CheckResult:
-    """Lesson 18: the Wilson score interval for ``k`` successes in ``n`` trials, both
+    """Lesson 20: the Wilson score interval for ``k`` successes in ``n`` trials, both
     ends to 0.001; the reference is :func:`shapelab.intervals.wilson_interval`.
 
     See Also

@@ -42,7 +42,7 @@ _EXPORTS = {
     "pocket_gallery": "topology",
     "tunnels": "topology",
     "channel_profile": "topology",
-    # homology.py: small complexes, chains, boundary matrices (lesson 01b)
+    # homology.py: small complexes, chains, boundary matrices (lesson 02)
     "simplicial_complex": "homology",
     "boundary_matrix": "homology",
     "reduced_matrix": "topology",

@@ -1,4 +1,4 @@
-"""Small simplicial complexes drawn in the plane, chains on them, boundary matrices (lesson 01b)."""
+"""Small simplicial complexes drawn in the plane, chains on them, boundary matrices (lesson 02)."""
 
 from __future__ import annotations
 

@@ -310,7 +310,7 @@ def test_comparison_algorithms_agree():
 
 def test_timings_warm_up_is_not_timed(monkeypatch):
     # a first call that pays for an import (0.26 s against 5 ms for the k-d tree in
-    # lesson 12) must not be the time reported: one untimed call, then the best of
+    # lesson 14) must not be the time reported: one untimed call, then the best of
     # ``repeat`` timed ones
     import shapelab.distance as dist
 

@@ -75,7 +75,7 @@ def test_hidden_ball_is_no_minimum():
 
 
 def test_degenerate_cage_has_no_critical_tetrahedron():
-    # lesson 05: the void of C60 dies at the centre, where 12 balls tie exactly
+    # lesson 06: the void of C60 dies at the centre, where 12 balls tie exactly
     cp = power_critical_points(sl.datasets.fullerene_c60())
     assert cp.counts[3] == 0
 

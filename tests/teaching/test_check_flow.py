@@ -1,4 +1,4 @@
-"""check.flow_order (lesson 07b) passes an order by the orthosphere's power and refuses
+"""check.flow_order (lesson 09) passes an order by the orthosphere's power and refuses
 the plausible wrong ones: the order given, the reverse, the circumradius that ignores the
 weights, the area, an order with a repeat."""
 

@@ -1,4 +1,4 @@
-"""Tests of the self-checks in shapelab.check.homology (lesson 01b): right answers pass,
+"""Tests of the self-checks in shapelab.check.homology (lesson 02): right answers pass,
 wrong answers of the right type fail (an entry off, the rationals' answer, a cycle
 claimed a boundary), and no message gives the right answer away."""
 
