@@ -53,6 +53,9 @@ def simplicial_complex(simplices, positions, *, chain=None, ax=None, title=None,
     S = sorted({tuple(sorted(int(v) for v in s)) for s in simplices}, key=lambda s: (len(s), s))
     pos = {int(i): np.asarray(p, dtype=float) for i, p in (positions.items() if isinstance(positions, dict) else enumerate(positions))}
     by_dim = {k: [s for s in S if len(s) == k + 1] for k in range(4)}
+    unplaced = sorted({v for s in S for v in s} - set(pos))
+    if unplaced:
+        raise ValueError(f"positions: no position for vertex {unplaced[0]}")
     if ax is None:
         fig, ax = new_figure(size=(PAGE[0] / 2, PAGE[1]))
     fig = ax.figure
