@@ -28,14 +28,22 @@ Modules, one per concept of the notes:
 ``shapelab.features``         :func:`coarse_align`: starts for ICP from pose-free features
 ``shapelab.io``               :func:`read_structure` (PDB, mmCIF), :func:`read_pdb`
 ``shapelab.cavity_report``    :func:`report`: CASTp-style table of voids and pockets
-``shapelab.batch``            :func:`report_batch`: many structures at once, in parallel, resumable
-``shapelab.trajectory``       :func:`trajectory_measures`: area, volume, cavities of MD frames (MDAnalysis)
-``shapelab.cli``              ``python -m shapelab report FILE...``: the command line
-``shapelab.datasets``         generated molecules and the inputs of the figures
+``shapelab.tracking``         cavities along a trajectory: one frame measured, the tracking rule
+``shapelab.datasets``         molecules, the figures' inputs, sampled shapes, shipped structures
 ``shapelab.peers``            GUDHI's diagrams of the lessons' inputs: live if installed, else shipped
 ``shapelab.plot``             one function per kind of figure, a shared style
 ``shapelab.widgets``          ipywidgets explorers built on :mod:`shapelab.plot`
 ``shapelab.check``            self-checks for exercises
+============================  =====================================================
+
+The research tools beside the course, which import the core and are never imported by
+it (:mod:`shapelab.tools`):
+
+============================  =====================================================
+``shapelab.tools.batch``      :func:`report_batch`: many structures at once, in parallel, resumable
+``shapelab.tools.trajectory`` :func:`trajectory_measures`: area, volume, cavities of MD frames (MDAnalysis)
+``shapelab.tools.cli``        ``python -m shapelab report FILE...``: the command line
+``shapelab.tools.cluster``    the optional Dask client of a batch or a trajectory
 ============================  =====================================================
 """
 
@@ -99,9 +107,9 @@ _EXPORTS = {
     "simplify": "simplification",
     "report": "cavity_report",
     "CavityReport": "cavity_report",
-    "report_batch": "batch",
-    "trajectory_measures": "trajectory",
-    "TrajectoryMeasures": "trajectory",
+    "report_batch": "tools.batch",
+    "trajectory_measures": "tools.trajectory",
+    "TrajectoryMeasures": "tracking",
 }
 _SUBMODULES = {
     "balls",
@@ -126,9 +134,11 @@ _SUBMODULES = {
     "check",
     "simplification",
     "cavity_report",
-    "batch",
-    "trajectory",
-    "cli",
+    "tracking",
+    "tools",
+    "batch",  # moved: shapelab.tools.batch (_MOVED)
+    "trajectory",  # moved: shapelab.tools.trajectory
+    "cli",  # moved: shapelab.tools.cli
 }
 
 __all__ = sorted(_EXPORTS) + ["__version__"]
@@ -138,5 +148,9 @@ __getattr__, __dir__ = attach(__name__, _EXPORTS, _SUBMODULES, eager=__all__)
 
 #: modules that moved (issue 33), by their old name: ``import shapelab.power`` still
 #: gives the module now called ``shapelab.triangulation``
-_MOVED: dict[str, str] = {}
+_MOVED: dict[str, str] = {
+    "batch": "tools.batch",
+    "cli": "tools.cli",
+    "trajectory": "tools.trajectory",
+}
 moved(__name__, _MOVED)

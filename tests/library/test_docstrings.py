@@ -37,7 +37,7 @@ ORDER = [
 # docstrings are complete; never remove one.
 DOCUMENTED = [
     "balls",
-    "batch",
+    "tools.batch",
     "cavities",
     "check.answers",
     "check.balls",
@@ -71,10 +71,11 @@ DOCUMENTED = [
     "quaternion",
     "registration",
     "cavity_report",
-    "cli",
+    "tools.cli",
     "simplification",
     "topology",
-    "trajectory",
+    "tools.trajectory",
+    "tracking",
     "widgets.balls",
     "widgets.matching",
     "widgets.rotation",
@@ -103,7 +104,7 @@ def _public_defs():
     module that exports it (``shapelab.io.read_pdb``, defined in ``shapelab.io._pdb``)."""
     seen = set()
     for module in _public_modules():
-        if module in ("shapelab", "shapelab.plot", "shapelab.widgets", "shapelab.check"):
+        if module in ("shapelab", "shapelab.plot", "shapelab.widgets", "shapelab.check", "shapelab.tools"):
             continue  # lazy maps: their names are their modules'
         mod = importlib.import_module(module)
         for name in getattr(mod, "__all__", ()):

@@ -43,7 +43,7 @@ import glob
 import sys
 from pathlib import Path
 
-from . import cavity_report
+from .. import cavity_report
 
 __all__ = ["main", "parser"]
 
@@ -282,7 +282,7 @@ def _run_batch(args) -> int:
         return 130
     files = [str(p) for p in summary.files]
     if args.figure is not None:
-        from .plot import batch_summary
+        from ..plot import batch_summary
 
         try:
             batch_summary(summary).savefig(args.figure)
@@ -317,7 +317,7 @@ def _figure_problem(path) -> str | None:
 
 
 def _run_report(args) -> int:
-    from .io import read_structure
+    from ..io import read_structure
 
     def fail(e) -> int:
         msg = str(e).splitlines()[0] if str(e) else type(e).__name__
