@@ -26,7 +26,7 @@ __all__ = ["ring", "figure_23_1", "figure_23_2", "swiss_cheese", "nested_pockets
 
 
 # ----------------------------------------------------------------- 2D figures
-def ring(n=12, *, radius=3.0, disk_radius=1.0, dim=2) -> Balls:
+def ring(n: int = 12, *, radius: float = 3.0, disk_radius: float = 1.0, dim: int = 2) -> Balls:
     """n equal disks (or balls) with centres evenly spaced on a circle: one hole.
 
     Geometry: centres :math:`R(\\cos 2\\pi k/n, \\sin 2\\pi k/n)` (in the plane z = 0
@@ -40,6 +40,12 @@ def ring(n=12, *, radius=3.0, disk_radius=1.0, dim=2) -> Balls:
     --------
     voids
         Its one hole.
+
+    Examples
+    --------
+    >>> r = ring(10, radius=2.5, disk_radius=0.9)
+    >>> len(r), r.dim
+    (10, 2)
     """
     n = as_positive_int(n, "n", minimum=3)
     R = as_finite_scalar(radius, "radius", positive=True)
@@ -68,6 +74,11 @@ def figure_23_1() -> Balls:
         Its dual complex.
     shapelab.plot.dual_complex
         Draws it.
+
+    Examples
+    --------
+    >>> len(figure_23_1())
+    13
     """
     c = np.array(
         [
@@ -112,7 +123,7 @@ def hex_disk(radius: float, spacing: float) -> np.ndarray:
     return p[np.lexsort((p[:, 0], p[:, 1]))]
 
 
-def figure_23_2(*, body_radius=6.0, spacing=1.0, disk_radius=0.65):
+def figure_23_2(*, body_radius: float = 6.0, spacing: float = 1.0, disk_radius: float = 0.65) -> tuple[Balls, Balls]:
     """The two kinds of dent of Figure 23.2, as two sets of disks ``(left, right)``.
 
     Both shapes start from the same body: the points of a triangular lattice of
@@ -146,6 +157,12 @@ def figure_23_2(*, body_radius=6.0, spacing=1.0, disk_radius=0.65):
         The dents' pockets.
     shapelab.plot.pockets
         Draws them.
+
+    Examples
+    --------
+    >>> flask, funnel = figure_23_2()
+    >>> len(flask), len(funnel)
+    (112, 100)
     """
     R = as_finite_scalar(body_radius, "body_radius", positive=True)
     s = as_finite_scalar(spacing, "spacing", positive=True)
@@ -167,7 +184,7 @@ def figure_23_2(*, body_radius=6.0, spacing=1.0, disk_radius=0.65):
     return Balls(p[~flask], r), Balls(p[~funnel], r)
 
 
-def swiss_cheese(*, spacing=1.0, disk_radius=0.65):
+def swiss_cheese(*, spacing: float = 1.0, disk_radius: float = 0.65) -> Balls:
     """2D disks with four holes: round ones of three sizes and a long thin slit.
 
     Geometry: the triangular lattice of spacing s = 1 in the rectangle
@@ -193,6 +210,11 @@ def swiss_cheese(*, spacing=1.0, disk_radius=0.65):
     --------
     voids
         Its holes.
+
+    Examples
+    --------
+    >>> len(swiss_cheese())
+    272
     """
     s = as_finite_scalar(spacing, "spacing", positive=True)
     r = as_finite_scalar(disk_radius, "disk_radius", positive=True)
@@ -210,7 +232,7 @@ def swiss_cheese(*, spacing=1.0, disk_radius=0.65):
     return Balls(p[np.lexsort((p[:, 0], p[:, 1]))], r)
 
 
-def nested_pockets(*, disk_radius=0.65):
+def nested_pockets(*, disk_radius: float = 0.65) -> Balls:
     """2D disks with a two-chamber pocket: the pocket hierarchy (Notes §23.1).
 
     Geometry (units of the lattice spacing 1): the triangular lattice inside a disk of
@@ -236,6 +258,11 @@ def nested_pockets(*, disk_radius=0.65):
     --------
     pockets
         The pocket hierarchy.
+
+    Examples
+    --------
+    >>> len(nested_pockets())
+    186
     """
     r = as_finite_scalar(disk_radius, "disk_radius", positive=True)
     p = hex_disk(8.0, 1.0)
@@ -247,7 +274,9 @@ def nested_pockets(*, disk_radius=0.65):
     return Balls(p[~remove], r)
 
 
-def mixed_dent(*, small_radius=0.3, big_radius=3.0, bowl_radius=3.0, gap=3.6):
+def mixed_dent(
+    *, small_radius: float = 0.3, big_radius: float = 3.0, bowl_radius: float = 3.0, gap: float = 3.6
+) -> Balls:
     """2D: a dent that is a pocket when disks grow by a probe, but not in the notes' model.
 
     Geometry: a half-ring of small disks (radius 0.3, centres 0.45 apart along the
@@ -274,6 +303,11 @@ def mixed_dent(*, small_radius=0.3, big_radius=3.0, bowl_radius=3.0, gap=3.6):
     --------
     pockets
         Pockets with and without a probe.
+
+    Examples
+    --------
+    >>> len(mixed_dent())
+    24
     """
     rs = as_finite_scalar(small_radius, "small_radius", positive=True)
     rb = as_finite_scalar(big_radius, "big_radius", positive=True)

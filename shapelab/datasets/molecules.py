@@ -18,11 +18,16 @@ Chem.* **68**, 441 (1964)); see :data:`shapelab.io.VDW_RADII`.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from .._toolkit.validate import as_finite_scalar, as_positive_int
 from ..balls import Balls
 from ._common import ball_jitter, cos_sin, dist_segment, seeded_rng
+
+if TYPE_CHECKING:
+    from ..io import PDBStructure
 
 __all__ = [
     "fullerene_c60",
@@ -66,7 +71,13 @@ def _truncated_icosahedron() -> np.ndarray:
     return out
 
 
-def fullerene_c60(*, bond_length=1.4, atom_radius=CARBON_RADIUS, jitter=0.0, seed=0) -> Balls:
+def fullerene_c60(
+    *,
+    bond_length: float = 1.4,
+    atom_radius: float = CARBON_RADIUS,
+    jitter: float = 0.0,
+    seed: int | np.random.Generator = 0,
+) -> Balls:
     """Buckminsterfullerene C60: 60 carbon balls on a truncated icosahedron.
 
     Geometry: the vertices of the truncated icosahedron (even permutations of
@@ -104,6 +115,12 @@ def fullerene_c60(*, bond_length=1.4, atom_radius=CARBON_RADIUS, jitter=0.0, see
         Its bonds.
     nanotube
         Another carbon cage.
+
+    Examples
+    --------
+    >>> c60 = fullerene_c60()
+    >>> len(c60), float(c60.radii[0])
+    (60, 1.7)
     """
     b = as_finite_scalar(bond_length, "bond_length", positive=True)
     r = as_finite_scalar(atom_radius, "atom_radius", nonnegative=True)
@@ -128,6 +145,11 @@ def c60_edges(balls: Balls | None = None, *, tol: float = 1e-6) -> np.ndarray:
     --------
     fullerene_c60
         The atoms.
+
+    Examples
+    --------
+    >>> c60_edges().shape  # 90 bonds, each a pair of atom indices
+    (90, 2)
     """
     balls = fullerene_c60() if balls is None else balls
     c = balls.centers
@@ -139,13 +161,18 @@ def c60_edges(balls: Balls | None = None, *, tol: float = 1e-6) -> np.ndarray:
 
 
 # ------------------------------------------------------------------- nanotube
-def nanotube_radius(n, m, *, a=GRAPHENE_LATTICE_CONSTANT) -> float:
+def nanotube_radius(n: int, m: int, *, a: float = GRAPHENE_LATTICE_CONSTANT) -> float:
     """Radius :math:`a\\sqrt{n^2 + nm + m^2}/(2\\pi)` of an (n, m) nanotube, in Å.
 
     See Also
     --------
     nanotube
         The tube.
+
+    Examples
+    --------
+    >>> round(float(nanotube_radius(8, 8)), 3)  # Å
+    5.425
     """
     n = as_positive_int(n, "n", minimum=0)
     m = as_positive_int(m, "m", minimum=0)
@@ -154,7 +181,15 @@ def nanotube_radius(n, m, *, a=GRAPHENE_LATTICE_CONSTANT) -> float:
 
 
 def nanotube(
-    n=8, m=8, *, length=12.0, atom_radius=CARBON_RADIUS, a=GRAPHENE_LATTICE_CONSTANT, slit=0.0, jitter=0.0, seed=0
+    n: int = 8,
+    m: int = 8,
+    *,
+    length: float = 12.0,
+    atom_radius: float = CARBON_RADIUS,
+    a: float = GRAPHENE_LATTICE_CONSTANT,
+    slit: float = 0.0,
+    jitter: float = 0.0,
+    seed: int | np.random.Generator = 0,
 ) -> Balls:
     """A single-walled (n, m) carbon nanotube: a graphene sheet rolled up.
 
@@ -200,6 +235,12 @@ def nanotube(
         Its radius.
     tunnels
         Its tunnel.
+
+    Examples
+    --------
+    >>> tube = nanotube(8, 8, length=12.0)
+    >>> len(tube), tube.dim
+    (160, 3)
     """
     n = as_positive_int(n, "n", minimum=1)
     m = as_positive_int(m, "m", minimum=0)
@@ -255,7 +296,15 @@ def _fibonacci_sphere(N: int) -> np.ndarray:
     return np.column_stack([s * cos_p, s * sin_p, z])
 
 
-def bowl(*, radius=6.0, opening=50.0, spacing=2.0, atom_radius=CARBON_RADIUS, jitter=0.0, seed=0) -> Balls:
+def bowl(
+    *,
+    radius: float = 6.0,
+    opening: float = 50.0,
+    spacing: float = 2.0,
+    atom_radius: float = CARBON_RADIUS,
+    jitter: float = 0.0,
+    seed: int | np.random.Generator = 0,
+) -> Balls:
     """A deep bowl: a spherical shell of atoms with a round opening, one pocket.
 
     Geometry: about :math:`N = 4\\pi R^2 / (\\tfrac{\\sqrt3}{2} s^2)` points of a
@@ -287,6 +336,11 @@ def bowl(*, radius=6.0, opening=50.0, spacing=2.0, atom_radius=CARBON_RADIUS, ji
     --------
     pockets
         Its one pocket.
+
+    Examples
+    --------
+    >>> len(bowl())
+    108
     """
     R = as_finite_scalar(radius, "radius", positive=True)
     op = as_finite_scalar(opening, "opening", positive=True)
@@ -404,16 +458,16 @@ def _globule_geometry(
 
 
 def globule(
-    seed=0,
+    seed: int | np.random.Generator = 0,
     *,
-    semi_axes=(13.0, 11.0, 10.0),
-    spacing=2.1,
-    void_radius=2.0,
-    pocket_radius=2.2,
-    mouth_radius=0.6,
-    groove_radius=1.5,
-    slit_halfwidth=0.6,
-    jitter=0.08,
+    semi_axes: tuple[float, float, float] = (13.0, 11.0, 10.0),
+    spacing: float = 2.1,
+    void_radius: float = 2.0,
+    pocket_radius: float = 2.2,
+    mouth_radius: float = 0.6,
+    groove_radius: float = 1.5,
+    slit_halfwidth: float = 0.6,
+    jitter: float = 0.08,
 ) -> Balls:
     """A protein-like globule with a buried void, a pocket and a groove (3D, Å).
 
@@ -463,6 +517,11 @@ def globule(
         With atom labels.
     report
         Its voids and pockets.
+
+    Examples
+    --------
+    >>> len(globule(seed=0))
+    665
     """
     pos, _, r, _ = _globule_geometry(
         seed, semi_axes, spacing, void_radius, pocket_radius, mouth_radius, groove_radius, slit_halfwidth, jitter
@@ -470,7 +529,7 @@ def globule(
     return Balls(pos, r)
 
 
-def globule_structure(seed=0, *, residue_size=8, **kwargs):
+def globule_structure(seed: int | np.random.Generator = 0, *, residue_size: int = 8, **kwargs: float) -> PDBStructure:
     """:func:`globule` with elements, atom names and pseudo-residues, as a PDBStructure.
 
     The atoms are threaded into one chain by a greedy nearest-neighbour walk starting
@@ -489,6 +548,12 @@ def globule_structure(seed=0, *, residue_size=8, **kwargs):
         The balls alone.
     example_pdb
         The same molecule as a file.
+
+    Examples
+    --------
+    >>> s = globule_structure(seed=0)
+    >>> len(s), s.residue_label(0)
+    (665, 'A:SER1')
     """
     from .._toolkit.validate import readonly as _readonly
     from ..io import PDBStructure  # io imports balls only; no cycle

@@ -18,9 +18,10 @@ on every machine.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .._toolkit.validate import as_finite_scalar, as_point, as_positive_int
 from ._common import seeded_rng
@@ -37,7 +38,9 @@ __all__ = [
 ]
 
 
-def noisy_sphere(n: int, *, noise: float = 0.01, center=(0.0, 0.0, 0.0), seed=0) -> np.ndarray:
+def noisy_sphere(
+    n: int, *, noise: float = 0.01, center: ArrayLike = (0.0, 0.0, 0.0), seed: int | np.random.Generator = 0
+) -> np.ndarray:
     """``n`` points of the unit sphere (uniform directions) plus isotropic Gaussian
     noise of standard deviation ``noise``, moved to ``center``; deterministic in
     ``seed``.  The data of the benchmarks and of lesson 12.
@@ -46,6 +49,13 @@ def noisy_sphere(n: int, *, noise: float = 0.01, center=(0.0, 0.0, 0.0), seed=0)
     --------
     shapelab.diagrams.bottleneck_distance
         Compare the diagrams of noisy samples.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> x = noisy_sphere(100, seed=0)
+    >>> x.shape, round(float(np.linalg.norm(x, axis=1).mean()), 2)
+    ((100, 3), 1.0)
     """
     n = as_positive_int(n, "n")
     noise = as_finite_scalar(noise, "noise", nonnegative=True)
@@ -60,7 +70,7 @@ def noisy_sphere(n: int, *, noise: float = 0.01, center=(0.0, 0.0, 0.0), seed=0)
 
 # --------------------------------------------------------------------------- curves and meshes
 # (critical points, lessons 11 and 12)
-def ellipse_curve(a: float = 2.0, b: float = 1.0, center=(0.0, 0.0)) -> Callable:
+def ellipse_curve(a: float = 2.0, b: float = 1.0, center: ArrayLike = (0.0, 0.0)) -> Callable[[ArrayLike], np.ndarray]:
     """The ellipse ``t -> center + (a cos t, b sin t)`` as a vectorised function.
 
     See Also
@@ -69,6 +79,13 @@ def ellipse_curve(a: float = 2.0, b: float = 1.0, center=(0.0, 0.0)) -> Callable
         Samples it.
     critical_points
         Its critical points.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> gamma = ellipse_curve(2.0, 1.0)
+    >>> np.round(gamma(np.array([0.0, np.pi / 2])), 12).tolist()  # component-first: x row, y row
+    [[2.0, 0.0], [0.0, 1.0]]
     """
     a = as_finite_scalar(a, "a", positive=True)
     b = as_finite_scalar(b, "b", positive=True)
@@ -81,7 +98,7 @@ def ellipse_curve(a: float = 2.0, b: float = 1.0, center=(0.0, 0.0)) -> Callable
     return fn
 
 
-def blob_curve(t):
+def blob_curve(t: ArrayLike) -> np.ndarray:
     """A smooth star-shaped closed curve like the one of Figure 23.3.
 
     ``r(t) = 1 + 0.25 cos 3t + 0.12 sin(2t + 0.6)`` in polar coordinates about
@@ -94,6 +111,12 @@ def blob_curve(t):
         Samples it.
     critical_points
         Its critical points.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> blob_curve(np.linspace(0, 2 * np.pi, 5)).shape  # component-first
+    (2, 5)
     """
     t = np.asarray(t, dtype=float)
     r = 1.0 + 0.25 * np.cos(3 * t) + 0.12 * np.sin(2 * t + 0.6)
@@ -113,6 +136,12 @@ def icosphere(subdivisions: int = 2, radius: float = 1.0) -> tuple[np.ndarray, n
         A sphere with bumps.
     shapelab.critical.euler_characteristic
         χ = 2.
+
+    Examples
+    --------
+    >>> V, F = icosphere(2)
+    >>> V.shape, F.shape
+    ((162, 3), (320, 3))
     """
     subdivisions = as_positive_int(subdivisions, "subdivisions", minimum=0)
     if subdivisions > 7:
@@ -184,7 +213,7 @@ def icosphere(subdivisions: int = 2, radius: float = 1.0) -> tuple[np.ndarray, n
 
 
 def bumpy_sphere(
-    subdivisions: int = 3, *, bumps: int = 6, amplitude: float = 0.3, seed=0
+    subdivisions: int = 3, *, bumps: int = 6, amplitude: float = 0.3, seed: int | np.random.Generator = 0
 ) -> tuple[np.ndarray, np.ndarray]:
     """An icosphere pushed radially by ``bumps`` random Gaussian bumps and dents:
     a closed star-shaped surface with several minima, maxima and saddles.
@@ -197,6 +226,12 @@ def bumpy_sphere(
         The smooth sphere.
     critical_points
         Its critical points.
+
+    Examples
+    --------
+    >>> V, F = bumpy_sphere()
+    >>> V.shape, F.shape
+    ((642, 3), (1280, 3))
     """
     bumps = as_positive_int(bumps, "bumps", minimum=0)
     amplitude = as_finite_scalar(amplitude, "amplitude", nonnegative=True)
@@ -225,6 +260,12 @@ def torus(n_major: int = 24, n_minor: int = 12, *, R: float = 1.0, r: float = 0.
         A sphere.
     shapelab.critical.euler_characteristic
         χ = 0.
+
+    Examples
+    --------
+    >>> V, F = torus()
+    >>> V.shape, F.shape
+    ((288, 3), (576, 3))
     """
     n_major = as_positive_int(n_major, "n_major", minimum=3)
     n_minor = as_positive_int(n_minor, "n_minor", minimum=3)
@@ -277,6 +318,11 @@ def sample_shape(kind: str, n: int, *, seed: int = 0) -> np.ndarray:
         Registers sampled shapes.
     shape_family
         Shapes in classes.
+
+    Examples
+    --------
+    >>> sample_shape("torus", 50, seed=0).shape
+    (50, 3)
     """
     if not isinstance(kind, str):
         raise TypeError(f"kind must be a string, got {type(kind).__name__}")
@@ -310,8 +356,13 @@ def sample_shape(kind: str, n: int, *, seed: int = 0) -> np.ndarray:
 
 
 def shape_family(
-    kinds=("sphere", "ellipsoid", "cube", "torus"), per_class: int = 5, n: int = 400, *, noise=0.02, seed=0
-):
+    kinds: Sequence[str] = ("sphere", "ellipsoid", "cube", "torus"),
+    per_class: int = 5,
+    n: int = 400,
+    *,
+    noise: float = 0.02,
+    seed: int | np.random.Generator = 0,
+) -> tuple[list[np.ndarray], list[str]]:
     """A family of sampled shapes in classes, for shape classification (lesson 17).
 
     Each member is :func:`sample_shape` of its kind with its own sampling, turned by a
@@ -330,6 +381,12 @@ def shape_family(
         One shape.
     shapelab.diagrams.distance_matrix
         Compares the family's diagrams.
+
+    Examples
+    --------
+    >>> shapes, labels = shape_family(("sphere", "torus"), per_class=2, n=50)
+    >>> len(shapes), labels
+    (4, ['sphere', 'sphere', 'torus', 'torus'])
     """
     from ..quaternion import Quaternion
 

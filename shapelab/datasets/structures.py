@@ -28,6 +28,10 @@ import types
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from ..io import PDBStructure
 
 __all__ = ["STRUCTURES", "StructureInfo", "structure", "structure_path", "trajectory_files", "example_pdb"]
 
@@ -136,7 +140,7 @@ def structure_path(name: str) -> Path:
     return Path(str(resources.files("shapelab").joinpath("data", info.file)))
 
 
-def structure(name: str, **kwargs):
+def structure(name: str, **kwargs: Any) -> PDBStructure:
     """Read a shipped real structure by name (Notes §23.1: a molecule as balls).
 
     Parameters
@@ -252,5 +256,10 @@ def example_pdb() -> Path:
         Reads it.
     globule_structure
         The same molecule.
+
+    Examples
+    --------
+    >>> example_pdb().name
+    'globule.pdb'
     """
     return Path(str(resources.files("shapelab").joinpath("data", "globule.pdb")))
