@@ -23,12 +23,13 @@ from . import power as power
 from . import quaternion as quaternion
 from . import registration as registration
 from . import simplification as simplification
+from . import tools as tools
 from . import topology as topology
+from . import tracking as tracking
 from . import trajectory as trajectory
 from . import widgets as widgets
 from .balls import Balls as Balls
 from .balls import power_distance as power_distance
-from .batch import report_batch as report_batch
 from .cavities import Cavity as Cavity
 from .cavities import Pocket as Pocket
 from .cavities import Tunnel as Tunnel
@@ -80,8 +81,9 @@ from .registration import optimal_rotation as optimal_rotation
 from .registration import register as register
 from .simplification import curve_persistence as curve_persistence
 from .simplification import simplify as simplify
-from .trajectory import TrajectoryMeasures as TrajectoryMeasures
-from .trajectory import trajectory_measures as trajectory_measures
+from .tools.batch import report_batch as report_batch
+from .tools.trajectory import trajectory_measures as trajectory_measures
+from .tracking import TrajectoryMeasures as TrajectoryMeasures
 
 __version__: str
 

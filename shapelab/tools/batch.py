@@ -7,7 +7,7 @@ each, the same files as the command line does for one file
 (:meth:`shapelab.cavity_report.CavityReport.write`: ``<stem>_cavities.csv``, ``.md``,
 ``.cif`` and, when the format can hold it, ``.pdb``), then one summary table for the
 batch.  It is the library behind ``python -m shapelab report PATH PATH ...``
-(:mod:`shapelab.cli`).
+(:mod:`shapelab.tools.cli`).
 
 * **Parallel**: ``jobs=N`` runs ``N`` worker processes
   (:class:`concurrent.futures.ProcessPoolExecutor`, started with ``spawn``), each of
@@ -867,7 +867,7 @@ def report_batch(
         The files written per structure.
     expand_paths
         Which files a list of paths names.
-    shapelab.cli.main
+    shapelab.tools.cli.main
         ``python -m shapelab report PATH PATH ...``: this function on the command line.
 
     Notes

@@ -10,7 +10,7 @@ union's volume and surface area (:func:`shapelab.union_measure`), its voids
 followed from frame to frame by the atoms that line them.
 
 MDAnalysis is an optional dependency: ``pip install "shapelab[md]"``.  It is imported
-only when a trajectory is read, so ``import shapelab.trajectory`` works without it.
+only when a trajectory is read, so ``import shapelab.tools.trajectory`` works without it.
 
 The measures of one frame, the tracking rule and the result types are the core's
 (:mod:`shapelab.tracking`, re-exported here); this module reads the trajectory and
