@@ -23,8 +23,8 @@ from pathlib import Path
 import pytest
 
 import shapelab as sl
-from shapelab.tools.batch import SUMMARY_COLUMNS, BatchSummary, expand_paths, output_stem, report_batch
 from shapelab.datasets import structure_path
+from shapelab.tools.batch import SUMMARY_COLUMNS, BatchSummary, expand_paths, output_stem, report_batch
 
 ROOT = Path(__file__).resolve().parents[2]
 DATA = structure_path("1hvr").parent

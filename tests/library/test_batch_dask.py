@@ -23,8 +23,8 @@ from pathlib import Path
 
 import pytest
 
-from shapelab.tools.batch import SUMMARY_COLUMNS, report_batch
 from shapelab.datasets import structure_path
+from shapelab.tools.batch import SUMMARY_COLUMNS, report_batch
 
 dask = pytest.importorskip("dask", reason='dask is not installed (pip install "shapelab[dask]")')
 distributed = pytest.importorskip(
