@@ -568,13 +568,13 @@ def l12_hausdorff():
     "reference point) and by the optimal translation, found by a certified search.",
     source="Lesson 14",
     lesson="14_hausdorff",
-    needs=("hausdorff_under_translation", "plot.matching.translation"),
+    needs=("hausdorff_under_translation", "plot.hausdorff_distance.translation"),
 )
 def l12_translation():
     rng = np.random.default_rng(12)
     A = rng.normal(size=(40, 2)) * [1.5, 0.6]
     B = A[rng.permutation(40)[:30]] + 0.15 * rng.normal(size=(30, 2)) + [4.0, -2.0]
-    return _sl().plot.matching.translation(A, B, _sl().hausdorff_under_translation(A, B))
+    return _resolve("plot.hausdorff_distance.translation")(A, B, _sl().hausdorff_under_translation(A, B))
 
 
 def _icp_example(n=250):

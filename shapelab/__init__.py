@@ -32,14 +32,23 @@ Modules, one per concept of the notes:
 ``shapelab.features``         :func:`coarse_align`: starts for ICP from pose-free features
 ``shapelab.io``               :func:`read_structure` (PDB, mmCIF), :func:`read_pdb`
 ``shapelab.report``           :func:`report`: CASTp-style table of voids and pockets
-``shapelab.batch``            :func:`report_batch`: many structures at once, in parallel, resumable
-``shapelab.trajectory``       :func:`trajectory_measures`: area, volume, cavities of MD frames (MDAnalysis)
-``shapelab.cli``              ``python -m shapelab report FILE...``: the command line
-``shapelab.datasets``         generated molecules and the inputs of the figures
+``shapelab.tracking``         cavities along a trajectory: one frame measured, the tracking rule
+``shapelab.datasets``         molecules, the figures' inputs, sampled shapes, shipped structures
+``shapelab.tools``            beside the course: :func:`report_batch` (batches, Dask), :func:`trajectory_measures`, the CLI
 ``shapelab.peers``            GUDHI's diagrams of the lessons' inputs: live if installed, else shipped
 ``shapelab.plot``             one function per kind of figure, a shared style
 ``shapelab.widgets``          ipywidgets explorers built on :mod:`shapelab.plot`
 ``shapelab.check``            self-checks for exercises
+============================  =====================================================
+
+The research tools beside the course, which import the core and are never imported by
+it (:mod:`shapelab.tools`):
+
+============================  =====================================================
+``shapelab.tools.batch``      :func:`report_batch`: many structures at once, in parallel, resumable
+``shapelab.tools.trajectory`` :func:`trajectory_measures`: area, volume, cavities of MD frames (MDAnalysis)
+``shapelab.tools.cli``        ``python -m shapelab report FILE...``: the command line
+``shapelab.tools.cluster``    the optional Dask client of a batch or a trajectory
 ============================  =====================================================
 """
 
@@ -104,9 +113,9 @@ _EXPORTS = {
     "simplify": "simplification",
     "report": "report",
     "CavityReport": "report",
-    "report_batch": "batch",
-    "trajectory_measures": "trajectory",
-    "TrajectoryMeasures": "trajectory",
+    "report_batch": "tools.batch",
+    "trajectory_measures": "tools.trajectory",
+    "TrajectoryMeasures": "tracking",
     # homology.py: chains, boundary matrices and Betti numbers over Z/2, by hand (lesson 02)
     "closure": "homology",
     "boundary_matrix": "homology",
@@ -148,9 +157,11 @@ _SUBMODULES = {
     "simplification",
     "report",
     "cavity_report",  # moved: shapelab.report (_MOVED)
-    "batch",
-    "trajectory",
-    "cli",
+    "tracking",
+    "tools",
+    "batch",  # moved: shapelab.tools.batch (_MOVED)
+    "trajectory",  # moved: shapelab.tools.trajectory
+    "cli",  # moved: shapelab.tools.cli
     "morse",
     "intersections",
     "general_position",
@@ -173,6 +184,9 @@ _MOVED: dict[str, str] = {
     "flow": "cavities.flow",
     "freespace": "cavities.freespace",
     "cavity_report": "report",
+    "batch": "tools.batch",
+    "cli": "tools.cli",
+    "trajectory": "tools.trajectory",
 }
 moved(__name__, _MOVED)
 #: ``shapelab.report`` is the function, also once its module ``shapelab.report`` is imported

@@ -33,13 +33,14 @@ from . import registration as registration
 from . import report as report
 from . import rotation as rotation
 from . import simplification as simplification
+from . import tools as tools
 from . import topology as topology
+from . import tracking as tracking
 from . import trajectory as trajectory
 from . import triangulation as triangulation
 from . import widgets as widgets
 from .balls import Balls as Balls
 from .balls import power_distance as power_distance
-from .batch import report_batch as report_batch
 from .cavities.cavity import Cavity as Cavity
 from .cavities.flow import DiscreteFlow as DiscreteFlow
 from .cavities.flow import FlowPocket as FlowPocket
@@ -98,8 +99,9 @@ from .rotation import optimal_rotation as optimal_rotation
 from .rotation import register as register
 from .simplification import curve_persistence as curve_persistence
 from .simplification import simplify as simplify
-from .trajectory import TrajectoryMeasures as TrajectoryMeasures
-from .trajectory import trajectory_measures as trajectory_measures
+from .tools.batch import report_batch as report_batch
+from .tools.trajectory import trajectory_measures as trajectory_measures
+from .tracking import TrajectoryMeasures as TrajectoryMeasures
 from .triangulation import PowerDiagram as PowerDiagram
 from .triangulation import orthosphere as orthosphere
 from .triangulation import power_diagram as power_diagram

@@ -100,14 +100,20 @@ class _Alias(importlib.abc.MetaPathFinder, importlib.abc.Loader):
     def exec_module(self, module):
         module.__spec__ = module.__spec__.loader_state
 
+    def get_code(self, fullname):
+        """What ``python -m OLD`` runs: the moved module as ``python -m NEW`` runs it."""
+        new = self.target(fullname)
+        source = f"import runpy\nrunpy.run_module({new!r}, run_name='__main__', alter_sys=True)\n"
+        return compile(source, f"<{fullname}, moved to {new}>", "exec")
+
 
 def moved(package: str, moves: dict) -> None:
     """Keep old import paths of ``package``'s moved modules working.
 
     ``moved("shapelab", {"power": "triangulation"})`` makes ``import shapelab.power``
     (and ``from shapelab.power import x``) give the module ``shapelab.triangulation``
-    itself, so that code written against an earlier layout keeps running; the file
-    tree shows only the new layout.
+    itself, and ``python -m shapelab.power`` run it, so that code written against an
+    earlier layout keeps running; the file tree shows only the new layout.
     """
     for finder in sys.meta_path:
         if isinstance(finder, _Alias):

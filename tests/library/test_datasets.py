@@ -12,6 +12,7 @@ from scipy.spatial.distance import pdist, squareform
 
 from shapelab import Balls
 from shapelab import datasets as D
+from shapelab.datasets.figures import hex_disk
 
 PHI = (1 + 5**0.5) / 2
 
@@ -696,7 +697,7 @@ def test_figure_23_2_dents_differ_only_in_the_mouth():
     """Same body, same chamber, same depth: the funnel's dent contains the flask's, and the
     extra points it removes all lie above the chamber's centre (the mouth)."""
     left, right = D.figure_23_2()
-    body = {tuple(p) for p in D._hex_disk(6.0, 1.0)}
+    body = {tuple(p) for p in hex_disk(6.0, 1.0)}
     gone_l = body - {tuple(p) for p in left.centers}
     gone_r = body - {tuple(p) for p in right.centers}
     assert gone_l < gone_r

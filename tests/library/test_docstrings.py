@@ -37,7 +37,7 @@ ORDER = [
 # docstrings are complete; never remove one.
 DOCUMENTED = [
     "balls",
-    "batch",
+    "tools.batch",
     "cavities",
     "cavities.cavity",
     "cavities.complement",
@@ -55,6 +55,10 @@ DOCUMENTED = [
     "_engine.certify",
     "critical",
     "datasets",
+    "datasets.figures",
+    "datasets.molecules",
+    "datasets.shapes",
+    "datasets.structures",
     "diagrams",
     "distance",
     "docking",
@@ -72,6 +76,10 @@ DOCUMENTED = [
     "plot.balls",
     "plot.homology",
     "plot.matching",
+    "plot.critical",
+    "plot.hausdorff_distance",
+    "plot.docking",
+    "plot.classification",
     "plot.rotation",
     "plot.topology",
     "plot.viewer3d",
@@ -82,10 +90,11 @@ DOCUMENTED = [
     "quaternion",
     "registration",
     "report",
-    "cli",
+    "tools.cli",
     "simplification",
     "topology",
-    "trajectory",
+    "tools.trajectory",
+    "tracking",
     "widgets.balls",
     "widgets.matching",
     "widgets.rotation",
@@ -114,7 +123,7 @@ def _public_defs():
     module that exports it (``shapelab.io.read_pdb``, defined in ``shapelab.io._pdb``)."""
     seen = set()
     for module in _public_modules():
-        if module in ("shapelab", "shapelab.plot", "shapelab.widgets", "shapelab.check"):
+        if module in ("shapelab", "shapelab.plot", "shapelab.widgets", "shapelab.check", "shapelab.tools"):
             continue  # lazy maps: their names are their modules'
         mod = importlib.import_module(module)
         for name in getattr(mod, "__all__", ()):

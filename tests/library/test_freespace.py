@@ -371,7 +371,7 @@ def test_huge_or_padded_thread_counts_are_capped_by_the_slices(monkeypatch, valu
     assert FSE._threads(3) == min(3, int(value))
 
 
-@pytest.mark.parametrize("module", ["shapelab.batch", "shapelab.trajectory"])
+@pytest.mark.parametrize("module", ["shapelab.tools.batch", "shapelab.tools.trajectory"])
 def test_worker_processes_use_one_thread_unless_told(monkeypatch, module):
     # batch and trajectory workers already share out the CPUs: a thread pool in each
     # would oversubscribe them; an explicit SHAPELAB_THREADS is kept

@@ -28,7 +28,7 @@ from shapelab.datasets import bowl, structure, structure_path
 
 ROOT = Path(__file__).resolve().parents[2]
 report_module = importlib.import_module("shapelab.report")
-cli = importlib.import_module("shapelab.cli")
+cli = importlib.import_module("shapelab.tools.cli")
 
 
 def cli_main(argv):
@@ -668,7 +668,7 @@ def test_import_changes_no_global_state():
         "import warnings, sys; before = list(warnings.filters); "
         "import shapelab, shapelab.report; shapelab.report; "
         "assert warnings.filters == before, warnings.filters[:3]; "
-        "assert 'shapelab.cli' not in sys.modules"
+        "assert 'shapelab.tools.cli' not in sys.modules and 'shapelab.tools' not in sys.modules"
     )
     code = (
         "import os, logging, warnings, sys, numpy; env = dict(os.environ); "
@@ -685,7 +685,8 @@ def test_import_changes_no_global_state():
 @pytest.mark.parametrize(
     "module, code, words",
     [
-        ("shapelab.cli", 0, "usage: python -m shapelab"),
+        ("shapelab.tools.cli", 0, "usage: python -m shapelab"),
+        ("shapelab.cli", 0, "usage: python -m shapelab"),  # the old path (shapelab._MOVED)
         ("shapelab.report", 1, "python -m shapelab report FILE"),
     ],
 )

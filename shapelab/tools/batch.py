@@ -7,7 +7,7 @@ each, the same files as the command line does for one file
 (:meth:`shapelab.cavity_report.CavityReport.write`: ``<stem>_cavities.csv``, ``.md``,
 ``.cif`` and, when the format can hold it, ``.pdb``), then one summary table for the
 batch.  It is the library behind ``python -m shapelab report PATH PATH ...``
-(:mod:`shapelab.cli`).
+(:mod:`shapelab.tools.cli`).
 
 * **Parallel**: ``jobs=N`` runs ``N`` worker processes
   (:class:`concurrent.futures.ProcessPoolExecutor`, started with ``spawn``), each of
@@ -58,7 +58,7 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from ._toolkit.validate import as_finite_scalar, as_positive_int
+from .._toolkit.validate import as_finite_scalar, as_positive_int
 
 __all__ = [
     "BatchSummary",
@@ -288,7 +288,7 @@ def read_structure_file(path, **options):
     report_batch
         Reads every input with it.
     """
-    from . import io
+    from .. import io
 
     return io.read_structure(path, **options)
 
@@ -363,7 +363,7 @@ def _failed(row: dict, e: BaseException, path, shown=None) -> None:
 def _store(task: dict, sha: str, row: dict, rep, *, check: bool = True) -> None:
     """Write a computed report's files into the output directory, then its done marker
     (``check``: first :func:`shapelab.cavity_report.check_output`, unless done already)."""
-    from . import cavity_report
+    from .. import cavity_report
 
     out, stem = Path(task["out"]), task["stem"]
     if check:
@@ -381,7 +381,7 @@ def _store(task: dict, sha: str, row: dict, rep, *, check: bool = True) -> None:
 def _run_one(task: dict) -> dict:
     """Report on one structure (in a worker or in the calling process): read, check
     the output, compute, write the files, then the done marker."""
-    from . import cavity_report
+    from .. import cavity_report
 
     t0 = time.perf_counter()
     out, stem = Path(task["out"]), task["stem"]
@@ -408,7 +408,7 @@ def _remote_one(task: dict, data: bytes) -> tuple:
     report (None if it failed), which the client writes (:func:`_store`).  Messages
     name the original path, as :func:`_run_one` does.
     """
-    from . import cavity_report
+    from .. import cavity_report
 
     t0 = time.perf_counter()
     stem = task["stem"]
@@ -680,7 +680,7 @@ def _dask_rows(tasks: list, client, on_row) -> dict:
     reports are held for those only)."""
     import uuid
 
-    from ._toolkit.cluster import cancelled_error, cluster_threads, distributed_module, submit_with_bytes
+    from .cluster import cancelled_error, cluster_threads, distributed_module, submit_with_bytes
 
     distributed = distributed_module("report_batch")
     cancelled = cancelled_error(distributed)
@@ -867,7 +867,7 @@ def report_batch(
         The files written per structure.
     expand_paths
         Which files a list of paths names.
-    shapelab.cli.main
+    shapelab.tools.cli.main
         ``python -m shapelab report PATH PATH ...``: this function on the command line.
 
     Notes
@@ -932,7 +932,7 @@ def report_batch(
         min_volume=None if min_volume is None else as_finite_scalar(min_volume, "min_volume", nonnegative=True),
         top=None if top is None else as_positive_int(top, "top"),
     )
-    from ._toolkit.cluster import cluster_client
+    from .cluster import cluster_client
 
     with cluster_client(client, scheduler, jobs, "report_batch") as cluster:
         return _batch(paths, out, probe, jobs, resume, progress, summary, options, cluster, ranking)

@@ -18,7 +18,7 @@ per task:
     computed, and writes nothing.
 
 ``report PATH PATH ...``
-    Many structures at once (:func:`shapelab.batch.report_batch`): with more than
+    Many structures at once (:func:`shapelab.tools.batch.report_batch`): with more than
     one ``PATH``, a folder (searched recursively for ``*.pdb``, ``*.ent``,
     ``*.cif``, ``*.mmcif``, ``*.bcif`` and their ``.gz``), a glob pattern, or
     ``--resume``, each
@@ -43,7 +43,7 @@ import glob
 import sys
 from pathlib import Path
 
-from . import cavity_report
+from .. import cavity_report
 
 __all__ = ["main", "parser"]
 
@@ -203,7 +203,7 @@ def main(argv=None) -> int:
     is computed.  If no PDB file is written, one line on stderr says why.
 
     With several paths, a folder, a glob pattern, ``--resume``, ``--scheduler`` or
-    ``--figure``, ``report`` runs :func:`shapelab.batch.report_batch` (``--jobs``,
+    ``--figure``, ``report`` runs :func:`shapelab.tools.batch.report_batch` (``--jobs``,
     ``--resume``, ``--no-progress``, ``--summary``, ``--scheduler`` for a Dask
     cluster; the ranking options pass through to each structure's report) and,
     with ``--figure PATH``, draws its summary
@@ -216,7 +216,7 @@ def main(argv=None) -> int:
     --------
     shapelab.report
         The function behind ``report``.
-    shapelab.batch.report_batch
+    shapelab.tools.batch.report_batch
         The function behind ``report`` on many structures.
     parser
         The options.
@@ -282,7 +282,7 @@ def _run_batch(args) -> int:
         return 130
     files = [str(p) for p in summary.files]
     if args.figure is not None:
-        from .plot import batch_summary
+        from ..plot import batch_summary
 
         try:
             batch_summary(summary).savefig(args.figure)
@@ -317,7 +317,7 @@ def _figure_problem(path) -> str | None:
 
 
 def _run_report(args) -> int:
-    from .io import read_structure
+    from ..io import read_structure
 
     def fail(e) -> int:
         msg = str(e).splitlines()[0] if str(e) else type(e).__name__
