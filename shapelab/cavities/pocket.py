@@ -50,8 +50,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._engine.mouths import cells_at_closing
-from .._toolkit.validate import as_finite_scalar, as_tau, readonly
 from .._engine.persistence import is_roundoff, summary
+from .._toolkit.validate import as_finite_scalar, as_tau, readonly
 from ..filtration import as_filtration
 from .complement import complement_labels, full_dimensional, lining_of, merge_tree, vertex_values
 from .mouths import MeasuredRegion, mouth_finder
