@@ -82,17 +82,18 @@ def refresh(path: Path, check: bool = False) -> bool:
     nb = json.loads(path.read_text(encoding="utf-8"))
     want = text(path.stem)
     i = _cell_index(nb["cells"])
-    if i is not None and "".join(nb["cells"][i]["source"]) == want:
+    if (i is not None and "".join(nb["cells"][i]["source"]) == want
+            and "remove-cell" in nb["cells"][i]["metadata"].get("tags", [])):
         return True
     if check:
         return False
     cell = {"cell_type": "markdown", "id": f"read-the-code-{path.stem[:2]}",
-            "metadata": {"slideshow": {"slide_type": "notes"}},
+            "metadata": {"slideshow": {"slide_type": "notes"}, "tags": ["remove-cell"]},
             "source": want.splitlines(keepends=True)}
     if i is None:
         nb["cells"].insert(1, cell)
     else:
-        nb["cells"][i] = {**nb["cells"][i], "source": cell["source"]}
+        nb["cells"][i] = {**nb["cells"][i], "source": cell["source"], "metadata": cell["metadata"]}
     path.write_text(json.dumps(nb, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
     return True
 
