@@ -70,6 +70,10 @@ def text(stem: str) -> str:
     )
 
 
+#: on the page and in the student edition, not on the slides
+_METADATA = {"slideshow": {"slide_type": "skip"}}
+
+
 def _cell_index(cells: list) -> int | None:
     for i, cell in enumerate(cells[:4]):
         if cell["cell_type"] == "markdown" and "".join(cell["source"]).startswith(MARK):
@@ -83,12 +87,12 @@ def refresh(path: Path, check: bool = False) -> bool:
     want = text(path.stem)
     i = _cell_index(nb["cells"])
     if (i is not None and "".join(nb["cells"][i]["source"]) == want
-            and "remove-cell" in nb["cells"][i]["metadata"].get("tags", [])):
+            and nb["cells"][i]["metadata"] == _METADATA):
         return True
     if check:
         return False
     cell = {"cell_type": "markdown", "id": f"read-the-code-{path.stem[:2]}",
-            "metadata": {"slideshow": {"slide_type": "notes"}, "tags": ["remove-cell"]},
+            "metadata": _METADATA,
             "source": want.splitlines(keepends=True)}
     if i is None:
         nb["cells"].insert(1, cell)
