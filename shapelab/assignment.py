@@ -40,7 +40,9 @@ __all__ = ["augmented_cost_matrix", "assignment_distance"]
 def _finite_diagram(D, name: str) -> np.ndarray:
     A = as_float_array(D, name).reshape(-1, 2) if np.size(D) else np.zeros((0, 2))
     if not np.all(np.isfinite(A)):
-        raise ValueError(f"{name} must have finite births and deaths (points at infinity: use shapelab.wasserstein_distance)")
+        raise ValueError(
+            f"{name} must have finite births and deaths (points at infinity: use shapelab.wasserstein_distance)"
+        )
     return A
 
 

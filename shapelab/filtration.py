@@ -62,8 +62,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._engine import persistence as _topology
 from ._engine import alpha as engine
+from ._engine import persistence as _topology
 from ._toolkit.validate import as_bbox, as_precision, as_tau, check_balls, freeze
 from .balls import Balls
 from .triangulation import clipped_cells, orthosphere, power_diagram, regular_triangulation

@@ -38,6 +38,7 @@ __all__ = [
     "positive_simplices",
 ]
 
+
 def _simplex(s, name: str) -> tuple:
     """One simplex as a sorted tuple of distinct ints."""
     if isinstance(s, (str, bytes)) or not hasattr(s, "__iter__"):
@@ -81,7 +82,9 @@ def _chain(chain, name: str = "chain") -> set:
     counts = Counter(_simplex(s, name) for s in chain)
     c = {s for s, n in counts.items() if n % 2}
     if len({len(s) for s in c}) > 1:
-        raise ValueError(f"{name}: a chain holds simplices of one dimension, got dimensions {sorted({len(s) - 1 for s in c})}")
+        raise ValueError(
+            f"{name}: a chain holds simplices of one dimension, got dimensions {sorted({len(s) - 1 for s in c})}"
+        )
     return c
 
 
@@ -258,27 +261,27 @@ def rank_mod2(M) -> int:
         raise TypeError(f"M: expected a 2-D matrix of 0s and 1s, got {type(M).__name__}")
     try:
         A = np.asarray(M)
-    except ValueError as exc:                          # ragged nested lists
+    except ValueError as exc:  # ragged nested lists
         raise ValueError(f"M: expected a 2-D matrix with rows of equal length ({exc})") from None
     if A.ndim != 2:
         raise ValueError(f"M: expected a 2-D matrix, got shape {A.shape}")
     if A.size and A.dtype == object and all(isinstance(x, int) and not isinstance(x, bool) for x in A.flat):
-        A = np.vectorize(lambda x: x % 2, otypes=[np.uint8])(A)   # Python ints of any size, reduced exactly
+        A = np.vectorize(lambda x: x % 2, otypes=[np.uint8])(A)  # Python ints of any size, reduced exactly
     if A.size and not (np.issubdtype(A.dtype, np.integer) or A.dtype == np.bool_):
         raise TypeError(f"M: expected integer or boolean entries (0 and 1), got dtype {A.dtype}")
-    A = (A % 2).astype(np.uint8)                       # parity is exact in every integer dtype
+    A = (A % 2).astype(np.uint8)  # parity is exact in every integer dtype
     rank = 0
     for col in range(A.shape[1]):
         if rank == A.shape[0]:
             break
         candidates = np.flatnonzero(A[rank:, col])
         if candidates.size == 0:
-            continue                                   # no pivot in this column
+            continue  # no pivot in this column
         p = rank + int(candidates[0])
-        A[[rank, p]] = A[[p, rank]]                    # the pivot row moves up
+        A[[rank, p]] = A[[p, rank]]  # the pivot row moves up
         others = np.flatnonzero(A[:, col])
         others = others[others != rank]
-        A[others] ^= A[rank]                           # clear the column: add the pivot row, mod 2
+        A[others] ^= A[rank]  # clear the column: add the pivot row, mod 2
         rank += 1
     return rank
 
@@ -502,7 +505,7 @@ def positive_simplices(order) -> list:
     *negative*). A vertex is always positive. Which class dies at a death is
     decided by the elder rule, through the reduction of the boundary matrix (lesson 11).
 
-    Each step asks :func:`is_boundary`'s question of :math:`\partial\sigma` and the
+    Each step asks :func:`is_boundary`'s question of :math:`\\partial\\sigma` and the
     simplices before it; the answer is kept up to date exactly, one elimination step per
     simplex (the boundaries entered so far stay reduced mod 2), rather than by a fresh
     rank of every prefix.
@@ -547,9 +550,9 @@ def positive_simplices(order) -> list:
     # rank of the whole prefix; here it is answered incrementally and exactly: the boundaries
     # of the k-simplices entered so far are kept reduced mod 2 (a chain is a Python int, bit
     # i for the i-th (k-1)-simplex to enter), so ∂σ is a boundary iff it reduces to zero.
-    index: dict = {}                                   # simplex -> its bit among those of its dimension
-    count: Counter = Counter()                         # how many simplices of each dimension entered
-    reduced: dict = {}                                 # k -> {highest bit: reduced boundary}
+    index: dict = {}  # simplex -> its bit among those of its dimension
+    count: Counter = Counter()  # how many simplices of each dimension entered
+    reduced: dict = {}  # k -> {highest bit: reduced boundary}
     out = []
     for s in order:
         k = len(s) - 1
@@ -562,9 +565,9 @@ def positive_simplices(order) -> list:
                 v ^= 1 << index[f]
             basis = reduced.setdefault(k, {})
             while v and v.bit_length() - 1 in basis:
-                v ^= basis[v.bit_length() - 1]         # add an earlier boundary, mod 2
+                v ^= basis[v.bit_length() - 1]  # add an earlier boundary, mod 2
             if v:
-                basis[v.bit_length() - 1] = v          # ∂σ did not bound: σ is negative
+                basis[v.bit_length() - 1] = v  # ∂σ did not bound: σ is negative
             out.append(not v)
         else:
             out.append(True)

@@ -389,9 +389,7 @@ def _pieces(Z, W, R, d, k, exact=True):
 
 
 # ============================================================ public entry
-def measure_from_simplices(
-    centers, weights, simplices, *, tau: float = 0.0, precision: str = "exact"
-) -> UnionMeasure:
+def measure_from_simplices(centers, weights, simplices, *, tau: float = 0.0, precision: str = "exact") -> UnionMeasure:
     """The short inclusion–exclusion formula over a given dual complex.
 
     The sum of :func:`union_measure`, for a complex from elsewhere (e.g. GUDHI).
@@ -454,14 +452,12 @@ def union_measure(F, tau: float = 0.0, *, precision: str = "exact") -> UnionMeas
     Computed exactly with the short inclusion–exclusion formula over the dual complex
     K (Notes §23.1; Edelsbrunner 1995):
     :math:`\\operatorname{vol} \\bigcup B_i = \\sum_{\\sigma\\in K}
-    (-1)^{\\dim\\sigma} \\operatorname{vol} \\bigcap_{i\\in\\sigma} B_i`.  The
-    closed forms are derived in the module docstring.
+    (-1)^{\\dim\\sigma} \\operatorname{vol} \\bigcap_{i\\in\\sigma} B_i` (closed forms: module docstring).
 
     Parameters
     ----------
     F : Filtration or Balls
-        The balls (disks in 2D), or ``alpha_filtration(balls)`` to measure at many τ
-        (given the balls, only the entry times are computed, once per call).
+        The balls (disks in 2D), or ``alpha_filtration(balls)`` to measure at many τ.
     tau : float, optional
         Growth time (Notes §23.1): the balls of radii :math:`\\sqrt{r_i^2 + \\tau}`
         (empty if :math:`r_i^2 + \\tau < 0`).  Default 0: the balls as given;

@@ -201,7 +201,14 @@ def empty_flow(d: int) -> tuple:
     ``neighbour``, ``flows``, ``sink``, ``to_infinity``, ``region``."""
     e = np.zeros(0, dtype=bool)
     z = np.zeros((0, d + 1), dtype=np.int64)
-    return readonly(e), readonly(z), readonly(z.astype(bool)), readonly(e), readonly(e), readonly(np.zeros(0, dtype=np.int64))
+    return (
+        readonly(e),
+        readonly(z),
+        readonly(z.astype(bool)),
+        readonly(e),
+        readonly(e),
+        readonly(np.zeros(0, dtype=np.int64)),
+    )
 
 
 def region_measures(F):

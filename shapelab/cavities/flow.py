@@ -538,7 +538,13 @@ def discrete_flow(F, tau: float = 0.0, *, precision: str = "exact") -> DiscreteF
                     balls=F.balls,
                 )
             )
-    nb, flows, sink, to_inf, region = readonly(nb, np.int64), readonly(flows), readonly(sink), readonly(to_inf), readonly(region)
+    nb, flows, sink, to_inf, region = (
+        readonly(nb, np.int64),
+        readonly(flows),
+        readonly(sink),
+        readonly(to_inf),
+        readonly(region),
+    )
     return DiscreteFlow(tau, readonly(empty), nb, flows, sink, to_inf, region, tuple(pockets))
 
 

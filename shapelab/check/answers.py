@@ -218,8 +218,8 @@ def flow_sinks(student) -> CheckResult:
         The flow whose sinks are checked.
     """
     from ..balls import Balls
-    from ..filtration import alpha_filtration
     from ..cavities.flow import discrete_flow
+    from ..filtration import alpha_filtration
     from ._runner import run_check
 
     rng = np.random.default_rng(7)

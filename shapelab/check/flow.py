@@ -31,8 +31,7 @@ class _Arrows:
     def __repr__(self) -> str:
         kind = "triangles" if self.d == 2 else "tetrahedra"
         return (
-            f"an order of the {self.m} {kind} in which each of the "
-            f"{len(self.src)} arrows between them points forward"
+            f"an order of the {self.m} {kind} in which each of the {len(self.src)} arrows between them points forward"
         )
 
 

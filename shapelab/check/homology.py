@@ -27,12 +27,14 @@ def _rank_cases():
     yield (np.zeros((4, 0), dtype=np.uint8),)
     yield (np.zeros((3, 3), dtype=np.uint8),)
     yield (np.array([[0, 0], [0, 1]], dtype=np.uint8),)
-    yield (np.array([[1, 1, 0], [1, 0, 1], [0, 1, 1]], dtype=np.uint8),)   # rank 2 mod 2, 3 over Q
+    yield (np.array([[1, 1, 0], [1, 0, 1], [0, 1, 1]], dtype=np.uint8),)  # rank 2 mod 2, 3 over Q
     yield (np.array([[1, 1], [1, 1], [1, 1]], dtype=np.uint8),)
     yield (np.eye(5, dtype=np.uint8),)
-    yield (np.array([[0, 1, 1], [0, 1, 1], [0, 0, 1]], dtype=np.uint8),)    # the pivot is not on the diagonal
+    yield (np.array([[0, 1, 1], [0, 1, 1], [0, 0, 1]], dtype=np.uint8),)  # the pivot is not on the diagonal
     sphere = [s for k in (1, 2, 3) for s in combinations(range(4), k)]
-    torus = homology.closure([tri for i in range(7) for tri in ((i, (i + 1) % 7, (i + 3) % 7), (i, (i + 2) % 7, (i + 3) % 7))])
+    torus = homology.closure(
+        [tri for i in range(7) for tri in ((i, (i + 1) % 7, (i + 3) % 7), (i, (i + 2) % 7, (i + 3) % 7))]
+    )
     for K in (sphere, torus):
         for k in (1, 2):
             yield (homology.boundary_matrix(K, k),)
@@ -92,7 +94,9 @@ def complex_betti(betti, simplices) -> CheckResult:
     name = "Betti numbers (" + ", ".join(f"β{k}" for k in range(len(expected))) + ")"
     if betti is None or isinstance(betti, (str, bytes)) or not hasattr(betti, "__len__"):
         return value(name, betti, expected)
-    if (isinstance(betti, np.ndarray) and betti.dtype == np.bool_) or any(isinstance(x, (bool, np.bool_)) for x in betti):
+    if (isinstance(betti, np.ndarray) and betti.dtype == np.bool_) or any(
+        isinstance(x, (bool, np.bool_)) for x in betti
+    ):
         msg = f"✗ {name}: not quite: expected numbers (the dimensions of the homology groups), got truth values."
         print(msg)
         return CheckResult(name, False, 1, msg)
@@ -132,7 +136,9 @@ def cycles_and_boundaries(cycle, boundary, chains, simplices) -> CheckResult:
             continue
         wrong = sum(bool(g) != w for g, w in zip(got, want))
         if wrong:
-            problems.append(f"`{label}`: {wrong} of {len(want)} entries {'is' if wrong == 1 else 'are'} wrong ({hints[label]})")
+            problems.append(
+                f"`{label}`: {wrong} of {len(want)} entries {'is' if wrong == 1 else 'are'} wrong ({hints[label]})"
+            )
     if all(isinstance(x, (list, tuple, np.ndarray)) and np.ndim(x) == 1 for x in (cycle, boundary)):
         if len(cycle) == len(boundary) == len(chains) and any(bool(b) and not bool(c) for c, b in zip(cycle, boundary)):
             problems.append("you call a chain a boundary but not a cycle: every boundary is a cycle (∂∂ = 0)")

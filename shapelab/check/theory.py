@@ -36,8 +36,22 @@ def morse_maximum(position, critical_value, balls) -> CheckResult:
 
     cp = power_critical_points(balls)
     top = cp.index == balls.dim
-    a = value("the position of the maximum (the orthocentre)", position, cp.positions[top][0], rtol=1e-6, atol=1e-6, quiet=True)
-    b = value("its value (the triangle's entry time)", critical_value, float(cp.values[top][0]), rtol=1e-6, atol=1e-6, quiet=True)
+    a = value(
+        "the position of the maximum (the orthocentre)",
+        position,
+        cp.positions[top][0],
+        rtol=1e-6,
+        atol=1e-6,
+        quiet=True,
+    )
+    b = value(
+        "its value (the triangle's entry time)",
+        critical_value,
+        float(cp.values[top][0]),
+        rtol=1e-6,
+        atol=1e-6,
+        quiet=True,
+    )
     return _done("the maximum of the power distance", a.passed and b.passed, a.message + "\n" + b.message)
 
 
@@ -63,7 +77,9 @@ def tie_break(triangles, balls) -> CheckResult:
     if len(set(got)) != len(got):
         return _done(name, False, f"✗ {name}: a triangle is listed twice.")
     if len(got) != len(expected):
-        return _done(name, False, f"✗ {name}: not quite: a triangulation of these points has {len(expected)} triangles.")
+        return _done(
+            name, False, f"✗ {name}: not quite: a triangulation of these points has {len(expected)} triangles."
+        )
     wrong = len(set(got) - expected)
     if wrong:
         return _done(name, False, f"✗ {name}: not quite: {wrong} of your triangles are not the library's.")

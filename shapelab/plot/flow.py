@@ -49,8 +49,8 @@ def discrete_flow(F, tau=0.0, *, ax=None, title=None, legend=True, arrows=True):
     .. [1] H. Edelsbrunner, M. Facello and J. Liang, "On the definition and the
        construction of pockets in macromolecules", Discrete Appl. Math. 88 (1998) 83-102.
     """
-    from ..filtration import as_filtration
     from ..cavities.flow import discrete_flow as compute_flow
+    from ..filtration import as_filtration
 
     F = as_filtration(F, "plot.discrete_flow")
     balls = F.balls

@@ -51,7 +51,10 @@ def simplicial_complex(simplices, positions, *, chain=None, ax=None, title=None,
        American Mathematical Society, 2010, §III.1.
     """
     S = sorted({tuple(sorted(int(v) for v in s)) for s in simplices}, key=lambda s: (len(s), s))
-    pos = {int(i): np.asarray(p, dtype=float) for i, p in (positions.items() if isinstance(positions, dict) else enumerate(positions))}
+    pos = {
+        int(i): np.asarray(p, dtype=float)
+        for i, p in (positions.items() if isinstance(positions, dict) else enumerate(positions))
+    }
     by_dim = {k: [s for s in S if len(s) == k + 1] for k in range(4)}
     unplaced = sorted({v for s in S for v in s} - set(pos))
     if unplaced:
@@ -92,7 +95,9 @@ def simplicial_complex(simplices, positions, *, chain=None, ax=None, title=None,
             ax.set_title(title)
     counts = ", ".join(_n(len(by_dim[k]), w) for k, w in ((0, "vertex"), (1, "edge"), (2, "triangle")))
     counts = counts.replace("vertexs", "vertices")
-    text = f"{title + ': ' if title else ''}a simplicial complex of {counts}" + (", triangles shaded green" if tris else "")
+    text = f"{title + ': ' if title else ''}a simplicial complex of {counts}" + (
+        ", triangles shaded green" if tris else ""
+    )
     if c:
         text += f"; a chain of {_n(len(c), 'simplex').replace('simplexs', 'simplices')} drawn thick in vermillion"
     describe(ax, text)
@@ -131,7 +136,9 @@ def boundary_matrix(M, rows, columns, *, ax=None, title=None):
 
     A = np.asarray(M, dtype=np.uint8) % 2
     if A.ndim != 2 or A.shape != (len(rows), len(columns)):
-        raise ValueError(f"M: expected shape ({len(rows)}, {len(columns)}) for the rows and columns given, got {A.shape}")
+        raise ValueError(
+            f"M: expected shape ({len(rows)}, {len(columns)}) for the rows and columns given, got {A.shape}"
+        )
     name = lambda s: "".join(str(v) for v in s) if all(0 <= v < 10 for v in s) else "-".join(map(str, s))  # noqa: E731
     if ax is None:
         fig, ax = new_figure(size=(PAGE[0] / 2, PAGE[1]))
@@ -149,8 +156,14 @@ def boundary_matrix(M, rows, columns, *, ax=None, title=None):
             ax.text(j, i, "1", ha="center", va="center", color="white", fontsize=9)
         if title:
             ax.set_title(title)
-    ones = "; ".join(f"column {name(columns[j])} has ones in rows " + ", ".join(name(rows[i]) for i in np.flatnonzero(A[:, j]))
-                     for j in range(A.shape[1]) if A[:, j].any())
-    describe(ax, f"{title + ': ' if title else ''}a {A.shape[0]} by {A.shape[1]} boundary matrix over Z/2, "
-                 f"{int(A.sum())} ones" + (f" ({ones})" if A.shape[1] <= 12 and ones else ""))
+    ones = "; ".join(
+        f"column {name(columns[j])} has ones in rows " + ", ".join(name(rows[i]) for i in np.flatnonzero(A[:, j]))
+        for j in range(A.shape[1])
+        if A[:, j].any()
+    )
+    describe(
+        ax,
+        f"{title + ': ' if title else ''}a {A.shape[0]} by {A.shape[1]} boundary matrix over Z/2, "
+        f"{int(A.sum())} ones" + (f" ({ones})" if A.shape[1] <= 12 and ones else ""),
+    )
     return fig
