@@ -382,7 +382,7 @@ class Docking:
         ----------
         site : array_like, shape (m, 3)
             Points filling the binding site, for example the free space of the
-            receptor's largest pocket (:func:`shapelab.freespace.free_points` on a
+            receptor's largest pocket (:func:`shapelab.cavities.freespace.free_points` on a
             :class:`shapelab.Pocket`'s cells).
         n_starts : int
             How many of :func:`shapelab.coarse_align`'s candidates (ligand centres onto

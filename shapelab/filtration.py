@@ -179,7 +179,7 @@ class BoundaryMatrix(NamedTuple):
     See Also
     --------
     Filtration.boundary_matrix : builds it.
-    shapelab.topology.reduce_boundary : reduces it.
+    shapelab.persistence.reduce_boundary : reduces it.
     """
 
     #: (n, n) ``scipy.sparse.csc_matrix`` of 0/1 (uint8): entry ``[i, j]`` is 1 when
@@ -212,7 +212,7 @@ class Filtration(_SimplicialMixin):
     --------
     alpha_filtration
         Builds it.
-    shapelab.topology.persistence
+    shapelab.persistence.persistence
         Its persistence pairs.
     """
 
@@ -231,7 +231,7 @@ class Filtration(_SimplicialMixin):
 
         The filtration owns what is computed from it (Notes §23.1: one filtration,
         many questions -- Betti numbers at every τ, persistence, voids, pockets and
-        tunnels), so the modules that answer them (:mod:`shapelab.topology`,
+        tunnels), so the modules that answer them (:mod:`shapelab.persistence`,
         :mod:`shapelab.cavities`) store their intermediate results here instead of
         in module-level caches: they live exactly as long as the filtration.
 
@@ -374,11 +374,11 @@ class Filtration(_SimplicialMixin):
         return self.derived("filtration.attached", _attached_flags)[k]
 
     def betti(self, tau) -> tuple:
-        """Betti numbers of :math:`K(\\tau)` (see :func:`shapelab.topology.betti`)."""
+        """Betti numbers of :math:`K(\\tau)` (see :func:`shapelab.persistence.betti`)."""
         return _topology.betti(self, tau)
 
     def betti_curve(self, taus) -> np.ndarray:
-        """Betti numbers at each τ (see :func:`shapelab.topology.betti_curve`)."""
+        """Betti numbers at each τ (see :func:`shapelab.persistence.betti_curve`)."""
         return _topology.betti_curve(self, taus)
 
     def boundary_matrix(self) -> BoundaryMatrix:
@@ -387,7 +387,7 @@ class Filtration(_SimplicialMixin):
 
         Every simplex of the filtration is one column and one row, ordered by entry
         time, then dimension, then row of :meth:`simplices` (the order in which
-        :func:`shapelab.topology.persistence` reads the filtration).  Column ``j`` holds
+        :func:`shapelab.persistence.persistence` reads the filtration).  Column ``j`` holds
         the boundary of simplex ``j``: a 1 in the row of each of its facets.
 
         Returns
@@ -399,14 +399,14 @@ class Filtration(_SimplicialMixin):
 
         See Also
         --------
-        shapelab.topology.reduce_boundary : the standard column reduction of ``D``.
-        shapelab.topology.persistence : the pairs, computed without this matrix.
+        shapelab.persistence.reduce_boundary : the standard column reduction of ``D``.
+        shapelab.persistence.persistence : the pairs, computed without this matrix.
 
         Notes
         -----
         A face enters no later than its cofaces, and at a tie the lower dimension
         comes first, so :math:`D` is strictly upper triangular.  Reducing its columns
-        (:func:`shapelab.topology.reduce_boundary`) pairs the simplices that create a
+        (:func:`shapelab.persistence.reduce_boundary`) pairs the simplices that create a
         homology class with those that destroy one [1]_, [2]_.  Dense, it has
         :math:`n^2` entries: meant for small filtrations (lessons, tests).
 
@@ -464,7 +464,7 @@ class Filtration(_SimplicialMixin):
 
     def persistence(self, *, field=2) -> dict:
         """Persistence diagrams over :math:`\\mathbb{Z}/p`, ``p = field`` (default 2; see
-        :func:`shapelab.topology.persistence`)."""
+        :func:`shapelab.persistence.persistence`)."""
         return _topology.persistence(self, field=field)
 
     def __repr__(self) -> str:
@@ -612,7 +612,11 @@ def alpha_filtration(balls: Balls, *, precision: str = "exact") -> Filtration:
         bnd[j] = inv.reshape(-1, j + 1)
     # 2. every simplex's orthosphere (c, rho)
     z, w = balls.centers, balls.weights
-    ortho = {j: orthosphere(z[faces[j]], w[faces[j]]) for j in range(dim + 1)}
+    try:
+        ortho = {j: orthosphere(z[faces[j]], w[faces[j]]) for j in range(dim + 1)}
+    except np.linalg.LinAlgError:  # a flat simplex left by Qhull: no orthosphere
+        raise ValueError("precision='fast': Qhull left a flat simplex (degenerate centres, "
+                         "e.g. a grid or co-spherical); use precision='exact'") from None
     # 3. top down: the facet opposite vertex v of a coface is attached if
     #    pi_v(c) < rho; attached faces enter with their earliest coface
     vals = {dim: ortho[dim][1]}

@@ -8,7 +8,7 @@ points on one hyperplane.  With equal radii the second condition reads: no four
 cocircular centres in the plane, no five cospherical ones in space.  Then the regular
 triangulation is unique.  A tie makes it ambiguous: the four corners of a square admit
 two triangulations, and the library picks one by Simulation of Simplicity
-(:mod:`shapelab.exact.predicates`).
+(:mod:`shapelab._engine.predicates`).
 
 :func:`cospherical_subsets` lists the ties of the second kind by brute force, with the
 :math:`(d+2) \times (d+2)` determinant of rows :math:`(1, z_j, \lVert z_j\rVert^2 - r_j^2)`

@@ -15,7 +15,7 @@ components, tunnels and voids of a union of balls):
 
 Everything here is exact (integers mod 2) and written to be read; it is meant for
 small complexes (a few thousand simplices take a second or two). The filtrations of :mod:`shapelab.filtration`
-compute the same numbers much faster (:func:`shapelab.topology.betti`).
+compute the same numbers much faster (:func:`shapelab.persistence.betti`).
 """
 
 from __future__ import annotations
@@ -439,7 +439,7 @@ def betti_numbers(simplices) -> tuple:
     --------
     boundary_matrix, rank_mod2 : the pieces.
     euler_characteristic : their alternating sum (Euler–Poincaré).
-    shapelab.topology.betti : the same for the complexes of a filtration, fast.
+    shapelab.persistence.betti : the same for the complexes of a filtration, fast.
 
     References
     ----------
@@ -524,7 +524,7 @@ def positive_simplices(order) -> list:
     See Also
     --------
     is_boundary : the question asked at each step (answered here incrementally).
-    shapelab.topology.reduce_boundary : pairs each death with its birth.
+    shapelab.persistence.reduce_boundary : pairs each death with its birth.
     shapelab.filtration.Filtration.persistence : the pairs of an α-filtration.
 
     References

@@ -5,7 +5,7 @@ centroids."  :func:`reference_point` gives the notes' centroid and the centre of
 bounding box (a *reference point*: its alignment is within a factor ``1 + sqrt(d)`` of the
 optimum, Aichholzer, Alt and Rote 1997); :func:`hausdorff_under_translation` compares
 those alignments with a certified numerical optimum (:class:`TranslationMatch`).
-The Hausdorff distance itself is in :mod:`shapelab.distance`.
+The Hausdorff distance itself is in :mod:`shapelab.hausdorff`.
 """
 
 from __future__ import annotations

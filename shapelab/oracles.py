@@ -242,7 +242,7 @@ def sampled_nerve(balls: Balls, *, tau=0.0, spacing=0.02, margin=None, max_dim=N
     --------
     dual_complex
         The exact nerve this checks.
-    shapelab.power.clipped_cells
+    shapelab.triangulation.clipped_cells
         The sets whose nerve it is.
 
     References
@@ -291,7 +291,7 @@ def raster_topology(balls: Balls, *, tau=0.0, spacing=0.02, min_hole_pixels: int
 
     See Also
     --------
-    shapelab.topology.betti
+    shapelab.persistence.betti
         The exact Betti numbers this checks.
     """
     from scipy import ndimage

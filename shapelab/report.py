@@ -10,7 +10,7 @@ that CASTp (Liang, Edelsbrunner & Woodward, "Anatomy of protein pockets and cavi
 measurement of binding site geometry and implications for ligand design", *Protein
 Science* 7 (1998) 1884–1897) serves online, computed here without a server.
 
-The command line runs it on a file (:mod:`shapelab.cli`)::
+The command line runs it on a file (:mod:`shapelab.tools.cli`)::
 
     python -m shapelab report FILE.pdb [--probe 1.4] [--out DIR] [options]
 
@@ -113,7 +113,7 @@ class CavityRow:
     def persistence(self) -> float:
         """``death - birth``, in τ.  Voids and pockets are classes of :math:`H_2` (and of
         the complement), so their pairs are the same over every coefficient field; the
-        library computes over :math:`\\mathbb{Z}/2` (:func:`shapelab.topology.persistence`)."""
+        library computes over :math:`\\mathbb{Z}/2` (:func:`shapelab.persistence.persistence`)."""
         return self.death - self.birth
 
     def residue_labels(self) -> list[str]:
@@ -599,7 +599,7 @@ def report(
     * **SA volume and area**: the free volume of the cavity's Delaunay cells (what no
       SA ball covers: the space a probe centre can occupy) and the area of the SA
       surface inside those cells, i.e. the part of the union's boundary facing into
-      the cavity.  Both are exact, from :func:`shapelab.freespace.free_space`: the
+      the cavity.  Both are exact, from :func:`shapelab.cavities.freespace.free_space`: the
       power-cell decomposition :math:`U \\cap t = \\bigsqcup_i B_i \\cap \\Pi_i \\cap t`
       in closed form, the wall by the divergence theorem on each clipped ball.  For a
       void the volume equals ``Void.volume``; for a pocket ``Pocket.volume``.
@@ -612,7 +612,7 @@ def report(
     * **lining atoms and residues**: atoms with positive SA wall area in the cells.
     * **persistence**: birth and death of the feature in τ (a void's or pocket's pair:
       the same over every coefficient field, :math:`\\mathbb{Z}/2` as everywhere in
-      shapelab; :func:`shapelab.topology.persistence`).
+      shapelab; :func:`shapelab.persistence.persistence`).
 
     Parameters
     ----------

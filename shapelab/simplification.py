@@ -156,7 +156,7 @@ def curve_persistence(values, *, closed: bool = True) -> CurvePersistence:
     ----------
     values : array_like, shape (n,)
         ``f`` at the vertices of the curve, in order (a closed curve does not repeat its
-        first vertex), e.g. from :func:`shapelab.distance_along`.
+        first vertex), e.g. from :func:`shapelab.critical.distance_along`.
     closed : bool
         True for a closed curve (vertex ``n - 1`` is joined to vertex 0).
 

@@ -85,8 +85,9 @@ def regular_triangulation(balls: Balls, *, precision: str = "exact") -> np.ndarr
         lower hull of the lifted balls in floating point, read below; equal to
         ``"exact"`` on generic input (tested).  On degenerate input (co-circular or
         co-spherical centres, duplicates) the result may differ: Qhull breaks ties
-        its own way and may leave flat simplices.  It needs ``d + 1`` centres that
-        span the space.
+        its own way and may leave flat simplices; on centres within round-off of a
+        line or plane it may even leave out balls that are not hidden.  It needs
+        ``d + 1`` centres that span the space.
 
     Returns
     -------
@@ -118,9 +119,9 @@ def regular_triangulation(balls: Balls, *, precision: str = "exact") -> np.ndarr
     an affine function of x whose graph is the plane through the lifted centre.  So a
     set of balls whose cells share a point is a set of lifted centres on one
     non-vertical hyperplane with every other lifted centre on or above it: a lower
-    facet of the convex hull [1]_.  The
-    centres are translated to their mean first (the heights change by an affine
-    function of x, which keeps the lower hull) for Qhull's precision [4]_.  For
+    facet of the convex hull [1]_.  The centres are translated to their mean first
+    (the heights change by an affine function of x, which keeps the lower hull) and
+    scaled to unit size (a similarity keeps DT) for Qhull's precision [4]_.  For
     co-spherical input (grids, cages) DT is not unique; ``"exact"`` returns that of
     the input with its weights perturbed symbolically [3]_, computed by certifying
     and repairing Qhull's candidate [2]_ (:mod:`shapelab._engine.triangulation`).
@@ -168,9 +169,12 @@ def regular_triangulation(balls: Balls, *, precision: str = "exact") -> np.ndarr
     if as_precision(precision) == "exact":
         return engine.triangulate(balls)[1]
     n, d = balls.centers.shape
-    # 1. lift each ball to (z, |z|^2 - r^2), one dimension up (centred at the mean)
+    # 1. lift each ball to (z, |z|^2 - r^2), one dimension up (centred at the mean and
+    #    scaled to unit size: z -> z/s, r^2 -> r^2/s^2 keeps the triangulation)
     z = balls.centers - balls.centers.mean(axis=0)
-    h = np.einsum("ij,ij->i", z, z) - balls.weights
+    s = float(np.abs(z).max()) or 1.0
+    z = z / s
+    h = np.einsum("ij,ij->i", z, z) - balls.weights / s**2
     # 2. one more point high above the middle keeps the hull full-dimensional when
     #    every lifted point lies on one hyperplane (three disks); its facets are no
     #    lower facets
@@ -409,7 +413,11 @@ def power_diagram(balls: Balls, *, bbox=None, precision: str = "exact") -> Power
     if exact or tri.shape[1] != d + 1:
         vertices = engine.orthocentres(balls, tri)
     else:
-        vertices = orthosphere(balls.centers[tri], balls.weights[tri])[0]
+        try:
+            vertices = orthosphere(balls.centers[tri], balls.weights[tri])[0]
+        except np.linalg.LinAlgError:  # a flat simplex left by Qhull: no orthosphere
+            raise ValueError("precision='fast': Qhull left a flat simplex (degenerate centres, "
+                             "e.g. a grid or co-spherical); use precision='exact'") from None
     vertices.flags.writeable = False
     if d == 2:
         origin = balls.centers.mean(axis=0)

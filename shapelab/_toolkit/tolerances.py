@@ -11,7 +11,7 @@ checks the relations between them.
 
 Not here: error *bounds* that are formulas of the unit roundoff (the filters of
 :mod:`shapelab._engine.predicates`, the margins ``8 (d + 4) eps`` of
-:mod:`shapelab.distance`, the first-order bound of the filtration's entry times),
+:mod:`shapelab.hausdorff`, the first-order bound of the filtration's entry times),
 and user parameters with a documented default (``matching.optimal_hausdorff``'s
 ``tol``).
 """
@@ -195,7 +195,7 @@ GRAM_PINV_RCOND = 1e-10
 #: PERSISTENCE_ROUNDOFF * max(|birth|, |death|, scale)``: relative to the values,
 #: or to the input's size in units of τ near τ = 0 (``scale``: the larger of the
 #: median r² and the median squared half-length of the edges that join components,
-#: :func:`shapelab.topology.is_roundoff`; geometric, since the entry times of the
+#: :func:`shapelab.persistence.is_roundoff`; geometric, since the entry times of the
 #: slivers of nearly flat input reach 1e30).  Two entry times whose exact values tie may differ by up to
 #: ``2 ENTRY_TIME_RTOL / (1 - ENTRY_TIME_RTOL)`` relative, so a guaranteed filter
 #: needs ``PERSISTENCE_ROUNDOFF >= 2 ENTRY_TIME_RTOL / (1 - ENTRY_TIME_RTOL)``

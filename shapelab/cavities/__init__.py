@@ -20,7 +20,7 @@ Where the computation lives
   exactly the part of those cells that no grown ball covers.
 * **Merge tree.**  Running τ backwards the complement only grows, so one union–find
   pass in reverse filtration order (the dual :math:`H_0`, see
-  :mod:`shapelab.topology`) records when every void is sealed (``born``) and filled
+  :mod:`shapelab.persistence`) records when every void is sealed (``born``) and filled
   (``dies``), and which cells it holds at every moment.
 * **Pockets** (growth-model definition of the notes).  A pocket at τ is a region of
   the complement that is still connected to the outside at τ but is sealed off into a

@@ -41,7 +41,7 @@ class Cavity(Protocol):
     Notes
     -----
     Voids and pockets also have a ``volume`` (free space, exact); a tunnel bounds no
-    region and has none.  The discrete flow's :class:`shapelab.flow.FlowPocket` is a
+    region and has none.  The discrete flow's :class:`shapelab.cavities.flow.FlowPocket` is a
     region at one τ; its ``born``/``dies`` are those of the most persistent class of
     the growth model rooted in it (``pockets(F, tau, method="flow")``), so it is a
     Cavity too.

@@ -45,7 +45,7 @@ def complement_labels(F, S, tau: float) -> tuple[np.ndarray, np.ndarray]:
     F : Filtration
         The α-filtration.
     S : object
-        Its summary (``shapelab._topology.summary(F)``): the values per dimension and
+        Its summary (``shapelab._engine.persistence.summary(F)``): the values per dimension and
         ``cell_dual``, the two cells on either side of every facet (``n`` for
         :math:`\\infty`).
     tau : float

@@ -110,7 +110,7 @@ exactly when the filtration finds :math:`\\nu` attached by :math:`\\sigma`'s ape
 where the exact :math:`r^2` and its rounding would decide a near-tie differently.  It
 is evaluated in floating point with a bound on its rounding error (the same
 expression on absolute values, times a generous :math:`64u`, as in
-:mod:`shapelab.exact.predicates`); where the bound cannot decide, it is recomputed exactly
+:mod:`shapelab._engine.predicates`); where the bound cannot decide, it is recomputed exactly
 from those binary values, as integers (every float times one power of two; the
 expression is homogeneous, so its sign is that of the rational value, as
 :func:`flow_side_exact` computes it with :class:`fractions.Fraction`).  A tie (the orthocentre
@@ -155,7 +155,7 @@ class FlowPocket(MeasuredRegion):
         :class:`shapelab.cavities.Pocket`'s mouth (module docstring), tested.
     lining : ndarray, int
         The balls at the vertices of its cells that exist at ``tau`` (as
-        :attr:`shapelab.cavities.Pocket.lining`).
+        :attr:`shapelab.Pocket.lining`).
     closes_at, fills_at : float
         The pair ``(born, dies)`` of the most persistent growth-model class rooted in
         the region (module docstring, *The pair of a region*); equal, persistence 0,
@@ -421,7 +421,7 @@ def discrete_flow(F, tau: float = 0.0, *, precision: str = "exact") -> DiscreteF
     :math:`\\infty`.  The empty simplices that do not reach :math:`\\infty`, glued along
     facets not in :math:`K_\\tau`, are the pocket regions; those without a mouth
     are the voids.  The definitions, the proof that the flow is acyclic and how its
-    decisions are made exact are in the module docstring (:mod:`shapelab.flow`).
+    decisions are made exact are in the module docstring (:mod:`shapelab.cavities.flow`).
 
     Parameters
     ----------

@@ -169,7 +169,7 @@ def pockets(
     --------
     voids
         The voids at a time.
-    shapelab.freespace.free_area
+    shapelab.cavities.freespace.free_area
         The area of a mouth.
     shapelab.report
         Pockets measured as CASTp does.

@@ -84,7 +84,7 @@ class Tunnel:
     def persistence(self) -> float:
         """``death - birth``: the tunnel's :math:`H_1` pair over :math:`\\mathbb{Z}/2`
         (its representative cycle is a :math:`\\mathbb{Z}/2` cycle too); over another
-        field a tunnel's death can differ (:func:`shapelab.topology.persistence`)."""
+        field a tunnel's death can differ (:func:`shapelab.persistence.persistence`)."""
         return self.death - self.birth
 
     def __repr__(self) -> str:
@@ -139,7 +139,7 @@ def tunnels(F, tau: float = 0.0) -> tuple:
 
     The :math:`H_1` classes alive at ``tau`` (``birth <= tau < death``); their number is
     :math:`\\beta_1(\\tau)`.  Each has a representative cycle from the column reduction
-    of the boundary matrix (see :mod:`shapelab.topology`), computed once per
+    of the boundary matrix (see :mod:`shapelab.persistence`), computed once per
     filtration and kept on it.
 
     Parameters
@@ -165,7 +165,7 @@ def tunnels(F, tau: float = 0.0) -> tuple:
         H₁ classes born later.
     channel_profile
         The free radius along a tunnel.
-    shapelab.topology.persistence
+    shapelab.persistence.persistence
         The H₁ pairs.
 
     References

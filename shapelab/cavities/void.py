@@ -72,7 +72,7 @@ class Void:
     @property
     def persistence(self) -> float:
         """``dies - born``: the void's pair in :math:`H_2`, the same over every
-        coefficient field (Alexander duality; :func:`shapelab.topology.persistence`)."""
+        coefficient field (Alexander duality; :func:`shapelab.persistence.persistence`)."""
         return self.dies - self.born
 
     def __repr__(self) -> str:
@@ -112,9 +112,9 @@ def voids(F, tau=0.0) -> tuple:
     --------
     pockets
         Dents that close into voids later.
-    shapelab.freespace.free_space
+    shapelab.cavities.freespace.free_space
         The free volume of cells.
-    shapelab.topology.betti
+    shapelab.persistence.betti
         β₂ counts the voids (Alexander duality).
 
     References

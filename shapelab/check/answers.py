@@ -44,7 +44,7 @@ def connected_time(tau_connected, F, *, atol: float = 2e-3) -> CheckResult:
 
     See Also
     --------
-    shapelab.topology.betti
+    shapelab.persistence.betti
         β₀ at a growth time.
     """
     h0 = np.asarray(F.persistence()[0], dtype=float)

@@ -3,7 +3,7 @@
 
 Each check runs *your* function on edge cases first (single points, identical
 sets, duplicates, one dimension, a set inside the other), then on random sets, and
-compares with the library (:mod:`shapelab.distance`, :mod:`shapelab.critical`).
+compares with the library (:mod:`shapelab.hausdorff`, :mod:`shapelab.critical`).
 """
 
 from __future__ import annotations

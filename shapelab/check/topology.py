@@ -159,7 +159,7 @@ def betti_numbers(student_fn, *, quiet: bool = False) -> CheckResult:
 
     See Also
     --------
-    shapelab.topology.betti
+    shapelab.persistence.betti
         The reference.
     """
     cases = []
@@ -208,7 +208,7 @@ def _pairs_from_low(F, B, low) -> dict:
     """Persistence pairs (as values, per dimension) read off the lowest ones of a reduced
     boundary matrix: ``(value[low[j]], value[j])`` in dimension ``dims[low[j]]`` for
     every non-zero column, ``(value[j], inf)`` for every zero column that is nobody's
-    lowest one; zero-length pairs dropped, and those that :func:`shapelab.topology.is_roundoff`
+    lowest one; zero-length pairs dropped, and those that :func:`shapelab.persistence.is_roundoff`
     calls round-off of tied entry times, as :meth:`Filtration.persistence` does."""
     from shapelab.persistence import is_roundoff
 
@@ -322,7 +322,7 @@ def boundary_reduction(student_fn, *, quiet: bool = False) -> CheckResult:
     ones on its diagonal (column ``j`` of ``R`` is column ``j`` of ``D`` plus earlier
     columns of ``D``: tested by reducing the difference with the reference's earlier
     columns), and whose lowest ones are those of the standard algorithm
-    (:func:`shapelab.topology.reduce_boundary`): the pairing does not depend on the
+    (:func:`shapelab.persistence.reduce_boundary`): the pairing does not depend on the
     order of the column additions, but adding a *later* column is refused even where
     it keeps the lowest ones.  Cases: tiny hand-made complexes, then small random
     α-filtrations in 2D and 3D and the course's Figure 23.1, a ring, C60 and the
@@ -331,7 +331,7 @@ def boundary_reduction(student_fn, *, quiet: bool = False) -> CheckResult:
 
     See Also
     --------
-    shapelab.topology.reduce_boundary
+    shapelab.persistence.reduce_boundary
         The reference.
     shapelab.filtration.Filtration.boundary_matrix
         The matrix reduced.

@@ -39,7 +39,7 @@ def element_from_name(name: str, residue: str | None = None) -> str:
     See Also
     --------
     read_pdb : uses it when columns 77–78 are blank.
-    shapelab.trajectory.selection_radii : uses it for MD topologies without elements.
+    shapelab.tools.trajectory.selection_radii : uses it for MD topologies without elements.
 
     Examples
     --------

@@ -14,8 +14,8 @@
 
 Every function returns a :class:`matplotlib.figure.Figure` (or draws into ``ax=``
 and returns its figure) and computes no geometry of its own: cells, complexes and
-entry times come from :mod:`shapelab.power` and :mod:`shapelab.filtration`.  The
-cells :math:`B_i \\cap \\Pi(B_i)` come from :func:`shapelab.power.clipped_cells`.
+entry times come from :mod:`shapelab.triangulation` and :mod:`shapelab.filtration`.  The
+cells :math:`B_i \\cap \\Pi(B_i)` come from :func:`shapelab.triangulation.clipped_cells`.
 """
 
 from __future__ import annotations

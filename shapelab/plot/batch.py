@@ -1,10 +1,10 @@
 """Figures of many structures and of trajectories (Notes §23.1, "Voids and pockets").
 
-* :func:`batch_summary` -- the summary of a batch (:func:`shapelab.batch.report_batch`):
+* :func:`batch_summary` -- the summary of a batch (:func:`shapelab.tools.batch.report_batch`):
   the largest pocket and the largest void of each structure, sorted, failed files
   marked by name.
 * :func:`trajectory_volumes` -- a trajectory's measures
-  (:func:`shapelab.trajectory.trajectory_measures`): the union's volume and the volume
+  (:func:`shapelab.tools.trajectory.trajectory_measures`): the union's volume and the volume
   of the longest-lived tracked cavities against time.
 
 Both draw what they are given and compute nothing; they read the summary's rows and
@@ -93,7 +93,7 @@ def batch_summary(summary, *, log=None, max_labels=25, ax=None, title=None):
     Parameters
     ----------
     summary : BatchSummary, sequence of dict, pandas.DataFrame, str or os.PathLike
-        What :func:`shapelab.batch.report_batch` returns, its rows, or the path of
+        What :func:`shapelab.tools.batch.report_batch` returns, its rows, or the path of
         the summary CSV it writes.
     log : bool, optional
         A logarithmic volume axis; default: when the positive volumes span more than
@@ -119,7 +119,7 @@ def batch_summary(summary, *, log=None, max_labels=25, ax=None, title=None):
 
     See Also
     --------
-    shapelab.batch.report_batch
+    shapelab.tools.batch.report_batch
         Makes the summary.
     trajectory_volumes
         The same quantities along a trajectory.
@@ -248,7 +248,7 @@ def trajectory_volumes(measures, *, tracks=5, time=True, ax=None, title=None):
 
     Two panels sharing the time axis: above, the volume (Å³) of the union of the
     solvent-accessible balls of each analysed frame; below, the volume of the
-    ``tracks`` cavities followed longest (:class:`shapelab.trajectory.CavityTrack`:
+    ``tracks`` cavities followed longest (:class:`shapelab.tools.trajectory.CavityTrack`:
     the most frames, ties by the largest volume then the lower id), one line each, a
     round marker where it is a pocket and a square where it is a void (Notes §23.1).
     A track is drawn only over the frames it is seen in: a gap is a frame where that
@@ -258,7 +258,7 @@ def trajectory_volumes(measures, *, tracks=5, time=True, ax=None, title=None):
     Parameters
     ----------
     measures : TrajectoryMeasures
-        What :func:`shapelab.trajectory.trajectory_measures` returns.
+        What :func:`shapelab.tools.trajectory.trajectory_measures` returns.
     tracks : int or sequence of int, default 5
         How many tracks (the longest), or the ids of the tracks to draw.
     time : bool, default True
@@ -279,7 +279,7 @@ def trajectory_volumes(measures, *, tracks=5, time=True, ax=None, title=None):
 
     See Also
     --------
-    shapelab.trajectory.trajectory_measures
+    shapelab.tools.trajectory.trajectory_measures
         Computes what is drawn.
     batch_summary
         The same volumes across many structures.

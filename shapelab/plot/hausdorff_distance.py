@@ -210,7 +210,7 @@ def timings(
     ----------
     seconds : dict
         ``{label: seconds}`` (e.g. ``Timings.seconds`` from
-        :func:`shapelab.distance.timings`).  The algorithms of that function keep
+        :func:`shapelab.hausdorff.timings`).  The algorithms of that function keep
         the same colour in every chart.
     log : bool
         Logarithmic time axis (bars start at a third of the fastest time).
@@ -221,7 +221,7 @@ def timings(
 
     See Also
     --------
-    shapelab.distance.timings
+    shapelab.hausdorff.timings
         Measures the times.
 
     Examples

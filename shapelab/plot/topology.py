@@ -200,7 +200,7 @@ def persistence_diagram(
     --------
     barcode
         The same pairs as bars.
-    shapelab.topology.persistence
+    shapelab.persistence.persistence
         The pairs drawn.
 
     References
@@ -412,7 +412,7 @@ def betti_curve(F_or_curve, *, taus=None, tau=None, log=None, ax=None, title="Be
 
     See Also
     --------
-    shapelab.topology.betti_curve
+    shapelab.persistence.betti_curve
         The numbers drawn.
     """
     if isinstance(F_or_curve, Balls):
@@ -1175,12 +1175,12 @@ def reduced_matrix(D, R, names, low=None, *, title=None):
     ----------
     D, R : array_like or scipy sparse matrix, shape (n, n)
         The boundary matrix over :math:`\\mathbb{Z}/2` (``F.boundary_matrix().matrix``)
-        and its reduction (:func:`shapelab.topology.reduce_boundary`).
+        and its reduction (:func:`shapelab.persistence.reduce_boundary`).
     names : sequence of str
         The simplices in filtration order, for the rows and the columns.
     low : array_like of int, optional
         The row of each column's lowest one, ``-1`` for a zero column (the second
-        result of :func:`~shapelab.topology.reduce_boundary`); computed from ``R`` if
+        result of :func:`~shapelab.persistence.reduce_boundary`); computed from ``R`` if
         not given.
     title : str, optional
         The figure's title.
@@ -1197,7 +1197,7 @@ def reduced_matrix(D, R, names, low=None, *, title=None):
 
     See Also
     --------
-    shapelab.topology.reduce_boundary : the reduction drawn.
+    shapelab.persistence.reduce_boundary : the reduction drawn.
     persistence_diagram : the pairs read off the lowest ones.
 
     References
@@ -1208,7 +1208,7 @@ def reduced_matrix(D, R, names, low=None, *, title=None):
     Examples
     --------
     >>> import numpy as np, shapelab as sl
-    >>> from shapelab.topology import reduce_boundary
+    >>> from shapelab.persistence import reduce_boundary
     >>> F = sl.alpha_filtration(sl.Balls([[0, 0], [2, 0], [1, 1.6]], 0.5))
     >>> B = F.boundary_matrix()
     >>> R, low = reduce_boundary(B.matrix)

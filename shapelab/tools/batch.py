@@ -4,7 +4,7 @@
 -- files, folders (searched recursively for ``*.pdb``, ``*.ent``, ``*.cif``,
 ``*.mmcif``, ``*.bcif`` and the same names ending in ``.gz``) and glob patterns -- and writes, for
 each, the same files as the command line does for one file
-(:meth:`shapelab.cavity_report.CavityReport.write`: ``<stem>_cavities.csv``, ``.md``,
+(:meth:`shapelab.report.CavityReport.write`: ``<stem>_cavities.csv``, ``.md``,
 ``.cif`` and, when the format can hold it, ``.pdb``), then one summary table for the
 batch.  It is the library behind ``python -m shapelab report PATH PATH ...``
 (:mod:`shapelab.tools.cli`).
@@ -115,7 +115,7 @@ def output_stem(path) -> str:
     --------
     report_batch
         Names each structure's files by it.
-    shapelab.cavity_report.CavityReport.write
+    shapelab.report.CavityReport.write
         Writes ``<stem>_cavities.*``.
 
     Examples
@@ -362,7 +362,7 @@ def _failed(row: dict, e: BaseException, path, shown=None) -> None:
 
 def _store(task: dict, sha: str, row: dict, rep, *, check: bool = True) -> None:
     """Write a computed report's files into the output directory, then its done marker
-    (``check``: first :func:`shapelab.cavity_report.check_output`, unless done already)."""
+    (``check``: first :func:`shapelab.report.check_output`, unless done already)."""
     from .. import cavity_report
 
     out, stem = Path(task["out"]), task["stem"]
@@ -456,7 +456,7 @@ def _init_worker() -> None:
     one thread for the free space unless ``SHAPELAB_THREADS`` says otherwise (the
     workers already share out the CPUs: a pool in each would oversubscribe them)."""
     os.environ.setdefault("SHAPELAB_THREADS", "1")
-    import shapelab.cavity_report  # noqa: F401
+    import shapelab.report  # noqa: F401
     import shapelab.io  # noqa: F401
 
 
@@ -783,7 +783,7 @@ def report_batch(
     content), computes ``shapelab.report(structure, probe, name=stem, rank=rank, ...)``
     (Notes §23.1; ranked by default, as one file's report) and writes its files into
     ``out`` exactly as ``python -m shapelab report FILE`` does
-    (:meth:`shapelab.cavity_report.CavityReport.write`), then a done
+    (:meth:`shapelab.report.CavityReport.write`), then a done
     marker ``<stem>_cavities.done.json``.  A failing input is recorded and the batch
     carries on.  Finally it writes ``<summary>.csv`` (and ``<summary>.parquet`` when
     pyarrow is installed) into ``out`` and returns the summary.
@@ -863,7 +863,7 @@ def report_batch(
     --------
     shapelab.report
         The report of one structure.
-    shapelab.cavity_report.CavityReport.write
+    shapelab.report.CavityReport.write
         The files written per structure.
     expand_paths
         Which files a list of paths names.

@@ -12,7 +12,7 @@ per task:
     candidates first, cavities under 10 Å³ dropped and counted; ``--rank none`` for
     CASTp's unfiltered table), and writes ``<stem>_cavities.csv``,
     ``.md``, ``.cif`` and, when the PDB format can hold the marked structure,
-    ``.pdb`` to ``DIR`` (:meth:`shapelab.cavity_report.CavityReport.write`).  An
+    ``.pdb`` to ``DIR`` (:meth:`shapelab.report.CavityReport.write`).  An
     unreadable, malformed or empty file, or an output directory that cannot be
     written, exits with status 2 and one line on stderr before any cavity is
     computed, and writes nothing.
@@ -139,7 +139,7 @@ def parser() -> argparse.ArgumentParser:
         help="keep features with SA volume >= V (Å³); default 10 (the ranking's), 0 with --rank none",
     )
     rank.add_argument("--top", type=int, metavar="K", help="keep the first K features only")
-    many = ap.add_argument_group("many structures (shapelab.batch.report_batch)")
+    many = ap.add_argument_group("many structures (shapelab.tools.batch.report_batch)")
     many.add_argument(
         "-j",
         "--jobs",
@@ -185,7 +185,7 @@ def main(argv=None) -> int:
     defaults, changed only by the flags ``--chain``, ``--model``,
     ``--no-hetatm``/``--hetatm NAME``, ``--water``, ``--hydrogens`` and
     ``--default-radius``; checks the output directory
-    (:func:`shapelab.cavity_report.check_output`); then computes
+    (:func:`shapelab.report.check_output`); then computes
     ``report(structure, probe)`` (with ``--rank none``, ``--method flow``,
     ``--min-persistence P``, ``--min-volume V`` or ``--top K``: those arguments of
     :func:`shapelab.report`), writes its files (the PDB file when the format can

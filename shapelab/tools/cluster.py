@@ -104,7 +104,7 @@ def _check_workers(client, what: str) -> None:
     """An ImportError unless every worker the cluster has now imports shapelab, the
     same version as here.
 
-    A worker that cannot unpickle a task (``shapelab.batch`` missing) closes its
+    A worker that cannot unpickle a task (``shapelab.tools.batch`` missing) closes its
     connection and ends, and the tasks then wait for workers forever: asked first,
     the workers say so.  The question itself, ``eval`` of one expression, needs
     nothing but Python on the worker.  Workers that join later are not asked.

@@ -186,7 +186,7 @@ def persistence_explorer(F, *, threshold=0.0, threshold_range=None, steps=100, d
 
     See Also
     --------
-    shapelab.topology.persistence
+    shapelab.persistence.persistence
         The pairs.
     shapelab.plot.persistence_diagram
         One frame.

@@ -184,3 +184,30 @@ def test_the_seam_keeps_the_default_exact():
         (sl.alpha_filtration(balls, precision="exact").values(k) for k in range(4)),
     ):
         np.testing.assert_array_equal(a, b)
+
+
+@pytest.mark.parametrize("d", [2, 3])
+@pytest.mark.parametrize("scale", [1e-7, 1e-4, 1e5])
+def test_plain_path_does_not_depend_on_the_units(d, scale):
+    # generic input in other units (nm instead of Å, a tiny model): the plain path
+    # lifts in a frame of unit size, so Qhull sees the same hull (review 33: with the
+    # point above the hull at an absolute height 1 it lost most simplices at 1e-7)
+    balls = random_balls(7, 60, d)
+    small = Balls(balls.centers * scale, balls.radii * scale)
+    np.testing.assert_array_equal(regular_triangulation(small, precision="fast"), regular_triangulation(small))
+    assert as_set(regular_triangulation(small, precision="fast")) == as_set(regular_triangulation(balls))
+    assert_same_filtration(small)
+
+
+def test_fast_path_flat_simplex_is_a_clear_error():
+    # a 3x3x3 grid: Qhull's triangulation of the co-spherical cubes leaves flat
+    # tetrahedra, which have no orthosphere; the plain path says so and names the way out
+    g = np.array([[i, j, k] for i in range(3) for j in range(3) for k in range(3)], dtype=float)
+    balls = Balls(g, 0.6)
+    T = regular_triangulation(balls, precision="fast")  # flat simplices allowed, documented
+    assert T.shape[1] == 4
+    for f in (alpha_filtration, power_diagram):
+        with pytest.raises(ValueError, match="precision='exact'") as info:
+            f(balls, precision="fast")
+        assert not isinstance(info.value, np.linalg.LinAlgError)
+    assert alpha_filtration(balls).counts()[3] == 48  # the exact path triangulates it
