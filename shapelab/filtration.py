@@ -615,8 +615,10 @@ def alpha_filtration(balls: Balls, *, precision: str = "exact") -> Filtration:
     try:
         ortho = {j: orthosphere(z[faces[j]], w[faces[j]]) for j in range(dim + 1)}
     except np.linalg.LinAlgError:  # a flat simplex left by Qhull: no orthosphere
-        raise ValueError("precision='fast': Qhull left a flat simplex (degenerate centres, "
-                         "e.g. a grid or co-spherical); use precision='exact'") from None
+        raise ValueError(
+            "precision='fast': Qhull left a flat simplex (degenerate centres, "
+            "e.g. a grid or co-spherical); use precision='exact'"
+        ) from None
     # 3. top down: the facet opposite vertex v of a coface is attached if
     #    pi_v(c) < rho; attached faces enter with their earliest coface
     vals = {dim: ortho[dim][1]}

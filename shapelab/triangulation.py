@@ -416,8 +416,10 @@ def power_diagram(balls: Balls, *, bbox=None, precision: str = "exact") -> Power
         try:
             vertices = orthosphere(balls.centers[tri], balls.weights[tri])[0]
         except np.linalg.LinAlgError:  # a flat simplex left by Qhull: no orthosphere
-            raise ValueError("precision='fast': Qhull left a flat simplex (degenerate centres, "
-                             "e.g. a grid or co-spherical); use precision='exact'") from None
+            raise ValueError(
+                "precision='fast': Qhull left a flat simplex (degenerate centres, "
+                "e.g. a grid or co-spherical); use precision='exact'"
+            ) from None
     vertices.flags.writeable = False
     if d == 2:
         origin = balls.centers.mean(axis=0)

@@ -456,8 +456,8 @@ def _init_worker() -> None:
     one thread for the free space unless ``SHAPELAB_THREADS`` says otherwise (the
     workers already share out the CPUs: a pool in each would oversubscribe them)."""
     os.environ.setdefault("SHAPELAB_THREADS", "1")
-    import shapelab.report  # noqa: F401
     import shapelab.io  # noqa: F401
+    import shapelab.report  # noqa: F401
 
 
 # ============================================================================ progress
