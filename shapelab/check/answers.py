@@ -8,9 +8,19 @@ then the lesson's objects the reference needs.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ._runner import CheckResult, value
+
+if TYPE_CHECKING:
+    from ..balls import Balls
+    from ..cavities import Pocket
+    from ..filtration import Filtration
+    from ..io import PDBStructure
 
 __all__ = [
     "connected_time",
@@ -36,7 +46,7 @@ __all__ = [
 ]
 
 
-def connected_time(tau_connected, F, *, atol: float = 2e-3) -> CheckResult:
+def connected_time(tau_connected: float, F: Filtration, *, atol: float = 2e-3) -> CheckResult:
     """Lesson 02: the growth time from which the union of disks is connected.
 
     The reference is the last merge of two components: the largest finite death of
@@ -53,7 +63,7 @@ def connected_time(tau_connected, F, *, atol: float = 2e-3) -> CheckResult:
     return value("τ at which the union becomes connected (to 0.002)", tau_connected, expected, atol=atol, rtol=0.0)
 
 
-def distinct_complexes(n_complexes, F, lo: float = 0.0, hi: float = 1.0) -> CheckResult:
+def distinct_complexes(n_complexes: int, F: Filtration, lo: float = 0.0, hi: float = 1.0) -> CheckResult:
     """Lesson 03: how many distinct complexes :math:`K_\\tau` there are for τ in [lo, hi].
 
     The complexes grow by inclusion, so distinct complexes have distinct sizes: the
@@ -69,7 +79,7 @@ def distinct_complexes(n_complexes, F, lo: float = 0.0, hi: float = 1.0) -> Chec
     return value("number of distinct complexes", n_complexes, len(sizes))
 
 
-def standard_error_factor(shrink, balls, *, seed: int = 0) -> CheckResult:
+def standard_error_factor(shrink: float, balls: Balls, *, seed: int = 0) -> CheckResult:
     """Lesson 04: by what factor Monte Carlo's standard error falls with 100 times more
     samples (measured on ``balls`` with 10⁴ and 10⁶ samples, to 5 %).
 
@@ -86,7 +96,7 @@ def standard_error_factor(shrink, balls, *, seed: int = 0) -> CheckResult:
     return value("the standard error's factor per 100 times more samples", shrink, ratio, rtol=0.05)
 
 
-def neck_closing(neck_closes, F) -> CheckResult:
+def neck_closing(neck_closes: float, F: Filtration) -> CheckResult:
     """Lesson 07: when the neck between the two chambers of ``datasets.nested_pockets``
     closes: the second pocket's ``closes_at``.
 
@@ -115,7 +125,7 @@ def _torus_kind(S, R: float, r: float) -> str | None:
 
 
 def torus_viewpoints(
-    viewpoints, counts, *, n_major: int = 24, n_minor: int = 12, R: float = 1.0, r: float = 0.4
+    viewpoints: ArrayLike, counts: ArrayLike, *, n_major: int = 24, n_minor: int = 12, R: float = 1.0, r: float = 0.4
 ) -> CheckResult:
     """Lesson 11: three viewpoints on ``torus(24, 12)`` (far outside, in the hole,
     inside the tube) and the student's ``(#min, #saddles, #max)`` from each.
@@ -158,7 +168,7 @@ def torus_viewpoints(
     return value(name, C, np.array(expected, dtype=float), rtol=0.0, atol=0.0)
 
 
-def mouth_closing(student) -> CheckResult:
+def mouth_closing(student: Callable[[Pocket, Balls], float]) -> CheckResult:
     """Lesson 07: ``student(pocket, balls)`` returns the time at which the pocket's mouth
     closes, from its mouth edges; checked against the entry time in the filtration of
     its last mouth edge (``pocket.closes_at`` for a pocket that is not nested; the
@@ -202,7 +212,7 @@ def mouth_closing(student) -> CheckResult:
     )
 
 
-def flow_sinks(student) -> CheckResult:
+def flow_sinks(student: Callable[[Filtration, float], Sequence[int]]) -> CheckResult:
     """Lesson 07: ``student(F, tau)`` returns the rows of ``F.simplices(2)`` that are the
     sinks of the discrete flow at ``tau`` (disks of one radius), as a list; compared as
     sets with :func:`shapelab.discrete_flow` on a ring of disks with a gap and on seeded
@@ -257,7 +267,7 @@ def flow_sinks(student) -> CheckResult:
     )
 
 
-def radical_center(student) -> CheckResult:
+def radical_center(student: Callable[[Balls], ArrayLike]) -> CheckResult:
     """Lesson 01: ``student(balls)`` returns the point with equal power distance from three
     disks (their radical centre), checked against the vertex of their power diagram.
 
@@ -290,7 +300,7 @@ def radical_center(student) -> CheckResult:
     )
 
 
-def void_count(student) -> CheckResult:
+def void_count(student: Callable[[Filtration, float], int]) -> CheckResult:
     """Lesson 06: ``student(F, tau)`` returns the number of voids from the Betti numbers
     alone (:math:`\\beta_{d-1}` of :math:`K_\\tau`), checked against :func:`shapelab.voids`.
 
@@ -317,7 +327,7 @@ def void_count(student) -> CheckResult:
     )
 
 
-def ring_tunnel(student) -> CheckResult:
+def ring_tunnel(student: Callable[[int, float, float], ArrayLike]) -> CheckResult:
     """Lesson 08: ``student(n, R, r)`` returns ``(birth, death)`` of the tunnel of
     ``datasets.ring(n, radius=R, disk_radius=r, dim=3)``, checked against the most
     persistent pair of :math:`H_1` of its α-filtration.
@@ -346,7 +356,7 @@ def ring_tunnel(student) -> CheckResult:
     )
 
 
-def curve_pairs(student) -> CheckResult:
+def curve_pairs(student: Callable[[np.ndarray], ArrayLike]) -> CheckResult:
     """Lesson 09: ``student(f)`` returns the ``(birth, death)`` pairs (persistence > 0) of
     the sublevel sets of ``f`` along a path, checked against
     :func:`shapelab.curve_persistence` (any order of the rows).
@@ -383,7 +393,7 @@ def curve_pairs(student) -> CheckResult:
     return run_check("persistence pairs along a path", student, cases, reference, compare=compare)
 
 
-def euler_poincare(chis, betti_sums, F, taus) -> CheckResult:
+def euler_poincare(chis: Sequence[int], betti_sums: Sequence[int], F: Filtration, taus: Sequence[float]) -> CheckResult:
     """Lesson 05: the Euler characteristic of :math:`K_\\tau` at each τ of ``taus``,
     from its simplex counts, and the alternating sum of its Betti numbers.
 
@@ -428,7 +438,7 @@ def euler_poincare(chis, betti_sums, F, taus) -> CheckResult:
     return CheckResult("the Euler–Poincaré formula", passed, 2, first.message + "\n" + second.message)
 
 
-def most_exposed_residue(answer, structure, probe: float = 1.4) -> CheckResult:
+def most_exposed_residue(answer: str, structure: PDBStructure, probe: float = 1.4) -> CheckResult:
     """Lesson 10: the residue (``"NAME NUMBER"``) with the largest solvent-accessible
     area, the sum of its atoms' shares of the union's boundary with radii grown by ``probe``.
 
@@ -475,7 +485,7 @@ def _label(text) -> str:
     return " ".join(str(text).split()).upper()
 
 
-def pocket_residues(answer, structure, pocket) -> CheckResult:
+def pocket_residues(answer: Sequence[str], structure: PDBStructure, pocket: Pocket) -> CheckResult:
     """Lesson 10: the residues lining ``pocket``, as labels ``"NAME NUMBER"``.
 
     Compared as sets with the residues of the atoms in ``pocket.lining`` (Notes §23.3,
@@ -555,7 +565,7 @@ def pocket_residues(answer, structure, pocket) -> CheckResult:
     return _fail(name, "; ".join(parts))
 
 
-def void_radii(r_low, r_high, *, bond_length: float = 1.4, rtol: float = 1e-8) -> CheckResult:
+def void_radii(r_low: float, r_high: float, *, bond_length: float = 1.4, rtol: float = 1e-8) -> CheckResult:
     """Lesson 06: the carbon radii r with a void inside C60 at τ = 0, as ``[r_low, r_high)``.
 
     The reference comes from the α-filtration of ``datasets.fullerene_c60(atom_radius=0)``:
@@ -604,7 +614,7 @@ def void_radii(r_low, r_high, *, bond_length: float = 1.4, rtol: float = 1e-8) -
     )
 
 
-def void_components(counts, balls, taus) -> CheckResult:
+def void_components(counts: Sequence[int], balls: Balls, taus: Sequence[float]) -> CheckResult:
     """Lesson 06: the number of bounded components of the complement of the union of
     ``balls`` grown to each τ of ``taus``, counted by the student on voxels.
 
@@ -666,7 +676,7 @@ def void_components(counts, balls, taus) -> CheckResult:
     return _fail(name, hint)
 
 
-def buried_area(answer, receptor, ligand, probe: float = 0.0) -> CheckResult:
+def buried_area(answer: float, receptor: Balls, ligand: Balls, probe: float = 0.0) -> CheckResult:
     """Lesson 16: the area buried when ``ligand`` binds ``receptor`` as given,
     :math:`|\\partial A| + |\\partial B| - |\\partial(A\\cup B)|` with radii grown by ``probe``
     (to 1e-6 relative).
@@ -692,7 +702,9 @@ def buried_area(answer, receptor, ligand, probe: float = 0.0) -> CheckResult:
     return value("the buried area (Å²)", answer, expected, rtol=1e-6)
 
 
-def most_spread_class(answer, distances, labels, *, spread) -> CheckResult:
+def most_spread_class(
+    answer: str, distances: ArrayLike, labels: Sequence[str], *, spread: dict[str, float]
+) -> CheckResult:
     """Lesson 17: the class with the largest distance between two of its members, and
     that largest distance for every class.
 
@@ -750,7 +762,7 @@ def most_spread_class(answer, distances, labels, *, spread) -> CheckResult:
     return value("the most spread-out class", received, expected)
 
 
-def rips_not_nerve(count, points, rho) -> CheckResult:
+def rips_not_nerve(count: int, points: ArrayLike, rho: float) -> CheckResult:
     """Lesson 17: how many triangles of the Vietoris–Rips complex of ``points`` at radius
     ``rho`` are not in the Čech complex, the nerve of the balls of radius ``rho``.
 
@@ -830,7 +842,13 @@ def rips_not_nerve(count, points, rho) -> CheckResult:
 
 
 def first_site_rank(
-    answer, structure, ligand, *, method: str = "growth", probe: float = 1.4, dca: float = 4.0
+    answer: int,
+    structure: PDBStructure | Balls,
+    ligand: ArrayLike,
+    *,
+    method: str = "growth",
+    probe: float = 1.4,
+    dca: float = 4.0,
 ) -> CheckResult:
     """Lesson 18: the rank of the first cavity of the default ranked report whose centre
     lies within ``dca`` Å of a ligand atom (the DCA criterion), or 0 when none does.
