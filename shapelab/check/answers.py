@@ -56,6 +56,16 @@ def connected_time(tau_connected: float, F: Filtration, *, atol: float = 2e-3) -
     --------
     shapelab.topology.betti
         β₀ at a growth time.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> F = sl.alpha_filtration(sl.Balls([[0.0, 0.0], [4.0, 0.0]], [1.0, 1.0]))
+    >>> # two unit disks 4 apart touch when (4/2)^2 - 1 = 3
+    >>> ok = connected_time(3.0, F)
+    ✓ τ at which the union becomes connected (to 0.002): correct.
+    >>> bad = connected_time(2.0, F)
+    ✗ τ at which the union becomes connected (to 0.002): not quite: yours is too small.
     """
     h0 = np.asarray(F.persistence()[0], dtype=float)
     finite = h0[np.isfinite(h0[:, 1]), 1]
@@ -73,6 +83,16 @@ def distinct_complexes(n_complexes: int, F: Filtration, lo: float = 0.0, hi: flo
     --------
     shapelab.alpha_filtration
         The filtration whose complexes are counted.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> F = sl.alpha_filtration(sl.Balls([[0.0, 0.0], [4.0, 0.0]], [1.0, 1.0]))
+    >>> # for tau in [0, 5]: the two disks, then the edge from tau = 3
+    >>> ok = distinct_complexes(2, F, 0.0, 5.0)
+    ✓ number of distinct complexes: correct.
+    >>> bad = distinct_complexes(3, F, 0.0, 5.0)
+    ✗ number of distinct complexes: not quite: yours is too large.
     """
     values = np.unique(np.r_[lo, np.concatenate([F.values(k) for k in range(F.dimension + 1)])])
     sizes = {len(F.complex_at(t)) for t in values[(values >= lo) & (values <= hi)]}
@@ -87,6 +107,12 @@ def standard_error_factor(shrink: float, balls: Balls, *, seed: int = 0) -> Chec
     --------
     shapelab.oracles.monte_carlo_union_measure
         The estimate whose error shrinks.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> bad = standard_error_factor(100.0, sl.Balls([[0.0, 0.0], [1.0, 0.0]], [1.0, 1.0]))
+    ✗ the standard error's factor per 100 times more samples: not quite: yours is too large.
     """
     from ..oracles import monte_carlo_union_measure
 
@@ -104,6 +130,13 @@ def neck_closing(neck_closes: float, F: Filtration) -> CheckResult:
     --------
     shapelab.pockets
         The pocket whose neck closes.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> F = sl.alpha_filtration(sl.datasets.nested_pockets())
+    >>> bad = neck_closing(-1.0, F)
+    ✗ when the neck closes: not quite: yours is too small.
     """
     from ..cavities import pockets
 
@@ -137,6 +170,12 @@ def torus_viewpoints(
     --------
     shapelab.critical_points
         The critical points seen from a viewpoint.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> bad = torus_viewpoints([[5.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 5.0, 0.0]], np.zeros((3, 3), dtype=int))
+    ✗ critical points of the torus from three viewpoints: the viewpoints must be one far outside (more than 2 from the centre), one in the hole (within 0.45 of the centre) and one inside the tube (within 0.2 of its core circle); yours are: far outside, in the hole, far outside.
     """
     from ..critical import critical_points
     from ..datasets import torus
@@ -185,6 +224,13 @@ def mouth_closing(student: Callable[[Pocket, Balls], float]) -> CheckResult:
     --------
     shapelab.pockets
         The pocket whose mouth closes.
+
+    Examples
+    --------
+    >>> result = mouth_closing(lambda pocket, balls: pocket.closes_at)  # doctest: +ELLIPSIS
+    ✗ when a pocket's mouth closes: not quite. First failing input (case 3):...
+    >>> result.passed
+    False
     """
     from ..balls import Balls
     from ..cavities import pockets
@@ -226,6 +272,16 @@ def flow_sinks(student: Callable[[Filtration, float], Sequence[int]]) -> CheckRe
     --------
     shapelab.discrete_flow
         The flow whose sinks are checked.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import shapelab as sl
+    >>> ok = flow_sinks(lambda F, tau: np.flatnonzero(sl.discrete_flow(F, tau).sink).tolist())
+    ✓ the sinks of the discrete flow: correct on all 6 cases.
+    >>> # every empty triangle is not a sink
+    >>> bad = flow_sinks(lambda F, tau: list(range(len(F.simplices(2)))))  # doctest: +ELLIPSIS
+    ✗ the sinks of the discrete flow: not quite. First failing input (case 1):...
     """
     from ..balls import Balls
     from ..filtration import alpha_filtration
@@ -275,6 +331,16 @@ def radical_center(student: Callable[[Balls], ArrayLike]) -> CheckResult:
     --------
     shapelab.power_diagram
         The diagram whose vertex it is.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import shapelab as sl
+    >>> ok = radical_center(lambda balls: sl.power_diagram(balls).vertices[0])
+    ✓ radical centre of three disks: correct on all 6 cases.
+    >>> # the centroid of the centres is no radical centre
+    >>> bad = radical_center(lambda balls: balls.centers.mean(axis=0))  # doctest: +ELLIPSIS
+    ✗ radical centre of three disks: not quite. First failing input (case 1):...
     """
     from ..balls import Balls
     from ..power import power_diagram
@@ -308,6 +374,14 @@ def void_count(student: Callable[[Filtration, float], int]) -> CheckResult:
     --------
     shapelab.voids
         The voids counted.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> ok = void_count(lambda F, tau: len(sl.voids(F, tau)))
+    ✓ voids from the Betti numbers: correct on all 7 cases.
+    >>> bad = void_count(lambda F, tau: 1)  # doctest: +ELLIPSIS
+    ✗ voids from the Betti numbers: not quite. First failing input (case 2):...
     """
     from ..cavities import voids
     from ..datasets import fullerene_c60, ring, swiss_cheese
@@ -336,6 +410,19 @@ def ring_tunnel(student: Callable[[int, float, float], ArrayLike]) -> CheckResul
     --------
     shapelab.tunnels
         The tunnel of the ring.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import shapelab as sl
+    >>> def tunnel(n, R, r):
+    ...     F = sl.alpha_filtration(sl.datasets.ring(n, radius=R, disk_radius=r, dim=3))
+    ...     P = np.asarray(F.persistence()[1])
+    ...     return P[np.argmax(P[:, 1] - P[:, 0])]
+    >>> ok = ring_tunnel(tunnel)
+    ✓ birth and death of a ring's tunnel: correct on all 5 cases.
+    >>> bad = ring_tunnel(lambda n, R, r: tunnel(n, R, r)[::-1])  # doctest: +ELLIPSIS
+    ✗ birth and death of a ring's tunnel: not quite. First failing input (case 1):...
     """
     from ..datasets import ring
     from ..filtration import alpha_filtration
@@ -365,6 +452,19 @@ def curve_pairs(student: Callable[[np.ndarray], ArrayLike]) -> CheckResult:
     --------
     shapelab.curve_persistence
         The pairs of a curve.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import shapelab as sl
+    >>> def pairs(f):
+    ...     D = sl.curve_persistence(f, closed=False).diagram()
+    ...     return D[D[:, 1] > D[:, 0]]
+    >>> ok = curve_pairs(pairs)
+    ✓ persistence pairs along a path: correct on all 7 cases.
+    >>> # the pairs of the closed curve are refused
+    >>> bad = curve_pairs(lambda f: sl.curve_persistence(f, closed=True).diagram())  # doctest: +ELLIPSIS
+    ✗ persistence pairs along a path: not quite. First failing input (case 4):...
     """
     from ..simplification import curve_persistence
     from ._runner import run_check
@@ -428,6 +528,17 @@ def euler_poincare(chis: Sequence[int], betti_sums: Sequence[int], F: Filtration
     .. [1] Lecture notes, §23.1 (the dual complex and the growth model).
     .. [2] H. Edelsbrunner and J. Harer, *Computational Topology*, AMS, 2010, §IV.1
            (the Euler–Poincaré formula).
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> F = sl.alpha_filtration(sl.Balls([[0.0, 0.0], [4.0, 0.0]], [1.0, 1.0]))
+    >>> ok = euler_poincare([2, 1], [2, 1], F, [0.0, 5.0])
+    ✓ χ of K_τ from its counts, at each τ: correct.
+    ✓ β0 − β1 + β2 at each τ: correct.
+    >>> bad = euler_poincare([2, 2], [2, 1], F, [0.0, 5.0])
+    ✗ χ of K_τ from its counts, at each τ: not quite: 1 of 2 entries differ, the first at index 1.
+    ✓ β0 − β1 + β2 at each τ: correct.
     """
     taus = [float(t) for t in taus]
     chi = [int(F.complex_at(t).euler_characteristic()) for t in taus]
@@ -446,6 +557,18 @@ def most_exposed_residue(answer: str, structure: PDBStructure, probe: float = 1.
     --------
     shapelab.union_measure
         The per-ball areas summed by residue.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> import numpy as np
+    >>> import shapelab as sl
+    >>> mol = SimpleNamespace(balls=sl.Balls([[0.0, 0.0, 0.0], [10.0, 0.0, 0.0]], [1.5, 1.0]),
+    ...                       residue_names=np.array(["LEU", "GLY"]), residue_numbers=np.array([1, 2]))
+    >>> ok = most_exposed_residue("leu 1", mol)
+    ✓ the most exposed residue: correct.
+    >>> bad = most_exposed_residue("GLY 2", mol)
+    ✗ the most exposed residue: not quite: that residue's solvent-accessible area is 31.5 % below the largest (radii grown by the 1.4 Å probe, atoms' shares of the boundary summed per residue).
     """
     from ..balls import Balls
     from ..measure import union_measure
@@ -597,6 +720,11 @@ def void_radii(r_low: float, r_high: float, *, bond_length: float = 1.4, rtol: f
     References
     ----------
     .. [1] Lecture notes, §23.1 (the growth model) and §23.3 (voids).
+
+    Examples
+    --------
+    >>> bad = void_radii(0.5, 1.0)
+    ✗ the radii with a void at τ = 0 (r_low, r_high): not quite: 2 of 2 entries differ, the first at index 0.
     """
     from ..datasets import fullerene_c60
     from ..filtration import alpha_filtration
@@ -645,6 +773,15 @@ def void_components(counts: Sequence[int], balls: Balls, taus: Sequence[float]) 
     ----------
     .. [1] Lecture notes, §23.1 ("Voids and pockets").
     .. [2] A. Hatcher, *Algebraic Topology*, 2002, Theorem 3.44.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> one = sl.Balls([[0.0, 0.0, 0.0]], [1.0])
+    >>> ok = void_components([0, 0], one, [0.0, 1.0])
+    ✓ the bounded components of the complement at each τ: correct.
+    >>> bad = void_components([1, 0], one, [0.0, 1.0])
+    ✗ the bounded components of the complement at each τ: not quite: 1 of 2 counts differ, at τ = 0 (too many). Check that a voxel is in the union when its centre lies in a ball grown to τ (radius √(r² + τ)), that the unbounded component (the one touching the grid's border) is left out, and that voxels meeting only at an edge or a corner are neighbours (26-connectivity).
     """
     from ..filtration import alpha_filtration
 
@@ -685,6 +822,17 @@ def buried_area(answer: float, receptor: Balls, ligand: Balls, probe: float = 0.
     --------
     shapelab.docking_score
         The buried area of a pose.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import shapelab as sl
+    >>> A, B = sl.Balls([[0.0, 0.0, 0.0]], [1.0]), sl.Balls([[1.0, 0.0, 0.0]], [1.0])
+    >>> # each unit sphere loses a cap of height 1/2, of area 2 pi r h = pi
+    >>> ok = buried_area(2 * np.pi, A, B)
+    ✓ the buried area (Å²): correct.
+    >>> bad = buried_area(np.pi, A, B)
+    ✗ the buried area (Å²): not quite: yours is too small.
     """
     from ..balls import Balls
     from ..measure import union_measure
@@ -737,6 +885,16 @@ def most_spread_class(
     References
     ----------
     .. [1] Lecture notes, §23.2 (protein shape classification).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> D = np.array([[0, 1, 5, 5], [1, 0, 5, 5], [5, 5, 0, 3], [5, 5, 3, 0]], dtype=float)
+    >>> labels = ["alpha", "alpha", "beta", "beta"]
+    >>> ok = most_spread_class("beta", D, labels, spread={"alpha": 1.0, "beta": 3.0})
+    ✓ the most spread-out class: correct.
+    >>> bad = most_spread_class("beta", D, labels, spread={"alpha": 1.0, "beta": 5.0})
+    ✗ the largest distance within each class: not quite: yours differs for 'beta'.
     """
     D = np.asarray(distances, dtype=float)
     labels = [str(s) for s in labels]
@@ -802,6 +960,16 @@ def rips_not_nerve(count: int, points: ArrayLike, rho: float) -> CheckResult:
     .. [1] Lecture notes, §23.1 (the dual complex as a nerve).
     .. [2] H. Edelsbrunner and J. Harer, *Computational Topology*, AMS, 2010, §III.2
        (Čech and Vietoris–Rips complexes).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> triangle = [[0.0, 0.0], [2.0, 0.0], [1.0, np.sqrt(3.0)]]
+    >>> # sides 2 <= 2 rho, but the enclosing radius 2/sqrt(3) > rho = 1.1
+    >>> ok = rips_not_nerve(1, triangle, 1.1)
+    ✓ the Rips triangles outside the nerve: correct.
+    >>> bad = rips_not_nerve(0, triangle, 1.1)
+    ✗ the Rips triangles outside the nerve: not quite: yours is too small.
     """
     from .._toolkit.validate import as_finite_scalar, as_points
 
@@ -889,6 +1057,12 @@ def first_site_rank(
     .. [2] R. Krivák and D. Hoksza, "P2Rank: machine learning based tool for rapid and
        accurate prediction of ligand binding sites from protein structure",
        *J. Cheminform.* 10:39, 2018 (the DCA criterion).
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> bad = first_site_rank(1.5, sl.datasets.fullerene_c60(), [[0.0, 0.0, 0.0]])
+    ✗ the rank of the first cavity at the ligand: not quite: expected a whole number (a rank), got a float.
     """
     from ..cavity_report import report
 
