@@ -2,11 +2,20 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 from matplotlib.collections import LineCollection, PolyCollection
 
 from ._describe import describe
 from ._style import COLORS, PAGE, new_figure, style
+
+if TYPE_CHECKING:
+    from collections.abc import Iterable, Mapping, Sequence
+
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from numpy.typing import ArrayLike
 
 __all__ = ["simplicial_complex", "boundary_matrix"]
 
@@ -15,7 +24,15 @@ def _n(k: int, word: str) -> str:
     return f"{k} {word}" + ("" if k == 1 else "s")
 
 
-def simplicial_complex(simplices, positions, *, chain=None, ax=None, title=None, labels=True):
+def simplicial_complex(
+    simplices: Iterable[Sequence[int]],
+    positions: Mapping[int, ArrayLike] | ArrayLike,
+    *,
+    chain: Iterable[Sequence[int]] | None = None,
+    ax: Axes | None = None,
+    title: str | None = None,
+    labels: bool = True,
+) -> Figure:
     """Draw an abstract simplicial complex at given vertex positions in the plane.
 
     Triangles are filled (translucent, so overlapping ones, as in a drawing of a
@@ -49,9 +66,22 @@ def simplicial_complex(simplices, positions, *, chain=None, ax=None, title=None,
     ----------
     .. [1] H. Edelsbrunner and J. Harer, *Computational Topology: An Introduction*,
        American Mathematical Society, 2010, §III.1.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> square = sl.closure([(0, 1, 2), (0, 2, 3)])
+    >>> fig = simplicial_complex(square, [(0, 0), (1, 0), (1, 1), (0, 1)], chain=[(0, 1), (1, 2)])
+    >>> type(fig).__name__
+    'Figure'
+    >>> print(sl.plot.alt_text(fig))
+    a simplicial complex of 4 vertices, 5 edges, 2 triangles, triangles shaded green; a chain of 2 simplices drawn thick in vermillion.
     """
     S = sorted({tuple(sorted(int(v) for v in s)) for s in simplices}, key=lambda s: (len(s), s))
-    pos = {int(i): np.asarray(p, dtype=float) for i, p in (positions.items() if isinstance(positions, dict) else enumerate(positions))}
+    pos = {
+        int(i): np.asarray(p, dtype=float)
+        for i, p in (positions.items() if isinstance(positions, dict) else enumerate(positions))
+    }
     by_dim = {k: [s for s in S if len(s) == k + 1] for k in range(4)}
     if ax is None:
         fig, ax = new_figure(size=(PAGE[0] / 2, PAGE[1]))
@@ -89,14 +119,23 @@ def simplicial_complex(simplices, positions, *, chain=None, ax=None, title=None,
             ax.set_title(title)
     counts = ", ".join(_n(len(by_dim[k]), w) for k, w in ((0, "vertex"), (1, "edge"), (2, "triangle")))
     counts = counts.replace("vertexs", "vertices")
-    text = f"{title + ': ' if title else ''}a simplicial complex of {counts}" + (", triangles shaded green" if tris else "")
+    text = f"{title + ': ' if title else ''}a simplicial complex of {counts}" + (
+        ", triangles shaded green" if tris else ""
+    )
     if c:
         text += f"; a chain of {_n(len(c), 'simplex').replace('simplexs', 'simplices')} drawn thick in vermillion"
     describe(ax, text)
     return fig
 
 
-def boundary_matrix(M, rows, columns, *, ax=None, title=None):
+def boundary_matrix(
+    M: ArrayLike,
+    rows: Sequence[Sequence[int]],
+    columns: Sequence[Sequence[int]],
+    *,
+    ax: Axes | None = None,
+    title: str | None = None,
+) -> Figure:
     """Draw a 0/1 boundary matrix as a grid, a filled square for each 1, rows and
     columns labelled by their simplices.
 
@@ -123,12 +162,25 @@ def boundary_matrix(M, rows, columns, *, ax=None, title=None):
     ----------
     .. [1] H. Edelsbrunner and J. Harer, *Computational Topology: An Introduction*,
        American Mathematical Society, 2010, §IV.2 (matrix reduction).
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> triangle = sl.closure([(0, 1, 2)])
+    >>> M = sl.boundary_matrix(triangle, 1)
+    >>> fig = boundary_matrix(M, sl.k_simplices(triangle, 0), sl.k_simplices(triangle, 1))
+    >>> type(fig).__name__
+    'Figure'
+    >>> print(sl.plot.alt_text(fig))
+    a 3 by 3 boundary matrix over Z/2, 6 ones (column 01 has ones in rows 0, 1; column 02 has ones in rows 0, 2; column 12 has ones in rows 1, 2).
     """
     from matplotlib.colors import ListedColormap
 
     A = np.asarray(M, dtype=np.uint8) % 2
     if A.ndim != 2 or A.shape != (len(rows), len(columns)):
-        raise ValueError(f"M: expected shape ({len(rows)}, {len(columns)}) for the rows and columns given, got {A.shape}")
+        raise ValueError(
+            f"M: expected shape ({len(rows)}, {len(columns)}) for the rows and columns given, got {A.shape}"
+        )
     name = lambda s: "".join(str(v) for v in s) if all(0 <= v < 10 for v in s) else "-".join(map(str, s))  # noqa: E731
     if ax is None:
         fig, ax = new_figure(size=(PAGE[0] / 2, PAGE[1]))
@@ -146,8 +198,14 @@ def boundary_matrix(M, rows, columns, *, ax=None, title=None):
             ax.text(j, i, "1", ha="center", va="center", color="white", fontsize=9)
         if title:
             ax.set_title(title)
-    ones = "; ".join(f"column {name(columns[j])} has ones in rows " + ", ".join(name(rows[i]) for i in np.flatnonzero(A[:, j]))
-                     for j in range(A.shape[1]) if A[:, j].any())
-    describe(ax, f"{title + ': ' if title else ''}a {A.shape[0]} by {A.shape[1]} boundary matrix over Z/2, "
-                 f"{int(A.sum())} ones" + (f" ({ones})" if A.shape[1] <= 12 and ones else ""))
+    ones = "; ".join(
+        f"column {name(columns[j])} has ones in rows " + ", ".join(name(rows[i]) for i in np.flatnonzero(A[:, j]))
+        for j in range(A.shape[1])
+        if A[:, j].any()
+    )
+    describe(
+        ax,
+        f"{title + ': ' if title else ''}a {A.shape[0]} by {A.shape[1]} boundary matrix over Z/2, "
+        f"{int(A.sum())} ones" + (f" ({ones})" if A.shape[1] <= 12 and ones else ""),
+    )
     return fig
