@@ -1,7 +1,7 @@
 """The lessons' time budget: every lesson executed top to bottom in a fresh kernel.
 
     python -m benchmarks.lessons            # all lessons -> benchmarks/results/lessons.md
-    python -m benchmarks.lessons 07 12      # some (by number)
+    python -m benchmarks.lessons 08 14      # some (by number)
 
 The course promises that a lesson runs in under 60 s on 2 cores (students on a laptop or
 a shared JupyterHub).  That is a performance figure, so it is measured here, with the

@@ -52,9 +52,9 @@ class FigureSpec:
     caption : str
         What the figure shows (the gallery's caption).
     source : str
-        Where it comes from: ``"Notes, Figure 23.1 (i)"`` or ``"Lesson 09"``.
+        Where it comes from: ``"Notes, Figure 23.1 (i)"`` or ``"Lesson 11"``.
     lesson : str or None
-        The lesson that draws it (``"09_persistence"``), for the gallery's link.
+        The lesson that draws it (``"11_persistence"``), for the gallery's link.
     needs : tuple of str
         Library names it calls, as ``"plot.barcode"`` or ``"datasets.ring"``: when
         one is missing (a module still being written) the figure is reported as
@@ -289,7 +289,7 @@ def _plot():
     "A union of disks, its power cells clipped to the disks, and the dual complex K "
     "drawn on top: edges for pairwise, triangles for triple intersections of the clipped cells.",
     source="Notes, Figure 23.1 (i)",
-    lesson="02_dual_complex",
+    lesson="03_dual_complex",
     needs=("datasets.figure_23_1", "plot.dual_complex"),
 )
 def fig23_1i():
@@ -303,7 +303,7 @@ def fig23_1i():
     "The filtration of the Delaunay triangulation: every edge and triangle shaded by "
     "the growth time τ at which it enters the dual complex.",
     source="Notes, Figure 23.1 (ii)",
-    lesson="03_alpha_filtration",
+    lesson="04_alpha_filtration",
     needs=("datasets.figure_23_1", "alpha_filtration", "plot.filtration"),
 )
 def fig23_1ii():
@@ -319,7 +319,7 @@ def fig23_1ii():
     "Right: a mouth as wide as the chamber, widening outwards: the dent fills from the bottom and "
     "never closes: not a pocket.",
     source="Notes, Figure 23.2",
-    lesson="07_pockets",
+    lesson="08_pockets",
     needs=("datasets.figure_23_2", "plot.pockets", "alpha_filtration"),
 )
 def fig23_2():
@@ -337,7 +337,7 @@ def fig23_2():
     "F(x) = |x − S| along C (left), with F itself along the curve (right): minima and maxima "
     "alternate.",
     source="Notes, Figure 23.3",
-    lesson="11_critical_points",
+    lesson="13_critical_points",
     needs=("datasets.blob_curve", "critical_points", "plot.critical_points"),
 )
 def fig23_3():
@@ -352,7 +352,7 @@ def fig23_3():
     "(red) and after (green), their circles about the axis and the swept arcs. As a unit quaternion, "
     "q = cos(θ/2) + sin(θ/2)(u_x i + u_y j + u_z k).",
     source="Notes, Figure 23.4",
-    lesson="14_quaternions",
+    lesson="16_quaternions",
     needs=("Quaternion", "plot.rotation_axis"),
 )
 def fig23_4():
@@ -382,8 +382,8 @@ def l01_power_diagram():
     "l02_growth",
     "The same disks grown: at τ = −0.3 the dual complex has a hole, at τ = 3 the "
     "union is one piece without holes, and so is K: K has the topology of the union.",
-    source="Lesson 02",
-    lesson="02_dual_complex",
+    source="Lesson 03",
+    lesson="03_dual_complex",
     needs=("datasets.figure_23_1", "alpha_filtration", "plot.dual_complex"),
 )
 def l02_growth():
@@ -400,8 +400,8 @@ def l02_growth():
     "l03_alpha_complexes",
     "The growth model: the disks grown to radii √(r² + τ) and their dual "
     "complexes at four times τ, a nested sequence of α-complexes (α = √τ).",
-    source="Lesson 03",
-    lesson="03_alpha_filtration",
+    source="Lesson 04",
+    lesson="04_alpha_filtration",
     needs=("datasets.figure_23_1", "alpha_filtration", "plot.dual_complex"),
 )
 def l03_alpha_complexes():
@@ -418,8 +418,8 @@ def l03_alpha_complexes():
     "l05_dual_complex_3d",
     "The dual complex of C60 at τ = 0: the 60 carbon balls' vertices, "
     "edges and triangles close a cage around an empty centre.",
-    source="Lesson 05",
-    lesson="05_dual_complex_3d",
+    source="Lesson 06",
+    lesson="06_dual_complex_3d",
     needs=("datasets.fullerene_c60", "alpha_filtration", "plot.complex3d"),
 )
 def l05_dual_complex_3d():
@@ -432,8 +432,8 @@ def l05_dual_complex_3d():
     "l06_voids_c60",
     "The one void of C60: the inside of the carbon cage, sealed off once the "
     "hexagons close, drawn inside the see-through balls.",
-    source="Lesson 06",
-    lesson="06_voids",
+    source="Lesson 07",
+    lesson="07_voids",
     needs=("datasets.fullerene_c60", "plot.voids", "alpha_filtration"),
 )
 def l06_voids_c60():
@@ -446,8 +446,8 @@ def l06_voids_c60():
     "l07_pockets_bowl",
     "A pocket in 3D: a spherical shell with a round opening, its mouth "
     "(the triangles joining it to the outside) and its lining atoms.",
-    source="Lesson 07",
-    lesson="07_pockets",
+    source="Lesson 08",
+    lesson="08_pockets",
     needs=("datasets.bowl", "plot.pockets", "alpha_filtration"),
 )
 def l07_pockets_bowl():
@@ -459,8 +459,8 @@ def l07_pockets_bowl():
 @register(
     "l08_tunnels_nanotube",
     "The tunnel of an (8, 8) carbon nanotube: a representative cycle of its H₁ class around the tube.",
-    source="Lesson 08",
-    lesson="08_tunnels",
+    source="Lesson 10",
+    lesson="10_tunnels",
     needs=("datasets.nanotube", "plot.tunnels", "alpha_filtration"),
 )
 def l08_tunnels_nanotube():
@@ -478,8 +478,8 @@ def _swiss_cheese_filtration():
     "The persistence diagram of the Swiss cheese: three round holes "
     "far from the diagonal, and the long thin slit's pieces close to it. Persistence measures "
     "thickness, not area.",
-    source="Lesson 09",
-    lesson="09_persistence",
+    source="Lesson 11",
+    lesson="11_persistence",
     needs=("datasets.swiss_cheese", "alpha_filtration", "plot.persistence_diagram"),
 )
 def l09_persistence_diagram():
@@ -491,8 +491,8 @@ def l09_persistence_diagram():
 @register(
     "l09_barcode",
     "The barcode of the same filtration: one bar per component and per hole, from its birth to its death.",
-    source="Lesson 09",
-    lesson="09_persistence",
+    source="Lesson 11",
+    lesson="11_persistence",
     needs=("datasets.swiss_cheese", "alpha_filtration", "plot.barcode"),
 )
 def l09_barcode():
@@ -504,8 +504,8 @@ def l09_barcode():
 @register(
     "l09_betti_curve",
     "Betti numbers β₀ and β₁ as the disks grow: components merge, holes appear and fill.",
-    source="Lesson 09",
-    lesson="09_persistence",
+    source="Lesson 11",
+    lesson="11_persistence",
     needs=("datasets.swiss_cheese", "alpha_filtration", "plot.betti_curve"),
 )
 def l09_betti_curve():
@@ -518,8 +518,8 @@ def l09_betti_curve():
     "l10_globule_pockets",
     "A protein-like globule: its pockets with their mouths, and its buried "
     "void, computed from first principles as CASTp-style tools report them.",
-    source="Lesson 10",
-    lesson="10_molecule_case_study",
+    source="Lesson 12",
+    lesson="12_molecule_case_study",
     needs=("datasets.globule", "plot.pocket_gallery", "alpha_filtration"),
 )
 def l10_globule_pockets():
@@ -533,8 +533,8 @@ def l10_globule_pockets():
     "l11_critical_surface",
     "Critical points on a closed surface seen from its centre: minima, "
     "saddles and maxima of F = |x − S|, with #min − #saddles + #max = χ = 2.",
-    source="Lesson 11",
-    lesson="11_critical_points",
+    source="Lesson 13",
+    lesson="13_critical_points",
     needs=("datasets.bumpy_sphere", "critical_points", "plot.critical_surface"),
 )
 def l11_critical_surface():
@@ -549,12 +549,12 @@ def l11_critical_surface():
     "l12_hausdorff",
     "The Hausdorff distance of two point sets: the witnesses of h(R, G) and "
     "h(G, R), each certified by an empty disk; the longer one is H(R, G).",
-    source="Lesson 12",
-    lesson="12_hausdorff",
+    source="Lesson 14",
+    lesson="14_hausdorff",
     needs=("plot.hausdorff",),
 )
 def l12_hausdorff():
-    rng = np.random.default_rng(0)  # lesson 12's R and G
+    rng = np.random.default_rng(0)  # lesson 14's R and G
     R = rng.normal(size=(25, 2))
     G = rng.normal(size=(20, 2)) * [1.3, 0.7] + [1.2, 0.3]
     fig, ax = _slide()
@@ -566,19 +566,19 @@ def l12_hausdorff():
     "l12_translation",
     "Matching under translation: B moved onto A by aligning the centroids (a "
     "reference point) and by the optimal translation, found by a certified search.",
-    source="Lesson 12",
-    lesson="12_hausdorff",
-    needs=("hausdorff_under_translation", "plot.matching.translation"),
+    source="Lesson 14",
+    lesson="14_hausdorff",
+    needs=("hausdorff_under_translation", "plot.hausdorff_distance.translation"),
 )
 def l12_translation():
     rng = np.random.default_rng(12)
     A = rng.normal(size=(40, 2)) * [1.5, 0.6]
     B = A[rng.permutation(40)[:30]] + 0.15 * rng.normal(size=(30, 2)) + [4.0, -2.0]
-    return _sl().plot.matching.translation(A, B, _sl().hausdorff_under_translation(A, B))
+    return _resolve("plot.hausdorff_distance.translation")(A, B, _sl().hausdorff_under_translation(A, B))
 
 
 def _icp_example(n=250):
-    """Lesson 13's setting: a lumpy shape and an independent sampling of it, moved."""
+    """Lesson 15's setting: a lumpy shape and an independent sampling of it, moved."""
     sl = _sl()
     sample = sl.datasets.sample_shape
     truth = sl.RigidMotion(sl.Quaternion.from_axis_angle([1.0, 2.0, 3.0], np.radians(30.0)), [0.3, -0.1, 0.2])
@@ -589,8 +589,8 @@ def _icp_example(n=250):
     "l13_icp_step",
     "One ICP iteration: step 1 pairs every source point (red) with its closest "
     "target point (green); steps 2–3 move the source by the best rigid motion for those pairs.",
-    source="Lesson 13",
-    lesson="13_icp",
+    source="Lesson 15",
+    lesson="15_icp",
     needs=("datasets.sample_shape", "icp", "RigidMotion", "plot.icp_step"),
 )
 def l13_icp_step():
@@ -605,8 +605,8 @@ def l13_icp_step():
     "l13_icp_convergence",
     "ICP's mean squared error falls at every iteration (step 4), and the "
     "rotation error with it; the accelerated variant needs fewer iterations.",
-    source="Lesson 13",
-    lesson="13_icp",
+    source="Lesson 15",
+    lesson="15_icp",
     needs=("datasets.sample_shape", "icp", "RigidMotion", "plot.icp_convergence"),
 )
 def l13_icp_convergence():
@@ -624,8 +624,8 @@ def l13_icp_convergence():
     "l15_optimal_rotation",
     "Horn's optimal rotation: paired sets R and G before (left) and after "
     "(right) rotating R by the top eigenvector q of the 4 × 4 matrix A.",
-    source="Lesson 15",
-    lesson="15_optimal_rotation",
+    source="Lesson 17",
+    lesson="17_optimal_rotation",
     needs=("Quaternion", "optimal_rotation", "plot.point_sets"),
 )
 def l15_optimal_rotation():
@@ -648,8 +648,8 @@ def l15_optimal_rotation():
     "Docking HIV-1 protease's inhibitor (PDB 1HVR): the score (buried solvent-accessible "
     "area minus clashes) over turns about the inhibitor's C2 axis and shifts along it; "
     "the crystal pose and its 180° twin are the two peaks.",
-    source="Lesson 16",
-    lesson="16_docking",
+    source="Lesson 18",
+    lesson="18_docking",
     needs=("datasets.structure", "Docking", "plot.docking_landscape"),
 )
 def l16_docking_landscape():
@@ -677,8 +677,8 @@ def l16_docking_landscape():
     "Twenty sampled surfaces (spheres, ellipsoids, cubes, tori; each turned, scaled and "
     "blurred) placed in the plane by classical MDS of the 2-Wasserstein distances between "
     "their persistence diagrams: the classes separate without any alignment.",
-    source="Lesson 17",
-    lesson="17_shape_classification",
+    source="Lesson 19",
+    lesson="19_shape_classification",
     needs=("datasets.shape_family", "alpha_filtration", "classical_mds", "plot.embedding"),
 )
 def l17_shape_classification():
@@ -703,8 +703,8 @@ def l17_shape_classification():
     "binding-site benchmark: ours at the report's defaults (ranked; growth model and discrete "
     "flow) beside fpocket-rs (in its own order and by drug score), pocketeer and pyKVFinder "
     "(committed results, not recomputed).",
-    source="Lesson 18",
-    lesson="18_binding_sites",
+    source="Lesson 20",
+    lesson="20_binding_sites",
     needs=("report", "ranking.rank_score"),
 )
 def l18_binding_sites():

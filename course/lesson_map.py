@@ -59,11 +59,11 @@ def modules_used(path: Path) -> list[str]:
                 used.add(parts[1])
             else:
                 for a in node.names:
-                    used.add(a.name if a.name in modules else exports.get(a.name, a.name))
+                    used.add(a.name if a.name in modules else exports.get(a.name, a.name).split(".")[0])
     for m in re.finditer(r"\b(\w+)\.(\w+)", code):
         if m.group(1) in aliases:
             name = m.group(2)
-            used.add(name if name in modules else exports.get(name, name))
+            used.add(name if name in modules else exports.get(name, name).split(".")[0])
     return sorted(u for u in used if u in modules)
 
 

@@ -18,7 +18,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 TARGET = ROOT / "shapelab" / "data" / "gudhi_reference.json"
 
-#: (kind, recipe of the points, params): the inputs of lesson 17's cross-check
+#: (kind, recipe of the points, params): the inputs of lesson 19's cross-check
 INPUTS = [
     ("delaunay_cech", ("torus", 400, 5), {}),
     ("voxels", ("torus", 400, 5), {"side": 0.05, "pad": 0.7}),
@@ -46,7 +46,7 @@ def main() -> int:
             }
         )
     data = {
-        "what": "persistence diagrams over Z/2 computed by GUDHI for the inputs of lesson 17 (shapelab.peers)",
+        "what": "persistence diagrams over Z/2 computed by GUDHI for the inputs of lesson 19 (shapelab.peers)",
         "gudhi_version": gudhi.__version__,
         "command": "python -m course.peer_values",
         "date": date.today().isoformat(),

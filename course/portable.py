@@ -10,7 +10,7 @@ see them.
 
     python -m course.portable --list                         # the variants
     python -m course.portable --variant blas-sandybridge     # all lessons
-    python -m course.portable --variant npy-simd lessons/13_icp.ipynb
+    python -m course.portable --variant npy-simd lessons/15_icp.ipynb
     python -m course.portable --variant current --keep /tmp/base   # this machine, as is
     python -m course.portable --variant blas-prescott --against /tmp/base
 

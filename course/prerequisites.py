@@ -10,7 +10,7 @@ course map (``book/course_map.md``) draws the graph with :func:`figure` and list
 with :func:`table`, and the two paths, :data:`WEEKS_6` and :data:`WEEKS_12`, put every
 lesson in one week.
 
-Lessons are named by their file stems (``"03_alpha_filtration"``), and nothing else
+Lessons are named by their file stems (``"04_alpha_filtration"``), and nothing else
 here names a lesson: a renaming of the lessons is a plain substitution of their stems
 in this file.  A lesson's number is the part of its stem before the first ``_``, and
 the course's order is the order of the stems as strings (``"01_…" < "01b_…" < "02_…"``).
@@ -37,86 +37,86 @@ SVG = ROOT / "book" / "course_map.svg"
 PREREQUISITES: dict[str, tuple[str, ...]] = {
     "00_start_here": (),
     "01_power_diagrams": ("00_start_here",),
-    "01b_homology": ("01_power_diagrams",),
-    "02_dual_complex": ("01_power_diagrams", "01b_homology"),
-    "03_alpha_filtration": ("01_power_diagrams", "01b_homology", "02_dual_complex"),
-    "04_union_measure": ("01_power_diagrams", "01b_homology", "02_dual_complex", "03_alpha_filtration"),
-    "05_dual_complex_3d": ("01b_homology", "02_dual_complex", "03_alpha_filtration"),
-    "06_voids": ("01b_homology", "03_alpha_filtration", "05_dual_complex_3d"),
-    "07_pockets": ("01b_homology", "03_alpha_filtration", "06_voids"),
-    "07b_pocket_flow": ("07_pockets",),
-    "08_tunnels": ("01b_homology", "06_voids", "07_pockets"),
-    "09_persistence": ("01b_homology", "07_pockets", "08_tunnels"),
-    "10_molecule_case_study": ("07_pockets", "08_tunnels", "09_persistence"),
-    "11_critical_points": ("00_start_here",),
-    "12_hausdorff": ("00_start_here",),
-    "13_icp": ("11_critical_points", "12_hausdorff"),
-    "14_quaternions": ("00_start_here",),
-    "15_optimal_rotation": ("13_icp", "14_quaternions"),
-    "16_docking": (
-        "04_union_measure",
-        "07_pockets",
-        "10_molecule_case_study",
-        "12_hausdorff",
-        "13_icp",
-        "15_optimal_rotation",
+    "02_homology": ("01_power_diagrams",),
+    "03_dual_complex": ("01_power_diagrams", "02_homology"),
+    "04_alpha_filtration": ("01_power_diagrams", "02_homology", "03_dual_complex"),
+    "05_union_measure": ("01_power_diagrams", "02_homology", "03_dual_complex", "04_alpha_filtration"),
+    "06_dual_complex_3d": ("02_homology", "03_dual_complex", "04_alpha_filtration"),
+    "07_voids": ("02_homology", "04_alpha_filtration", "06_dual_complex_3d"),
+    "08_pockets": ("02_homology", "04_alpha_filtration", "07_voids"),
+    "09_pocket_flow": ("08_pockets",),
+    "10_tunnels": ("02_homology", "07_voids", "08_pockets"),
+    "11_persistence": ("02_homology", "08_pockets", "10_tunnels"),
+    "12_molecule_case_study": ("08_pockets", "10_tunnels", "11_persistence"),
+    "13_critical_points": ("00_start_here",),
+    "14_hausdorff": ("00_start_here",),
+    "15_icp": ("13_critical_points", "14_hausdorff"),
+    "16_quaternions": ("00_start_here",),
+    "17_optimal_rotation": ("15_icp", "16_quaternions"),
+    "18_docking": (
+        "05_union_measure",
+        "08_pockets",
+        "12_molecule_case_study",
+        "14_hausdorff",
+        "15_icp",
+        "17_optimal_rotation",
     ),
-    "17_shape_classification": ("01b_homology", "03_alpha_filtration", "06_voids", "09_persistence"),
-    "18_binding_sites": ("07_pockets", "07b_pocket_flow", "10_molecule_case_study", "16_docking"),
+    "19_shape_classification": ("02_homology", "04_alpha_filtration", "07_voids", "11_persistence"),
+    "20_binding_sites": ("08_pockets", "09_pocket_flow", "12_molecule_case_study", "18_docking"),
 }
 
 #: the lessons being written under these stems, with working titles until they exist
 PLANNED: dict[str, str] = {
-    "01b_homology": "Homology over Z/2",
-    "07b_pocket_flow": "The discrete flow and real pockets",
+    "02_homology": "Homology over Z/2",
+    "09_pocket_flow": "The discrete flow and real pockets",
 }
 
-#: the course's parts (each ends with its quiz, in lessons 05, 10 and 15), for the figure
+#: the course's parts (each ends with its quiz, in lessons 06, 12 and 17), for the figure
 PARTS: tuple[tuple[str, tuple[str, ...]], ...] = (
     (
         "I · The union of balls",
         (
             "00_start_here",
             "01_power_diagrams",
-            "01b_homology",
-            "02_dual_complex",
-            "03_alpha_filtration",
-            "04_union_measure",
-            "05_dual_complex_3d",
+            "02_homology",
+            "03_dual_complex",
+            "04_alpha_filtration",
+            "05_union_measure",
+            "06_dual_complex_3d",
         ),
     ),
     (
         "II · Voids, pockets, tunnels, persistence",
-        ("06_voids", "07_pockets", "07b_pocket_flow", "08_tunnels", "09_persistence", "10_molecule_case_study"),
+        ("07_voids", "08_pockets", "09_pocket_flow", "10_tunnels", "11_persistence", "12_molecule_case_study"),
     ),
-    ("III · Shape matching", ("11_critical_points", "12_hausdorff", "13_icp", "14_quaternions", "15_optimal_rotation")),
-    ("Applications", ("16_docking", "17_shape_classification", "18_binding_sites")),
+    ("III · Shape matching", ("13_critical_points", "14_hausdorff", "15_icp", "16_quaternions", "17_optimal_rotation")),
+    ("Applications", ("18_docking", "19_shape_classification", "20_binding_sites")),
 )
 
 #: a 12-week course: one or two lessons a week, every "Going deeper" section kept
 WEEKS_12: tuple[tuple[str, ...], ...] = (
     ("00_start_here", "01_power_diagrams"),
-    ("01b_homology",),
-    ("02_dual_complex", "03_alpha_filtration"),
-    ("04_union_measure", "05_dual_complex_3d"),
-    ("06_voids",),
-    ("07_pockets", "07b_pocket_flow"),
-    ("08_tunnels", "09_persistence"),
-    ("10_molecule_case_study",),
-    ("11_critical_points", "12_hausdorff"),
-    ("13_icp", "14_quaternions"),
-    ("15_optimal_rotation", "16_docking"),
-    ("17_shape_classification", "18_binding_sites"),
+    ("02_homology",),
+    ("03_dual_complex", "04_alpha_filtration"),
+    ("05_union_measure", "06_dual_complex_3d"),
+    ("07_voids",),
+    ("08_pockets", "09_pocket_flow"),
+    ("10_tunnels", "11_persistence"),
+    ("12_molecule_case_study",),
+    ("13_critical_points", "14_hausdorff"),
+    ("15_icp", "16_quaternions"),
+    ("17_optimal_rotation", "18_docking"),
+    ("19_shape_classification", "20_binding_sites"),
 )
 
 #: a 6-week course: three or four lessons a week, every "Going deeper" section skipped
 WEEKS_6: tuple[tuple[str, ...], ...] = (
-    ("00_start_here", "01_power_diagrams", "01b_homology"),
-    ("02_dual_complex", "03_alpha_filtration", "04_union_measure"),
-    ("05_dual_complex_3d", "06_voids", "07_pockets", "07b_pocket_flow"),
-    ("08_tunnels", "09_persistence", "10_molecule_case_study"),
-    ("11_critical_points", "12_hausdorff", "13_icp", "14_quaternions"),
-    ("15_optimal_rotation", "16_docking", "17_shape_classification", "18_binding_sites"),
+    ("00_start_here", "01_power_diagrams", "02_homology"),
+    ("03_dual_complex", "04_alpha_filtration", "05_union_measure"),
+    ("06_dual_complex_3d", "07_voids", "08_pockets", "09_pocket_flow"),
+    ("10_tunnels", "11_persistence", "12_molecule_case_study"),
+    ("13_critical_points", "14_hausdorff", "15_icp", "16_quaternions"),
+    ("17_optimal_rotation", "18_docking", "19_shape_classification", "20_binding_sites"),
 )
 
 #: what each path does with the sections headed "Going deeper" (course.wordcount counts them apart)

@@ -26,13 +26,13 @@ CODE = {
     "01_power_diagrams": ("shapelab/triangulation.py", ("power_diagram", "regular_triangulation")),
     "02_homology": ("shapelab/homology.py", ("boundary_matrix", "rank_mod2", "betti_numbers")),
     "03_dual_complex": ("shapelab/filtration.py", ("dual_complex",)),
-    "04_alpha_filtration": ("shapelab/filtration.py", ("alpha_filtration", "orthosphere")),
+    "04_alpha_filtration": ("shapelab/filtration.py", ("alpha_filtration",)),
     "05_union_measure": ("shapelab/measure.py", ("union_measure",)),
     "06_dual_complex_3d": ("shapelab/triangulation.py", ("regular_triangulation",)),
-    "07_voids": ("shapelab/cavities/voids.py", ("voids",)),
-    "08_pockets": ("shapelab/cavities/pockets.py", ("pockets",)),
+    "07_voids": ("shapelab/cavities/void.py", ("voids",)),
+    "08_pockets": ("shapelab/cavities/pocket.py", ("pockets",)),
     "09_pocket_flow": ("shapelab/cavities/flow.py", ("discrete_flow", "flow_pockets")),
-    "10_tunnels": ("shapelab/cavities/tunnels.py", ("tunnels",)),
+    "10_tunnels": ("shapelab/cavities/tunnel.py", ("tunnels",)),
     "11_persistence": ("shapelab/persistence.py", ("reduce_boundary", "persistence")),
     "12_molecule_case_study": ("shapelab/report.py", ("report",)),
     "13_critical_points": ("shapelab/critical.py", ("critical_points",)),
@@ -42,7 +42,7 @@ CODE = {
     "17_optimal_rotation": ("shapelab/rotation.py", ("optimal_rotation",)),
     "18_docking": ("shapelab/docking.py", ("docking_score",)),
     "19_shape_classification": ("shapelab/diagrams.py", ("bottleneck_distance", "wasserstein_distance")),
-    "20_binding_sites": ("shapelab/ranking.py", ("rank_sites",)),
+    "20_binding_sites": ("shapelab/ranking.py", ("pocket_features", "rank_score")),
 }
 
 

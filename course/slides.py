@@ -2,7 +2,7 @@
 """Render the lessons as offline reveal.js decks.
 
     python -m course.slides                         # every lesson -> book/_build/slides/
-    python -m course.slides --out DIR lessons/03_alpha_filtration.ipynb
+    python -m course.slides --out DIR lessons/04_alpha_filtration.ipynb
     python -m course.slides --with-solutions        # instructor decks, solutions included
     python -m course.slides --src book/lessons      # render freshly executed copies
     python -m course.slides --pdf                   # and print each deck to a PDF (Chromium)

@@ -2,7 +2,7 @@
 """Write the student edition of the lessons: no solutions, no outputs.
 
     python -m course.student                    # every lesson -> dist/student/
-    python -m course.student --out DIR lessons/12_hausdorff.ipynb
+    python -m course.student --out DIR lessons/14_hausdorff.ipynb
 
 For every lesson:
 

@@ -9,7 +9,7 @@ cells count.  A section whose heading starts with "Going deeper"
 (``## Going deeper: cohomology``) runs to the next heading of the same or a higher level;
 its words are counted apart, since a class may skip it.  The References section is
 counted apart too, but it counts toward the limit: a lesson's length is every word
-outside its "Going deeper" sections (the measure issue 34 used: lesson 07 had 3,637).
+outside its "Going deeper" sections (the measure issue 34 used: lesson 08 had 3,637).
 """
 
 from __future__ import annotations

@@ -8,18 +8,21 @@ Modules, one per concept of the notes:
 
 ============================  =====================================================
 ``shapelab.balls``            :class:`Balls`, :func:`power_distance` (§23.1)
-``shapelab.power``            :func:`power_diagram`, :func:`regular_triangulation`, clipped cells
+``shapelab.triangulation``    :func:`power_diagram`, :func:`regular_triangulation`, :func:`orthosphere`
 ``shapelab.filtration``       :func:`alpha_filtration`, :func:`dual_complex`
-``shapelab.topology``         Betti numbers and persistence of a filtration
+``shapelab.persistence``      Betti numbers, persistence: the boundary-matrix reduction
 ``shapelab.homology``         chains, boundary matrices, Betti numbers over Z/2, by hand
-``shapelab.cavities``         :func:`voids`, :func:`pockets`, :func:`tunnels`
-``shapelab.flow``             :func:`discrete_flow`, :func:`flow_pockets`: the literature's pockets
-``shapelab.freespace``        exact free area/volume of cells (void and pocket volumes)
+``shapelab.cavities``         :func:`voids`, :func:`pockets`, :func:`tunnels`, grooves, mouths;
+                              ``cavities.flow``: :func:`discrete_flow`, :func:`flow_pockets`
+                              (the literature's pockets); ``cavities.freespace``: exact free
+                              area/volume of cells (void and pocket volumes)
 ``shapelab.measure``          :func:`union_measure` (area/volume of a union)
 ``shapelab.oracles``          brute-force and sampling oracles (naive formula, Monte Carlo)
 ``shapelab.quaternion``       :class:`Quaternion` (§23.2, rotations)
-``shapelab.registration``     :func:`optimal_rotation`, :func:`register`, :func:`icp`
-``shapelab.distance``         :func:`hausdorff`, :func:`directed_hausdorff` (§23.2)
+``shapelab.rotation``         :func:`optimal_rotation` (Horn), :func:`register`, :class:`RigidMotion`
+``shapelab.icp``              :func:`icp`: the notes' four steps (the function; module by import)
+``shapelab.registration``     both of the above, re-exported
+``shapelab.hausdorff``        :func:`hausdorff`, :func:`directed_hausdorff` (§23.2; module by import)
 ``shapelab.matching``         :func:`hausdorff_under_translation`, reference points
 ``shapelab.critical``         :func:`critical_points` on curves and surfaces
 ``shapelab.simplification``   :func:`simplify`: ε-simplification along a curve (ELZ 2002)
@@ -28,15 +31,24 @@ Modules, one per concept of the notes:
 ``shapelab.docking``          :func:`docking_score`, :class:`Docking`: buried area minus clashes, two-stage docking
 ``shapelab.features``         :func:`coarse_align`: starts for ICP from pose-free features
 ``shapelab.io``               :func:`read_structure` (PDB, mmCIF), :func:`read_pdb`
-``shapelab.cavity_report``    :func:`report`: CASTp-style table of voids and pockets
-``shapelab.batch``            :func:`report_batch`: many structures at once, in parallel, resumable
-``shapelab.trajectory``       :func:`trajectory_measures`: area, volume, cavities of MD frames (MDAnalysis)
-``shapelab.cli``              ``python -m shapelab report FILE...``: the command line
-``shapelab.datasets``         generated molecules and the inputs of the figures
+``shapelab.report``           :func:`report`: CASTp-style table of voids and pockets
+``shapelab.tracking``         cavities along a trajectory: one frame measured, the tracking rule
+``shapelab.datasets``         molecules, the figures' inputs, sampled shapes, shipped structures
+``shapelab.tools``            beside the course: :func:`report_batch` (batches, Dask), :func:`trajectory_measures`, the CLI
 ``shapelab.peers``            GUDHI's diagrams of the lessons' inputs: live if installed, else shipped
 ``shapelab.plot``             one function per kind of figure, a shared style
 ``shapelab.widgets``          ipywidgets explorers built on :mod:`shapelab.plot`
 ``shapelab.check``            self-checks for exercises
+============================  =====================================================
+
+The research tools beside the course, which import the core and are never imported by
+it (:mod:`shapelab.tools`):
+
+============================  =====================================================
+``shapelab.tools.batch``      :func:`report_batch`: many structures at once, in parallel, resumable
+``shapelab.tools.trajectory`` :func:`trajectory_measures`: area, volume, cavities of MD frames (MDAnalysis)
+``shapelab.tools.cli``        ``python -m shapelab report FILE...``: the command line
+``shapelab.tools.cluster``    the optional Dask client of a batch or a trajectory
 ============================  =====================================================
 """
 
@@ -49,36 +61,37 @@ __version__ = "0.1.0"
 _EXPORTS = {
     "Balls": "balls",
     "power_distance": "balls",
-    "power_diagram": "power",
-    "PowerDiagram": "power",
-    "regular_triangulation": "power",
+    "power_diagram": "triangulation",
+    "PowerDiagram": "triangulation",
+    "regular_triangulation": "triangulation",
+    "orthosphere": "triangulation",
     "alpha_filtration": "filtration",
     "dual_complex": "filtration",
     "Filtration": "filtration",
     "Complex": "filtration",
     "union_measure": "measure",
     "UnionMeasure": "measure",
-    "voids": "cavities",
-    "pockets": "cavities",
-    "tunnels": "cavities",
-    "grooves": "cavities",
-    "channel_profile": "cavities",
-    "Void": "cavities",
-    "Pocket": "cavities",
-    "Tunnel": "cavities",
-    "Cavity": "cavities",
-    "discrete_flow": "flow",
-    "flow_pockets": "flow",
-    "DiscreteFlow": "flow",
-    "FlowPocket": "flow",
+    "voids": "cavities.void",
+    "pockets": "cavities.pocket",
+    "tunnels": "cavities.tunnel",
+    "grooves": "cavities.tunnel",
+    "channel_profile": "cavities.tunnel",
+    "Void": "cavities.void",
+    "Pocket": "cavities.pocket",
+    "Tunnel": "cavities.tunnel",
+    "Cavity": "cavities.cavity",
+    "discrete_flow": "cavities.flow",
+    "flow_pockets": "cavities.flow",
+    "DiscreteFlow": "cavities.flow",
+    "FlowPocket": "cavities.flow",
     "Quaternion": "quaternion",
-    "optimal_rotation": "registration",
-    "register": "registration",
-    "RigidMotion": "registration",
-    "icp": "registration",
-    "ICPResult": "registration",
-    "directed_hausdorff": "distance",
-    "hausdorff": "distance",
+    "optimal_rotation": "rotation",
+    "register": "rotation",
+    "RigidMotion": "rotation",
+    "icp": "icp",
+    "ICPResult": "icp",
+    "directed_hausdorff": "hausdorff",
+    "hausdorff": "hausdorff",
     "hausdorff_under_translation": "matching",
     "TranslationMatch": "matching",
     "reference_point": "matching",
@@ -98,12 +111,12 @@ _EXPORTS = {
     "DockedPose": "docking",
     "curve_persistence": "simplification",
     "simplify": "simplification",
-    "report": "cavity_report",
-    "CavityReport": "cavity_report",
-    "report_batch": "batch",
-    "trajectory_measures": "trajectory",
-    "TrajectoryMeasures": "trajectory",
-    # homology.py: chains, boundary matrices and Betti numbers over Z/2, by hand (lesson 01b)
+    "report": "report",
+    "CavityReport": "report",
+    "report_batch": "tools.batch",
+    "trajectory_measures": "tools.trajectory",
+    "TrajectoryMeasures": "tracking",
+    # homology.py: chains, boundary matrices and Betti numbers over Z/2, by hand (lesson 02)
     "closure": "homology",
     "boundary_matrix": "homology",
     "rank_mod2": "homology",
@@ -117,17 +130,21 @@ _EXPORTS = {
 }
 _SUBMODULES = {
     "balls",
+    "triangulation",
+    "predicates",
     "power",
     "filtration",
     "topology",
     "homology",
+    "persistence",
     "cavities",
-    "flow",
-    "freespace",
+    "flow",  # moved: shapelab.cavities.flow (_MOVED)
+    "freespace",  # moved: shapelab.cavities.freespace (_MOVED)
     "measure",
     "oracles",
     "quaternion",
     "registration",
+    "rotation",
     "distance",
     "matching",
     "critical",
@@ -138,10 +155,18 @@ _SUBMODULES = {
     "widgets",
     "check",
     "simplification",
-    "cavity_report",
-    "batch",
-    "trajectory",
-    "cli",
+    "report",
+    "cavity_report",  # moved: shapelab.report (_MOVED)
+    "tracking",
+    "tools",
+    "batch",  # moved: shapelab.tools.batch (_MOVED)
+    "trajectory",  # moved: shapelab.tools.trajectory
+    "cli",  # moved: shapelab.tools.cli
+    "morse",
+    "intersections",
+    "general_position",
+    "assignment",
+    "intervals",
 }
 
 __all__ = sorted(_EXPORTS) + ["__version__"]
@@ -151,5 +176,17 @@ __getattr__, __dir__ = attach(__name__, _EXPORTS, _SUBMODULES, eager=__all__)
 
 #: modules that moved (issue 33), by their old name: ``import shapelab.power`` still
 #: gives the module now called ``shapelab.triangulation``
-_MOVED: dict[str, str] = {}
+_MOVED: dict[str, str] = {
+    "power": "triangulation",
+    "exact": "_engine",
+    "topology": "persistence",
+    "distance": "hausdorff",
+    "flow": "cavities.flow",
+    "freespace": "cavities.freespace",
+    "cavity_report": "report",
+    "batch": "tools.batch",
+    "cli": "tools.cli",
+    "trajectory": "tools.trajectory",
+}
 moved(__name__, _MOVED)
+#: ``shapelab.report`` is the function, also once its module ``shapelab.report`` is imported

@@ -1,7 +1,7 @@
-"""``python -m shapelab COMMAND ...``: the command line (:mod:`shapelab.cli`)."""
+"""``python -m shapelab COMMAND ...``: the command line (:mod:`shapelab.tools.cli`)."""
 
 import sys
 
-from .cli import main
+from .tools.cli import main
 
 sys.exit(main())

@@ -1,6 +1,6 @@
 """Distances between persistence diagrams: bottleneck and Wasserstein, exact.
 
-Lesson 09 reads one persistence diagram; comparing the shapes of a family (shape
+Lesson 11 reads one persistence diagram; comparing the shapes of a family (shape
 classification, §23.2's first application) needs a distance between diagrams.  Both
 distances match the points of one diagram to the points of the other *or to the
 diagonal* (a feature of persistence 0), and take

@@ -4,7 +4,7 @@ The notes describe matching as two stages: an initial matching on geometric feat
 (reference points, critical points), then local improvement.  ICP
 (:func:`shapelab.icp`) is the local improvement, and it only finds the motion when it
 starts close enough; from a 120° or 150° turn it stops in a wrong local minimum
-(lesson 13).  :func:`coarse_align` proposes starts from features that do not depend on
+(lesson 15).  :func:`coarse_align` proposes starts from features that do not depend on
 the pose:
 
 * ``"axes"``: the centroid and the principal axes (the eigenvectors of the covariance).

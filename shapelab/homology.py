@@ -1,4 +1,4 @@
-"""Simplicial homology over :math:`\\mathbb{Z}/2`, small and by hand (lesson 01b).
+"""Simplicial homology over :math:`\\mathbb{Z}/2`, small and by hand (lesson 02).
 
 A **simplicial complex** is a finite set of simplices, each a set of vertices, closed
 under taking faces: with a simplex, every one of its facets is in the complex. Here a
@@ -14,7 +14,7 @@ components, tunnels and voids of a union of balls):
 .. math:: \\beta_k = \\dim Z_k - \\dim B_k = (n_k - \\operatorname{rank}\\partial_k) - \\operatorname{rank}\\partial_{k+1}.
 
 Everything here is exact (integers mod 2) and written to be read; it is meant for
-complexes of a few hundred simplices. The filtrations of :mod:`shapelab.filtration`
+small complexes (a few thousand simplices take a second or two). The filtrations of :mod:`shapelab.filtration`
 compute the same numbers much faster (:func:`shapelab.topology.betti`).
 """
 
@@ -48,7 +48,8 @@ __all__ = [
 def _simplex(s, name: str) -> tuple:
     """One simplex as a sorted tuple of distinct ints."""
     if isinstance(s, (str, bytes)) or not hasattr(s, "__iter__"):
-        raise TypeError(f"{name}: each simplex must be a tuple of vertex labels, got {s!r}")
+        hint = " (a list of simplices such as [(0, 1)], not one simplex)" if isinstance(s, (int, np.integer)) else ""
+        raise TypeError(f"{name}: each simplex must be a tuple of vertex labels, got {s!r}{hint}")
     out = []
     for v in s:
         if isinstance(v, (bool, np.bool_)) or not isinstance(v, (int, np.integer)):
@@ -199,7 +200,7 @@ def boundary_matrix(simplices: Iterable[Sequence[int]], k: int) -> np.ndarray:
     --------
     rank_mod2 : its rank over Z/2.
     betti_numbers : what the ranks give.
-    shapelab.filtration.Filtration.boundary_matrix : all dimensions at once, in filtration order (lesson 09).
+    shapelab.filtration.Filtration.boundary_matrix : all dimensions at once, in filtration order (lesson 11).
 
     References
     ----------
@@ -262,12 +263,19 @@ def rank_mod2(M: ArrayLike) -> int:
     >>> rank_mod2([[1, 1, 0], [1, 0, 1], [0, 1, 1]])
     2
     """
-    A = np.asarray(M)
+    if M is None or isinstance(M, (str, bytes)):
+        raise TypeError(f"M: expected a 2-D matrix of 0s and 1s, got {type(M).__name__}")
+    try:
+        A = np.asarray(M)
+    except ValueError as exc:                          # ragged nested lists
+        raise ValueError(f"M: expected a 2-D matrix with rows of equal length ({exc})") from None
     if A.ndim != 2:
         raise ValueError(f"M: expected a 2-D matrix, got shape {A.shape}")
+    if A.size and A.dtype == object and all(isinstance(x, int) and not isinstance(x, bool) for x in A.flat):
+        A = np.vectorize(lambda x: x % 2, otypes=[np.uint8])(A)   # Python ints of any size, reduced exactly
     if A.size and not (np.issubdtype(A.dtype, np.integer) or A.dtype == np.bool_):
         raise TypeError(f"M: expected integer or boolean entries (0 and 1), got dtype {A.dtype}")
-    A = (A.astype(np.int64) % 2).astype(np.uint8)
+    A = (A % 2).astype(np.uint8)                       # parity is exact in every integer dtype
     rank = 0
     for col in range(A.shape[1]):
         if rank == A.shape[0]:
@@ -501,7 +509,12 @@ def positive_simplices(order: Sequence[Sequence[int]]) -> list:
     :math:`\\sigma` is *positive*) or lowers :math:`\\beta_{k-1}` by one (its boundary
     was a cycle that did not bound, and now does: a **death**; :math:`\\sigma` is
     *negative*). A vertex is always positive. Which class dies at a death is
-    decided by the elder rule, through the reduction of the boundary matrix (lesson 09).
+    decided by the elder rule, through the reduction of the boundary matrix (lesson 11).
+
+    Each step asks :func:`is_boundary`'s question of :math:`\partial\sigma` and the
+    simplices before it; the answer is kept up to date exactly, one elimination step per
+    simplex (the boundaries entered so far stay reduced mod 2), rather than by a fresh
+    rank of every prefix.
 
     Parameters
     ----------
@@ -516,7 +529,7 @@ def positive_simplices(order: Sequence[Sequence[int]]) -> list:
 
     See Also
     --------
-    is_boundary : decides each step.
+    is_boundary : the question asked at each step (answered here incrementally).
     shapelab.topology.reduce_boundary : pairs each death with its birth.
     shapelab.filtration.Filtration.persistence : the pairs of an α-filtration.
 
@@ -539,14 +552,31 @@ def positive_simplices(order: Sequence[Sequence[int]]) -> list:
     order = [_simplex(s, "order") for s in order]
     if len(set(order)) != len(order):
         raise ValueError("order: a simplex enters twice")
+    # The question at each step is is_boundary(∂σ, simplices so far). Asked afresh it costs a
+    # rank of the whole prefix; here it is answered incrementally and exactly: the boundaries
+    # of the k-simplices entered so far are kept reduced mod 2 (a chain is a Python int, bit
+    # i for the i-th (k-1)-simplex to enter), so ∂σ is a boundary iff it reduces to zero.
+    index: dict = {}                                   # simplex -> its bit among those of its dimension
+    count: Counter = Counter()                         # how many simplices of each dimension entered
+    reduced: dict = {}                                 # k -> {highest bit: reduced boundary}
     out = []
-    for i, s in enumerate(order):
-        before = order[:i]
-        if len(s) == 1:
+    for s in order:
+        k = len(s) - 1
+        if k > 0:
+            missing = [f for f in combinations(s, k) if f not in index]
+            if missing:
+                raise ValueError(f"order: {s} enters before its face {missing[0]}: a prefix is not a complex")
+            v = 0
+            for f in combinations(s, k):
+                v ^= 1 << index[f]
+            basis = reduced.setdefault(k, {})
+            while v and v.bit_length() - 1 in basis:
+                v ^= basis[v.bit_length() - 1]         # add an earlier boundary, mod 2
+            if v:
+                basis[v.bit_length() - 1] = v          # ∂σ did not bound: σ is negative
+            out.append(not v)
+        else:
             out.append(True)
-            continue
-        missing = [f for f in combinations(s, len(s) - 1) if f not in set(before)]
-        if missing:
-            raise ValueError(f"order: {s} enters before its face {missing[0]}: a prefix is not a complex")
-        out.append(is_boundary(chain_boundary([s]), before))
+        index[s] = count[k]
+        count[k] += 1
     return out

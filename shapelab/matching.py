@@ -18,7 +18,7 @@ import numpy as np
 from ._toolkit.geometry import kdtree
 from ._toolkit.tolerances import MATCHING_FATOL, MATCHING_GAP_ABS, MATCHING_STEP_REL, MATCHING_XATOL
 from ._toolkit.validate import as_finite_scalar, as_point_pair, as_points, as_positive_int
-from .distance import hausdorff
+from .hausdorff import hausdorff
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike

@@ -105,6 +105,7 @@ from itertools import combinations
 
 import numpy as np
 
+from ._engine import measure as _engine
 from ._toolkit import tolerances as tol
 from ._toolkit.geometry import cross, dot
 from ._toolkit.validate import (
@@ -260,7 +261,7 @@ class _Pair:
 
     __slots__ = ("u", "t", "t_ba", "f", "rho2")
 
-    def __init__(self, Z, W, a, b):
+    def __init__(self, Z, W, a, b, tangent=TANGENT_TOL):
         delta = Z[b] - Z[a]
         d = _norm(delta)
         ok = d > 0
@@ -271,14 +272,15 @@ class _Pair:
         self.f = Z[a] + self.t * self.u
         rho2 = W[a] - self.t * self.t
         # rounding-level overlaps are tangencies (see TANGENT_TOL)
-        self.rho2 = np.where(rho2 <= TANGENT_TOL * np.maximum(np.maximum(W[a], W[b]), d * d), 0.0, rho2)
+        self.rho2 = np.where(rho2 <= tangent * np.maximum(np.maximum(W[a], W[b]), d * d), 0.0, rho2)
 
 
-def _pairs(Z, W):
-    """All pairs of a simplex: ``geo[a, b]`` with u, t seen from a (both orders)."""
+def _pairs(Z, W, tangent=TANGENT_TOL):
+    """All pairs of a simplex: ``geo[a, b]`` with u, t seen from a (both orders);
+    chords below ``tangent`` (relative) count as tangencies."""
     geo = {}
     for a, b in combinations(range(Z.shape[0]), 2):
-        p = _Pair(Z, W, a, b)
+        p = _Pair(Z, W, a, b, tangent)
         geo[a, b] = (p.u, p.t, p.f, p.rho2)
         geo[b, a] = (-p.u, p.t_ba, p.f, p.rho2)
     return geo
@@ -464,61 +466,19 @@ def _pieces_triangle3d(Z, W, R, geo=None):
     return P, S
 
 
-#: A top simplex whose volume is below this fraction of (longest edge)^d is treated
-#: as flat: its orthocentre would be determined by rounding noise only.  Relative to
-#: the simplex's own size (scale- and translation-invariant); the pieces of a flat
-#: simplex are the limits of the general formulas (:func:`_pieces_flat`).
-FLAT_TOL = tol.MEASURE_FLAT
+#: flat top simplices (volume below this fraction of the longest edge^d) are the limits
+#: of the general formulas, evaluated by the engine (``shapelab._engine.measure``)
+FLAT_TOL = _engine.FLAT_TOL
 
 
-def _flatness(Z):
-    """|det(edges)| / (longest edge)^d of top simplices."""
-    k1 = Z.shape[0]
-    E = [Z[i] - Z[0] for i in range(1, k1)]
-    det = np.abs(E[0][0] * E[1][1] - E[0][1] * E[1][0]) if k1 == 3 else np.abs(dot(E[0], cross(E[1], E[2])))
-    L = np.max(np.stack([_norm(Z[b] - Z[a]) for a, b in combinations(range(k1), 2)]), axis=0)
-    return np.where(L > 0, det / np.where(L > 0, L, 1.0) ** (k1 - 1), 0.0)
-
-
-def _pieces_flat(Z, W, R, d):
-    """Pieces of flat top simplices (the limit of a degenerate configuration).
-
-    A flat d-simplex is in K only when its lifted points are (nearly) affinely
-    dependent too: :math:`\\sum_{i\\in +} \\lambda_i \\pi_i = \\sum_{j \\in -}
-    |\\lambda_j| \\pi_j` with the signs of the affine dependency of the centres
-    (e.g. four cocircular centres in a plane).  Then one constraint of each
-    farthest cell :math:`W_l` is implied by the others, and the piece of l is its
-    piece in the facet without that vertex: l's partner when l's side of the
-    dependency has two vertices, the lone vertex of the other side when l's side
-    has three; the piece is empty when l is alone on its side.
-    """
-    k1, _, m = Z.shape
-    M = np.concatenate([np.moveaxis(Z, 2, 0).transpose(0, 2, 1), np.ones((m, 1, k1))], axis=1)
-    lam = np.linalg.svd(M)[2][:, -1, :].T  # (k1, m): sum lam_i z_i = 0, sum lam_i = 0
-    pos = lam > 0
-    P = np.zeros((k1, m))
-    S = np.zeros((k1, m))
-    for drop in range(k1):
-        face = [v for v in range(k1) if v != drop]
-        if d == 2:
-            Pf, Sf = _pieces_edge(Z[face], W[face], R[face], 2)
-        else:
-            Pf, Sf = _pieces_triangle3d(Z[face], W[face], R[face])
-        for j, l in enumerate(face):
-            same = pos == pos[l]
-            n_same = same.sum(axis=0)
-            use = ((n_same == 2) & same[drop]) | ((n_same == k1 - 1) & ~same[drop])
-            P[l, use] = Pf[j, use]
-            S[l, use] = Sf[j, use]
-    return P, S
-
-
-def _pieces(Z, W, R, d, k):
+def _pieces(Z, W, R, d, k, exact=True):
     """Pieces of k-simplices.  A simplex in which two balls only touch has an
-    intersection of measure zero (it lies in their lens): its pieces are 0."""
+    intersection of measure zero (it lies in their lens): its pieces are 0.  With
+    ``exact``, rounding-level chords are tangencies and flat top simplices take the
+    engine's limits; without, the plain closed forms (generic input)."""
     if k == 0:
         return _pieces_vertex(W, R, d)
-    geo = _pairs(Z, W)
+    geo = _pairs(Z, W, TANGENT_TOL if exact else 0.0)
     if k == 1:
         return _pieces_edge(Z, W, R, d, geo)
     touch = np.zeros(Z.shape[2], dtype=bool)
@@ -526,10 +486,12 @@ def _pieces(Z, W, R, d, k):
         touch |= geo[a, b][3] <= 0.0
     with np.errstate(invalid="ignore", divide="ignore"):
         if k == d:
-            flat = _flatness(Z) < FLAT_TOL
             P, S = _pieces_top(Z, W, R, d, geo)
+            flat = _engine.flatness(Z) < FLAT_TOL if exact else np.zeros(Z.shape[2], dtype=bool)
             if flat.any():
-                P[:, flat], S[:, flat] = _pieces_flat(Z[..., flat], W[:, flat], R[:, flat], d)
+                P[:, flat], S[:, flat] = _engine.pieces_flat(
+                    Z[..., flat], W[:, flat], R[:, flat], d, _pieces_edge, _pieces_triangle3d
+                )
         else:
             P, S = _pieces_triangle3d(Z, W, R, geo)
     P[:, touch] = 0.0
@@ -558,7 +520,9 @@ def _before(values: np.ndarray, tau: float) -> np.ndarray:
 _BLOCK = 8192
 
 
-def measure_from_simplices(centers, weights, simplices, *, tau: float = 0.0) -> UnionMeasure:
+def measure_from_simplices(
+    centers, weights, simplices, *, tau: float = 0.0, precision: str = "exact"
+) -> UnionMeasure:
     """The short inclusion–exclusion formula over a given dual complex.
 
     This is the engine of :func:`union_measure`, exposed so that a complex from
@@ -574,6 +538,8 @@ def measure_from_simplices(centers, weights, simplices, *, tau: float = 0.0) -> 
         dual complex K of these balls, k = 0, 1, ...
     tau : float
         Only recorded in the result.
+    precision : {"exact", "fast"}, default "exact"
+        As for :func:`union_measure`.
 
     Returns
     -------
@@ -623,7 +589,7 @@ def measure_from_simplices(centers, weights, simplices, *, tau: float = 0.0) -> 
                 z0 = ZT[i].take(sb[0])
                 for v in range(k + 1):
                     np.subtract(ZT[i].take(sb[v]), z0, out=Z[v, i])
-            P[:, a : a + _BLOCK], S[:, a : a + _BLOCK] = _pieces(Z, Wpos[sb], Rall[sb], d, k)
+            P[:, a : a + _BLOCK], S[:, a : a + _BLOCK] = _pieces(Z, Wpos[sb], Rall[sb], d, k, precision == "exact")
         sign = -1.0 if k % 2 else 1.0
         ball_measure += sign * np.bincount(st.ravel(), weights=P.ravel(), minlength=n)
         ball_boundary += sign * np.bincount(st.ravel(), weights=S.ravel(), minlength=n)
@@ -644,7 +610,7 @@ def measure_from_simplices(centers, weights, simplices, *, tau: float = 0.0) -> 
     )
 
 
-def union_measure(F, tau=0.0) -> UnionMeasure:
+def union_measure(F, tau: float = 0.0, *, precision: str = "exact") -> UnionMeasure:
     """Area and perimeter (2D) or volume and surface area (3D) of a union of balls.
 
     Computed exactly with the short inclusion–exclusion formula over the dual complex
@@ -664,6 +630,13 @@ def union_measure(F, tau=0.0) -> UnionMeasure:
         :math:`\\sqrt{r_i^2 + \\tau}`; balls with :math:`r_i^2 + \\tau < 0` are
         empty.  Default 0: the balls as given.  ``-inf`` gives the empty union;
         ``inf`` is refused (every ball would be infinite).
+    precision : {"exact", "fast"}, default "exact"
+        ``"exact"``: chords of rounding-level size are tangencies and flat top
+        simplices (nearly cospherical centres) are measured as the limits of the
+        closed forms (``shapelab._engine.measure``): portable on degenerate input,
+        today's results bit for bit.  ``"fast"``: the plain closed forms of the
+        module docstring alone, equal to ``"exact"`` on generic input (tested, to
+        1e-12 relative).
 
     Returns
     -------
@@ -708,6 +681,8 @@ def union_measure(F, tau=0.0) -> UnionMeasure:
     (2.0, 4.0)
     """
     t = as_tau(tau)
+    if precision not in ("exact", "fast"):
+        raise ValueError(f'union_measure: precision must be "exact" or "fast", got {precision!r}')
     if isinstance(F, Balls):
         balls, F = F, None
     else:
@@ -734,4 +709,4 @@ def union_measure(F, tau=0.0) -> UnionMeasure:
             if c == 0:
                 break
             simplices.append(F.simplices(k)[:c])
-    return measure_from_simplices(balls.centers, balls.weights + t, simplices, tau=t)
+    return measure_from_simplices(balls.centers, balls.weights + t, simplices, tau=t, precision=precision)

@@ -370,7 +370,7 @@ def voxel_complement(
     of two voxels, so the unbounded component is the one touching the grid's border;
     every other component is bounded: a void (Notes §23.1, "Voids and pockets").  By
     Alexander duality their number is :math:`\\beta_2` of the union, hence of the dual
-    complex :math:`K_\\tau` (lesson 06).  Nothing here uses the triangulation, so it is
+    complex :math:`K_\\tau` (lesson 07).  Nothing here uses the triangulation, so it is
     an independent check of :func:`shapelab.voids`; near an event (τ close to a birth or
     death) a voxel grid can open a thin wall or close a thin gap, so compare at τ away
     from events and at two spacings.  A margin in τ is not one in space: C60 at

@@ -1,7 +1,7 @@
 """A peer library's persistence diagrams, computed when it is installed, else shipped.
 
 The course compares its own diagrams with other ways of computing the same thing
-(Notes §23.1: the α-complex has the homotopy type of the union; lesson 17 checks that
+(Notes §23.1: the α-complex has the homotopy type of the union; lesson 19 checks that
 its *diagrams* are the union's).  Two of those ways come from GUDHI (The GUDHI Project
 2015): the Delaunay–Čech complex and a cubical complex of the distance function on a
 voxel grid.  GUDHI is not one of the course's requirements: it has no wheel for Linux
@@ -147,7 +147,7 @@ def delaunay_cech_diagrams(points: ArrayLike) -> PeerDiagrams:
 
     Examples
     --------
-    The lesson's torus (lesson 17), with or without GUDHI:
+    The lesson's torus (lesson 19), with or without GUDHI:
 
     >>> from shapelab.datasets import sample_shape
     >>> from shapelab.peers import delaunay_cech_diagrams

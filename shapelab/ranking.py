@@ -20,7 +20,11 @@ there, and orders them by a small score:
   the atom centres, 0 outside it;
 * **n_lining**: the number of lining atoms.
 
-The *centre* of a cavity is the centroid of its lining atoms, the point the DCA
+The lining atoms here are whatever atoms the caller passes as a cavity's ``lining``;
+:func:`shapelab.report` passes its *wall atoms* (``CavityRow.lining_atoms``: the atoms whose SA sphere bounds
+the cavity's free space), not ``Pocket.lining`` (the vertices of its cells).
+
+The *centre* of a cavity is the centroid of those atoms, the point the DCA
 criterion of binding-site benchmarks measures (a site is found when the centre is
 within 4 Å of a ligand atom; Krivák and Hoksza 2018, P2Rank).
 
@@ -197,7 +201,7 @@ def pocket_features(balls, lining, *, volume, area, mouth_area, persistence, rea
     """The features of :class:`PocketFeatures` for ``m`` cavities of one structure (Notes §23.1).
 
     Works the same for every pocket definition: it needs only each cavity's lining
-    atoms and its measures (the columns of a :class:`shapelab.cavity_report.CavityRow`),
+    atoms and its measures (the columns of a :class:`shapelab.report.CavityRow`),
     so the growth model's pockets, the discrete flow's pockets and voids are ranked
     alike.
 
@@ -228,7 +232,7 @@ def pocket_features(balls, lining, *, volume, area, mouth_area, persistence, rea
     --------
     rank_score
         Orders cavities by these features.
-    shapelab.cavity_report.report
+    shapelab.report
         Computes them with ``rank="score"``.
 
     References

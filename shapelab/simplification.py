@@ -1,7 +1,7 @@
 """Topological simplification by persistence, for functions on a curve.
 
 Notes §23.1 end with *topological simplification*: keep the features that persist and
-drop the others.  Lesson 09 does this with a threshold on the persistence diagram.
+drop the others.  Lesson 11 does this with a threshold on the persistence diagram.
 Edelsbrunner, Letscher and Zomorodian (2002) mean more: a *simplification* is a new
 **function** ``g`` close to ``f`` whose critical points are exactly the persistent ones.
 On a curve (a path or a closed polygon, as in §23.2's critical points of
@@ -31,6 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._toolkit.unionfind import elder_merges
 from ._toolkit.validate import as_finite_scalar
 from ._toolkit.validate import as_float_array as _as_float_array
 
@@ -175,7 +176,7 @@ def curve_persistence(values, *, closed: bool = True) -> CurvePersistence:
     The piecewise-linear function on the path or cycle graph, filtered by sublevel
     sets (lower-star filtration): components are born at minima and die at maxima,
     where the younger of the two merging components dies (the elder rule, notes §23.1
-    and lesson 09).  Union–find over the vertices in increasing order, O(n log n).
+    and lesson 11).  Union–find over the vertices in increasing order, O(n log n).
 
     References
     ----------
@@ -196,36 +197,27 @@ def curve_persistence(values, *, closed: bool = True) -> CurvePersistence:
     n = f.size
     rank = _rank(f)
     order = np.argsort(rank)
-    parent = np.full(n, -1, dtype=np.int64)  # -1: not yet in the sublevel set
-    root_min = np.arange(n)  # for a root: the vertex of its component's minimum
-
-    def find(i):
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
+    # the lower-star filtration: vertex v enters at its rank, with the edges to its
+    # neighbours already in (lower rank), left neighbour first
+    later = np.repeat(order, 2)
+    nbr = later + np.tile([-1, 1], n)
+    if closed:
+        nbr %= n
+    inside = (nbr >= 0) & (nbr < n)
+    later, nbr = later[inside], nbr[inside]
+    keep = (nbr != later) & (rank[nbr] < rank[later])
+    later, nbr = later[keep], nbr[keep]
 
     pairs = []
-    last = None
-    for v in order:
-        v = int(v)
-        parent[v] = v
-        last = v
-        nbrs = [v - 1, v + 1]
-        if closed:
-            nbrs = [(v - 1) % n, (v + 1) % n]
-        for u in nbrs:
-            if 0 <= u < n and u != v and parent[u] != -1:
-                a, b = find(v), find(u)
-                if a == b:
-                    continue  # the loop of a closed curve closes here
-                ma, mb = root_min[a], root_min[b]
-                if rank[ma] > rank[mb]:
-                    a, b, ma, mb = b, a, mb, ma  # a holds the elder (lower) minimum
-                if mb != v:  # a vertex merging into its own component is no pair
-                    pairs.append((mb, v))
-                parent[b] = a
-                root_min[a] = ma
+
+    def merged(e, elder, younger, oldest):
+        # the younger component, born at its minimum, dies at the vertex that joins it
+        # to the elder one (a vertex merging into its own component is no pair)
+        if oldest[younger] != later[e]:
+            pairs.append((oldest[younger], int(later[e])))
+
+    elder_merges(n, later, nbr, np.arange(later.size), rank.tolist(), merged)
+    last = int(order[-1]) if n else None
     essential_min = int(order[0])
     essential_max = int(last) if closed else None
     if pairs:

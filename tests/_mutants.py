@@ -228,7 +228,7 @@ def _most_spread(v, ns):
 
 
 def _class_spreads(v, ns):
-    """Lesson 17's per-class spreads, read the wrong way (each lands on the right class)."""
+    """Lesson 19's per-class spreads, read the wrong way (each lands on the right class)."""
     labels = list(ns["labels"])
 
     def per_class(M, stat):
@@ -249,7 +249,7 @@ def _class_spreads(v, ns):
 
 
 def _first_site_rank(v, ns):
-    """Lesson 18: the flow's first rank at the ligand; wrong ranks a student may give: the
+    """Lesson 20: the flow's first rank at the ligand; wrong ranks a student may give: the
     growth model's (the table above the exercise), the first *row* of the flow's table,
     a 0-based index, one too many."""
     growth = next(r.id for r in ns["t4l_growth"].rows if ns["distance_to_ligand"](r, ns["t4l"], ns["xylene"]) <= 4.0)
@@ -606,38 +606,113 @@ def _betti_mod2(v, ns):
 def _bounds(v, ns):
     return [*_generic(v), ("every cycle called a boundary", list(ns["cycle"])), ("nothing bounds", [False] * len(v))]
 
+def _flow_order(v, ns):
+    def rho(balls, c, weighted):
+        z = balls.centers[c]
+        w = balls.radii[c] ** 2 if weighted else np.zeros(len(c))
+        A = 2 * (z[1:] - z[0])
+        b = (z[1:] ** 2).sum(1) - w[1:] - (z[0] ** 2).sum() + w[0]
+        y = np.linalg.solve(A, b)
+        return float(((y - z[0]) ** 2).sum() - w[0])
+
+    def unweighted(balls, cells):  # the circumradius of the centres: right for one radius only
+        return sorted(range(len(cells)), key=lambda n: rho(balls, cells[n], False))
+
+    def reverse(balls, cells):  # downhill: every arrow backwards
+        return sorted(range(len(cells)), key=lambda n: -rho(balls, cells[n], True))
+
+    return [
+        *_generic(v),
+        ("the order given", lambda balls, cells: list(range(len(cells)))),
+        ("the circumradius of the centres, weights ignored", unweighted),
+        ("the orthosphere's power, largest first", reverse),
+    ]
+
 
 #: ``"lesson stem:name"`` -> ``f(solution's value, the kernel's globals)`` -> [(label, wrong answer)]
+
+# ---- the theory sections (issue 34): the plausible mistakes of each exercise -----------
+
+
+def _y_max(v, ns):
+    z = ns["three"].centers
+    circumcentre = np.linalg.solve(2 * (z[1:] - z[0]), (z[1:] ** 2).sum(axis=1) - (z[0] ** 2).sum())
+    return [*_generic(v), ("the circumcentre (radii ignored)", circumcentre), ("the centroid", z.mean(axis=0))]
+
+
+def _f_max(v, ns):
+    r = ns["three"].radii
+    return [*_generic(v), ("the squared distance, without the weight", v + float(r[0]) ** 2)]
+
+
+def _triangles(v, ns):
+    balls = ns["hexagon"]
+    around = np.argsort(np.arctan2(balls.centers[:, 1], balls.centers[:, 0]))
+
+    def fan(first):
+        rest = np.roll(around, -int(np.flatnonzero(around == first)[0]))[1:]
+        return [[first, int(a), int(b)] for a, b in zip(rest[:-1], rest[1:])]
+
+    return [*_generic(v), ("a fan from the last ball", fan(len(around) - 1)), ("a fan from ball 1", fan(1))]
+
+
+def _chain_volume(v, ns):
+    r = ns["chain"].radii
+    balls = 4 / 3 * np.pi * float((r**3).sum())
+    return [*_generic(v), ("the balls alone, no lens", balls)]
+
+
+def _w1(v, ns):
+    return [*_generic(v), ("the bottleneck distance", 1.0), ("the 2-Wasserstein distance", float(np.sqrt(1.25)))]
+
+
+def _wilson(v, ns):
+    k, n = ns["k"], ns["n"]
+    p = k / n
+    half = 1.959964 * np.sqrt(p * (1 - p) / n)
+    from scipy.stats import beta
+
+    exact = (float(beta.ppf(0.025, k, n - k + 1)), float(beta.ppf(0.975, k + 1, n - k)))
+    return [*_generic(v), ("the Wald interval", (p - half, p + half)), ("the Clopper–Pearson interval", exact)]
+
+
 OVERRIDES = {
-    "01b_homology:my_rank_mod2": _rank_over_reals,
-    "01b_homology:betti_rp2": _betti_mod2,
-    "01b_homology:bounds": _bounds,
-    "02_dual_complex:my_edge": _edge,
-    "03_alpha_filtration:is_attached": _attached,
-    "03_alpha_filtration:my_edge_time": _edge_time,
-    "06_voids:n_bounded": _bounded_counts,
-    "07_pockets:my_closes_at": _closes_at,
-    "07_pockets:r_closed": _r_closed,
-    "07_pockets:my_sinks": _flow_sinks,
-    "05_dual_complex_3d:chis": _chis,
-    "08_tunnels:is_closed_chain": _closed_chain,
-    "09_persistence:betti_from_pairs": _betti_from_pairs,
-    "09_persistence:eps_one_pocket": _eps_one_pocket,
-    "09_persistence:my_reduce": _reduce,
-    "10_molecule_case_study:pocket_residues": _residues,
-    "10_molecule_case_study:most_exposed": _most_exposed,
-    "10_molecule_case_study:voids_after": _voids_after,
-    "10_molecule_case_study:v_before": _v_before,
-    "11_critical_points:viewpoints": _viewpoints,
-    "11_critical_points:my_maxima": _maxima,
-    "11_critical_points:my_minima": _minima,
-    "13_icp:best": _icp_best,
-    "13_icp:my_icp_step": _icp_step,
-    "15_optimal_rotation:my_rotation": _horn_rotation,
-    "17_shape_classification:most_spread": _most_spread,
-    "17_shape_classification:spread": _class_spreads,
-    "17_shape_classification:rips_gap": _rips_gap,
-    "18_binding_sites:first_rank": _first_site_rank,
+    "02_homology:my_rank_mod2": _rank_over_reals,
+    "02_homology:betti_rp2": _betti_mod2,
+    "02_homology:bounds": _bounds,
+    "03_dual_complex:my_edge": _edge,
+    "04_alpha_filtration:is_attached": _attached,
+    "04_alpha_filtration:my_edge_time": _edge_time,
+    "07_voids:n_bounded": _bounded_counts,
+    "08_pockets:my_closes_at": _closes_at,
+    "08_pockets:r_closed": _r_closed,
+    "09_pocket_flow:my_sinks": _flow_sinks,
+    "09_pocket_flow:my_flow_order": _flow_order,
+    "06_dual_complex_3d:chis": _chis,
+    "10_tunnels:is_closed_chain": _closed_chain,
+    "11_persistence:betti_from_pairs": _betti_from_pairs,
+    "11_persistence:eps_one_pocket": _eps_one_pocket,
+    "11_persistence:my_reduce": _reduce,
+    "12_molecule_case_study:pocket_residues": _residues,
+    "12_molecule_case_study:most_exposed": _most_exposed,
+    "12_molecule_case_study:voids_after": _voids_after,
+    "12_molecule_case_study:v_before": _v_before,
+    "13_critical_points:viewpoints": _viewpoints,
+    "13_critical_points:my_maxima": _maxima,
+    "13_critical_points:my_minima": _minima,
+    "15_icp:best": _icp_best,
+    "15_icp:my_icp_step": _icp_step,
+    "17_optimal_rotation:my_rotation": _horn_rotation,
+    "19_shape_classification:most_spread": _most_spread,
+    "19_shape_classification:spread": _class_spreads,
+    "19_shape_classification:rips_gap": _rips_gap,
+    "20_binding_sites:first_rank": _first_site_rank,
+    "13_critical_points:y_max": _y_max,
+    "13_critical_points:f_max": _f_max,
+    "06_dual_complex_3d:triangles": _triangles,
+    "05_union_measure:chain_volume": _chain_volume,
+    "19_shape_classification:w1": _w1,
+    "20_binding_sites:interval": _wilson,
 }
 
 

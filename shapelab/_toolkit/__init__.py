@@ -9,7 +9,6 @@ names carry no underscore because they are meant to be imported across modules.
 ``unionfind``   union–find with the elder rule (persistence, merge trees)
 ``lazy``        lazy re-export of a package's public names
 ``tolerances``  every numerical tolerance the library decides with, documented
-``cluster``     the optional Dask client of a batch or a trajectory (imports dask only then)
 ``threads``     how many threads a computation may start (``SHAPELAB_THREADS``)
 ==============  ================================================================
 """

@@ -13,6 +13,7 @@ import importlib
 import importlib.abc
 import importlib.util
 import sys
+import types
 
 __all__ = ["attach", "moved"]
 
@@ -35,7 +36,10 @@ def attach(package: str, exports: dict, submodules=(), eager=()):
     """
     exports = dict(exports)
     submodules = frozenset(submodules)
-    namespace = importlib.import_module(package).__dict__
+    module = importlib.import_module(package)
+    namespace = module.__dict__
+    namespace["_lazy_names"] = frozenset(exports)
+    module.__class__ = _Package
 
     def __getattr__(name: str):
         if name in exports:
@@ -51,6 +55,23 @@ def attach(package: str, exports: dict, submodules=(), eager=()):
         return sorted(set(namespace) | set(exports) | submodules | set(eager))
 
     return __getattr__, __dir__
+
+
+class _Package(types.ModuleType):
+    """A package whose public names win over its submodules of the same name.
+
+    ``shapelab.hausdorff`` is the function, defined in the module ``shapelab.hausdorff``
+    (likewise ``icp`` and ``report``).  Importing a submodule binds it as an attribute of its package;
+    here that binding is skipped when the name is one of the package's lazy exports,
+    so ``shapelab.hausdorff`` stays the function after ``from shapelab.hausdorff import
+    directed_hausdorff``.  (``import shapelab.hausdorff as m`` gives the function too:
+    write ``from shapelab import ...`` or ``importlib.import_module`` for the module.)
+    """
+
+    def __setattr__(self, name, value):
+        if isinstance(value, types.ModuleType) and name in self.__dict__.get("_lazy_names", ()):
+            return
+        super().__setattr__(name, value)
 
 
 class _Alias(importlib.abc.MetaPathFinder, importlib.abc.Loader):
@@ -79,14 +100,20 @@ class _Alias(importlib.abc.MetaPathFinder, importlib.abc.Loader):
     def exec_module(self, module):
         module.__spec__ = module.__spec__.loader_state
 
+    def get_code(self, fullname):
+        """What ``python -m OLD`` runs: the moved module as ``python -m NEW`` runs it."""
+        new = self.target(fullname)
+        source = f"import runpy\nrunpy.run_module({new!r}, run_name='__main__', alter_sys=True)\n"
+        return compile(source, f"<{fullname}, moved to {new}>", "exec")
+
 
 def moved(package: str, moves: dict) -> None:
     """Keep old import paths of ``package``'s moved modules working.
 
     ``moved("shapelab", {"power": "triangulation"})`` makes ``import shapelab.power``
     (and ``from shapelab.power import x``) give the module ``shapelab.triangulation``
-    itself, so that code written against an earlier layout keeps running; the file
-    tree shows only the new layout.
+    itself, and ``python -m shapelab.power`` run it, so that code written against an
+    earlier layout keeps running; the file tree shows only the new layout.
     """
     for finder in sys.meta_path:
         if isinstance(finder, _Alias):

@@ -1,7 +1,7 @@
 """How many threads a computation may start: ``SHAPELAB_THREADS`` or the CPUs this
 process may use, capped, and one inside a thread other than the main one (no pools
 in pools).  Shared by :mod:`shapelab.freespace` (slices of cell-ball pairs) and
-:mod:`shapelab.power` (blocks of the triangulation)."""
+:mod:`shapelab._engine.triangulation` (blocks of the triangulation)."""
 
 from __future__ import annotations
 

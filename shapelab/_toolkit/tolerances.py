@@ -1,7 +1,7 @@
 """Every numerical tolerance shapelab decides something with, in one place.
 
 Combinatorics (which simplex exists, which ball is hidden, the affine dimension of
-the centres) are decided by the exact predicates of :mod:`shapelab.exact.predicates`,
+the centres) are decided by the exact predicates of :mod:`shapelab._engine.predicates`,
 never by a tolerance (CONTRIBUTING, "Exact geometry").  What is left here guards
 floating-point *values*: a candidate that an exact certificate checks afterwards, a
 margin that keeps a pruning step a superset, a tie rule for values certified to a
@@ -10,7 +10,7 @@ it guards, what it is relative to, and why its value; ``tests/library/test_toler
 checks the relations between them.
 
 Not here: error *bounds* that are formulas of the unit roundoff (the filters of
-:mod:`shapelab.exact.predicates`, the margins ``8 (d + 4) eps`` of
+:mod:`shapelab._engine.predicates`, the margins ``8 (d + 4) eps`` of
 :mod:`shapelab.distance`, the first-order bound of the filtration's entry times),
 and user parameters with a documented default (``matching.optimal_hausdorff``'s
 ``tol``).
@@ -114,7 +114,7 @@ QLOG_SMALL_VECTOR = 1e-12
 DISTANCE_MATRIX_SYMMETRY = 1e-12
 
 # ------------------------------------------------------------------ predicates
-#: The floating-point filter of :mod:`shapelab.exact.predicates` trusts a sign only when
+#: The floating-point filter of :mod:`shapelab._engine.predicates` trusts a sign only when
 #: its error bound exceeds this; below it the bound may itself have underflowed,
 #: and the determinant is recomputed exactly.  Absolute, on the bound (a product of
 #: up to four coordinate differences and heights): 1e-280 leaves 28 decades above
@@ -126,7 +126,7 @@ FILTER_UNDERFLOW = 1e-280
 #: height component is above ``-QHULL_VERTICAL`` is vertical (it projects to a flat
 #: simplex).  In the conditioned frame (centres and heights scaled to unit size), a
 #: genuine facet this steep would have an orthoradius above ~1e10.  Only shapes
-#: Qhull's candidate: the exact certificate (:mod:`shapelab.exact.certify`) decides, and
+#: Qhull's candidate: the exact certificate (:mod:`shapelab._engine.certify`) decides, and
 #: a wrong guess sends the input to the exact incremental algorithm.
 QHULL_VERTICAL = 1e-10
 #: Facets with a height component in ``(-QHULL_STEEP, -QHULL_VERTICAL)`` are
@@ -162,7 +162,7 @@ BLOCK_POWER = 1e-12
 BLOCK_GAP_VOLUME = 1e-9
 
 # ------------------------------------------------------------------ certify
-#: The cover count of :func:`shapelab.exact.certify.certify` picks, by float bounding
+#: The cover count of :func:`shapelab._engine.certify.certify` picks, by float bounding
 #: boxes, the simplices that may contain a centroid, then decides each one exactly.
 #: The boxes are widened by this fraction of (the simplex's extent + the centroid's
 #: magnitude): relative to the coordinates, so an offset input keeps it far above

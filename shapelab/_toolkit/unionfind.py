@@ -4,7 +4,8 @@ Notes §23.1: when two components merge as τ grows, the younger dies and the el
 lives on.  :func:`elder_merges` runs the edges of a spanning forest in order and
 reports every merge to a callback; :mod:`shapelab.topology` uses it for the
 H0 pairs and the dual merges, :mod:`shapelab.cavities` for the merge tree of the
-free space.
+free space, :mod:`shapelab.simplification` for the persistence of a function along
+a curve.
 """
 
 from __future__ import annotations

@@ -21,6 +21,7 @@ from .bases import BallsBase
 
 __all__ = [
     "as_float_array",
+    "as_precision",
     "check_finite",
     "readonly",
     "freeze",
@@ -256,3 +257,15 @@ def as_bbox(bbox, d: int) -> np.ndarray:
     if np.any(b[1] <= b[0]):
         raise ValueError(f"bbox must have lower corner < upper corner in every coordinate, got {b.tolist()}")
     return b
+
+
+#: the values of the seam ``precision`` (issue 33): ``"exact"`` runs the engine
+#: (certified, the same on every machine), ``"fast"`` the readable floating-point path
+PRECISIONS = ("exact", "fast")
+
+
+def as_precision(precision, name: str = "precision") -> str:
+    """Return ``precision`` if it is one of :data:`PRECISIONS`, else raise."""
+    if not isinstance(precision, str) or precision not in PRECISIONS:
+        raise ValueError(f"{name} must be 'exact' or 'fast', got {precision!r}")
+    return precision

@@ -25,10 +25,12 @@ _EXPORTS = {
     "euler_characteristic": "topology",
     "betti_numbers": "topology",
     "boundary_reduction": "topology",
-    # homology.py: lesson 01b, chains and Betti numbers by hand
+    # homology.py: lesson 02, chains and Betti numbers by hand
     "rank_mod2": "homology",
     "complex_betti": "homology",
     "cycles_and_boundaries": "homology",
+    # flow.py: the discrete flow (lesson 09)
+    "flow_order": "flow",
     # matching.py
     "hausdorff": "matching",
     "directed_hausdorff": "matching",
@@ -59,6 +61,12 @@ _EXPORTS = {
     "void_radii": "answers",
     "void_components": "answers",
     "first_site_rank": "answers",
+    # theory.py: the theory sections of issue 34
+    "morse_maximum": "theory",
+    "tie_break": "theory",
+    "chain_volume": "theory",
+    "wasserstein_by_hand": "theory",
+    "wilson": "theory",
     # quizzes.py: the end-of-part quizzes
     "quiz": "quizzes",
     "show_quiz": "quizzes",

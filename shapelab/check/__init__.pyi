@@ -30,6 +30,7 @@ from .balls import dual_edge as dual_edge
 from .balls import orthogonal_radius as orthogonal_radius
 from .balls import power_distance as power_distance
 from .balls import union_area as union_area
+from .flow import flow_order as flow_order
 from .homology import complex_betti as complex_betti
 from .homology import cycles_and_boundaries as cycles_and_boundaries
 from .homology import rank_mod2 as rank_mod2
@@ -42,6 +43,11 @@ from .rotation import centroid_alignment as centroid_alignment
 from .rotation import optimal_rotation as optimal_rotation
 from .rotation import quaternion_product as quaternion_product
 from .rotation import rotation_matrix as rotation_matrix
+from .theory import chain_volume as chain_volume
+from .theory import morse_maximum as morse_maximum
+from .theory import tie_break as tie_break
+from .theory import wasserstein_by_hand as wasserstein_by_hand
+from .theory import wilson as wilson
 from .topology import betti_numbers as betti_numbers
 from .topology import boundary_reduction as boundary_reduction
 from .topology import euler_characteristic as euler_characteristic
@@ -56,6 +62,7 @@ __all__ = [
     "boundary_reduction",
     "buried_area",
     "centroid_alignment",
+    "chain_volume",
     "complex_betti",
     "connected_time",
     "critical_points",
@@ -67,8 +74,10 @@ __all__ = [
     "euler_characteristic",
     "euler_poincare",
     "first_site_rank",
+    "flow_order",
     "flow_sinks",
     "hausdorff",
+    "morse_maximum",
     "most_exposed_residue",
     "most_spread_class",
     "mouth_closing",
@@ -86,9 +95,12 @@ __all__ = [
     "rotation_matrix",
     "show_quiz",
     "standard_error_factor",
+    "tie_break",
     "torus_viewpoints",
     "union_area",
     "void_components",
     "void_count",
     "void_radii",
+    "wasserstein_by_hand",
+    "wilson",
 ]

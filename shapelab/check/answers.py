@@ -47,10 +47,10 @@ __all__ = [
 
 
 def connected_time(tau_connected: float, F: Filtration, *, atol: float = 2e-3) -> CheckResult:
-    """Lesson 02: the growth time from which the union of disks is connected.
+    """Lesson 03: the growth time from which the union of disks is connected.
 
     The reference is the last merge of two components: the largest finite death of
-    the persistence pairs in dimension 0 (lesson 09).
+    the persistence pairs in dimension 0 (lesson 11).
 
     See Also
     --------
@@ -74,7 +74,7 @@ def connected_time(tau_connected: float, F: Filtration, *, atol: float = 2e-3) -
 
 
 def distinct_complexes(n_complexes: int, F: Filtration, lo: float = 0.0, hi: float = 1.0) -> CheckResult:
-    """Lesson 03: how many distinct complexes :math:`K_\\tau` there are for τ in [lo, hi].
+    """Lesson 04: how many distinct complexes :math:`K_\\tau` there are for τ in [lo, hi].
 
     The complexes grow by inclusion, so distinct complexes have distinct sizes: the
     reference counts the sizes of the complexes at every entry time in the range.
@@ -100,7 +100,7 @@ def distinct_complexes(n_complexes: int, F: Filtration, lo: float = 0.0, hi: flo
 
 
 def standard_error_factor(shrink: float, balls: Balls, *, seed: int = 0) -> CheckResult:
-    """Lesson 04: by what factor Monte Carlo's standard error falls with 100 times more
+    """Lesson 05: by what factor Monte Carlo's standard error falls with 100 times more
     samples (measured on ``balls`` with 10⁴ and 10⁶ samples, to 5 %).
 
     See Also
@@ -123,7 +123,7 @@ def standard_error_factor(shrink: float, balls: Balls, *, seed: int = 0) -> Chec
 
 
 def neck_closing(neck_closes: float, F: Filtration) -> CheckResult:
-    """Lesson 07: when the neck between the two chambers of ``datasets.nested_pockets``
+    """Lesson 08: when the neck between the two chambers of ``datasets.nested_pockets``
     closes: the second pocket's ``closes_at``.
 
     See Also
@@ -160,7 +160,7 @@ def _torus_kind(S, R: float, r: float) -> str | None:
 def torus_viewpoints(
     viewpoints: ArrayLike, counts: ArrayLike, *, n_major: int = 24, n_minor: int = 12, R: float = 1.0, r: float = 0.4
 ) -> CheckResult:
-    """Lesson 11: three viewpoints on ``torus(24, 12)`` (far outside, in the hole,
+    """Lesson 13: three viewpoints on ``torus(24, 12)`` (far outside, in the hole,
     inside the tube) and the student's ``(#min, #saddles, #max)`` from each.
 
     Passes when the three viewpoints are one of each kind and every count equals the
@@ -208,7 +208,7 @@ def torus_viewpoints(
 
 
 def mouth_closing(student: Callable[[Pocket, Balls], float]) -> CheckResult:
-    """Lesson 07: ``student(pocket, balls)`` returns the time at which the pocket's mouth
+    """Lesson 08: ``student(pocket, balls)`` returns the time at which the pocket's mouth
     closes, from its mouth edges; checked against the entry time in the filtration of
     its last mouth edge (``pocket.closes_at`` for a pocket that is not nested; the
     two-chamber flask's inner pocket becomes a hole of its own later) on the pockets of
@@ -259,7 +259,7 @@ def mouth_closing(student: Callable[[Pocket, Balls], float]) -> CheckResult:
 
 
 def flow_sinks(student: Callable[[Filtration, float], Sequence[int]]) -> CheckResult:
-    """Lesson 07: ``student(F, tau)`` returns the rows of ``F.simplices(2)`` that are the
+    """Lesson 08: ``student(F, tau)`` returns the rows of ``F.simplices(2)`` that are the
     sinks of the discrete flow at ``tau`` (disks of one radius), as a list; compared as
     sets with :func:`shapelab.discrete_flow` on a ring of disks with a gap and on seeded
     random disks at three growth times (every case has sinks; the random ones also
@@ -285,7 +285,7 @@ def flow_sinks(student: Callable[[Filtration, float], Sequence[int]]) -> CheckRe
     """
     from ..balls import Balls
     from ..filtration import alpha_filtration
-    from ..flow import discrete_flow
+    from ..cavities.flow import discrete_flow
     from ._runner import run_check
 
     rng = np.random.default_rng(7)
@@ -367,7 +367,7 @@ def radical_center(student: Callable[[Balls], ArrayLike]) -> CheckResult:
 
 
 def void_count(student: Callable[[Filtration, float], int]) -> CheckResult:
-    """Lesson 06: ``student(F, tau)`` returns the number of voids from the Betti numbers
+    """Lesson 07: ``student(F, tau)`` returns the number of voids from the Betti numbers
     alone (:math:`\\beta_{d-1}` of :math:`K_\\tau`), checked against :func:`shapelab.voids`.
 
     See Also
@@ -402,7 +402,7 @@ def void_count(student: Callable[[Filtration, float], int]) -> CheckResult:
 
 
 def ring_tunnel(student: Callable[[int, float, float], ArrayLike]) -> CheckResult:
-    """Lesson 08: ``student(n, R, r)`` returns ``(birth, death)`` of the tunnel of
+    """Lesson 10: ``student(n, R, r)`` returns ``(birth, death)`` of the tunnel of
     ``datasets.ring(n, radius=R, disk_radius=r, dim=3)``, checked against the most
     persistent pair of :math:`H_1` of its α-filtration.
 
@@ -444,7 +444,7 @@ def ring_tunnel(student: Callable[[int, float, float], ArrayLike]) -> CheckResul
 
 
 def curve_pairs(student: Callable[[np.ndarray], ArrayLike]) -> CheckResult:
-    """Lesson 09: ``student(f)`` returns the ``(birth, death)`` pairs (persistence > 0) of
+    """Lesson 11: ``student(f)`` returns the ``(birth, death)`` pairs (persistence > 0) of
     the sublevel sets of ``f`` along a path, checked against
     :func:`shapelab.curve_persistence` (any order of the rows).
 
@@ -494,7 +494,7 @@ def curve_pairs(student: Callable[[np.ndarray], ArrayLike]) -> CheckResult:
 
 
 def euler_poincare(chis: Sequence[int], betti_sums: Sequence[int], F: Filtration, taus: Sequence[float]) -> CheckResult:
-    """Lesson 05: the Euler characteristic of :math:`K_\\tau` at each τ of ``taus``,
+    """Lesson 06: the Euler characteristic of :math:`K_\\tau` at each τ of ``taus``,
     from its simplex counts, and the alternating sum of its Betti numbers.
 
     Both are compared entry by entry with the library's: :math:`\\chi` from
@@ -550,7 +550,7 @@ def euler_poincare(chis: Sequence[int], betti_sums: Sequence[int], F: Filtration
 
 
 def most_exposed_residue(answer: str, structure: PDBStructure, probe: float = 1.4) -> CheckResult:
-    """Lesson 10: the residue (``"NAME NUMBER"``) with the largest solvent-accessible
+    """Lesson 12: the residue (``"NAME NUMBER"``) with the largest solvent-accessible
     area, the sum of its atoms' shares of the union's boundary with radii grown by ``probe``.
 
     See Also
@@ -609,7 +609,7 @@ def _label(text) -> str:
 
 
 def pocket_residues(answer: Sequence[str], structure: PDBStructure, pocket: Pocket) -> CheckResult:
-    """Lesson 10: the residues lining ``pocket``, as labels ``"NAME NUMBER"``.
+    """Lesson 12: the residues lining ``pocket``, as labels ``"NAME NUMBER"``.
 
     Compared as sets with the residues of the atoms in ``pocket.lining`` (Notes §23.3,
     a pocket's lining: the atoms whose balls bound it), in any order, case and spacing.
@@ -689,7 +689,7 @@ def pocket_residues(answer: Sequence[str], structure: PDBStructure, pocket: Pock
 
 
 def void_radii(r_low: float, r_high: float, *, bond_length: float = 1.4, rtol: float = 1e-8) -> CheckResult:
-    """Lesson 06: the carbon radii r with a void inside C60 at τ = 0, as ``[r_low, r_high)``.
+    """Lesson 07: the carbon radii r with a void inside C60 at τ = 0, as ``[r_low, r_high)``.
 
     The reference comes from the α-filtration of ``datasets.fullerene_c60(atom_radius=0)``:
     with equal radii r every value shifts by :math:`-r^2` (Notes §23.1: the power distance
@@ -743,7 +743,7 @@ def void_radii(r_low: float, r_high: float, *, bond_length: float = 1.4, rtol: f
 
 
 def void_components(counts: Sequence[int], balls: Balls, taus: Sequence[float]) -> CheckResult:
-    """Lesson 06: the number of bounded components of the complement of the union of
+    """Lesson 07: the number of bounded components of the complement of the union of
     ``balls`` grown to each τ of ``taus``, counted by the student on voxels.
 
     The reference is :math:`\\beta_2` of the α-complex at each τ (Alexander duality:
@@ -814,7 +814,7 @@ def void_components(counts: Sequence[int], balls: Balls, taus: Sequence[float]) 
 
 
 def buried_area(answer: float, receptor: Balls, ligand: Balls, probe: float = 0.0) -> CheckResult:
-    """Lesson 16: the area buried when ``ligand`` binds ``receptor`` as given,
+    """Lesson 18: the area buried when ``ligand`` binds ``receptor`` as given,
     :math:`|\\partial A| + |\\partial B| - |\\partial(A\\cup B)|` with radii grown by ``probe``
     (to 1e-6 relative).
 
@@ -853,7 +853,7 @@ def buried_area(answer: float, receptor: Balls, ligand: Balls, probe: float = 0.
 def most_spread_class(
     answer: str, distances: ArrayLike, labels: Sequence[str], *, spread: dict[str, float]
 ) -> CheckResult:
-    """Lesson 17: the class with the largest distance between two of its members, and
+    """Lesson 19: the class with the largest distance between two of its members, and
     that largest distance for every class.
 
     Both are checked: the label alone has four possible values, and a wrong reading of
@@ -921,7 +921,7 @@ def most_spread_class(
 
 
 def rips_not_nerve(count: int, points: ArrayLike, rho: float) -> CheckResult:
-    """Lesson 17: how many triangles of the Vietoris–Rips complex of ``points`` at radius
+    """Lesson 19: how many triangles of the Vietoris–Rips complex of ``points`` at radius
     ``rho`` are not in the Čech complex, the nerve of the balls of radius ``rho``.
 
     A triangle is in the Rips complex when its three sides are at most :math:`2\\rho`;
@@ -1018,7 +1018,7 @@ def first_site_rank(
     probe: float = 1.4,
     dca: float = 4.0,
 ) -> CheckResult:
-    """Lesson 18: the rank of the first cavity of the default ranked report whose centre
+    """Lesson 20: the rank of the first cavity of the default ranked report whose centre
     lies within ``dca`` Å of a ligand atom (the DCA criterion), or 0 when none does.
 
     The reference is ``shapelab.report(structure, probe, method=method)`` in its default
@@ -1064,7 +1064,7 @@ def first_site_rank(
     >>> bad = first_site_rank(1.5, sl.datasets.fullerene_c60(), [[0.0, 0.0, 0.0]])
     ✗ the rank of the first cavity at the ligand: not quite: expected a whole number (a rank), got a float.
     """
-    from ..cavity_report import report
+    from ..report import report
 
     rows = report(structure, probe, method=method).rows
     atoms = structure.balls.centers if hasattr(structure, "balls") else structure.centers

@@ -251,7 +251,7 @@ def dual_edge(student_fn: Callable[..., Any], *, quiet: bool = False) -> CheckRe
 
 def attached_edge(student_fn: Callable[..., Any], *, quiet: bool = False) -> CheckResult:
     """Check ``student_fn(centers, radii, edge) -> bool``: whether the edge ``(i, j)``
-    of the regular triangulation of the balls is *attached* (Notes §23.1; lesson 03).
+    of the regular triangulation of the balls is *attached* (Notes §23.1; lesson 04).
 
     The edge's smallest orthogonal sphere has its centre c on the line through
     :math:`z_i, z_j`, with :math:`\\pi_i(c) = \\pi_j(c) = \\rho`; the edge is attached

@@ -1,4 +1,4 @@
-"""Self-checks for lesson 01b (homology over Z/2): ranks mod 2, Betti numbers of a
+"""Self-checks for lesson 02 (homology over Z/2): ranks mod 2, Betti numbers of a
 given complex, and which chains are cycles and which are boundaries.
 
 The references are :mod:`shapelab.homology`'s functions, computed here so that the
@@ -95,7 +95,7 @@ def rank_mod2(student_fn: Callable[..., Any], *, quiet: bool = False) -> CheckRe
 
 
 def complex_betti(betti: Sequence[int], simplices: Iterable[Sequence[int]]) -> CheckResult:
-    """Lesson 01b: the Betti numbers :math:`(\\beta_0, \\dots, \\beta_d)` over Z/2 of the
+    """Lesson 02: the Betti numbers :math:`(\\beta_0, \\dots, \\beta_d)` over Z/2 of the
     complex ``simplices``, compared entry by entry without showing them.
 
     See Also
@@ -113,9 +113,14 @@ def complex_betti(betti: Sequence[int], simplices: Iterable[Sequence[int]]) -> C
     from .. import homology
 
     expected = homology.betti_numbers(simplices)
+    name = "Betti numbers (" + ", ".join(f"β{k}" for k in range(len(expected))) + ")"
     if betti is None or isinstance(betti, (str, bytes)) or not hasattr(betti, "__len__"):
-        return value("Betti numbers (β0, β1, β2)", betti, expected)
-    return value("Betti numbers (β0, β1, β2)", list(betti), list(expected))
+        return value(name, betti, expected)
+    if (isinstance(betti, np.ndarray) and betti.dtype == np.bool_) or any(isinstance(x, (bool, np.bool_)) for x in betti):
+        msg = f"✗ {name}: not quite: expected numbers (the dimensions of the homology groups), got truth values."
+        print(msg)
+        return CheckResult(name, False, 1, msg)
+    return value(name, list(betti), list(expected))
 
 
 def cycles_and_boundaries(
@@ -124,10 +129,12 @@ def cycles_and_boundaries(
     chains: Sequence[Iterable[Sequence[int]]],
     simplices: Iterable[Sequence[int]],
 ) -> CheckResult:
-    """Lesson 01b: for each chain of ``chains``, is it a cycle (``cycle[i]``) and is it
-    a boundary in ``simplices`` (``boundary[i]``)?  Both lists are compared entry by
-    entry; a chain claimed to be a boundary but not a cycle gets the hint that every
-    boundary is a cycle.
+    """Lesson 02: for each chain of ``chains``, is it a cycle (``cycle[i]``) and is it
+    a boundary in ``simplices`` (``boundary[i]``; the lesson's list ``bounds``)?  Both
+    lists are compared entry by entry. A message says how many entries of each list are
+    wrong, not which (with two possible answers, naming the chain would give its answer
+    away), with a hint on how to decide; a chain claimed to be a boundary but not a cycle
+    gets the hint that every boundary is a cycle.
 
     See Also
     --------
@@ -149,17 +156,22 @@ def cycles_and_boundaries(
     want_c = [homology.is_cycle(c, simplices) for c in chains]
     want_b = [homology.is_boundary(c, simplices) for c in chains]
     problems = []
-    for label, got, want in (("cycle", cycle, want_c), ("boundary", boundary, want_b)):
-        if not isinstance(got, (list, tuple, np.ndarray)) or len(got) != len(want):
+    hints = {
+        "cycle": "a chain is a cycle when its boundary is empty (for edges: each vertex lies on an even number of them)",
+        "bounds": "a chain c is a boundary when ∂x = c has a solution x one dimension up: c as an extra column leaves "
+        "the rank of that boundary matrix unchanged",
+    }
+    for label, got, want in (("cycle", cycle, want_c), ("bounds", boundary, want_b)):
+        if not isinstance(got, (list, tuple, np.ndarray)) or np.ndim(got) != 1 or len(got) != len(want):
             problems.append(f"`{label}` should be a list of {len(want)} truth values, one per chain")
             continue
         if not all(isinstance(x, (bool, np.bool_)) for x in got):
             problems.append(f"`{label}` should hold True or False, one per chain")
             continue
-        wrong = [i for i, (g, w) in enumerate(zip(got, want)) if bool(g) != w]
+        wrong = sum(bool(g) != w for g, w in zip(got, want))
         if wrong:
-            problems.append(f"`{label}`: {len(wrong)} of {len(want)} entries are wrong, the first for chain {wrong[0]}")
-    if isinstance(cycle, (list, tuple, np.ndarray)) and isinstance(boundary, (list, tuple, np.ndarray)):
+            problems.append(f"`{label}`: {wrong} of {len(want)} entries {'is' if wrong == 1 else 'are'} wrong ({hints[label]})")
+    if all(isinstance(x, (list, tuple, np.ndarray)) and np.ndim(x) == 1 for x in (cycle, boundary)):
         if len(cycle) == len(boundary) == len(chains) and any(bool(b) and not bool(c) for c, b in zip(cycle, boundary)):
             problems.append("you call a chain a boundary but not a cycle: every boundary is a cycle (∂∂ = 0)")
     passed = not problems

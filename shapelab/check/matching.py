@@ -1,5 +1,5 @@
 """Self-checks for the exercises on the Hausdorff distance and critical points
-(notes §23.2; lessons 11–12).
+(notes §23.2; lessons 13–14).
 
 Each check runs *your* function on edge cases first (single points, identical
 sets, duplicates, one dimension, a set inside the other), then on random sets, and
@@ -63,7 +63,7 @@ def directed_hausdorff(fn: Callable[..., Any], *, quiet: bool = False) -> CheckR
     >>> directed_hausdorff(lambda A, B: float(np.linalg.norm(np.asarray(A)[:, None] - np.asarray(B)[None], axis=-1).max(axis=1).min()), quiet=True).passed
     False
     """
-    from ..distance import directed_hausdorff as ref
+    from ..hausdorff import directed_hausdorff as ref
 
     return run_check(
         "directed Hausdorff distance",
@@ -97,7 +97,7 @@ def hausdorff(fn: Callable[..., Any], *, quiet: bool = False) -> CheckResult:
     >>> hausdorff(h, quiet=True).passed
     False
     """
-    from ..distance import hausdorff as ref
+    from ..hausdorff import hausdorff as ref
 
     return run_check(
         "Hausdorff distance", fn, _pair_cases(), ref, allclose(1e-9, 1e-9), describe=_describe, quiet=quiet

@@ -1,6 +1,6 @@
 """Quizzes at the end of each part of the course, self-checked without giving answers away.
 
-The course has three parts: I, the union of balls (lessons 00–05); II, voids, pockets,
+The course has three parts: I, the union of balls (lessons 00–06); II, voids, pockets,
 tunnels and persistence (06–10); III, shape matching (11–15).  The last lesson of each
 part ends with its quiz: :func:`show_quiz` renders the questions, the student writes
 ``answers = {1: "b", 2: ...}`` and :func:`quiz` says which are right.
@@ -211,9 +211,9 @@ QUIZZES: dict[str, tuple[Question, ...]] = {
 }
 
 _TITLES = {
-    "I": "Part I: the union of balls (lessons 00–05)",
-    "II": "Part II: voids, pockets, tunnels and persistence (lessons 06–10)",
-    "III": "Part III: shape matching (lessons 11–15)",
+    "I": "Part I: the union of balls (lessons 00–06)",
+    "II": "Part II: voids, pockets, tunnels and persistence (lessons 07–12)",
+    "III": "Part III: shape matching (lessons 13–17)",
 }
 
 

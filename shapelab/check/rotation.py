@@ -1,5 +1,5 @@
 """Self-checks for the exercises on quaternions, the optimal rotation and matching
-(Notes §23.2; lessons 13–15).
+(Notes §23.2; lessons 15–17).
 
 Each check calls *your* function on edge cases first, then on random ones, and
 compares with the library (:mod:`shapelab.quaternion`, :mod:`shapelab.registration`).

@@ -235,7 +235,7 @@ def _pairs_from_low(F, B, low) -> dict:
     every non-zero column, ``(value[j], inf)`` for every zero column that is nobody's
     lowest one; zero-length pairs dropped, and those that :func:`shapelab.topology.is_roundoff`
     calls round-off of tied entry times, as :meth:`Filtration.persistence` does."""
-    from shapelab.topology import is_roundoff
+    from shapelab.persistence import is_roundoff
 
     low = np.asarray(low, dtype=np.int64)
     j = np.flatnonzero(low >= 0)
@@ -277,7 +277,7 @@ def _hand_made_matrices():
 
 def _reduction_filtrations():
     """α-filtrations for the reduction check: small random balls in 2D and 3D (seeded),
-    then the course's data sets of lessons 02, 03, 05, 08 and 09 (Figure 23.1, a ring,
+    then the course's data sets of lessons 03, 04, 06, 10 and 11 (Figure 23.1, a ring,
     C60 and the two-chamber flask)."""
     import shapelab
     from shapelab import datasets as D
@@ -338,7 +338,7 @@ class _Lows:
 
 def boundary_reduction(student_fn: Callable[..., Any], *, quiet: bool = False) -> CheckResult:
     """Check ``student_fn(D) -> R``, the column reduction of a boundary matrix over Z/2
-    (lesson 09, the persistence algorithm; Notes §23.1).
+    (lesson 11, the persistence algorithm; Notes §23.1).
 
     ``D`` is an (n, n) uint8 array of 0/1, columns and rows in filtration order
     (:meth:`shapelab.filtration.Filtration.boundary_matrix`, as a dense array).  The
@@ -371,7 +371,7 @@ def boundary_reduction(student_fn: Callable[..., Any], *, quiet: bool = False) -
     >>> boundary_reduction(lambda D: D, quiet=True).passed
     False
     """
-    from shapelab.topology import reduce_boundary
+    from shapelab.persistence import reduce_boundary
 
     cases = [(D,) for D in _hand_made_matrices()]
     try:

@@ -32,13 +32,15 @@ after Es, an unknown symbol) raises, naming the element, the file and the line.
 
 Layout
 ------
-A reader turns a file into :class:`~shapelab.io._structure.AtomRecord` rows; the rules
+A reader is given its keywords checked once, as a :class:`ReadOptions`, and turns a
+file into :class:`~shapelab.io._structure.AtomRecord` rows; the rules
 every reader shares then keep some of them (:mod:`~shapelab.io._selection`: alternate
 locations, water, HETATM, chains, hydrogens) and give each its radius
 (:mod:`~shapelab.io._radii`), and the result is a :class:`PDBStructure`:
 
 ==========================  ==============================================================
 ``shapelab.io._read``       :func:`read_structure`: recognises the format
+``shapelab.io._options``    :class:`ReadOptions`: the readers' keywords, checked once
 ``shapelab.io._pdb``        :func:`read_pdb`: the PDB format's fixed columns
 ``shapelab.io._mmcif``      mmCIF's ``_atom_site`` table (gemmi's CIF parser)
 ``shapelab.io._selection``  which atoms are kept
@@ -53,7 +55,8 @@ implementation, as in ``scipy.spatial``.
 
 from __future__ import annotations
 
-from ._pdb import MAX_PDB_BYTES, element_from_name, read_pdb
+from ._options import MAX_PDB_BYTES, ReadOptions
+from ._pdb import element_from_name, read_pdb
 from ._radii import ALVAREZ_RADII, VDW_RADII, radius_notes, vdw_radius, vdw_radius_source
 from ._read import detect_format, read_structure
 from ._selection import STANDARD_RESIDUES, WATER_RESIDUES
@@ -67,6 +70,7 @@ __all__ = [
     "STANDARD_RESIDUES",
     "MAX_PDB_BYTES",
     "PDBStructure",
+    "ReadOptions",
     "read_pdb",
     "read_structure",
     "detect_format",

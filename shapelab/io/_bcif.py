@@ -18,7 +18,8 @@ import re
 
 import numpy as np
 
-from ._mmcif import REQUIRED_ITEMS, atom_records, read_limited, reader_options
+from ._mmcif import REQUIRED_ITEMS, atom_records, read_limited
+from ._options import ReadOptions
 from ._selection import kept_structure
 from ._structure import PDBStructure
 
@@ -237,30 +238,23 @@ class _Columns:
         return out
 
 
-def read_bcif(
-    path,
-    *,
-    probe=0.0,
-    default_radius=None,
-    model=None,
-    chain=None,
-    hetatm=True,
-    water=False,
-    hydrogens=False,
-    radii=None,
-    max_bytes=256 * 2**20,
-) -> PDBStructure:
+def read_bcif(path, options: ReadOptions | None = None, **keywords) -> PDBStructure:
     """Read the ``atom_site`` category of a BinaryCIF file (plain or gzip) as balls.
 
-    The keywords are those of :func:`~shapelab.io.read_structure`, which documents
-    them; this is its BinaryCIF branch.  The columns are decoded by biotite's
-    :class:`~biotite.structure.io.pdbx.BinaryCIFFile` and read by the mmCIF reader's
-    rules, so a BinaryCIF file and the text mmCIF of the same entry give the same atoms.
+    The options are those of :func:`~shapelab.io.read_structure`, which documents
+    them; this is its BinaryCIF branch (given checked, as a
+    :class:`~shapelab.io.ReadOptions`, or as keywords).  The columns are decoded by
+    biotite's :class:`~biotite.structure.io.pdbx.BinaryCIFFile` and read by the mmCIF
+    reader's rules, so a BinaryCIF file and the text mmCIF of the same entry give the
+    same atoms.
     """
-    opts = reader_options(path, probe, default_radius, model, chain, hetatm, water, hydrogens, radii, max_bytes)
+    if options is None:
+        options = ReadOptions.checked(path, "bcif", **keywords)
+    elif keywords:
+        raise TypeError(f"give the options or keywords, not both (got {sorted(keywords)})")
     pdbx = _biotite_pdbx()
     name = os.fspath(path)
-    data = read_limited(path, opts["max_bytes"])
+    data = read_limited(path, options.max_bytes)
     if not data:
         raise ValueError(f"{name!r} is empty: no BinaryCIF data blocks and no atom_site category")
     import msgpack  # biotite's own dependency, for the container
@@ -271,7 +265,7 @@ def read_bcif(
         raise ValueError(
             f"{name!r} is not a readable BinaryCIF file (a MessagePack map of dataBlocks): {type(e).__name__}: {e}"
         ) from None
-    _sizes_checked(pdbx, content, name, opts["max_bytes"])
+    _sizes_checked(pdbx, content, name, options.max_bytes)
     try:
         doc = pdbx.BinaryCIFFile.deserialize(content)
         block_names = list(doc.keys())
@@ -318,7 +312,7 @@ def read_bcif(
         models_seen = list(dict.fromkeys(row_model))
     else:
         row_model, models_seen = None, [1]
-    target = models_seen[0] if opts["model"] is None else opts["model"]
+    target = models_seen[0] if options.model is None else options.model
     if target not in models_seen:
         raise ValueError(f"{name!r} has no model {target} (pdbx_PDB_model_num holds: {models_seen})")
     rows = everything if row_model is None else np.flatnonzero(np.asarray(row_model) == target)
@@ -361,18 +355,4 @@ def read_bcif(
         where=cols.where,
         shown=lambda item, i, k: shown[item](k),
     )
-    return kept_structure(
-        recs,
-        tables=opts["tables"],
-        default_radius=opts["default_radius"],
-        probe=opts["probe"],
-        model=target,
-        where=f"{name!r}: atom_site row",
-        chains_wanted=opts["chains_wanted"],
-        het_keep=opts["het_keep"],
-        water=water,
-        hydrogens=hydrogens,
-        path=path,
-        chain=chain,
-        hetatm=hetatm,
-    )
+    return kept_structure(recs, model=target, where=f"{name!r}: atom_site row", **options.selection(path))

@@ -17,16 +17,14 @@ import re
 
 import numpy as np
 
-from .._toolkit.validate import as_finite_scalar, as_positive_int
-from ._radii import radius_table
-from ._selection import kept_structure, names_arg
+from ._options import NAME_WIDTHS, ReadOptions
+from ._selection import kept_structure
 from ._source import chunks, too_large
 from ._structure import AtomRecord, PDBStructure
 
 __all__ = [
     "read_mmcif",
     "read_limited",
-    "reader_options",
     "REQUIRED_ITEMS",
     "MMCIF_CHAIN_WIDTH",
     "MMCIF_RESIDUE_WIDTH",
@@ -35,8 +33,7 @@ __all__ = [
 #: Widest ``chain=`` name accepted for mmCIF (``auth_asym_id`` of the PDB's large
 #: entries reaches 4 characters) and widest ``hetatm=`` residue name (the wwPDB's
 #: extended 5-character CCD identifiers).
-MMCIF_CHAIN_WIDTH = 4
-MMCIF_RESIDUE_WIDTH = 5
+MMCIF_CHAIN_WIDTH, MMCIF_RESIDUE_WIDTH = NAME_WIDTHS["mmcif"]
 
 _INT = re.compile(r"[+-]?[0-9]+")
 # a CIF number: optional sign, digits with an optional point, optional exponent, and an
@@ -207,66 +204,18 @@ def atom_records(rows, c: dict, where, shown) -> list:
     ]
 
 
-def reader_options(path, probe, default_radius, model, chain, hetatm, water, hydrogens, radii, max_bytes) -> dict:
-    """The keywords of :func:`read_mmcif` (and of the BinaryCIF reader) checked and
-    normalised: TypeError or ValueError naming the argument and the value received."""
-    if isinstance(path, (bytes, bytearray)) or not isinstance(path, (str, os.PathLike)):
-        raise TypeError(f"path must be a str or os.PathLike, got {type(path).__name__}")
-    probe = as_finite_scalar(probe, "probe", nonnegative=True)
-    if default_radius is not None:
-        default_radius = as_finite_scalar(default_radius, "default_radius", positive=True)
-    if model is not None:
-        if isinstance(model, bool):
-            raise TypeError("model must be an int, got bool")
-        model = as_positive_int(model, "model", minimum=0)
-    chains_wanted = names_arg(chain, "chain", MMCIF_CHAIN_WIDTH)
-    if isinstance(hetatm, (bool, np.bool_)):
-        het_keep = bool(hetatm)
-    else:
-        het_keep = names_arg(hetatm, "hetatm", MMCIF_RESIDUE_WIDTH)
-    for flag, fname in ((water, "water"), (hydrogens, "hydrogens")):
-        if not isinstance(flag, (bool, np.bool_)):
-            raise TypeError(f"{fname} must be a bool, got {type(flag).__name__}")
-    tables = radius_table(radii)
-    max_bytes = as_positive_int(max_bytes, "max_bytes")
-
-    return dict(
-        probe=probe,
-        default_radius=default_radius,
-        model=model,
-        chains_wanted=chains_wanted,
-        het_keep=het_keep,
-        tables=tables,
-        max_bytes=max_bytes,
-    )
-
-
-def read_mmcif(
-    path,
-    *,
-    probe=0.0,
-    default_radius=None,
-    model=None,
-    chain=None,
-    hetatm=True,
-    water=False,
-    hydrogens=False,
-    radii=None,
-    max_bytes=256 * 2**20,
-) -> PDBStructure:
+def read_mmcif(path, options: ReadOptions | None = None, **keywords) -> PDBStructure:
     """Read the ``_atom_site`` table of an mmCIF file (plain or gzip) as balls.
 
-    The keywords are those of :func:`~shapelab.io.read_structure`, which documents
-    them; this is its mmCIF branch.
+    The options are those of :func:`~shapelab.io.read_structure`, which documents
+    them; this is its mmCIF branch.  Give them checked (``options``, a
+    :class:`~shapelab.io.ReadOptions`) or as keywords.
     """
-    opts = reader_options(path, probe, default_radius, model, chain, hetatm, water, hydrogens, radii, max_bytes)
-    probe, default_radius, model = opts["probe"], opts["default_radius"], opts["model"]
-    chains_wanted, het_keep, tables, max_bytes = (
-        opts["chains_wanted"],
-        opts["het_keep"],
-        opts["tables"],
-        opts["max_bytes"],
-    )
+    if options is None:
+        options = ReadOptions.checked(path, "mmcif", **keywords)
+    elif keywords:
+        raise TypeError(f"give the options or keywords, not both (got {sorted(keywords)})")
+    model, max_bytes = options.model, options.max_bytes
 
     import gemmi
 
@@ -376,18 +325,4 @@ def read_mmcif(
         shown=lambda item, i, k: repr(raw[item][i]),
     )
 
-    return kept_structure(
-        recs,
-        tables=tables,
-        default_radius=default_radius,
-        probe=probe,
-        model=target,
-        where=f"{name!r}: _atom_site row",
-        chains_wanted=chains_wanted,
-        het_keep=het_keep,
-        water=water,
-        hydrogens=hydrogens,
-        path=path,
-        chain=chain,
-        hetatm=hetatm,
-    )
+    return kept_structure(recs, model=target, where=f"{name!r}: _atom_site row", **options.selection(path))

@@ -14,15 +14,13 @@ import math
 import os
 import re
 
-import numpy as np
-
-from .._toolkit.validate import as_finite_scalar, as_positive_int
-from ._radii import ELEMENT_SYMBOLS, radius_table
-from ._selection import STANDARD_RESIDUES, kept_structure, names_arg
+from ._options import MAX_PDB_BYTES, ReadOptions
+from ._radii import ELEMENT_SYMBOLS
+from ._selection import STANDARD_RESIDUES, kept_structure
 from ._source import chunks, too_large
 from ._structure import AtomRecord, PDBStructure
 
-__all__ = ["MAX_PDB_BYTES", "read_pdb", "element_from_name"]
+__all__ = ["MAX_PDB_BYTES", "read_pdb", "read_pdb_with", "element_from_name"]
 
 # two-letter guesses kept even in a polymer residue (a halogen or Se is a real atom there)
 _POLYMER_TWO_LETTER = {"Se", "Cl", "Br"}
@@ -105,9 +103,6 @@ def _optional_float(line: str, a: int, b: int, what: str, lineno: int) -> float:
     return _field_float(line, a, b, what, lineno)
 
 
-#: Default ``max_bytes`` of :func:`read_pdb`: 256 MiB of (decompressed) text, some
-#: 3 million ATOM records -- thirty times the 99,999 atoms a PDB file can number.
-MAX_PDB_BYTES = 256 * 2**20
 _MAX_LINE = 2**16  # a PDB record has 80 columns; a longer "line" is not PDB text
 _EOL = re.compile(rb"\r\n|\r|\n")
 _BOM = b"\xef\xbb\xbf"
@@ -346,26 +341,32 @@ def read_pdb(
     >>> len(s), s.residue_label(0), sorted(set(s.elements.tolist()))
     (757, 'A:PRO1', ['C', 'N', 'O', 'S'])
     """
-    if isinstance(path, (bytes, bytearray)) or not isinstance(path, (str, os.PathLike)):
-        raise TypeError(f"path must be a str or os.PathLike, got {type(path).__name__}")
-    probe = as_finite_scalar(probe, "probe", nonnegative=True)
-    if default_radius is not None:
-        default_radius = as_finite_scalar(default_radius, "default_radius", positive=True)
-    if model is not None:
-        if isinstance(model, bool):
-            raise TypeError("model must be an int, got bool")
-        model = as_positive_int(model, "model", minimum=0)
-    chains_wanted = names_arg(chain, "chain", 2)
-    if isinstance(hetatm, (bool, np.bool_)):
-        het_keep = bool(hetatm)
-    else:
-        het_keep = names_arg(hetatm, "hetatm", 3)
-    for flag, fname in ((water, "water"), (hydrogens, "hydrogens")):
-        if not isinstance(flag, (bool, np.bool_)):
-            raise TypeError(f"{fname} must be a bool, got {type(flag).__name__}")
-    tables = radius_table(radii)
-    max_bytes = as_positive_int(max_bytes, "max_bytes")
+    options = ReadOptions.checked(
+        path,
+        "pdb",
+        probe=probe,
+        default_radius=default_radius,
+        model=model,
+        chain=chain,
+        hetatm=hetatm,
+        water=water,
+        hydrogens=hydrogens,
+        radii=radii,
+        max_bytes=max_bytes,
+    )
+    return read_pdb_with(path, options)
 
+
+def read_pdb_with(path: str | os.PathLike, options: ReadOptions) -> PDBStructure:
+    """:func:`read_pdb` with its keywords already checked (the PDB branch of
+    :func:`~shapelab.io.read_structure`).
+
+    See Also
+    --------
+    read_pdb
+        Documents the options.
+    """
+    model, max_bytes = options.model, options.max_bytes
     recs = []  # one tuple per ATOM/HETATM record of the model read
     target = model  # the MODEL serial wanted (None: the first one met)
     current = None  # serial of the open MODEL block (None: outside any)
@@ -481,17 +482,4 @@ def read_pdb(
     if not recs:
         raise ValueError(f"{os.fspath(path)!r} holds no ATOM or HETATM records (before END/ENDMDL)")
 
-    return kept_structure(
-        recs,
-        tables=tables,
-        default_radius=default_radius,
-        probe=probe,
-        model=target if models_seen else None,
-        chains_wanted=chains_wanted,
-        het_keep=het_keep,
-        water=water,
-        hydrogens=hydrogens,
-        path=path,
-        chain=chain,
-        hetatm=hetatm,
-    )
+    return kept_structure(recs, model=target if models_seen else None, **options.selection(path))

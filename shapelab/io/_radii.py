@@ -332,7 +332,7 @@ def radius_notes(structure) -> tuple:
     that took an Alvarez (2013) radius (which elements, how many atoms, the table
     cited) and one for those that took ``default_radius`` (``()`` when neither did, or
     for a structure without :attr:`~PDBStructure.radius_sources`).  :func:`shapelab.report`
-    puts them in :attr:`CavityReport.notes <shapelab.cavity_report.CavityReport.notes>`,
+    puts them in :attr:`CavityReport.notes <shapelab.report.CavityReport.notes>`,
     which its Markdown prints above the table.  Nothing is warned: the notes are the
     record.
 

@@ -16,7 +16,8 @@ import zlib
 
 from ._bcif import read_bcif
 from ._mmcif import read_mmcif
-from ._pdb import MAX_PDB_BYTES, read_pdb
+from ._options import MAX_PDB_BYTES, ReadOptions
+from ._pdb import read_pdb_with
 from ._structure import PDBStructure
 
 __all__ = ["read_structure", "detect_format", "FORMATS"]
@@ -281,20 +282,22 @@ def read_structure(
         fmt = format.lower()
     else:
         raise ValueError(f"format must be None or one of {FORMATS}, got {format!r}")
-    kwargs = dict(
-        probe=probe,
-        default_radius=default_radius,
-        model=model,
-        chain=chain,
-        hetatm=hetatm,
-        water=water,
-        hydrogens=hydrogens,
-        radii=radii,
-        max_bytes=max_bytes,
-    )
-    reader = {"pdb": read_pdb, "mmcif": read_mmcif, "bcif": read_bcif}[fmt]
+    reader = {"pdb": read_pdb_with, "mmcif": read_mmcif, "bcif": read_bcif}[fmt]
     try:
-        return reader(path, **kwargs)
+        options = ReadOptions.checked(
+            path,
+            fmt,
+            probe=probe,
+            default_radius=default_radius,
+            model=model,
+            chain=chain,
+            hetatm=hetatm,
+            water=water,
+            hydrogens=hydrogens,
+            radii=radii,
+            max_bytes=max_bytes,
+        )
+        return reader(path, options)
     except ValueError as e:  # every message names the file ("line N: ..." of read_pdb too)
         name = os.fspath(path)
         if name in str(e):

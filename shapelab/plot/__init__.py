@@ -6,17 +6,21 @@ description the function wrote, :func:`describe` refines it (the figure's text
 alternative on the site, in the decks and in the figure export).  None recomputes geometry: they draw results from
 the rest of the library.
 
-================  ==============================================================
-``balls``         disks, power diagrams, dual complexes, filtrations, 3D views
-``topology``      persistence diagrams, barcodes, Betti curves, voids, pockets
-``homology``      small simplicial complexes, chains, boundary matrices
-``flow``          the discrete flow in 2D: arrows, sinks, pocket regions
-``matching``      critical points, Hausdorff witnesses
-``rotation``      point sets, ICP steps and convergence, rotations in 3D
-``batch``         a batch's summary, volumes along a trajectory
-``viewer3d``      ``view3d``: an interactive 3Dmol.js view of a molecule and its
-                  voids, pockets, mouths and tunnels (HTML, not a Figure), offline
-================  ==============================================================
+======================  ==============================================================
+``balls``               disks, power diagrams, dual complexes, filtrations, 3D views
+``topology``            persistence diagrams, barcodes, Betti curves, voids, pockets
+``homology``            small simplicial complexes, chains, boundary matrices (lesson 02)
+``flow``                the discrete flow in 2D: arrows, sinks, pocket regions
+``critical``            critical points of curves and surfaces (lesson 13)
+``hausdorff_distance``  Hausdorff witnesses, matching under translation, timings (lesson 14)
+``docking``             docking landscapes and poses (lesson 18)
+``classification``      families of shapes, distance matrices, embeddings (lesson 19)
+``matching``            the four above under their earlier module name
+``rotation``            point sets, ICP steps and convergence, rotations in 3D
+``batch``               a batch's summary, volumes along a trajectory
+``viewer3d``            ``view3d``: an interactive 3Dmol.js view of a molecule and its
+                        voids, pockets, mouths and tunnels (HTML, not a Figure), offline
+======================  ==============================================================
 """
 
 from __future__ import annotations
@@ -42,21 +46,24 @@ _EXPORTS = {
     "pocket_gallery": "topology",
     "tunnels": "topology",
     "channel_profile": "topology",
-    # homology.py: small complexes, chains, boundary matrices (lesson 01b)
+    # homology.py: small complexes, chains, boundary matrices (lesson 02)
     "simplicial_complex": "homology",
     "boundary_matrix": "homology",
+    "reduced_matrix": "topology",
+    "voxel_slice": "topology",
     # flow.py
     "discrete_flow": "flow",
-    # matching.py
-    "critical_points": "matching",
-    "critical_surface": "matching",
-    "hausdorff": "matching",
-    "docking_landscape": "matching",
-    "docking_pose": "matching",
-    "point_clouds": "matching",
-    "distance_matrix": "matching",
-    "embedding": "matching",
-    "stability": "matching",
+    # critical.py (lesson 11), hausdorff_distance.py (12), docking.py (16), classification.py (17);
+    # matching.py re-exports the four under their earlier module name
+    "critical_points": "critical",
+    "critical_surface": "critical",
+    "hausdorff": "hausdorff_distance",
+    "docking_landscape": "docking",
+    "docking_pose": "docking",
+    "point_clouds": "classification",
+    "distance_matrix": "classification",
+    "embedding": "classification",
+    "stability": "classification",
     # rotation.py
     "icp_step": "rotation",
     "icp_convergence": "rotation",
@@ -86,7 +93,10 @@ __all__ = [
 ]
 
 
-__getattr__, __dir__ = attach(__name__, _EXPORTS, eager=__all__)
+#: modules by lesson topic reachable as attributes (``shapelab.plot.matching.timings``)
+_SUBMODULES = {"matching", "critical", "hausdorff_distance", "docking", "classification"}
+
+__getattr__, __dir__ = attach(__name__, _EXPORTS, _SUBMODULES, eager=__all__)
 
 # in a notebook, a figure's PNG output carries its description as alt text (_describe)
 register()

@@ -1,4 +1,4 @@
-"""Small simplicial complexes drawn in the plane, chains on them, boundary matrices (lesson 01b)."""
+"""Small simplicial complexes drawn in the plane, chains on them, boundary matrices (lesson 02)."""
 
 from __future__ import annotations
 
@@ -83,6 +83,9 @@ def simplicial_complex(
         for i, p in (positions.items() if isinstance(positions, dict) else enumerate(positions))
     }
     by_dim = {k: [s for s in S if len(s) == k + 1] for k in range(4)}
+    unplaced = sorted({v for s in S for v in s} - set(pos))
+    if unplaced:
+        raise ValueError(f"positions: no position for vertex {unplaced[0]}")
     if ax is None:
         fig, ax = new_figure(size=(PAGE[0] / 2, PAGE[1]))
     fig = ax.figure

@@ -47,6 +47,8 @@ __all__ = [
     "pocket_gallery",
     "tunnels",
     "channel_profile",
+    "reduced_matrix",
+    "voxel_slice",
 ]
 
 _MARKERS = ("o", "s", "^", "D")
@@ -1024,7 +1026,7 @@ def _pocket_color(i: int) -> str:
 def _draw_features(
     F, tau, V, Pk, T, *, ax, show_complex, elev, azim, title, show_volumes=None, legend=True, focus=False, numbers=None
 ):
-    from ..freespace import free_points
+    from ..cavities.freespace import free_points
 
     balls = F.balls
     d = balls.dim
@@ -1287,4 +1289,153 @@ def channel_profile(
             f"{profile.radius[k]:.2f} Å at {profile.offsets[k]:.1f} Å, marked with a dot"
             + (f"; reference radii {refs}" if refs else ""),
         )
+    return fig
+
+
+# ==================================================== boundary matrix, voxel slices
+def reduced_matrix(D, R, names, low=None, *, title=None):
+    """The boundary matrix :math:`D` and its reduction :math:`R` side by side, with the
+    lowest ones of :math:`R` in red and crossed (Notes §23.1; the persistence algorithm
+    of Edelsbrunner, Letscher and Zomorodian 2002).
+
+    Parameters
+    ----------
+    D, R : array_like or scipy sparse matrix, shape (n, n)
+        The boundary matrix over :math:`\\mathbb{Z}/2` (``F.boundary_matrix().matrix``)
+        and its reduction (:func:`shapelab.topology.reduce_boundary`).
+    names : sequence of str
+        The simplices in filtration order, for the rows and the columns.
+    low : array_like of int, optional
+        The row of each column's lowest one, ``-1`` for a zero column (the second
+        result of :func:`~shapelab.topology.reduce_boundary`); computed from ``R`` if
+        not given.
+    title : str, optional
+        The figure's title.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Two panels, described for their text alternative.
+
+    Raises
+    ------
+    ValueError
+        If the matrices are not square of the size of ``names``.
+
+    See Also
+    --------
+    shapelab.topology.reduce_boundary : the reduction drawn.
+    persistence_diagram : the pairs read off the lowest ones.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner, D. Letscher and A. Zomorodian, "Topological persistence and
+       simplification", Discrete Comput. Geom. 28 (2002) 511-533.
+
+    Examples
+    --------
+    >>> import numpy as np, shapelab as sl
+    >>> from shapelab.topology import reduce_boundary
+    >>> F = sl.alpha_filtration(sl.Balls([[0, 0], [2, 0], [1, 1.6]], 0.5))
+    >>> B = F.boundary_matrix()
+    >>> R, low = reduce_boundary(B.matrix)
+    >>> names = ["".join(map(str, F.simplices(k)[r])) for k, r in zip(B.dims, B.rows)]
+    >>> fig = sl.plot.reduced_matrix(B.matrix, R, names, low)
+    >>> len(fig.axes)
+    2
+    """
+    from matplotlib.colors import ListedColormap
+
+    dense = [np.asarray(M.toarray() if hasattr(M, "toarray") else M) % 2 for M in (D, R)]
+    n = len(names)
+    if any(M.shape != (n, n) for M in dense):
+        raise ValueError(f"reduced_matrix: D and R must be {n} x {n} (one row and column per name)")
+    Rl = dense[1].astype(np.int64)
+    if low is None:
+        low = np.array([int(np.flatnonzero(c)[-1]) if c.any() else -1 for c in dense[1].T], dtype=np.int64)
+    low = np.asarray(low, dtype=np.int64)
+    j = np.flatnonzero(low >= 0)
+    Rl[low[j], j] = 2
+    fig, axes_ = new_figure(1, 2, size=SLIDE)
+    cmap = ListedColormap(["white", COLORS["ball_edge"], COLORS["red"]])
+    for ax, M, sub in ((axes_[0], dense[0], "D, the boundary matrix"), (axes_[1], Rl, "R, reduced: lowest ones in red, crossed")):
+        ax.imshow(M, cmap=cmap, vmin=0, vmax=2)
+        ax.set_xticks(range(n), names, rotation=90)
+        ax.set_yticks(range(n), names)
+        ax.set_xticks(np.arange(n + 1) - 0.5, minor=True)
+        ax.set_yticks(np.arange(n + 1) - 0.5, minor=True)
+        ax.grid(which="minor", color=COLORS["muted"], lw=0.5)
+        ax.tick_params(which="minor", length=0)
+        ax.set_title(sub)
+    axes_[1].scatter(j, low[j], marker="x", color="white", s=30, zorder=3)  # not by colour alone
+    if title:
+        fig.suptitle(title)
+    describe(
+        fig,
+        f"Two {n} × {n} matrices, rows and columns labelled by the simplices in filtration order: left, the "
+        f"boundary matrix D; right, its reduction R, whose {len(j)} lowest ones are red and crossed, each pairing "
+        "the simplex of its row with the simplex of its column",
+    )
+    return fig
+
+
+def voxel_slice(labels, grid, *, title=None, ax=None):
+    """A slice of a voxelized complement (:func:`shapelab.oracles.voxel_complement`):
+    the union grey, the unbounded component white, each bounded component (a void) in
+    a colour of the palette, in the :math:`z`-slice that cuts most void voxels
+    (Notes §23.1, voids as bounded components of the complement).
+
+    Parameters
+    ----------
+    labels : ndarray of int, shape (nx, ny, nz)
+        0 for voxels in the union, 1 for the unbounded component, 2, 3, ... for the
+        bounded ones (the first result of ``voxel_complement``).
+    grid : tuple of three 1D arrays
+        The voxel centres along x, y and z (its second result).
+    title : str, optional
+        The panel's title (default: the number of bounded components).
+    ax : matplotlib Axes, optional
+        Draw into this 2D axes.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Its axes described for the text alternative.
+
+    Raises
+    ------
+    ValueError
+        If ``labels`` is not a 3D array matching ``grid``.
+
+    See Also
+    --------
+    shapelab.oracles.voxel_complement : the labels drawn.
+    voids : the voids computed from the α-complex.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> labels, grid = sl.oracles.voxel_complement(sl.datasets.fullerene_c60(), tau=0.0, spacing=0.4)
+    >>> fig = sl.plot.voxel_slice(labels, grid)
+    >>> "1 bounded component" in sl.plot.alt_text(fig)
+    True
+    """
+    from matplotlib.colors import ListedColormap
+
+    labels = np.asarray(labels)
+    xs, ys, zs = (np.asarray(g, dtype=np.float64) for g in grid)
+    if labels.ndim != 3 or labels.shape != (xs.size, ys.size, zs.size):
+        raise ValueError("voxel_slice: labels must be a 3D array of the shape of the grid (x, y, z)")
+    fig, ax = axes(ax)
+    k = int(np.argmax((labels >= 2).sum(axis=(0, 1))))
+    n = max(int(labels.max()) - 1, 0)
+    word = f"{n} bounded component{'s' if n != 1 else ''}"
+    colors = ["#D9D9D9", "white", *[PALETTE[(2 + i) % len(PALETTE)] for i in range(n)]]
+    ax.imshow(labels[:, :, k].T, origin="lower", extent=(xs[0], xs[-1], ys[0], ys[-1]),
+              cmap=ListedColormap(colors), vmin=-0.5, vmax=n + 1.5, interpolation="nearest")
+    ax.set_title(title if title is not None else word)
+    ax.set_xlabel("x (Å)")
+    ax.set_ylabel("y (Å)")
+    describe(ax, f"A slice at z = {zs[k]:.1f} Å through the voxels: the union grey, the outside white, "
+                 f"{word} of the complement in colour")
     return fig

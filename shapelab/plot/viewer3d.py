@@ -238,7 +238,7 @@ def _mouth_mesh(centers: np.ndarray, tri: np.ndarray) -> dict:
 
 def _payload(balls, radii, elements, feats, style: str, opacity: float):
     from ..cavities import Pocket, Tunnel, Void
-    from ..freespace import free_points
+    from ..cavities.freespace import free_points
 
     n = len(balls)
     centers = np.asarray(balls.centers, dtype=float)

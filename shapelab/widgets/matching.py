@@ -131,7 +131,7 @@ class CriticalPointsExplorer(StaticFallback, W.VBox):
 
     def figure(self):
         """The current figure (Figure 23.3 for the current viewpoint)."""
-        from ..plot.matching import critical_points as plot_critical
+        from ..plot.critical import critical_points as plot_critical
 
         return plot_critical(self._curve, self.result, size=_SIZE)
 

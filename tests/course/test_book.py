@@ -1,7 +1,7 @@
 """The course site builds from the committed lessons and works offline.
 
 This builds the whole book once from a copy of its sources in a temporary directory,
-rendering the committed outputs, except lesson 03, executed as ``make course`` executes
+rendering the committed outputs, except lesson 04, executed as ``make course`` executes
 every lesson (its explorer carries a static player).  Then it checks every page: no script,
 stylesheet or font comes from http(s), every local asset a page references exists, no page
 logs an error or a warning to the console (or throws) in headless Chromium with the network
@@ -29,7 +29,7 @@ ROOT = Path(__file__).resolve().parents[2]
 pytest.importorskip("jupyter_book")
 pytestmark = pytest.mark.book
 
-EXPLORER_LESSON = "03_alpha_filtration"
+EXPLORER_LESSON = "04_alpha_filtration"
 REMOTE = re.compile(r"^(https?:)?//", re.I)
 TAG = re.compile(r"<(script|link|img|source|iframe|embed|video|audio|track)\b[^>]*>", re.I)
 ATTR = re.compile(r"\b(src|href|poster)\s*=\s*[\"']([^\"']+)[\"']", re.I)
@@ -170,7 +170,7 @@ def test_speaker_notes_stay_off_the_site(site):
     """Speaker notes (tagged remove-cell) are for the decks; students read the site."""
     pages = [p for p in _pages(site) if "Speaker notes." in p.read_text(encoding="utf-8", errors="replace")]
     assert not pages, f"speaker notes on {[str(p.relative_to(site)) for p in pages]}"
-    # nor in the notebooks the pages' download button hands out (lesson 03's notes say
+    # nor in the notebooks the pages' download button hands out (lesson 04's notes say
     # the answer to its exercise on attached edges)
     sources = sorted((site / "_sources").rglob("*.ipynb"))
     assert sources, "the site no longer copies its notebooks to _sources/: update this test"

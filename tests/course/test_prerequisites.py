@@ -60,8 +60,8 @@ def test_prerequisites_paragraph_names_exactly_the_maps_lessons(path):
 
 
 def test_the_paragraph_reader_sees_links_and_nothing_else():
-    para = "**Prerequisites:** [lesson 01b](01b_homology.ipynb) (Betti numbers) and [lesson 03](03_alpha_filtration.ipynb); the [notation](../book/notation.md)."
-    assert linked_lessons(para) == {"01b_homology", "03_alpha_filtration"}
+    para = "**Prerequisites:** [lesson 02](02_homology.ipynb) (Betti numbers) and [lesson 04](04_alpha_filtration.ipynb); the [notation](../book/notation.md)."
+    assert linked_lessons(para) == {"02_homology", "04_alpha_filtration"}
     assert prerequisites_paragraph("# T\n\n## Learning goals\n\n- x\n\n" + para) == para
     assert prerequisites_paragraph("# T\n\nPrerequisites: none") is None
 

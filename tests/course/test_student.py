@@ -245,7 +245,7 @@ def test_markdown_solutions_and_outputs_are_removed():
 
 def test_the_sites_page_leaves_out_the_speaker_notes():
     """The site's pages keep every output but the solutions', and no speaker notes: the
-    page's download button hands out its notebook (lesson 03's notes give an answer)."""
+    page's download button hands out its notebook (lesson 04's notes give an answer)."""
     notes = nbformat.v4.new_markdown_cell(
         "**Speaker notes.** Most answer 3, the answer is 5.25.",
         metadata={"slideshow": {"slide_type": "notes"}, "tags": ["remove-cell", "speaker-notes"]},

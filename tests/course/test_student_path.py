@@ -212,7 +212,7 @@ def test_lab_opens_the_student_edition(tmp_path, monkeypatch, capsys):
             for begin, end in solution_blocks(lines) if cell["cell_type"] == "code" else []:
                 body = lines[begin + 1 : end]
                 assert all(placeholder.fullmatch(line) for line in body), (path.name, body)
-    assert "check." in (tmp_path / "student" / "12_hausdorff.ipynb").read_text(encoding="utf-8")
+    assert "check." in (tmp_path / "student" / "14_hausdorff.ipynb").read_text(encoding="utf-8")
     cmd = lab.build_command(
         "t0k", "8899", as_root=False, root_dir=tmp_path / "student", open_path="00_start_here.ipynb"
     )
@@ -306,7 +306,7 @@ def test_contributing_has_the_first_hour_and_the_current_lesson_map():
     text = (ROOT / "CONTRIBUTING.md").read_text(encoding="utf-8")
     assert "## The first hour" in text.split("## Where things go")[0]
     assert lesson_map.table() in text, "run `python -m course.lesson_map` and paste its table into CONTRIBUTING.md"
-    assert "`peers`" in lesson_map.table().splitlines()[-2]  # lesson 17 uses shapelab.peers
+    assert "`peers`" in lesson_map.table().splitlines()[-2]  # lesson 19 uses shapelab.peers
 
 
 def test_nbval_keeps_each_notebook_on_one_worker():

@@ -121,8 +121,8 @@ def test_the_checker_catches_what_it_should(tmp_path):
         finally:
             Path.read_text = orig
 
-    assert check("from .topology import _summary\n") == ["topology._summary"]
-    assert check("from . import topology as T\nT._reduce_h1\n") == ["topology._reduce_h1"]
+    assert check("from .persistence import _summary\n") == ["persistence._summary"]
+    assert check("from . import persistence as T\nT._reduce_h1\n") == ["persistence._reduce_h1"]
     assert check("from .plot import _style\n") == ["plot._style"]
     assert check("from ._toolkit.validate import as_tau\nfrom .topology import summary\n") == []
     assert check("def _own():\n    pass\n_own()\n") == []

@@ -23,16 +23,16 @@ from pathlib import Path
 import pytest
 
 import shapelab as sl
-from shapelab.batch import SUMMARY_COLUMNS, BatchSummary, expand_paths, output_stem, report_batch
 from shapelab.datasets import structure_path
+from shapelab.tools.batch import SUMMARY_COLUMNS, BatchSummary, expand_paths, output_stem, report_batch
 
 ROOT = Path(__file__).resolve().parents[2]
 DATA = structure_path("1hvr").parent
 SHIPPED = ["globule.pdb", "1hvr.pdb.gz", "t4l_l99a_receptor.pdb.gz"]
 STEMS = {"globule.pdb": "globule", "1hvr.pdb.gz": "1hvr", "t4l_l99a_receptor.pdb.gz": "t4l_l99a_receptor"}
 BAD = "ATOM      1  CA  ALA A   1      1.000   xyz     3.000  1.00  0.00           C\n"
-cli = importlib.import_module("shapelab.cli")
-report_module = importlib.import_module("shapelab.cavity_report")
+cli = importlib.import_module("shapelab.tools.cli")
+report_module = importlib.import_module("shapelab.report")
 
 
 def run_cli(args, cwd):
@@ -402,7 +402,7 @@ def test_pandas_and_parquet(batch_jobs2):
 def test_no_marker_survives_files_it_does_not_describe(tmp_path, monkeypatch):
     # files rewritten for another probe, then interrupted before their marker: the old
     # marker (probe 1.4) must not make --resume at probe 1.4 skip the probe-1.0 files
-    batch = importlib.import_module("shapelab.batch")
+    batch = importlib.import_module("shapelab.tools.batch")
     src, out = tmp_path / "in", tmp_path / "out"
     src.mkdir()
     out.mkdir()
@@ -429,7 +429,7 @@ def test_one_file_and_a_batch_name_a_bcif_file_alike(tmp_path):
     # the single-file command line kept ".bcif" in the name (x.bcif_cavities.*), the batch did not
     import gzip
 
-    from shapelab import cli
+    from shapelab.tools import cli
 
     pytest.importorskip("biotite")  # the BinaryCIF reader (shapelab[bcif])
     src = tmp_path / "x.bcif.gz"  # a real BinaryCIF entry, gzip'd (P2Rank's test data, tests/data/SOURCES.json)
@@ -456,7 +456,7 @@ def test_progress_on_a_terminal_without_a_size_is_lines(monkeypatch):
     import struct
     import termios
 
-    batch = importlib.import_module("shapelab.batch")
+    batch = importlib.import_module("shapelab.tools.batch")
     master, slave = pty.openpty()
     with os.fdopen(slave, "w") as tty:
         fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 0, 0, 0, 0))

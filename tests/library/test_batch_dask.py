@@ -13,6 +13,7 @@ that does not answer fails the test instead of hanging CI.  Skips without dask.d
 from __future__ import annotations
 
 import filecmp
+import importlib
 import os
 import shutil
 import signal
@@ -23,8 +24,8 @@ from pathlib import Path
 
 import pytest
 
-from shapelab.batch import SUMMARY_COLUMNS, report_batch
 from shapelab.datasets import structure_path
+from shapelab.tools.batch import SUMMARY_COLUMNS, report_batch
 
 dask = pytest.importorskip("dask", reason='dask is not installed (pip install "shapelab[dask]")')
 distributed = pytest.importorskip(
@@ -248,7 +249,7 @@ def test_command_line_with_scheduler_and_figure(local, folder, cluster, tmp_path
 
 
 def test_command_line_refuses_jobs_with_scheduler_and_a_bad_figure(folder, tmp_path, capsys):
-    from shapelab import cli
+    from shapelab.tools import cli
 
     assert cli.main(["report", str(folder), "--out", str(tmp_path), "--jobs", "2", "--scheduler", "tcp://x:1"]) == 2
     assert "--jobs" in capsys.readouterr().err
@@ -315,7 +316,7 @@ class _DieOn(distributed.WorkerPlugin):
     name = "shapelab-test-die-on"
 
     def setup(self, worker):
-        import shapelab.cavity_report as cr
+        cr = importlib.import_module("shapelab.report")
 
         real = getattr(cr.report, "real", cr.report)
 
@@ -358,7 +359,7 @@ def test_a_structure_that_kills_every_worker_is_named_and_the_batch_finishes(fol
 def test_a_worker_that_cannot_write_its_temporary_copy_fails_the_file_not_the_batch(folder, cluster, tmp_path):
     client = cluster[1]
     full = (
-        "import shapelab.batch as b, tempfile\n"
+        "import shapelab.tools.batch as b, tempfile\n"
         "def full(*a, **k):\n"
         "    raise OSError(28, 'No space left on device')\n"
         "b.tempfile = type('T', (), {'TemporaryDirectory': staticmethod(full)})\n"
@@ -369,7 +370,7 @@ def test_a_worker_that_cannot_write_its_temporary_copy_fails_the_file_not_the_ba
             [folder / "globule.pdb", folder / "missing.pdb"], out=tmp_path, client=client, progress=False
         )
     finally:
-        client.run(exec, "import shapelab.batch as b, tempfile; b.tempfile = tempfile", {})
+        client.run(exec, "import shapelab.tools.batch as b, tempfile; b.tempfile = tempfile", {})
     assert summary["status"] == ["failed", "failed"]
     assert summary[0]["error"] == "[Errno 28] No space left on device"
     assert summary[1]["error"] == "no such file or directory"
@@ -435,7 +436,7 @@ def test_workers_without_shapelab_are_named_before_anything_is_sent(folder, clus
 
 
 def test_ctrl_c_says_how_to_finish(folder, tmp_path, monkeypatch, capsys):
-    from shapelab import batch, cli
+    from shapelab.tools import batch, cli
 
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
@@ -451,7 +452,7 @@ def test_without_dask_the_error_names_the_extra(folder, tmp_path, monkeypatch, c
     monkeypatch.setitem(sys.modules, "distributed", None)  # import distributed now fails
     with pytest.raises(ImportError, match=r"pip install \"shapelab\[dask\]\""):
         report_batch(folder, out=tmp_path, scheduler="tcp://127.0.0.1:1")
-    from shapelab import cli
+    from shapelab.tools import cli
 
     assert cli.main(["report", str(folder), "--out", str(tmp_path), "--scheduler", "tcp://127.0.0.1:1"]) == 2
     assert 'pip install "shapelab[dask]"' in capsys.readouterr().err
@@ -459,8 +460,8 @@ def test_without_dask_the_error_names_the_extra(folder, tmp_path, monkeypatch, c
 
 def test_local_batches_never_import_dask(tmp_path):
     code = (
-        "import sys, shapelab, shapelab.batch, shapelab.cli\n"
-        "from shapelab.batch import report_batch\n"
+        "import sys, shapelab, shapelab.tools.batch, shapelab.tools.cli\n"
+        "from shapelab.tools.batch import report_batch\n"
         "from shapelab.datasets import structure_path\n"
         f"s = report_batch([structure_path('1grm')], out={str(tmp_path)!r}, progress=False)\n"
         "assert s['status'] == ['ok'], s.rows\n"

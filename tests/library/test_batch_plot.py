@@ -13,8 +13,8 @@ import pytest
 from matplotlib.figure import Figure
 
 import shapelab
-from shapelab.batch import SUMMARY_COLUMNS, BatchSummary
-from shapelab.trajectory import CavityTrack, TrajectoryMeasures
+from shapelab.tools.batch import SUMMARY_COLUMNS, BatchSummary
+from shapelab.tracking import CavityTrack, TrajectoryMeasures
 
 matplotlib.use("Agg")
 

@@ -1,5 +1,5 @@
 """Filtration.boundary_matrix and topology.reduce_boundary (the persistence algorithm of
-lesson 09), and the self-check check.boundary_reduction.
+lesson 11), and the self-check check.boundary_reduction.
 
 Oracles: the boundary matrix is compared with the filtration's own facets and order;
 the pairs read off the reduction are compared with ``F.persistence()`` and with GUDHI's

@@ -20,7 +20,7 @@ from scipy.integrate import quad
 
 import shapelab as sl
 from shapelab import cavities as C
-from shapelab import freespace as FS
+from shapelab.cavities import freespace as FS
 from tests.library.test_topology import gf2_rank  # noqa: E402
 
 

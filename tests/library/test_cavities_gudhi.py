@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 
 import shapelab as sl
 from shapelab import cavities as C
-from shapelab import freespace as FS
+from shapelab.cavities import freespace as FS
 from shapelab import topology as T
 from tests.library.test_cavities import (  # noqa: E402
     fibonacci_sphere,

@@ -28,7 +28,7 @@ import pytest
 
 import shapelab as sl
 from shapelab import datasets
-from shapelab.freespace import free_measure
+from shapelab.cavities.freespace import free_measure
 
 
 # ----------------------------------------------------------------------------- oracle

@@ -1,9 +1,9 @@
 """The local re-certificate of a repaired triangulation (issue 25): after
-:func:`shapelab.exact.certify.repair` stitches a re-triangulated cavity into Qhull's
+:func:`shapelab._engine.certify.repair` stitches a re-triangulated cavity into Qhull's
 candidate, ``_certify_stitched`` re-checks only the changed region (and the global
 conditions) and relies on the first pass over the candidate for the rest.
 
-Oracle: the whole certificate :func:`shapelab.exact.certify.certify` on the same
+Oracle: the whole certificate :func:`shapelab._engine.certify.certify` on the same
 stitched triangulation and neighbour relation.  On the right answer (the regular
 triangulation, computed by Qhull and certified whole) both accept; on broken stitched
 answers (two simplices overlapping, a missing simplex, a facet that is not locally
@@ -17,8 +17,8 @@ import numpy as np
 import pytest
 
 from shapelab import Balls, regular_triangulation
-from shapelab.exact.certify import _certify_stitched, _first_pass, _grow, certify, facet_adjacency, repair
-from shapelab.exact.predicates import WeightedPoints
+from shapelab._engine.certify import _certify_stitched, _first_pass, _grow, certify, facet_adjacency, repair
+from shapelab._engine.predicates import WeightedPoints
 
 
 def _flip23(T, t, u):
@@ -236,7 +236,7 @@ def test_a_stitch_that_leaves_a_ball_outside_is_rejected_by_both():
 def test_repair_of_a_candidate_that_leaves_a_ball_outside_is_the_regular_triangulation():
     """End to end: before the fix :func:`repair` returned a triangulation without
     ball 5 (the whole certificate rejects it).  Oracle: the exact incremental road."""
-    from shapelab.exact.incremental import incremental_triangulation
+    from shapelab._engine.incremental import incremental_triangulation
 
     P, cand = _ball_cut_out_case()
     fixed = repair(P, cand, max_fraction=1.0)
@@ -250,7 +250,7 @@ def _left_out_case(seed):
     a candidate that lost the star of one vertex or one simplex on the hull, so balls
     are left out of it and its hull is wrong; ``None`` if the candidate has no failing
     simplex (the failure is global) or the cavity would be everything."""
-    from shapelab.exact.incremental import incremental_triangulation
+    from shapelab._engine.incremental import incremental_triangulation
 
     rng = np.random.default_rng(seed)
     d = 2 + seed % 2

@@ -14,7 +14,7 @@ import pytest
 import shapelab as sl
 from shapelab.datasets import structure_path
 
-cli = importlib.import_module("shapelab.cli")
+cli = importlib.import_module("shapelab.tools.cli")
 
 
 @pytest.fixture(scope="module")

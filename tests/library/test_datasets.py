@@ -12,6 +12,7 @@ from scipy.spatial.distance import pdist, squareform
 
 from shapelab import Balls
 from shapelab import datasets as D
+from shapelab.datasets.figures import hex_disk
 
 PHI = (1 + 5**0.5) / 2
 
@@ -681,7 +682,7 @@ def test_l99a_ligand_sits_inside_the_receptor():
 
 def test_alpha_filtration_on_a_shipped_structure():
     from shapelab import alpha_filtration
-    from shapelab.power import triangulation_report
+    from shapelab.triangulation import triangulation_report
 
     s = D.structure("1grm", probe=1.4)
     heavy = s.balls
@@ -696,7 +697,7 @@ def test_figure_23_2_dents_differ_only_in_the_mouth():
     """Same body, same chamber, same depth: the funnel's dent contains the flask's, and the
     extra points it removes all lie above the chamber's centre (the mouth)."""
     left, right = D.figure_23_2()
-    body = {tuple(p) for p in D._hex_disk(6.0, 1.0)}
+    body = {tuple(p) for p in hex_disk(6.0, 1.0)}
     gone_l = body - {tuple(p) for p in left.centers}
     gone_r = body - {tuple(p) for p in right.centers}
     assert gone_l < gone_r

@@ -9,8 +9,9 @@ import weakref
 import numpy as np
 
 import shapelab as sl
-from shapelab import _pockets, cavities, filtration
-from shapelab import _topology as topology  # the implementation holds summary()
+from shapelab._engine import persistence as topology  # the engine holds summary()
+from shapelab import cavities, filtration
+from shapelab.cavities import complement as _pockets
 
 
 def _ring(n=12, radius=3.0, r=0.9):

@@ -22,7 +22,7 @@ def test_two_stages_recover_motions_plain_icp_misses(angle, axis):
     G = truth.apply(sample_shape("lumpy", 450, seed=2))  # other samples of the same surface
     best = coarse_align(R, G)[0].motion
     refined = icp(R, G, init=best, max_iter=100)
-    assert _err(refined.motion, truth) < 10.0  # lesson 13's criterion: two samples of one surface differ
+    assert _err(refined.motion, truth) < 10.0  # lesson 15's criterion: two samples of one surface differ
 
 
 def test_plain_icp_fails_where_two_stages_succeed():

@@ -247,7 +247,7 @@ def test_arrays_are_read_only_and_accessors_validate():
 
 
 def test_topology_methods_forward(monkeypatch):
-    import shapelab._topology as topo  # the implementation the methods call
+    import shapelab._engine.persistence as topo  # the engine the methods call
 
     F = alpha_filtration(random_balls(1, 10, 2, 0.1))
     calls = []
@@ -386,7 +386,7 @@ def test_certificate_of_the_floating_point_orthospheres():
     and power (near 0 against the weights) vary over many orders of magnitude."""
     from fractions import Fraction as Q
 
-    from shapelab.filtration import _RTOL, _orthospheres
+    from shapelab._engine.orthospheres import _RTOL, _orthospheres
 
     rng = np.random.default_rng(123)
     rows, ws = [], []

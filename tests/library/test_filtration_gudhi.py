@@ -261,8 +261,8 @@ def test_nearly_flat_tetrahedron_has_its_own_orthosphere(h, radii):
     rho, lam = _cramer_orthosphere(c[:4], balls.weights[:4])
     assert ours[(0, 1, 2, 3)] == pytest.approx(float(rho), rel=1e-15, abs=0)
     # the Gabriel test of its facets (the sign of each barycentric coordinate) is exact
-    from shapelab.filtration import _orthospheres_certified
-    from shapelab.power import triangulate_local
+    from shapelab._engine.orthospheres import orthospheres_certified as _orthospheres_certified
+    from shapelab._engine.triangulation import triangulate_local
 
     fr, simp, _ = triangulate_local(balls)
     row = simp[np.sort(fr.keep[simp], axis=1).tolist().index([0, 1, 2, 3])]

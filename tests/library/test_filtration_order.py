@@ -1,4 +1,4 @@
-"""The filtration order (:func:`shapelab.filtration._filtration_order`): by value, ties
+"""The filtration order (:func:`shapelab._engine.alpha.filtration_order`): by value, ties
 broken lexicographically by the rows.
 
 Oracle: ``np.lexsort`` on the float values and every column, the definition; on
@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from shapelab.filtration import _filtration_order
+from shapelab._engine.alpha import filtration_order as _filtration_order
 
 
 def _oracle(v, rows):

@@ -25,9 +25,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import shapelab as sl
-from shapelab.exact.certify import certify
-from shapelab.exact.predicates import WeightedPoints, affine_basis
-from shapelab.power import triangulation_report
+from shapelab._engine.certify import certify
+from shapelab._engine.predicates import WeightedPoints, affine_basis
+from shapelab.triangulation import triangulation_report
 
 gudhi = pytest.importorskip("gudhi")
 

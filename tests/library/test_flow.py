@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 
 import shapelab as sl
 from shapelab import datasets
-from shapelab.flow import flow_side_exact
+from shapelab.cavities.flow import flow_side_exact
 
 
 # ----------------------------------------------------------------------------- oracle
@@ -340,16 +340,16 @@ def test_exact_road_on_a_grid_is_flow_side_exact(d, spacing, radius, two_radii, 
     float filter to the exact road (integers scaled by one power of two, issue 23
     review: Fractions took 28 s on KVFinder's grid of 1fmo).  Every decision equals
     flow_side_exact's (Fractions) on the same binary values, ties included."""
-    import shapelab.flow as flow_module
+    from shapelab._engine import flow as flow_module
 
     calls = []
-    scaled = flow_module._scaled_integers
-    monkeypatch.setattr(flow_module, "_scaled_integers", lambda *a: calls.append(1) or scaled(*a))
+    scaled = flow_module.scaled_integers
+    monkeypatch.setattr(flow_module, "scaled_integers", lambda *a: calls.append(1) or scaled(*a))
     k = 6 if d == 2 else 4
     g = np.stack(np.meshgrid(*[np.arange(k) * spacing] * d), -1).reshape(-1, d) + 0.3
     radii = radius * (1 + 0.5 * two_radii * (np.arange(len(g)) % 3 == 0))  # weights that differ, or not
     F = sl.alpha_filtration(sl.Balls(g, radii))
-    out = flow_module._beyond(F)
+    out = flow_module.beyond(F)
     S = np.asarray(F.simplices(d), dtype=np.int64)
     z, w = F.balls.centers, F.balls.weights
     for i, row in enumerate(S.tolist()):

@@ -9,7 +9,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import shapelab as sl
-from shapelab import freespace as FS
+from shapelab._engine import freespace as FSE
+from shapelab.cavities import freespace as FS
 from tests.library.test_cavities import free_area_scanline, random_balls
 
 
@@ -211,7 +212,7 @@ def test_pairs_held_a_slice_at_a_time_give_the_same_measure(monkeypatch):
     F = sl.alpha_filtration(balls)
     cells, tris = np.asarray(F.simplices(3))[:80], np.asarray(F.simplices(2))[:80]
     whole = FS.free_space(F, 0.1, cells), FS.free_area(F, 0.1, tris), FS.free_space(balls, 0.1, cells)
-    monkeypatch.setattr(FS, "_PAIRS", 7)
+    monkeypatch.setattr(FSE, "_PAIRS", 7)
     sliced = FS.free_space(F, 0.1, cells), FS.free_area(F, 0.1, tris), FS.free_space(balls, 0.1, cells)
     for a, b in zip(whole, sliced):
         assert np.array_equal(a.measure, b.measure) and np.array_equal(a.wall, b.wall)
@@ -225,7 +226,7 @@ def test_cells_gathered_a_block_at_a_time_give_the_same_measure(monkeypatch):
     F = sl.alpha_filtration(balls)
     cells, tris = np.asarray(F.simplices(3))[:80], np.asarray(F.simplices(2))[:80]
     whole = FS.free_space(F, 0.1, cells), FS.free_area(F, 0.1, tris), FS.free_space(balls, 0.1, cells)
-    monkeypatch.setattr(FS, "_CELLS", 3)
+    monkeypatch.setattr(FSE, "_CELLS", 3)
     blocks = FS.free_space(F, 0.1, cells), FS.free_area(F, 0.1, tris), FS.free_space(balls, 0.1, cells)
     for a, b in zip(whole, blocks):
         assert np.array_equal(a.measure, b.measure) and np.array_equal(a.wall, b.wall)
@@ -240,12 +241,12 @@ def test_slices_in_threads_give_the_same_bits(monkeypatch):
     balls = sl.Balls(rng.uniform(0, 5, (60, 3)), rng.uniform(0.5, 1.4, 60))
     F = sl.alpha_filtration(balls)
     cells, tris = np.asarray(F.simplices(3))[:80], np.asarray(F.simplices(2))[:80]
-    monkeypatch.setattr(FS, "_PAIRS", 5)  # many slices
+    monkeypatch.setattr(FSE, "_PAIRS", 5)  # many slices
     runs = []
     for threads in ("1", "3"):
         monkeypatch.setenv("SHAPELAB_THREADS", threads)
         runs.append((FS.free_space(F, 0.1, cells), FS.free_area(F, 0.1, tris), FS.free_space(balls, 0.1, cells)))
-    assert FS._threads(100) == 3 and FS._threads(2) == 2  # threads were used, capped by the slices
+    assert FSE._threads(100) == 3 and FSE._threads(2) == 2  # threads were used, capped by the slices
     for a, b in zip(*runs):
         assert np.array_equal(a.measure, b.measure) and np.array_equal(a.wall, b.wall)
         assert np.array_equal(a.contact_cell, b.contact_cell) and np.array_equal(a.contact_ball, b.contact_ball)
@@ -256,7 +257,7 @@ def test_slices_in_threads_give_the_same_bits(monkeypatch):
 def test_bad_thread_count_is_named(monkeypatch, value):
     monkeypatch.setenv("SHAPELAB_THREADS", value)
     with pytest.raises(ValueError, match="SHAPELAB_THREADS"):
-        FS._threads(4)
+        FSE._threads(4)
 
 
 def test_no_threads_inside_a_worker_thread(monkeypatch):
@@ -264,10 +265,10 @@ def test_no_threads_inside_a_worker_thread(monkeypatch):
 
     monkeypatch.setenv("SHAPELAB_THREADS", "4")
     seen = []
-    t = threading.Thread(target=lambda: seen.append(FS._threads(10)))
+    t = threading.Thread(target=lambda: seen.append(FSE._threads(10)))
     t.start()
     t.join()
-    assert seen == [1] and FS._threads(10) == 4
+    assert seen == [1] and FSE._threads(10) == 4
 
 
 _SPECIAL = [0.0, -0.0, np.nan, np.inf, -np.inf, 5e-324, -5e-324, 2.2e-308, 1e308, -1e308, 1.0, -1.0, 1e-160, 0.1]
@@ -299,7 +300,7 @@ def test_row_dot_is_numpys_row_sum_bit_for_bit(n, d, layout, seed, special):
         if layout == "F":
             a, b = np.asfortranarray(a), np.asfortranarray(b)
     with np.errstate(all="ignore"):
-        got, ref = FS._dot(a, b), (a * b).sum(1)
+        got, ref = FSE._dot(a, b), (a * b).sum(1)
     assert got.shape == ref.shape
     assert np.array_equal(np.isnan(got), np.isnan(ref))
     ok = ~np.isnan(ref)
@@ -328,7 +329,7 @@ def test_thread_counts_give_the_same_bits_on_random_and_degenerate_input(monkeyp
     balls = sl.Balls(x, r)
     F = sl.alpha_filtration(balls)
     cells, tris = np.asarray(F.simplices(3)), np.asarray(F.simplices(2))
-    monkeypatch.setattr(FS, "_PAIRS", 7)  # many slices
+    monkeypatch.setattr(FSE, "_PAIRS", 7)  # many slices
     runs = []
     for threads in ("1", "2", "7"):
         monkeypatch.setenv("SHAPELAB_THREADS", threads)
@@ -344,9 +345,9 @@ def test_an_error_in_a_thread_reaches_the_caller(monkeypatch):
     balls = sl.Balls(rng.uniform(0, 5, (40, 3)), rng.uniform(0.5, 1.4, 40))
     F = sl.alpha_filtration(balls)
     cells = np.asarray(F.simplices(3))
-    monkeypatch.setattr(FS, "_PAIRS", 5)
+    monkeypatch.setattr(FSE, "_PAIRS", 5)
     monkeypatch.setenv("SHAPELAB_THREADS", "3")
-    real, calls = FS._measure_pairs, []
+    real, calls = FSE._measure_pairs, []
 
     def flaky(*args):
         calls.append(1)
@@ -354,12 +355,12 @@ def test_an_error_in_a_thread_reaches_the_caller(monkeypatch):
             raise FloatingPointError("slice 4")
         return real(*args)
 
-    monkeypatch.setattr(FS, "_measure_pairs", flaky)
+    monkeypatch.setattr(FSE, "_measure_pairs", flaky)
     with pytest.raises(FloatingPointError, match="slice 4"):
         FS.free_space(F, 0.0, cells)
     # the slices not yet started are dropped, not computed before the error is raised
     started, total = len(calls), []
-    monkeypatch.setattr(FS, "_measure_pairs", lambda *a: total.append(1) or real(*a))
+    monkeypatch.setattr(FSE, "_measure_pairs", lambda *a: total.append(1) or real(*a))
     FS.free_space(F, 0.0, cells)
     assert started < len(total) - 10
 
@@ -367,10 +368,10 @@ def test_an_error_in_a_thread_reaches_the_caller(monkeypatch):
 @pytest.mark.parametrize("value", ["100000000", " 2 "])
 def test_huge_or_padded_thread_counts_are_capped_by_the_slices(monkeypatch, value):
     monkeypatch.setenv("SHAPELAB_THREADS", value)
-    assert FS._threads(3) == min(3, int(value))
+    assert FSE._threads(3) == min(3, int(value))
 
 
-@pytest.mark.parametrize("module", ["shapelab.batch", "shapelab.trajectory"])
+@pytest.mark.parametrize("module", ["shapelab.tools.batch", "shapelab.tools.trajectory"])
 def test_worker_processes_use_one_thread_unless_told(monkeypatch, module):
     # batch and trajectory workers already share out the CPUs: a thread pool in each
     # would oversubscribe them; an explicit SHAPELAB_THREADS is kept
@@ -380,7 +381,7 @@ def test_worker_processes_use_one_thread_unless_told(monkeypatch, module):
     init = importlib.import_module(module)._init_worker
     monkeypatch.delenv("SHAPELAB_THREADS", raising=False)
     init()
-    assert os.environ["SHAPELAB_THREADS"] == "1" and FS._threads(10) == 1
+    assert os.environ["SHAPELAB_THREADS"] == "1" and FSE._threads(10) == 1
     monkeypatch.setenv("SHAPELAB_THREADS", "2")
     init()
     assert os.environ["SHAPELAB_THREADS"] == "2"
@@ -393,8 +394,8 @@ def test_default_threads_are_capped_on_many_core_machines(monkeypatch):
 
     monkeypatch.delenv("SHAPELAB_THREADS", raising=False)
     monkeypatch.setattr(os, "sched_getaffinity", lambda pid: set(range(64)), raising=False)
-    assert FS._threads(1000) == FS._DEFAULT_THREADS_CAP == 4
+    assert FSE._threads(1000) == FSE._DEFAULT_THREADS_CAP == 4
     monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0, 1}, raising=False)
-    assert FS._threads(1000) == 2
+    assert FSE._threads(1000) == 2
     monkeypatch.setenv("SHAPELAB_THREADS", "16")
-    assert FS._threads(1000) == 16
+    assert FSE._threads(1000) == 16

@@ -16,7 +16,7 @@ from hypothesis.extra import numpy as hnp
 from scipy.spatial.distance import directed_hausdorff as scipy_dh
 
 import shapelab
-from shapelab.distance import (
+from shapelab.hausdorff import (
     DirectedHausdorff,
     directed_hausdorff,
     hausdorff,
@@ -84,7 +84,7 @@ def test_directed_equals_brute_force_with_valid_witness(AB, method):
 def test_every_stage_of_the_pruned_algorithm_is_exact(AB, stage, seed):
     """Force each path of the pruned algorithm on small inputs (where ``auto``
     would use brute force), with and without a lower bound from the other side."""
-    from shapelab import distance as H
+    from shapelab._engine import hausdorff as H
 
     A, B = AB
     src, dst = H._prepare(A, B)
@@ -101,7 +101,7 @@ def test_every_stage_of_the_pruned_algorithm_is_exact(AB, stage, seed):
 def test_coarse_to_fine_stage_is_exact_with_and_without_a_floor(AB, cells_log2):
     """Force the grid levels on small inputs (``auto`` would use brute force), with
     grids from 1 to 64 cells, and with a lower bound from the other direction."""
-    from shapelab import distance as H
+    from shapelab._engine import hausdorff as H
 
     A, B = AB
     cells = 1 << cells_log2
@@ -123,7 +123,7 @@ def test_coarse_to_fine_stage_is_exact_with_and_without_a_floor(AB, cells_log2):
 @pytest.mark.parametrize("offset, scale", [(0.0, 1.0), (1e6, 1.0), (1e6, 1e-6), (-3e5, 1e3), (1e12, 1.0)])
 def test_grid_boxes_contain_their_points(offset, scale):
     """The cell boxes are rigorous (widened for round-off) even far from the origin."""
-    from shapelab import distance as H
+    from shapelab._engine import hausdorff as H
 
     rng = np.random.default_rng(8)
     P = offset + scale * rng.standard_normal((5000, 3))
@@ -219,7 +219,7 @@ def test_apart_sets_are_solved_by_the_grid_levels_alone(d, shift, alone, monkeyp
     """Far apart (or touching) the coarse-to-fine stage finishes without the k-d
     tree fallback in d <= 3, and agrees with scipy to the last bit, witness
     included.  (In 4D the grid is too coarse and some level hands over.)"""
-    from shapelab import distance as H
+    from shapelab._engine import hausdorff as H
 
     def no_fallback(*args, **kwargs):
         raise AssertionError("fell back to the pruned algorithm")
@@ -263,7 +263,7 @@ def test_apart_sets_do_not_import_scipy():
 def test_overlapping_sets_fall_back_to_the_tree_with_shared_clouds(monkeypatch):
     """Overlapping at the scale of the cells, the first grid level gives up and both
     directions run the pruned algorithm on the same prepared clouds (one pair of trees)."""
-    from shapelab import distance as H
+    from shapelab._engine import hausdorff as H
 
     calls = []
     real = H._prepare
@@ -310,7 +310,7 @@ def test_comparison_algorithms_agree():
 
 def test_timings_warm_up_is_not_timed(monkeypatch):
     # a first call that pays for an import (0.26 s against 5 ms for the k-d tree in
-    # lesson 12) must not be the time reported: one untimed call, then the best of
+    # lesson 14) must not be the time reported: one untimed call, then the best of
     # ``repeat`` timed ones
     import shapelab.distance as dist
 
@@ -487,3 +487,15 @@ def test_shapelab_hausdorff_is_always_the_function():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr[-2000:]
     assert out.stdout.strip() == "5.0"
+
+
+@pytest.mark.parametrize("n,m,d,off", [(1, 1, 1, 0.0), (30, 20, 2, 0.0), (400, 300, 3, 0.0), (400, 300, 3, 3.0)])
+def test_the_plain_definition_equals_the_engine_bit_for_bit(n, m, d, off):
+    """method="plain" (the notes' max-min, read directly) against the engine's kernels."""
+    rng = np.random.default_rng(n + m + d)
+    A, B = rng.normal(size=(n, d)), rng.normal(size=(m, d)) + off
+    for method in ("auto", "brute", "pruned", "grid"):
+        assert hausdorff(A, B, method="plain") == hausdorff(A, B, method=method)
+        assert directed_hausdorff(A, B, method="plain").distance == directed_hausdorff(A, B, method=method).distance
+    assert tuple(directed_hausdorff(A, B, method="plain")) == tuple(directed_hausdorff(A, B, method="brute"))
+    assert hausdorff_pair(A, B, method="plain") == hausdorff_pair(A, B, method="brute")

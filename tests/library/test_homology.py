@@ -115,6 +115,45 @@ def test_positive_simplices_count_betti():
     assert tuple(beta) == (1, 2, 1)
 
 
+def _positive_by_prefixes(order):
+    """The definition, asked afresh at each step: is ∂σ a boundary of the simplices before it?"""
+    return [len(s) == 1 or H.is_boundary(H.chain_boundary([s]), order[:i]) for i, s in enumerate(order)]
+
+
+@settings(deadline=None)
+@given(st.integers(0, 10_000))
+def test_positive_simplices_is_the_prefix_definition(seed):
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(2, 8))
+    tops = [tuple(rng.choice(n, size=int(rng.integers(1, min(n, 4) + 1)), replace=False).tolist())
+            for _ in range(int(rng.integers(1, 9)))]
+    K = H.closure(tops)
+    keys = {s: (len(s), rng.random()) for s in K}
+    order = sorted(K, key=keys.get)
+    shuffled = [tuple(rng.permutation(s).tolist()) for s in order]      # vertex order inside a tuple is irrelevant
+    assert H.positive_simplices(shuffled) == _positive_by_prefixes(order)
+
+
+def test_positive_simplices_on_an_alpha_filtration_is_fast_and_matches_its_betti_numbers():
+    rng = np.random.default_rng(5)
+    F = sl.alpha_filtration(sl.Balls(rng.uniform(0, 6, size=(400, 2)), rng.uniform(0.3, 1.0, size=400)))
+    B = F.boundary_matrix()
+    order = [tuple(int(v) for v in F.simplices(k)[r]) for k, r in zip(B.dims, B.rows)]
+    assert len(order) > 700
+    pos = H.positive_simplices(order)                   # once quadratic (a rank per prefix): minutes at this size
+    beta = [0, 0, 0]
+    for s, p in zip(order, pos):
+        beta[len(s) - 1 if p else len(s) - 2] += 1 if p else -1
+    assert tuple(beta) == tuple(int(x) for x in F.betti(1e9))
+
+
+def test_rank_mod2_exact_on_other_integer_forms():
+    assert H.rank_mod2(np.array([[2**70, 1], [3, 2**80]], dtype=object)) == 2     # Python ints, reduced exactly
+    assert H.rank_mod2(np.array([[2**64 - 2, 1]], dtype=np.uint64)) == 1
+    assert H.rank_mod2([[-1, 1], [1, -1]]) == 1
+    assert H.rank_mod2(np.eye(3, dtype=bool)) == 3
+
+
 def test_validation_names_the_argument():
     with pytest.raises(ValueError, match="simplices.*closure"):
         H.betti_numbers([(0, 1)])
@@ -138,6 +177,34 @@ def test_validation_names_the_argument():
         H.rank_mod2([1, 0])
     with pytest.raises(ValueError, match="order"):
         H.positive_simplices([(0,), (0, 1)])
+    with pytest.raises(ValueError, match="order.*twice"):
+        H.positive_simplices([(0,), (1,), (0, 1), (1, 0)])
+    with pytest.raises(ValueError, match="M.*equal length"):
+        H.rank_mod2([[1, 0], [1]])
+    for bad in (None, "10"):
+        with pytest.raises(TypeError, match="M"):
+            H.rank_mod2(bad)
+    with pytest.raises(TypeError, match="chain.*not one simplex"):
+        H.is_cycle((0, 1))
+    with pytest.raises(TypeError, match="simplices"):
+        H.betti_numbers([("a",), ("b",), ("a", "b")])
+
+
+def test_small_and_degenerate_inputs():
+    assert H.betti_numbers([]) == () and H.euler_characteristic([]) == 0 and H.closure([]) == []
+    assert H.betti_numbers([(0,)]) == (1,)
+    assert H.betti_numbers([(1,), (0,), (1, 0), (0, 1)]) == (1, 0)                  # unsorted and repeated
+    assert H.betti_numbers(np.array([[0], [1]])) == (2,)
+    big = 10**30
+    assert H.betti_numbers([(big,), (big + 1,), (big, big + 1)]) == (1, 0)
+    assert H.boundary_matrix([(0,)], 5).shape == (0, 0) and H.k_simplices([(0,)], 5) == []
+    assert not H.is_boundary([(0, 1, 2)], sl.closure([(0, 1, 2)]))                    # no tetrahedra
+    assert H.is_boundary([(0,), (1,)], sl.closure([(0, 1)])) and not H.is_boundary([(0,)], sl.closure([(0, 1)]))
+
+
+def test_plot_names_a_vertex_without_position():
+    with pytest.raises(ValueError, match="positions.*vertex 1"):
+        sl.plot.simplicial_complex([(0,), (1,), (0, 1)], {0: (0, 0)})
 
 
 def _brute_rank_gf2(A):

@@ -70,7 +70,7 @@ def test_the_top_level_names_stay_lazy():
         # a PDB file read and reported, as the command line does
         "import shapelab as sl\ns = sl.read_structure(sl.datasets.structure_path('1hvr'))\nsl.report(s, 1.4)",
         # the modules behind the command line and the batch, imported without running them
-        "import shapelab.cli, shapelab.batch, shapelab.cavity_report, shapelab.io, shapelab.trajectory",
+        "import shapelab.tools.cli, shapelab.tools.batch, shapelab.report, shapelab.io, shapelab.tools.trajectory",
     ],
     ids=["union_measure", "read_and_report", "cli_batch_modules"],
 )

@@ -4,14 +4,23 @@ inside functions (which hide a cycle from Python but not from a reader).
 The layers, bottom to top (a module may import only from its own layer or below):
 
 0. ``shapelab._toolkit``: validation, tolerances, geometry helpers, lazy exports;
-1. geometry: ``balls``, ``exact`` (predicates, certification, incremental), ``power``;
+1. geometry: ``balls``, the engine ``_engine`` (exact predicates, certification,
+   incremental, blocks, certified orthospheres and entry times), ``predicates``,
+   ``triangulation``;
 2. ``filtration`` and what is computed from a filtration or from balls;
-3. presentation and programs: ``plot``, ``widgets``, ``check``, ``cli``.
+3. presentation: ``plot``, ``widgets``, ``check``;
+4. the research tools beside the course: ``shapelab.tools`` (batch, cli, Dask,
+   trajectories) and the program ``__main__``.  Layers 0-3 are the core: the core never
+   imports the tools, directly, lazily (an import inside a function, a name of a lazy
+   export map, an old path of ``shapelab._MOVED``) or through the top package
+   (``import shapelab`` then ``shapelab.report_batch``); the tools may import the core.
 
 The test builds the graph of ``shapelab`` modules from every ``import`` statement in
 each file (module level or not) and from every ``importlib.import_module`` or
 ``__import__`` call with a literal name, and fails on a cycle among different modules,
-or on an import from a lower layer into a higher one.  A name imported from a package
+or on an import from a lower layer into a higher one.  An old path of a moved module
+(``shapelab._MOVED``: ``shapelab.batch`` is ``shapelab.tools.batch``) is an import of
+the module it names now.  A name imported from a package
 (``from shapelab import voids``) is an import of the module that the package's lazy
 export map (``_EXPORTS``) names; ``import shapelab`` itself is an import of the top
 layer (only ``__version__`` may be taken from it below).  A dynamic import (a name that
@@ -27,8 +36,9 @@ import pytest
 
 PKG = Path(__file__).resolve().parents[2] / "shapelab"
 
-LAYER_1 = {"balls", "exact", "power"}
-LAYER_3 = {"plot", "widgets", "check", "cli", "__main__"}
+LAYER_1 = {"balls", "_engine", "predicates", "triangulation"}
+LAYER_3 = {"plot", "widgets", "check"}
+TOOLS = {"tools", "__main__"}  # layer 4, beside the course
 
 
 def module_name(path: Path, root: Path = PKG) -> str:
@@ -70,6 +80,25 @@ def lazy_exports(root: Path = PKG) -> dict[str, str]:
     return out
 
 
+def moved_modules(root: Path = PKG) -> dict[str, str]:
+    """``{"shapelab.batch": "shapelab.tools.batch", ...}``: the package's ``_MOVED`` map."""
+    out = {}
+    for node in ast.walk(ast.parse((root / "__init__.py").read_text(encoding="utf-8"))):
+        targets = [node.target] if isinstance(node, ast.AnnAssign) else getattr(node, "targets", [])
+        if any(isinstance(t, ast.Name) and t.id == "_MOVED" for t in targets) and isinstance(node.value, ast.Dict):
+            for k, v in zip(node.value.keys, node.value.values):
+                if isinstance(k, ast.Constant) and isinstance(v, ast.Constant):
+                    out[f"{root.name}.{k.value}"] = f"{root.name}.{v.value}"
+    return out
+
+
+def _moved(target: str, moves: dict[str, str]) -> str:
+    for old, new in moves.items():
+        if target == old or target.startswith(old + "."):
+            return new + target[len(old) :]
+    return target
+
+
 DYNAMIC_IMPORT_ALLOWED = {"shapelab._toolkit.lazy"}
 
 
@@ -95,6 +124,7 @@ def import_graph(root: Path = PKG, dynamic: list | None = None) -> dict[str, set
     whose name is not a literal."""
     modules = {module_name(p, root): p for p in root.rglob("*.py")}
     exports = lazy_exports(root)
+    moves = moved_modules(root)
     graph: dict[str, set[str]] = {m: set() for m in modules}
     for m, p in modules.items():
         tree = ast.parse(p.read_text(encoding="utf-8"))
@@ -114,7 +144,8 @@ def import_graph(root: Path = PKG, dynamic: list | None = None) -> dict[str, set
                         dynamic.append((m, node.lineno))
                     continue
             for t in targets:
-                # a name of a package's lazy export map is its module's
+                # an old path is the module's new one; a name of a lazy export map is its module's
+                t = _moved(t, moves)
                 t = exports.get(t, t)
                 # the longest shapelab module that the target names
                 while t and t not in modules:
@@ -167,6 +198,8 @@ def layer(module: str) -> int:
         return 1
     if top in LAYER_3:
         return 3
+    if top in TOOLS:
+        return 4
     return 2
 
 
@@ -182,6 +215,73 @@ def upward_imports(graph: dict[str, set[str]]) -> list[tuple[str, str]]:
 def test_no_upward_import():
     bad = upward_imports(import_graph())
     assert not bad, f"a lower layer imports a higher one: {bad}"
+
+
+def is_tools(module: str) -> bool:
+    return layer(module) == 4
+
+
+def tools_names(root: Path = PKG) -> set[str]:
+    """What ``shapelab.X`` reaches in the tools: the top package's lazy exports defined
+    there, its submodule ``tools`` and the old paths that now name a tools module."""
+    names = {"tools"}
+    names |= {k.split(".")[1] for k, v in lazy_exports(root).items() if k.count(".") == 1 and is_tools(v)}
+    names |= {k.split(".")[1] for k, v in moved_modules(root).items() if is_tools(v)}
+    return names
+
+
+def tools_through_the_top(root: Path = PKG) -> list[tuple[str, str]]:
+    """(core module, ``shapelab.X``) where a core module that imports the top package
+    reaches the tools through it (the graph sees ``import shapelab``, not what is taken
+    from it afterwards)."""
+    reach = tools_names(root)
+    found = []
+    for p in sorted(root.rglob("*.py")):
+        m = module_name(p, root)
+        if m == root.name or is_tools(m):
+            continue
+        for node in ast.walk(ast.parse(p.read_text(encoding="utf-8"))):
+            if (
+                isinstance(node, ast.Attribute)
+                and isinstance(node.value, ast.Name)
+                and node.value.id == root.name
+                and node.attr in reach
+            ):
+                found.append((m, f"{root.name}.{node.attr}"))
+    return found
+
+
+def test_the_core_never_imports_the_tools():
+    """tools -> core -> engine, arrows down only: a course module that needed a research
+    tool would make the tools part of what a student reads.  Move what the core needs
+    into the core, or the caller into shapelab.tools."""
+    graph = import_graph()
+    bad = sorted((m, t) for m, ts in graph.items() if not is_tools(m) for t in ts if is_tools(t))
+    bad += tools_through_the_top()
+    assert not bad, f"the core imports shapelab.tools (tools may import the core, never the reverse): {bad}"
+
+
+def test_the_tools_rule_can_fail(tmp_path):
+    pkg = tmp_path / "shapelab"
+    (pkg / "tools").mkdir(parents=True)
+    (pkg / "__init__.py").write_text(
+        '_EXPORTS = {"report_batch": "tools.batch"}\n_MOVED: dict = {"batch": "tools.batch"}\n'
+    )
+    (pkg / "tools" / "__init__.py").write_text("")
+    (pkg / "tools" / "batch.py").write_text("from ..cavities import f\n")  # tools -> core: allowed
+    (pkg / "cavities.py").write_text("def f():\n    from shapelab.batch import g\n")  # an old path
+    (pkg / "report.py").write_text("from shapelab import report_batch\n")  # a lazy export
+    (pkg / "check").mkdir()
+    (pkg / "check" / "__init__.py").write_text("")
+    (pkg / "check" / "quiz.py").write_text("import shapelab\n\ndef f():\n    return shapelab.tools\n")  # the top
+    g = import_graph(pkg)
+    assert g["shapelab.cavities"] == {"shapelab.tools.batch"}
+    assert g["shapelab.report"] == {"shapelab.tools.batch"}
+    assert upward_imports(g) == [
+        ("shapelab.cavities", "shapelab.tools.batch"),
+        ("shapelab.report", "shapelab.tools.batch"),
+    ]
+    assert tools_through_the_top(pkg) == [("shapelab.check.quiz", "shapelab.tools")]
 
 
 def test_no_dynamic_import():
@@ -202,7 +302,7 @@ def test_the_checks_can_fail(tmp_path):
     assert layer("shapelab._toolkit.validate") < layer("shapelab.balls")
 
 
-@pytest.mark.parametrize("module", ["shapelab.filtration", "shapelab.topology", "shapelab.cavities"])
+@pytest.mark.parametrize("module", ["shapelab.filtration", "shapelab.persistence", "shapelab.cavities"])
 def test_graph_sees_function_level_imports(module):
     assert module in import_graph()
 
@@ -251,3 +351,13 @@ def test_the_version_and_dynamic_imports(tmp_path):
     g = import_graph(pkg, dynamic=dynamic)
     assert g["shapelab._toolkit.validate"] == set()
     assert dynamic == [("shapelab._toolkit.validate", 5)]
+
+
+def test_cavities_is_a_subpackage_of_the_core_layer():
+    """``shapelab.cavities`` (issue 33) is one layer, the core's (2): its modules may
+    import the filtration, never plot, widgets, check or the command line."""
+    graph = import_graph()
+    subs = [m for m in graph if m.startswith("shapelab.cavities.")]
+    assert {"shapelab.cavities.void", "shapelab.cavities.pocket", "shapelab.cavities.tunnel"} <= set(subs)
+    assert all(layer(m) == 2 for m in subs + ["shapelab.cavities"])
+    assert not [(m, t) for m in subs for t in graph[m] if layer(t) > 2]

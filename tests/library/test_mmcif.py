@@ -469,7 +469,7 @@ def test_read_structure_on_pdb_is_read_pdb():
 def test_cli_reads_mmcif(tmp_path, capsys):
     """``python -m shapelab report`` on the mmCIF and the PDB file of one structure
     prints the same table."""
-    from shapelab.cli import main
+    from shapelab.tools.cli import main
 
     s = read_pdb(structure_path("1grm"))
     kw = dict(atom_names=s.atom_names, residue_names=s.residue_names, residue_numbers=s.residue_numbers)

@@ -355,3 +355,37 @@ def test_balls_stand_for_their_filtration(fn):
         assert [len(ax.get_children()) for ax in a.axes] == [len(ax.get_children()) for ax in b.axes]
     finally:
         plt.close(a), plt.close(b)
+
+
+# ------------------------------------------------------------ boundary matrix, voxels
+def test_reduced_matrix_marks_every_lowest_one():
+    from shapelab.topology import reduce_boundary
+
+    F = shapelab.alpha_filtration(shapelab.Balls([[0, 0], [2, 0], [2.2, 1.9], [0.1, 2.1]], 0.5))
+    B = F.boundary_matrix()
+    R, low = reduce_boundary(B.matrix)
+    names = ["".join(map(str, F.simplices(k)[r])) for k, r in zip(B.dims, B.rows)]
+    fig = PT.reduced_matrix(B.matrix, R, names, low)
+    crosses = np.concatenate(scatter_offsets(fig.axes[1]))
+    j = np.flatnonzero(np.asarray(low) >= 0)
+    assert sorted(map(tuple, crosses.tolist())) == sorted(zip(j.tolist(), np.asarray(low)[j].tolist()))
+    assert np.array_equal(fig.axes[0].images[0].get_array(), B.matrix.toarray() % 2)
+    assert f"{len(j)} lowest ones" in shapelab.plot.alt_text(fig)
+    fig2 = PT.reduced_matrix(B.matrix, R, names)  # low computed from R
+    assert len(np.concatenate(scatter_offsets(fig2.axes[1]))) == len(j)
+    with pytest.raises(ValueError, match="must be"):
+        PT.reduced_matrix(B.matrix, R, names[:-1])
+
+
+def test_voxel_slice_colours_each_bounded_component():
+    labels = np.ones((6, 5, 4), dtype=np.int64)
+    labels[0] = 0
+    labels[2, 2, 1] = 2
+    labels[4, 1, 1] = 3
+    grid = (np.arange(6.0), np.arange(5.0), np.arange(4.0))
+    fig = PT.voxel_slice(labels, grid)
+    shown = fig.axes[0].images[0].get_array()
+    assert np.array_equal(shown, labels[:, :, 1].T)  # the slice with most void voxels
+    assert "2 bounded components" in shapelab.plot.alt_text(fig)
+    with pytest.raises(ValueError, match="shape of the grid"):
+        PT.voxel_slice(labels[:, :, 0], grid)

@@ -1,4 +1,4 @@
-"""Tests of shapelab.power: regular triangulations and power diagrams.
+"""Tests of shapelab.triangulation: regular triangulations and power diagrams.
 
 Oracles: scipy's Delaunay (unweighted case), brute-force power distances (empty
 orthospheres, argmin of the power distance for sampled points), a linear program for
@@ -77,7 +77,7 @@ def test_qhull_facets_are_convexhulls(d):
     """Our direct use of scipy's (private) Qhull wrapper gives ConvexHull's arrays."""
     from scipy.spatial import ConvexHull
 
-    from shapelab.power import _QHULL_OPTIONS, _qhull_facets
+    from shapelab._engine.triangulation import _QHULL_OPTIONS, _qhull_facets
 
     rng = np.random.default_rng(7)
     pts = np.c_[rng.uniform(size=(300, d)), rng.normal(size=300)]
@@ -283,7 +283,7 @@ def test_clipped_cells_have_the_per_ball_areas(tau):
     """The polygons of B_i ∩ Π(B_i), built by clipping the power cells with the disks
     (no inclusion–exclusion), have the areas of the per-ball shares."""
     from shapelab import Balls, union_measure
-    from shapelab.power import clipped_cells
+    from shapelab.triangulation import clipped_cells
     from tests.library.test_measure import _poly_area, random_balls
 
     b = random_balls(51, 40, 2, 0.2, 1.2, box=6.0)
@@ -301,10 +301,10 @@ def test_clipped_cells_have_the_per_ball_areas(tau):
 
 
 def test_filtration_clipped_cells_reuse_one_diagram_per_box():
-    """``F.clipped_cells`` is :func:`shapelab.power.clipped_cells` on a diagram kept on
+    """``F.clipped_cells`` is :func:`shapelab.triangulation.clipped_cells` on a diagram kept on
     the filtration: the same polygons, the diagram built once per box."""
     from shapelab import alpha_filtration, datasets
-    from shapelab.power import clipped_cells
+    from shapelab.triangulation import clipped_cells
 
     balls = datasets.figure_23_1()
     F = alpha_filtration(balls)

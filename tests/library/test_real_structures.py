@@ -14,8 +14,8 @@ import pytest
 
 import shapelab as sl
 from shapelab import datasets
-from shapelab import freespace as FS
-from shapelab.power import triangulation_report
+from shapelab.cavities import freespace as FS
+from shapelab.triangulation import triangulation_report
 
 from .._oracles import bottleneck
 

@@ -392,8 +392,8 @@ def test_acceleration_needs_fewer_iterations():
     src = sample_shape("lumpy", 1500, seed=1)
     truth = RigidMotion(Quaternion.from_axis_angle([1, 2, 3], np.radians(20)), [0.1, -0.05, 0.2])
     tgt = truth.apply(src)
-    fast = icp(src, tgt, tol=1e-12, max_iter=300)
-    slow = icp(src, tgt, tol=1e-12, max_iter=300, accelerate=False)
+    fast = icp(src, tgt, tol=1e-12, max_iter=300, accelerate=True)
+    slow = icp(src, tgt, tol=1e-12, max_iter=300)
     assert fast.converged and slow.converged and fast.n_iter < slow.n_iter
 
 

@@ -1,4 +1,4 @@
-"""shapelab.report (shapelab.cavity_report, and the command line shapelab.cli): the CASTp-style table of voids and pockets (Notes §23.1).
+"""shapelab.report (shapelab.report, and the command line shapelab.cli): the CASTp-style table of voids and pockets (Notes §23.1).
 
 Oracles are independent of the report's own computation: β₂ of the filtration, the
 fractional inclusion–exclusion of ``Void.volume``, a seeded jittered-grid flood fill
@@ -27,8 +27,8 @@ import shapelab as sl
 from shapelab.datasets import bowl, structure, structure_path
 
 ROOT = Path(__file__).resolve().parents[2]
-report_module = importlib.import_module("shapelab.cavity_report")
-cli = importlib.import_module("shapelab.cli")
+report_module = importlib.import_module("shapelab.report")
+cli = importlib.import_module("shapelab.tools.cli")
 
 
 def cli_main(argv):
@@ -666,9 +666,9 @@ def test_import_changes_no_global_state():
     program: the command line lives in shapelab.cli alone."""
     code = (
         "import warnings, sys; before = list(warnings.filters); "
-        "import shapelab, shapelab.cavity_report; shapelab.report; "
+        "import shapelab, shapelab.report; shapelab.report; "
         "assert warnings.filters == before, warnings.filters[:3]; "
-        "assert 'shapelab.cli' not in sys.modules"
+        "assert 'shapelab.tools.cli' not in sys.modules and 'shapelab.tools' not in sys.modules"
     )
     code = (
         "import os, logging, warnings, sys, numpy; env = dict(os.environ); "
@@ -685,13 +685,14 @@ def test_import_changes_no_global_state():
 @pytest.mark.parametrize(
     "module, code, words",
     [
-        ("shapelab.cli", 0, "usage: python -m shapelab"),
-        ("shapelab.cavity_report", 1, "python -m shapelab report FILE"),
+        ("shapelab.tools.cli", 0, "usage: python -m shapelab"),
+        ("shapelab.cli", 0, "usage: python -m shapelab"),  # the old path (shapelab._MOVED)
+        ("shapelab.report", 1, "python -m shapelab report FILE"),
     ],
 )
 def test_running_a_module_is_never_a_silent_no_op(module, code, words):
     """``python -m shapelab.cli --help`` printed nothing and ``python -m
-    shapelab.cavity_report FILE`` did nothing, both with status 0 (issue 22, review)."""
+    shapelab.report FILE`` did nothing, both with status 0 (issue 22, review)."""
     env = dict(os.environ, PYTHONPATH=str(ROOT))
     r = subprocess.run([sys.executable, "-m", module, "--help"], env=env, capture_output=True, text=True, timeout=120)
     assert r.returncode == code and words in r.stdout + r.stderr, (r.returncode, r.stdout, r.stderr)

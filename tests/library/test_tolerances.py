@@ -25,9 +25,10 @@ import re
 
 import numpy as np
 
-from shapelab import distance, filtration, measure, topology
+from shapelab import measure, topology
+from shapelab._engine import hausdorff as distance
+from shapelab._engine import orthospheres, predicates
 from shapelab._toolkit import tolerances as T
-from shapelab.exact import predicates
 
 EPS = float(np.finfo(np.float64).eps)
 RTOL = T.ENTRY_TIME_RTOL
@@ -49,22 +50,33 @@ def test_every_tolerance_is_documented():
 
 
 def test_filtration_and_topology_are_wired():
-    """filtration.py and topology.py take their constants from the toolkit (they kept
-    copies once): the very objects, not equal copies that could drift."""
-    assert filtration._RTOL is T.ENTRY_TIME_RTOL
-    assert filtration._SAFETY is T.ENTRY_TIME_SAFETY
+    """The engine's orthospheres (once filtration.py) and topology.py take their
+    constants from the toolkit (they kept copies once): the very objects, not equal
+    copies that could drift."""
+    assert orthospheres._RTOL is T.ENTRY_TIME_RTOL
+    assert orthospheres._SAFETY is T.ENTRY_TIME_SAFETY
     assert topology.ROUNDOFF is T.PERSISTENCE_ROUNDOFF
 
 
 #: the modules whose tolerances all live in the toolkit (commit 68559d7)
 WIRED = (
-    "power",
-    "exact.certify",
-    "exact.predicates",
-    "exact.incremental",
+    "triangulation",
+    "_engine.triangulation",
+    "_engine.certify",
+    "_engine.predicates",
+    "_engine.incremental",
     "measure",
-    "freespace",
-    "cavities",
+    "_engine.measure",
+    "cavities.freespace",
+    "_engine.freespace",
+    "_engine.flow",
+    "_engine.mouths",
+    "cavities.void",
+    "cavities.pocket",
+    "cavities.tunnel",
+    "cavities.flow",
+    "cavities.mouths",
+    "cavities.complement",
     "critical",
     "distance",
     "matching",
@@ -72,7 +84,7 @@ WIRED = (
     "topology",
     "registration",
     "quaternion",
-    "cavity_report",
+    "report",
     "embedding",
 )
 

@@ -16,7 +16,8 @@ import numpy as np
 import pytest
 
 import shapelab
-from shapelab.trajectory import selection_radii, track_cavities, trajectory_measures
+from shapelab.tools.trajectory import trajectory_measures
+from shapelab.tracking import selection_radii, track_cavities
 
 ROOT = Path(__file__).resolve().parents[2]
 ARCHIVE = ROOT / ".cache" / "corpus" / "archives" / "mdanalysistests-2.11.0.tar.gz"

@@ -13,7 +13,7 @@ import warnings
 
 import pytest
 
-from shapelab.trajectory import trajectory_measures
+from shapelab.tools.trajectory import trajectory_measures
 
 # the fixtures of the serial tests, the oracle
 from tests.library.test_trajectory import adk, adk_measures, bowl  # noqa: F401

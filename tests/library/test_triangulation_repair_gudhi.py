@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from shapelab import alpha_filtration
-from shapelab.power import triangulation_report
+from shapelab.triangulation import triangulation_report
 from tests.library.test_triangulation_repair import INPUTS
 
 gudhi = pytest.importorskip("gudhi")

@@ -3,7 +3,7 @@ sets, where Qhull's candidate fails the certificate everywhere.
 
 Two pieces are tested against independent oracles:
 
-* the batched exact stage of :class:`shapelab.exact.predicates.WeightedPoints`
+* the batched exact stage of :class:`shapelab._engine.predicates.WeightedPoints`
   (numpy integers, int64 under an overflow bound, else Python integers; Simulation of
   Simplicity batched) against the one-row exact evaluation it replaces;
 * the public road (lattice detection, the tie-break candidate, certificate, local
@@ -23,12 +23,12 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-import shapelab.power as power
+import shapelab._engine.triangulation as power
 from shapelab import Balls, regular_triangulation
+from shapelab._engine.incremental import incremental_triangulation
+from shapelab._engine.predicates import WeightedPoints
 from shapelab._toolkit.geometry import morton_order
-from shapelab.exact.incremental import incremental_triangulation
-from shapelab.exact.predicates import WeightedPoints
-from shapelab.power import triangulation_report
+from shapelab.triangulation import triangulation_report
 
 
 def whole_road(balls: Balls) -> set:
@@ -251,24 +251,26 @@ def test_membrane_with_dummy_atom_grids_from_the_corpus(monkeypatch):
 
 
 # ----------------------------------------------------------------------------------
-# The int64 road of the exact orthospheres (shapelab.filtration._exact_rows)
+# The int64 road of the exact orthospheres (shapelab._engine.orthospheres._exact_rows)
 # ----------------------------------------------------------------------------------
 def _object_road(balls: Balls, monkeypatch):
     """alpha_filtration with the int64 road of the exact orthospheres switched off
     (Python integers for every row, as before the int64 road)."""
-    import shapelab.filtration as filtration
+    import shapelab._engine.orthospheres as orthospheres
+    from shapelab import alpha_filtration
 
     with monkeypatch.context() as m:
-        m.setattr(filtration, "_small_row_integers", lambda *a, **k: None)
-        return filtration.alpha_filtration(balls)
+        m.setattr(orthospheres, "_small_row_integers", lambda *a, **k: None)
+        return alpha_filtration(balls)
 
 
 def _int64_rows(balls: Balls, monkeypatch) -> int:
     """How many exact rows took the int64 road."""
-    import shapelab.filtration as filtration
+    import shapelab._engine.orthospheres as orthospheres
+    from shapelab import alpha_filtration
 
     seen = []
-    real = filtration._small_row_integers
+    real = orthospheres._small_row_integers
 
     def spy(*args, **kwargs):
         out = real(*args, **kwargs)
@@ -276,8 +278,8 @@ def _int64_rows(balls: Balls, monkeypatch) -> int:
         return out
 
     with monkeypatch.context() as m:
-        m.setattr(filtration, "_small_row_integers", spy)
-        filtration.alpha_filtration(balls)
+        m.setattr(orthospheres, "_small_row_integers", spy)
+        alpha_filtration(balls)
     return sum(seen)
 
 

@@ -1,6 +1,6 @@
 """shapelab.oracles.voxel_complement: the bounded components of the complement of a
 union of balls, counted on voxels, against Alexander duality (β2 of the α-complex,
-lesson 06) and, for β1, against GUDHI's cubical homology of the voxelized complement."""
+lesson 07) and, for β1, against GUDHI's cubical homology of the voxelized complement."""
 
 from __future__ import annotations
 

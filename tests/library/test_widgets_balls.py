@@ -152,7 +152,7 @@ def test_complex3d_explorer_reports_the_filtrations_betti_numbers():
         n = F.complex_at(t).counts()
         assert f"K: {n[0]} vertices, {n[1]} edges" in w.status.value
     w.slider.value = 0.0
-    assert "β₂ = 1 voids" in w.status.value  # C60's cage encloses one void (lesson 06)
+    assert "β₂ = 1 voids" in w.status.value  # C60's cage encloses one void (lesson 07)
     frame = w.image.value
     w.azim.value = 120.0
     assert w.image.value != frame

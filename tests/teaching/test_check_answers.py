@@ -54,7 +54,7 @@ def test_pocket_residues_same_count_is_not_enough(capsys):
     assert not check.pocket_residues(["GLY 30", "ALA 31", "THR 12"], MOL, POCKET)
 
 
-R_HIGH = 1.4 / 2 * np.sqrt(9 * ((1 + 5**0.5) / 2) ** 2 + 1)  # the cage's circumradius (lesson 06)
+R_HIGH = 1.4 / 2 * np.sqrt(9 * ((1 + 5**0.5) / 2) ** 2 + 1)  # the cage's circumradius (lesson 07)
 
 
 def test_void_radii_closed_form_passes(capsys):
@@ -104,7 +104,7 @@ def test_mouth_closing_refuses_the_first_mouth_edge_to_close(capsys):
     assert "✗" in capsys.readouterr().out
 
 
-# ---- lesson 17: the most spread-out class, with its per-class values -------------------
+# ---- lesson 19: the most spread-out class, with its per-class values -------------------
 #: four classes of two shapes each; within-class distances 0.3, 0.1, 0.5, 0.2 (the cube
 #: is the most spread out); between classes 1.0
 SPREAD_LABELS = ["sphere", "sphere", "ellipsoid", "ellipsoid", "cube", "cube", "torus", "torus"]
@@ -138,7 +138,7 @@ def test_most_spread_class_refuses_a_wrong_label_or_value_without_giving_it(answ
     assert "✗" in out and "✓" not in out and "0.5" not in out  # a wrong value is named by its class only
 
 
-# ---- lesson 17: Rips triangles outside the nerve -----------------------------------------
+# ---- lesson 19: Rips triangles outside the nerve -----------------------------------------
 def _exact_rips_only(X, rho):
     """Brute force in exact rationals, by the angles: a triangle with sides <= 2 rho is
     outside the nerve iff it is acute with circumradius > rho (R^2 = a^2 b^2 c^2 / (16 A^2))."""
@@ -274,8 +274,8 @@ def test_most_exposed_residue_oracle_toy_by_hand(capsys):
     assert shares[1] + shares[2] > shares[0]
 
 
-# lesson 06, exercise 4: C60 and a cage of 0.8 Å balls 16 Å away; a cage's void lives on
-# (b² - r², R² - r²) (closed forms, lesson 06), so the counts are known without the library
+# lesson 07, exercise 4: C60 and a cage of 0.8 Å balls 16 Å away; a cage's void lives on
+# (b² - r², R² - r²) (closed forms, lesson 07), so the counts are known without the library
 TWO_TAUS = [-1.8, 0.0, 2.5, 7.0, 9.6, 12.0]
 TWO_COUNTS = [sum(1.4**2 - r * r < t < R_HIGH**2 - r * r for r in (1.70, 0.8)) for t in TWO_TAUS]
 
@@ -315,7 +315,7 @@ def test_void_components_wrong_counts_say_where_and_how(two_cages, answer, hints
     assert "✗" in out and all(h in out for h in hints) and not any(a in out for a in absent), out
 
 
-# ---- check.first_site_rank (lesson 18): the reference is the report's own order -----------
+# ---- check.first_site_rank (lesson 20): the reference is the report's own order -----------
 @pytest.fixture(scope="module")
 def t4l_and_xylene():
     from shapelab.datasets import structure
@@ -324,7 +324,7 @@ def t4l_and_xylene():
 
 
 def test_first_site_rank_is_the_void_in_the_growth_model_second_in_the_flow(t4l_and_xylene, capsys):
-    # independent of the check's loop: the L99A void (lesson 10) holds p-xylene; every atom
+    # independent of the check's loop: the L99A void (lesson 12) holds p-xylene; every atom
     # of the ligand lies within 4 Å of the void's lining centroid or not, by brute force
     import shapelab as sl
 

@@ -1,4 +1,4 @@
-"""Tests of the self-checks of lessons 01–05 (shapelab.check.balls).
+"""Tests of the self-checks of lessons 01–06 (shapelab.check.balls).
 
 A correct student function written here from first principles (independent of the
 library) must pass; typical mistakes must fail; a placeholder must be reported as

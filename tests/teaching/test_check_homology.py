@@ -1,4 +1,4 @@
-"""Tests of the self-checks in shapelab.check.homology (lesson 01b): right answers pass,
+"""Tests of the self-checks in shapelab.check.homology (lesson 02): right answers pass,
 wrong answers of the right type fail (an entry off, the rationals' answer, a cycle
 claimed a boundary), and no message gives the right answer away."""
 
@@ -62,9 +62,24 @@ def test_rank_mistakes_fail(wrong, capsys):
 def test_betti_right_answer_passes(capsys):
     assert check.complex_betti((1, 1, 1), RP2).passed
     assert check.complex_betti([1, 2, 1], TORUS).passed
+    for form in (np.array([1, 1, 1]), np.array([1, 1, 1], dtype=np.uint8), tuple(np.int64(1) for _ in range(3)), (1.0, 1.0, 1.0)):
+        assert check.complex_betti(form, RP2).passed
+    assert "β0, β1)" in check.complex_betti((1, 1), sl.closure([(0, 1), (1, 2), (0, 2)])).message
 
 
-@pytest.mark.parametrize("wrong", [(1, 0, 0), (2, 1, 1), (1, 1, 2), (1, 1, 0), (1, 1), None, 0, "111", (1.5, 1, 1)])
+def _betti_over_the_reals_unsigned(K):  # the 0/1 matrices' ranks over the reals: no signs
+    n = [len(sl.k_simplices(K, k)) for k in range(3)]
+    r = [0] + [int(np.linalg.matrix_rank(sl.boundary_matrix(K, k).astype(float))) for k in (1, 2)] + [0]
+    return tuple(n[k] - r[k] - r[k + 1] for k in range(3))
+
+
+def _cycles_only(K):  # dim Z_k, forgetting the boundaries
+    return tuple(len(sl.k_simplices(K, k)) - sl.rank_mod2(sl.boundary_matrix(K, k)) for k in range(3))
+
+
+@pytest.mark.parametrize("wrong", [(1, 0, 0), (2, 1, 1), (1, 1, 2), (1, 1, 0), (1, 1), None, 0, "111", (1.5, 1, 1),
+                                   (True, True, True), np.array([True, True, True]), (1, 1, 1, 0), (1, 2, 1),
+                                   _betti_over_the_reals_unsigned(RP2), _cycles_only(RP2)])
 def test_betti_mistakes_fail(wrong, capsys):
     assert not check.complex_betti(wrong, RP2).passed
     out = capsys.readouterr().out
@@ -94,6 +109,20 @@ def test_cycles_right_answer_passes(capsys):
 def test_cycles_mistakes_fail(cycle, bounds, capsys):
     assert not check.cycles_and_boundaries(cycle, bounds, CHAINS, TORUS).passed
     assert "✗" in capsys.readouterr().out
+
+
+def test_right_answers_in_other_forms_pass(capsys):
+    for c, b in ((tuple(CYCLE), tuple(BOUNDS)), (np.array(CYCLE), np.array(BOUNDS)), ([np.bool_(x) for x in CYCLE], BOUNDS)):
+        assert check.cycles_and_boundaries(c, b, CHAINS, TORUS).passed
+
+
+@pytest.mark.parametrize("cycle, bounds", [(CYCLE, [True, True, False, True]), ([True, True, True, True], BOUNDS),
+                                           (np.array(True), np.array(False)), ([CYCLE], [BOUNDS])])
+def test_cycles_messages_do_not_name_the_chain(cycle, bounds, capsys):
+    """With two possible answers per chain, naming the wrong chain would give its answer away."""
+    r = check.cycles_and_boundaries(cycle, bounds, CHAINS, TORUS)
+    assert not r.passed and "chain 0" not in r.message and "chain 2" not in r.message and "first" not in r.message
+    assert "`bounds`" in r.message or "`cycle`" in r.message
 
 
 def test_a_boundary_that_is_not_a_cycle_gets_the_hint(capsys):

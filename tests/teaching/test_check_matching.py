@@ -1,4 +1,4 @@
-"""Self-checks of lessons 11–12 (shapelab/check/matching.py).
+"""Self-checks of lessons 13–14 (shapelab/check/matching.py).
 
 For every check: an independent correct student function passes, a plausible wrong
 one fails with the first failing input in the message, and a crashing one is

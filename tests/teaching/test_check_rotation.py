@@ -1,4 +1,4 @@
-"""Self-checks of lessons 13–15 (shapelab/check/rotation.py).
+"""Self-checks of lessons 15–17 (shapelab/check/rotation.py).
 
 For every check: an independent correct student function passes, a plausible wrong
 one fails with the first failing input in the message, and a crashing one is
