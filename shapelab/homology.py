@@ -511,7 +511,7 @@ def positive_simplices(order: Sequence[Sequence[int]]) -> list:
     *negative*). A vertex is always positive. Which class dies at a death is
     decided by the elder rule, through the reduction of the boundary matrix (lesson 11).
 
-    Each step asks :func:`is_boundary`'s question of :math:`\partial\sigma` and the
+    Each step asks :func:`is_boundary`'s question of :math:`\\partial\\sigma` and the
     simplices before it; the answer is kept up to date exactly, one elimination step per
     simplex (the boundaries entered so far stay reduced mod 2), rather than by a fresh
     rank of every prefix.

@@ -284,8 +284,8 @@ def flow_sinks(student: Callable[[Filtration, float], Sequence[int]]) -> CheckRe
     ✗ the sinks of the discrete flow: not quite. First failing input (case 1):...
     """
     from ..balls import Balls
-    from ..filtration import alpha_filtration
     from ..cavities.flow import discrete_flow
+    from ..filtration import alpha_filtration
     from ._runner import run_check
 
     rng = np.random.default_rng(7)

@@ -75,8 +75,8 @@ def discrete_flow(
     >>> print(sl.plot.alt_text(fig))
     discrete flow at τ = 0: 1 pocket(s), 0 void(s): the discrete flow of 112 disks at τ = 0 over 203 triangles, 174 of them in K (grey); 1 pocket (orange, hatched //), 0 voids (vermillion, hatched xx), the other empty triangles flowing to the outside (white); 2 sinks (black dots), 1 mouth edge (thick reddish purple), arrows across the edges the flow crosses.
     """
-    from ..filtration import as_filtration
     from ..cavities.flow import discrete_flow as compute_flow
+    from ..filtration import as_filtration
 
     F = as_filtration(F, "plot.discrete_flow")
     balls = F.balls
