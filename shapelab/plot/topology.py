@@ -1293,7 +1293,9 @@ def channel_profile(
 
 
 # ==================================================== boundary matrix, voxel slices
-def reduced_matrix(D, R, names, low=None, *, title=None):
+def reduced_matrix(
+    D: ArrayLike, R: ArrayLike, names: Sequence[str], low: ArrayLike | None = None, *, title: str | None = None
+) -> Figure:
     """The boundary matrix :math:`D` and its reduction :math:`R` side by side, with the
     lowest ones of :math:`R` in red and crossed (Notes §23.1; the persistence algorithm
     of Edelsbrunner, Letscher and Zomorodian 2002).
@@ -1358,7 +1360,10 @@ def reduced_matrix(D, R, names, low=None, *, title=None):
     Rl[low[j], j] = 2
     fig, axes_ = new_figure(1, 2, size=SLIDE)
     cmap = ListedColormap(["white", COLORS["ball_edge"], COLORS["red"]])
-    for ax, M, sub in ((axes_[0], dense[0], "D, the boundary matrix"), (axes_[1], Rl, "R, reduced: lowest ones in red, crossed")):
+    for ax, M, sub in (
+        (axes_[0], dense[0], "D, the boundary matrix"),
+        (axes_[1], Rl, "R, reduced: lowest ones in red, crossed"),
+    ):
         ax.imshow(M, cmap=cmap, vmin=0, vmax=2)
         ax.set_xticks(range(n), names, rotation=90)
         ax.set_yticks(range(n), names)
@@ -1379,7 +1384,13 @@ def reduced_matrix(D, R, names, low=None, *, title=None):
     return fig
 
 
-def voxel_slice(labels, grid, *, title=None, ax=None):
+def voxel_slice(
+    labels: np.ndarray,
+    grid: tuple[np.ndarray, np.ndarray, np.ndarray],
+    *,
+    title: str | None = None,
+    ax: Axes | None = None,
+) -> Figure:
     """A slice of a voxelized complement (:func:`shapelab.oracles.voxel_complement`):
     the union grey, the unbounded component white, each bounded component (a void) in
     a colour of the palette, in the :math:`z`-slice that cuts most void voxels
@@ -1431,11 +1442,21 @@ def voxel_slice(labels, grid, *, title=None, ax=None):
     n = max(int(labels.max()) - 1, 0)
     word = f"{n} bounded component{'s' if n != 1 else ''}"
     colors = ["#D9D9D9", "white", *[PALETTE[(2 + i) % len(PALETTE)] for i in range(n)]]
-    ax.imshow(labels[:, :, k].T, origin="lower", extent=(xs[0], xs[-1], ys[0], ys[-1]),
-              cmap=ListedColormap(colors), vmin=-0.5, vmax=n + 1.5, interpolation="nearest")
+    ax.imshow(
+        labels[:, :, k].T,
+        origin="lower",
+        extent=(xs[0], xs[-1], ys[0], ys[-1]),
+        cmap=ListedColormap(colors),
+        vmin=-0.5,
+        vmax=n + 1.5,
+        interpolation="nearest",
+    )
     ax.set_title(title if title is not None else word)
     ax.set_xlabel("x (Å)")
     ax.set_ylabel("y (Å)")
-    describe(ax, f"A slice at z = {zs[k]:.1f} Å through the voxels: the union grey, the outside white, "
-                 f"{word} of the complement in colour")
+    describe(
+        ax,
+        f"A slice at z = {zs[k]:.1f} Å through the voxels: the union grey, the outside white, "
+        f"{word} of the complement in colour",
+    )
     return fig
