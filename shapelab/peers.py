@@ -238,7 +238,7 @@ def voxel_diagrams(points: ArrayLike, side: float, pad: float) -> PeerDiagrams:
     --------
     >>> from shapelab.datasets import sample_shape
     >>> from shapelab.peers import voxel_diagrams
-    >>> # the lesson's torus (lesson 17), with or without GUDHI
+    >>> # the lesson's torus (lesson 19), with or without GUDHI
     >>> vox = voxel_diagrams(sample_shape("torus", 400, seed=5), side=0.05, pad=0.7)
     >>> life = vox[1][:, 1] - vox[1][:, 0]
     >>> int((life > 0.2).sum())  # the torus's two loops

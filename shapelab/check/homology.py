@@ -106,9 +106,9 @@ def complex_betti(betti: Sequence[int], simplices: Iterable[Sequence[int]]) -> C
     --------
     >>> circle = [[0], [1], [2], [0, 1], [1, 2], [0, 2]]
     >>> ok = complex_betti([1, 1], circle)
-    ✓ Betti numbers (β0, β1, β2): correct.
+    ✓ Betti numbers (β0, β1): correct.
     >>> bad = complex_betti([1, 0], circle)
-    ✗ Betti numbers (β0, β1, β2): not quite: 1 of 2 entries differ, the first at index 1.
+    ✗ Betti numbers (β0, β1): not quite: 1 of 2 entries differ, the first at index 1.
     """
     from .. import homology
 
@@ -148,7 +148,7 @@ def cycles_and_boundaries(
     >>> ok = cycles_and_boundaries([True, False], [True, False], chains, disk)
     ✓ cycles and boundaries: correct.
     >>> bad = cycles_and_boundaries([True, False], [False, False], chains, disk)
-    ✗ cycles and boundaries: not quite: `boundary`: 1 of 2 entries are wrong, the first for chain 0.
+    ✗ cycles and boundaries: not quite: `bounds`: 1 of 2 entries is wrong (a chain c is a boundary when ∂x = c has a solution x one dimension up: c as an extra column leaves the rank of that boundary matrix unchanged).
     """
     from .. import homology
 

@@ -254,7 +254,7 @@ def show_quiz(part: str) -> None:
     Examples
     --------
     >>> quiz_markdown("I").splitlines()[0]
-    '**Quiz, Part I: the union of balls (lessons 00–05).** Answer with a dict `{number: letter}`.'
+    '**Quiz, Part I: the union of balls (lessons 00–06).** Answer with a dict `{number: letter}`.'
     >>> show_quiz("I")  # in a notebook: the questions as Markdown
     <IPython.core.display.Markdown object>
     """

@@ -231,7 +231,7 @@ def icp_step(
     >>> type(fig).__name__
     'Figure'
     >>> print(sl.plot.alt_text(fig))
-    3D view of ICP iteration 0 of 4: the source (30 dots) at iteration 0 over the fixed target (30 squares), 30 closest-point pairs drawn as lines; mean squared error 0.192; open circles show the source after the next step.
+    3D view of ICP iteration 0 of 3: the source (30 dots) at iteration 0 over the fixed target (30 squares), 30 closest-point pairs drawn as lines; mean squared error 0.192; open circles show the source after the next step.
     """
     if not isinstance(result, ICPResult):
         raise TypeError(f"result must be an ICPResult, got {type(result).__name__}")
@@ -338,7 +338,7 @@ def icp_convergence(
     >>> type(fig).__name__
     'Figure'
     >>> print(sl.plot.alt_text(fig))
-    ICP convergence: the mean squared error against the iteration on a log scale, one line and marker shape per run. ICP: 4 iterations, MSE from 0.186 to 0.00656, converged.
+    ICP convergence: the mean squared error against the iteration on a log scale, one line and marker shape per run. ICP: 2 iterations, MSE from 0.186 to 0.00656, converged.
     """
     runs = result if isinstance(result, dict) else {"ICP": result}
     if not runs:
