@@ -30,10 +30,11 @@ ONE = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "
 
 
 def _worker(side: str, name: str) -> None:
+    from shapelab.power import triangulation_report
+
     from benchmarks.cases.degenerate import balls_of
     from shapelab import alpha_filtration
     from shapelab.datasets import structure
-    from shapelab.power import triangulation_report
 
     b = balls_of(name)
     warm = structure("1hvr").balls

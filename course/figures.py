@@ -379,6 +379,35 @@ def l01_power_diagram():
 
 
 @register(
+    "l02_homology_cycle",
+    "A triangulated annulus: its inner ring is a 1-cycle that bounds no 2-chain, so "
+    "β₁ = 1 (Betti numbers over Z/2 as ranks of the boundary matrices).",
+    source="Lesson 02",
+    lesson="02_homology",
+    needs=("plot.simplicial_complex",),
+)
+def l02_homology_cycle():
+    import numpy as np
+
+    fig, ax = _slide()
+    k = 6
+    outer = [(np.cos(2 * np.pi * i / k) * 2, np.sin(2 * np.pi * i / k) * 2) for i in range(k)]
+    inner = [(np.cos(2 * np.pi * (i + 0.5) / k), np.sin(2 * np.pi * (i + 0.5) / k)) for i in range(k)]
+    positions = outer + inner
+    triangles = [(i, (i + 1) % k, k + i) for i in range(k)] + [((i + 1) % k, k + i, k + (i + 1) % k) for i in range(k)]
+    simplices = sorted({tuple(sorted(f)) for t in triangles for r in (1, 2, 3) for f in _faces(t, r)})
+    ring = [tuple(sorted((k + i, k + (i + 1) % k))) for i in range(k)]
+    _plot().simplicial_complex(simplices, positions, chain=ring, ax=ax, title="A cycle that bounds nothing")
+    return fig
+
+
+def _faces(simplex, r):
+    from itertools import combinations
+
+    return combinations(simplex, r)
+
+
+@register(
     "l02_growth",
     "The same disks grown: at τ = −0.3 the dual complex has a hole, at τ = 3 the "
     "union is one piece without holes, and so is K: K has the topology of the union.",
@@ -453,6 +482,21 @@ def l06_voids_c60():
 def l07_pockets_bowl():
     fig, ax = _slide(projection="3d")
     _plot().pockets(_sl().alpha_filtration(_datasets().bowl()), ax=ax)
+    return fig
+
+
+@register(
+    "l09_pocket_flow",
+    "The discrete flow on the empty triangles of the flask of Figure 23.2: arrows across the edges each "
+    "triangle's orthocentre lies beyond, the sinks, and the regions that do not drain to infinity (the pockets).",
+    source="Lesson 09",
+    lesson="09_pocket_flow",
+    needs=("plot.discrete_flow", "datasets.figure_23_2", "alpha_filtration"),
+)
+def l09_pocket_flow():
+    fig, ax = _slide()
+    flask, _ = _datasets().figure_23_2()
+    _plot().discrete_flow(_sl().alpha_filtration(flask), 0.0, ax=ax)
     return fig
 
 

@@ -44,7 +44,7 @@ PREREQUISITES: dict[str, tuple[str, ...]] = {
     "06_dual_complex_3d": ("02_homology", "03_dual_complex", "04_alpha_filtration"),
     "07_voids": ("02_homology", "04_alpha_filtration", "06_dual_complex_3d"),
     "08_pockets": ("02_homology", "04_alpha_filtration", "07_voids"),
-    "09_pocket_flow": ("08_pockets",),
+    "09_pocket_flow": ("01_power_diagrams", "07_voids", "08_pockets"),
     "10_tunnels": ("02_homology", "07_voids", "08_pockets"),
     "11_persistence": ("02_homology", "08_pockets", "10_tunnels"),
     "12_molecule_case_study": ("08_pockets", "10_tunnels", "11_persistence"),

@@ -66,8 +66,12 @@ def text(stem: str) -> str:
         f"[`{module}`](../{module}) ({lines_of(module):,} lines, docstrings included). "
         "Open it beside the lesson and read it top to bottom: it is written in the notes' words. "
         "Calls into `shapelab._engine` (exact predicates, certificates, fast kernels) are the "
-        "machinery behind `precision=\"exact\"`; you may skip them."
+        'machinery behind `precision="exact"`; you may skip them.'
     )
+
+
+#: on the page and in the student edition, not on the slides
+_METADATA = {"slideshow": {"slide_type": "skip"}}
 
 
 def _cell_index(cells: list) -> int | None:
@@ -82,17 +86,20 @@ def refresh(path: Path, check: bool = False) -> bool:
     nb = json.loads(path.read_text(encoding="utf-8"))
     want = text(path.stem)
     i = _cell_index(nb["cells"])
-    if i is not None and "".join(nb["cells"][i]["source"]) == want:
+    if i is not None and "".join(nb["cells"][i]["source"]) == want and nb["cells"][i]["metadata"] == _METADATA:
         return True
     if check:
         return False
-    cell = {"cell_type": "markdown", "id": f"read-the-code-{path.stem[:2]}",
-            "metadata": {"slideshow": {"slide_type": "notes"}},
-            "source": want.splitlines(keepends=True)}
+    cell = {
+        "cell_type": "markdown",
+        "id": f"read-the-code-{path.stem[:2]}",
+        "metadata": _METADATA,
+        "source": want.splitlines(keepends=True),
+    }
     if i is None:
         nb["cells"].insert(1, cell)
     else:
-        nb["cells"][i] = {**nb["cells"][i], "source": cell["source"]}
+        nb["cells"][i] = {**nb["cells"][i], "source": cell["source"], "metadata": cell["metadata"]}
     path.write_text(json.dumps(nb, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
     return True
 

@@ -62,7 +62,7 @@ def is_public(module: str) -> bool:
 
 def _nonblank(lines: list[str], node: ast.AST) -> int:
     start = min([node.lineno] + [d.lineno for d in getattr(node, "decorator_list", [])])
-    return sum(1 for line in lines[start - 1:node.end_lineno] if line.strip())
+    return sum(1 for line in lines[start - 1 : node.end_lineno] if line.strip())
 
 
 class _Module:
@@ -92,7 +92,9 @@ class _Module:
                 for alias in node.names:
                     if alias.name.startswith("shapelab"):
                         self.imports[alias.asname or alias.name.split(".")[0]] = (
-                            alias.name if alias.asname else "shapelab", None)
+                            alias.name if alias.asname else "shapelab",
+                            None,
+                        )
 
     def _resolve_from(self, node: ast.ImportFrom) -> str:
         if node.level == 0:
@@ -221,7 +223,9 @@ def sizes(own: bool = False) -> dict[str, dict[str, int]]:
 def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     result, own = sizes(), sizes(own=True)
-    print(f"| algorithm | function | reading size (lines, limit {LIMIT}) | of it new (the other rows' code not counted) | public modules |")
+    print(
+        f"| algorithm | function | reading size (lines, limit {LIMIT}) | of it new (the other rows' code not counted) | public modules |"
+    )
     print("|---|---|---:|---:|---:|")
     for label, per in result.items():
         total = sum(per.values())

@@ -41,7 +41,7 @@ def count(path: Path) -> dict:
         text = "".join(cell["source"])
         pieces, last = [], 0
         for m in _HEADING.finditer(text):
-            pieces.append((None, text[last:m.start()]))
+            pieces.append((None, text[last : m.start()]))
             pieces.append((m, m.group(0)))
             last = m.end()
         pieces.append((None, text[last:]))
@@ -64,8 +64,7 @@ def length(c: dict) -> int:
 
 
 def table() -> str:
-    rows = ["| lesson | words (limit %d) | of them references | going deeper |" % LIMIT,
-            "|---|---:|---:|---:|"]
+    rows = [f"| lesson | words (limit {LIMIT}) | of them references | going deeper |", "|---|---:|---:|---:|"]
     for path in sorted((ROOT / "lessons").glob("[0-9][0-9]_*.ipynb")):
         c = count(path)
         rows.append(f"| {path.stem} | {length(c):,} | {c['references']:,} | {c['deeper']:,} |")
@@ -76,8 +75,7 @@ def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     print(table())
     if "--check" in argv:
-        over = [p.stem for p in sorted((ROOT / "lessons").glob("[0-9][0-9]_*.ipynb"))
-                if length(count(p)) > LIMIT]
+        over = [p.stem for p in sorted((ROOT / "lessons").glob("[0-9][0-9]_*.ipynb")) if length(count(p)) > LIMIT]
         if over:
             print(f"over {LIMIT} words: {', '.join(over)}", file=sys.stderr)
             return 1

@@ -155,7 +155,6 @@ _SUBMODULES = {
     "widgets",
     "check",
     "simplification",
-    "report",
     "cavity_report",  # moved: shapelab.report (_MOVED)
     "tracking",
     "tools",

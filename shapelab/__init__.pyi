@@ -30,7 +30,6 @@ from . import power as power
 from . import predicates as predicates
 from . import quaternion as quaternion
 from . import registration as registration
-from . import report as report
 from . import rotation as rotation
 from . import simplification as simplification
 from . import tools as tools

@@ -62,8 +62,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._engine import persistence as _topology
 from ._engine import alpha as engine
+from ._engine import persistence as _topology
 from ._toolkit.validate import as_bbox, as_precision, as_tau, check_balls, freeze
 from .balls import Balls
 from .triangulation import clipped_cells, orthosphere, power_diagram, regular_triangulation
@@ -687,28 +687,6 @@ def _attached_flags(F: Filtration) -> tuple:
             raise ValueError("F: its simplices are not those of alpha_filtration(F.balls)")
         out.append(freeze(flags[j][order]))
     return tuple(out)
-
-
-def simplices_up_to(balls: Balls, select) -> list:
-    """The simplices whose entry times ``v`` (input units) pass ``select(v)`` (a
-    boolean array), per dimension (input indices, unordered), without building the
-    :class:`Filtration`: what :func:`shapelab.union_measure` needs.  Same entry times
-    as :func:`alpha_filtration`.  ``select`` must be monotone (if it accepts v, it
-    accepts every smaller value), so that the result is a complex.  Shared with
-    :mod:`shapelab.measure`; not in ``__all__``.  Exact (the engine's entry times)."""
-    res = engine.entry_times(balls)
-    if res is None:
-        return []
-    fr, faces, _, vals, dim = res
-    s2 = fr.scale**2
-    out = []
-    for j in range(dim + 1):
-        v = vals[j] * s2 if s2 != 1.0 else vals[j]
-        rows = faces[j][select(v)]
-        if rows.shape[0] == 0:
-            break
-        out.append(fr.keep[rows] if fr.keep.size != len(balls) else rows)
-    return out
 
 
 def dual_complex(balls: Balls) -> Complex:

@@ -289,7 +289,10 @@ def hausdorff_pair(A, B, *, method: Method = "auto") -> tuple[DirectedHausdorff,
     else:
         *ab, problem = _engine.directed(A, B, method)
         *ba, _ = _engine.directed(A, B, method, swap=True, problem=problem)
-    return (DirectedHausdorff(float(np.sqrt(ab[0])), ab[1], ab[2]), DirectedHausdorff(float(np.sqrt(ba[0])), ba[1], ba[2]))
+    return (
+        DirectedHausdorff(float(np.sqrt(ab[0])), ab[1], ab[2]),
+        DirectedHausdorff(float(np.sqrt(ba[0])), ba[1], ba[2]),
+    )
 
 
 # --------------------------------------------------------------------------- #

@@ -267,15 +267,15 @@ def rank_mod2(M: ArrayLike) -> int:
         raise TypeError(f"M: expected a 2-D matrix of 0s and 1s, got {type(M).__name__}")
     try:
         A = np.asarray(M)
-    except ValueError as exc:                          # ragged nested lists
+    except ValueError as exc:  # ragged nested lists
         raise ValueError(f"M: expected a 2-D matrix with rows of equal length ({exc})") from None
     if A.ndim != 2:
         raise ValueError(f"M: expected a 2-D matrix, got shape {A.shape}")
     if A.size and A.dtype == object and all(isinstance(x, int) and not isinstance(x, bool) for x in A.flat):
-        A = np.vectorize(lambda x: x % 2, otypes=[np.uint8])(A)   # Python ints of any size, reduced exactly
+        A = np.vectorize(lambda x: x % 2, otypes=[np.uint8])(A)  # Python ints of any size, reduced exactly
     if A.size and not (np.issubdtype(A.dtype, np.integer) or A.dtype == np.bool_):
         raise TypeError(f"M: expected integer or boolean entries (0 and 1), got dtype {A.dtype}")
-    A = (A % 2).astype(np.uint8)                       # parity is exact in every integer dtype
+    A = (A % 2).astype(np.uint8)  # parity is exact in every integer dtype
     rank = 0
     for col in range(A.shape[1]):
         if rank == A.shape[0]:
@@ -556,9 +556,9 @@ def positive_simplices(order: Sequence[Sequence[int]]) -> list:
     # rank of the whole prefix; here it is answered incrementally and exactly: the boundaries
     # of the k-simplices entered so far are kept reduced mod 2 (a chain is a Python int, bit
     # i for the i-th (k-1)-simplex to enter), so ∂σ is a boundary iff it reduces to zero.
-    index: dict = {}                                   # simplex -> its bit among those of its dimension
-    count: Counter = Counter()                         # how many simplices of each dimension entered
-    reduced: dict = {}                                 # k -> {highest bit: reduced boundary}
+    index: dict = {}  # simplex -> its bit among those of its dimension
+    count: Counter = Counter()  # how many simplices of each dimension entered
+    reduced: dict = {}  # k -> {highest bit: reduced boundary}
     out = []
     for s in order:
         k = len(s) - 1
@@ -571,9 +571,9 @@ def positive_simplices(order: Sequence[Sequence[int]]) -> list:
                 v ^= 1 << index[f]
             basis = reduced.setdefault(k, {})
             while v and v.bit_length() - 1 in basis:
-                v ^= basis[v.bit_length() - 1]         # add an earlier boundary, mod 2
+                v ^= basis[v.bit_length() - 1]  # add an earlier boundary, mod 2
             if v:
-                basis[v.bit_length() - 1] = v          # ∂σ did not bound: σ is negative
+                basis[v.bit_length() - 1] = v  # ∂σ did not bound: σ is negative
             out.append(not v)
         else:
             out.append(True)

@@ -46,6 +46,11 @@ part of sphere :math:`l` inside all other balls of :math:`\sigma`),
 :math:`z_l` to the power plane :math:`H_{lm}`, and :math:`G_{lm}^\sigma` the measure of
 the flat face :math:`H_{lm} \cap B_l \cap W_l^\sigma \cap W_m^\sigma`.
 
+One function per number of balls, in the order below: :func:`vertex_pieces`,
+:func:`edge_pieces`, :func:`triangle_pieces_2d`, :func:`triangle_pieces_3d`,
+:func:`tetrahedron_pieces`; :func:`measure_from_simplices` sums them with the signs of
+the formula.
+
 * **vertex** (:math:`W = \mathbb{R}^d`): :math:`\pi r^2` and :math:`2\pi r` (2D),
   :math:`\tfrac43 \pi r^3` and :math:`4 \pi r^2` (3D).
 * **edge** (:math:`W_l` is the half-space beyond :math:`H_{lm}`), with
@@ -108,11 +113,9 @@ import numpy as np
 from ._engine import measure as _engine
 from ._toolkit import tolerances as tol
 from ._toolkit.geometry import cross, dot
-from ._toolkit.validate import (
-    as_tau,
-)
+from ._toolkit.validate import as_tau, freeze
 from .balls import Balls
-from .filtration import as_filtration, simplices_up_to
+from .filtration import as_filtration
 
 __all__ = [
     "UnionMeasure",
@@ -139,8 +142,7 @@ class UnionMeasure:
     boundary : float
         Perimeter (2D) or surface area (3D) of the union.
     ball_measure : ndarray, shape (n,)
-        Each ball's share :math:`\\operatorname{vol}(B_i \\cap \\Pi(B_i))` of
-        ``measure`` (0 for balls whose power cell misses them); sums to ``measure``.
+        Each ball's share :math:`\\operatorname{vol}(B_i \\cap \\Pi(B_i))`; sums to ``measure``.
     ball_boundary : ndarray, shape (n,)
         The measure of :math:`\\partial B_i \\cap \\partial U`; sums to ``boundary``.
     terms : tuple of float
@@ -150,8 +152,8 @@ class UnionMeasure:
     counts : tuple of int
         Number of k-simplices of K, k = 0..d.
 
-    Properties ``area``, ``perimeter`` (2D), ``volume``, ``surface_area`` (3D) name
-    the two numbers in the usual words; in 3D ``area`` is the surface area.
+    Properties ``area``, ``perimeter`` (2D), ``volume``, ``surface_area`` (3D) name the
+    two numbers (in 3D ``area`` is the surface area).
 
     See Also
     --------
@@ -202,161 +204,66 @@ class UnionMeasure:
         return f"UnionMeasure(dim={self.dim}, tau={self.tau:g}, {what}, counts={self.counts})"
 
 
-# ====================================================== small vector helpers
+# ============================================================ the pair geometry
 # Vectors are stored component-first, shape (d, m): one row per coordinate, one
-# column per simplex, so that every operation runs on long contiguous rows.
+# column per simplex (the engine's layout, ``shapelab._engine.measure``).
 
-
-def _norm(a):
-    return np.sqrt(dot(a, a))
-
-
-def _unit(a, fallback=None):
-    """a / |a|; the zero vector stays zero (or becomes ``fallback``)."""
-    n = _norm(a)
-    ok = n > 0
-    u = a / np.where(ok, n, 1.0)
-    if fallback is not None:
-        u = np.where(ok, u, fallback)
-    return u
-
-
-def _cross_norm(a, b):
-    """|a x b| for 2- or 3-vectors."""
-    if a.shape[0] == 2:
-        return np.abs(a[0] * b[1] - a[1] * b[0])
-    return _norm(cross(a, b))
-
-
-def _angle(a, b):
-    """The angle between vectors a and b in [0, pi], accurately (atan2)."""
-    return np.arctan2(_cross_norm(a, b), dot(a, b))
-
-
-def _tangent_angle(um, uk, p):
-    """The angle between the projections of ``um`` and ``uk`` on the plane orthogonal
-    to the unit vector ``p``: ``_angle(um - (um.p) p, uk - (uk.p) p)`` without forming
-    them.  The projections' cross product is parallel to p, of length
-    :math:`|\\det(u_m, u_k, p)|`, and their dot product is
-    :math:`u_m\\cdot u_k - (u_m\\cdot p)(u_k\\cdot p)`."""
-    return np.arctan2(np.abs(dot(cross(um, uk), p)), dot(um, uk) - dot(um, p) * dot(uk, p))
-
-
-# ============================================================ pair geometry
 #: A pair of balls whose chord disk has squared radius below this fraction of
 #: max(r_a^2, r_b^2, d_ab^2) is treated as tangent: rounding noise of relative size
 #: eps in rho^2 would otherwise become noise of size sqrt(eps) in the angles.
-#: Relative to the pair's own size (its radii and distance, in coordinates relative
-#: to the simplex's first centre): the input's extent and offset do not enter.
 TANGENT_TOL = tol.MEASURE_TANGENT
-
-
-class _Pair:
-    """Geometry of the pair of local vertices (a, b) of every simplex.
-
-    u: unit vector z_a -> z_b; t: signed distance from z_a to the power plane
-    H_ab; t_ba = |z_b - z_a| - t; f: centre of the chord disk (on H_ab, on the line
-    of centres); rho2: its squared radius (0 for tangent or disjoint pairs).
-    """
-
-    __slots__ = ("u", "t", "t_ba", "f", "rho2")
-
-    def __init__(self, Z, W, a, b, tangent=TANGENT_TOL):
-        delta = Z[b] - Z[a]
-        d = _norm(delta)
-        ok = d > 0
-        safe = np.where(ok, d, 1.0)
-        self.u = delta / safe
-        self.t = np.where(ok, (d * d + W[a] - W[b]) / (2.0 * safe), 0.0)
-        self.t_ba = d - self.t
-        self.f = Z[a] + self.t * self.u
-        rho2 = W[a] - self.t * self.t
-        # rounding-level overlaps are tangencies (see TANGENT_TOL)
-        self.rho2 = np.where(rho2 <= tangent * np.maximum(np.maximum(W[a], W[b]), d * d), 0.0, rho2)
+#: flat top simplices (volume below this fraction of the longest edge^d) take the
+#: limits of the closed forms (``precision="exact"``, ``shapelab._engine.measure``)
+FLAT_TOL = _engine.FLAT_TOL
+#: the tie rule of "K just before τ" (``shapelab._engine.measure.TIE_TOL``)
+TIE_TOL = _engine.TIE_TOL
 
 
 def _pairs(Z, W, tangent=TANGENT_TOL):
-    """All pairs of a simplex: ``geo[a, b]`` with u, t seen from a (both orders);
-    chords below ``tangent`` (relative) count as tangencies."""
+    """Every pair a, b of balls of each simplex, seen from a: ``geo[a, b] = (u, t, f,
+    rho2)``, the unit vector :math:`z_a \to z_b`, the signed distance
+    :math:`t_{ab} = (d_{ab}^2 + r_a^2 - r_b^2)/(2 d_{ab})` from :math:`z_a` to the power
+    plane :math:`H_{ab}`, the centre f of the chord disk and its squared radius
+    :math:`\rho^2 = r_a^2 - t_{ab}^2` (0 below ``tangent``: a tangency)."""
     geo = {}
     for a, b in combinations(range(Z.shape[0]), 2):
-        p = _Pair(Z, W, a, b, tangent)
-        geo[a, b] = (p.u, p.t, p.f, p.rho2)
-        geo[b, a] = (-p.u, p.t_ba, p.f, p.rho2)
+        delta = Z[b] - Z[a]
+        d = _engine.norm(delta)
+        ok = d > 0
+        safe = np.where(ok, d, 1.0)
+        u = delta / safe
+        t = np.where(ok, (d * d + W[a] - W[b]) / (2.0 * safe), 0.0)
+        f = Z[a] + t * u
+        rho2 = W[a] - t * t
+        rho2 = np.where(rho2 <= tangent * np.maximum(np.maximum(W[a], W[b]), d * d), 0.0, rho2)
+        geo[a, b], geo[b, a] = (u, t, f, rho2), (-u, d - t, f, rho2)
     return geo
-
-
-def _solve_ortho(E, b):
-    """x with E[i] . x = b[i] for the rows E[i] (each (d, m)), x in span(E).
-
-    Closed forms for 1, 2 (Gram) and 3 (triple product) rows; returns x and the
-    determinant (0 for degenerate simplices, where x is set to 0)."""
-    k = len(E)
-    if k == 1:
-        g = dot(E[0], E[0])
-        det = g
-        x = E[0] * (b[0] / np.where(g != 0, g, 1.0))
-    elif k == 2:
-        g11, g12, g22 = dot(E[0], E[0]), dot(E[0], E[1]), dot(E[1], E[1])
-        det = g11 * g22 - g12 * g12
-        s = np.where(det != 0, det, 1.0)
-        l1 = (b[0] * g22 - b[1] * g12) / s
-        l2 = (g11 * b[1] - g12 * b[0]) / s
-        x = l1 * E[0] + l2 * E[1]
-    else:
-        c23, c31, c12 = cross(E[1], E[2]), cross(E[2], E[0]), cross(E[0], E[1])
-        det = dot(E[0], c23)
-        s = np.where(det != 0, det, 1.0)
-        x = (b[0] * c23 + b[1] * c31 + b[2] * c12) / s
-    x = np.where(det != 0, x, 0.0)
-    return x, det
-
-
-def _orthocenter(Z, W, idx=None):
-    """Orthocentre y of the simplices with local vertices ``idx`` (default all):
-    the point of the affine hull with equal power to all their balls, its power,
-    and the solve's determinant."""
-    idx = list(range(Z.shape[0])) if idx is None else list(idx)
-    z0 = Z[idx[0]]
-    E = [Z[i] - z0 for i in idx[1:]]
-    b = [0.5 * (dot(e, e) + W[idx[0]] - W[i]) for e, i in zip(E, idx[1:])]
-    x, det = _solve_ortho(E, b)
-    return z0 + x, dot(x, x) - W[idx[0]], det
-
-
-def _arc_angle(center, p, q, bisector):
-    """Angle (0..2pi) of the arc from p to q on a circle about ``center``, on the side
-    of the chord pq that ``bisector`` points to (continuous as the chord shrinks)."""
-    chord = q - p
-    c = _norm(chord)
-    qhat = _unit(chord)
-    n = bisector - dot(bisector, qhat) * qhat
-    n = _unit(n, fallback=_unit(bisector))
-    return 2.0 * np.arctan2(0.5 * c, dot(0.5 * (p + q) - center, n))
 
 
 def _e_dir(Z, geo, a, b, c):
     """Unit vector perpendicular to z_a z_b in aff(a, b, c), pointing to z_c."""
-    u = geo[a, b][0]
-    w = Z[c] - Z[a]
-    return _unit(w - dot(w, u) * u)
+    return _engine.towards(geo[a, b][0], Z[c] - Z[a])
 
 
-# ======================================================= pieces per simplex
-# Each returns (P, S): arrays (k+1, m) with the volume of B_l ∩ W_l^σ and the
-# boundary measure of ∂B_l ∩ W_l^σ, for local vertex l of each simplex.
+# =================================================== the closed forms (module docstring)
+# Each returns (P, S): arrays (k+1, m), the volume of B_l ∩ W_l^σ and the boundary
+# measure S_l of ∂B_l ∩ W_l^σ for local vertex l of each simplex, and
+# P_l = (r_l S_l - sum_m t_lm G_lm) / d (the divergence theorem).
 
 
-def _pieces_vertex(W, R, d):
+def vertex_pieces(W, R, d):
+    r"""One ball: :math:`\pi r^2`, :math:`2\pi r` (2D); :math:`\frac43\pi r^3`, :math:`4\pi r^2` (3D)."""
     if d == 2:
         return np.pi * W, _TWO_PI * R
     return (4.0 / 3.0) * np.pi * W * R, 4.0 * np.pi * W
 
 
-def _pieces_edge(Z, W, R, d, geo=None):
+def edge_pieces(Z, W, R, d, geo=None):
+    r"""Two balls, cut by their power plane: in 2D a circular segment,
+    :math:`S = 2r\operatorname{atan2}(\rho, t)`, :math:`G = 2\rho`; in 3D a spherical
+    cap, :math:`S = 2\pi r (r - t)` (Archimedes), :math:`G = \pi\rho^2`."""
     geo = _pairs(Z, W) if geo is None else geo
-    P = np.empty(W.shape)
-    S = np.empty(W.shape)
+    P, S = np.empty(W.shape), np.empty(W.shape)
     for a, b in ((0, 1), (1, 0)):
         _, t, _, rho2 = geo[a, b]
         if d == 2:
@@ -370,163 +277,122 @@ def _pieces_edge(Z, W, R, d, geo=None):
     return P, S
 
 
-def _pieces_top(Z, W, R, d, geo):
-    """Pieces of d-simplices (triangles in 2D, tetrahedra in 3D)."""
-    k1 = d + 1
+def triangle_pieces_2d(Z, W, R, geo):
+    r"""Three disks: a curvilinear triangle with corners :math:`c_n = f_{ab} + \rho_{ab}
+    e` (circles a, b meet on :math:`z_n`'s side); :math:`S_l = r_l\theta_l`, the arc of
+    circle l between its two corners, and :math:`G_{lm} = \lVert c_k - y \rVert`, the
+    chord from the orthocentre y to the corner."""
     m = Z.shape[2]
-    y, _, _ = _orthocenter(Z, W)
-    pairs = list(combinations(range(k1), 2))
-
-    # corner[n]: where the spheres of the other vertices meet, on z_n's side
-    corner = [None] * k1
-    if d == 2:
-        for n in range(3):
-            a, b = [v for v in range(3) if v != n]
-            f, rho2 = geo[a, b][2], geo[a, b][3]
-            corner[n] = f + np.sqrt(rho2) * _e_dir(Z, geo, a, b, n)
-    else:
-        for n in range(4):
-            face = [v for v in range(4) if v != n]
-            yf, pf, _ = _orthocenter(Z, W, face)
-            nrm = _unit(cross(Z[face[1]] - Z[face[0]], Z[face[2]] - Z[face[0]]))
-            side = np.sign(dot(Z[n] - Z[face[0]], nrm))
-            corner[n] = yf + (side * np.sqrt(np.maximum(-pf, 0.0))) * nrm
-
-    # flat faces G and arc angles phi of the circles ∂B_a ∩ H_ab, per pair
-    G, phi = {}, {}
-    for a, b in pairs:
-        f, rho2 = geo[a, b][2], geo[a, b][3]
-        others = [v for v in range(k1) if v not in (a, b)]
-        if d == 2:
-            (c,) = others
-            G[a, b] = np.sqrt(rho2) - dot(y - f, _e_dir(Z, geo, a, b, c))
-        else:
-            c, n = others
-            ck, cn = corner[c], corner[n]
-            ang = _arc_angle(f, ck, cn, _e_dir(Z, geo, a, b, c) + _e_dir(Z, geo, a, b, n))
-            tri = 0.5 * _norm(cross(ck - y, cn - y))
-            G[a, b] = tri + 0.5 * rho2 * (ang - np.sin(ang))
-            phi[a, b] = phi[b, a] = ang
-        G[b, a] = G[a, b]
-
-    P = np.empty((k1, m))
-    S = np.empty((k1, m))
-    for l in range(k1):
-        others = [v for v in range(k1) if v != l]
-        r = R[l]
-        if d == 2:
-            mm, kk = others
-            # the arc of circle l from its corner with circle mm to its corner with kk
-            theta = _arc_angle(Z[l], corner[kk], corner[mm], geo[l, mm][0] + geo[l, kk][0])
-            S[l] = r * theta
-        else:
-            rs = np.where(r > 0, r, 1.0)
-            ext = np.zeros(m)
-            for n in others:  # corner n lies on sphere l: exterior angle there
-                mm, kk = [v for v in others if v != n]
-                ph = (corner[n] - Z[l]) / rs
-                um, uk = geo[l, mm][0], geo[l, kk][0]
-                ext += _tangent_angle(um, uk, ph)
-            turn = sum(geo[l, mm][1] * phi[l, mm] for mm in others)
-            S[l] = np.where(r > 0, r * r * (_TWO_PI - ext) - r * turn, 0.0)
-        flat = sum(geo[l, mm][1] * G[l, mm] for mm in others)
-        P[l] = (r * S[l] - flat) / d
+    y, _, _ = _engine.orthocenter(Z, W)
+    corner = [None] * 3
+    for n in range(3):
+        a, b = [v for v in range(3) if v != n]
+        corner[n] = geo[a, b][2] + np.sqrt(geo[a, b][3]) * _e_dir(Z, geo, a, b, n)
+    G = {}
+    for a, b in combinations(range(3), 2):
+        (c,) = [v for v in range(3) if v not in (a, b)]
+        G[a, b] = G[b, a] = np.sqrt(geo[a, b][3]) - dot(y - geo[a, b][2], _e_dir(Z, geo, a, b, c))
+    P, S = np.empty((3, m)), np.empty((3, m))
+    for l in range(3):
+        mm, kk = [v for v in range(3) if v != l]
+        S[l] = R[l] * _engine.arc_angle(Z[l], corner[kk], corner[mm], geo[l, mm][0] + geo[l, kk][0])
+        P[l] = (R[l] * S[l] - sum(geo[l, v][1] * G[l, v] for v in (mm, kk))) / 2
     return P, S
 
 
-def _pieces_triangle3d(Z, W, R, geo=None):
-    """Pieces of triangles in 3D (W_l is a dihedral wedge)."""
+def triangle_pieces_3d(Z, W, R, geo=None):
+    r"""Three balls in 3D (:math:`W_l` a dihedral wedge along the line through y normal
+    to the triangle, which meets the spheres at the corner at height
+    :math:`h = \sqrt{-\pi(y)}`): Gauss–Bonnet, :math:`S = r^2 (2\pi - \sum\varepsilon) -
+    r \sum_m t_{lm}\varphi_{lm}`, and :math:`G_{lm}` the chord disk beyond a chord."""
     geo = _pairs(Z, W) if geo is None else geo
     m = Z.shape[2]
-    y, py, _ = _orthocenter(Z, W)
+    y, py, _ = _engine.orthocenter(Z, W)
     h = np.sqrt(np.maximum(-py, 0.0))
-    nrm = _unit(cross(Z[1] - Z[0], Z[2] - Z[0]))
+    nrm = _engine.unit(cross(Z[1] - Z[0], Z[2] - Z[0]))
     G, phi = {}, {}
     for a, b in ((0, 1), (0, 2), (1, 2)):
         (c,) = [v for v in range(3) if v not in (a, b)]
         f, rho2 = geo[a, b][2], geo[a, b][3]
         delta = dot(y - f, _e_dir(Z, geo, a, b, c))
-        # the chord disk beyond a chord at signed distance delta from its centre
-        # (half-chord h): area rho2 * half - delta * h, arc angle 2 * half
+        # the chord disk beyond a chord at distance delta from its centre, half-chord h
         half = np.arctan2(h, delta)
         G[a, b] = G[b, a] = rho2 * half - delta * h
         phi[a, b] = phi[b, a] = 2.0 * half
     corner = y + h * nrm
-    P = np.empty((3, m))
-    S = np.empty((3, m))
+    P, S = np.empty((3, m)), np.empty((3, m))
     for l in range(3):
         mm, kk = [v for v in range(3) if v != l]
         r = R[l]
         ph = (corner - Z[l]) / np.where(r > 0, r, 1.0)
-        um, uk = geo[l, mm][0], geo[l, kk][0]
-        ext = 2.0 * _tangent_angle(um, uk, ph)
+        ext = 2.0 * _engine.tangent_angle(geo[l, mm][0], geo[l, kk][0], ph)
         turn = geo[l, mm][1] * phi[l, mm] + geo[l, kk][1] * phi[l, kk]
         S[l] = np.where(r > 0, r * r * (_TWO_PI - ext) - r * turn, 0.0)
         P[l] = (r * S[l] - geo[l, mm][1] * G[l, mm] - geo[l, kk][1] * G[l, kk]) / 3.0
     return P, S
 
 
-#: flat top simplices (volume below this fraction of the longest edge^d) are the limits
-#: of the general formulas, evaluated by the engine (``shapelab._engine.measure``)
-FLAT_TOL = _engine.FLAT_TOL
+def tetrahedron_pieces(Z, W, R, geo):
+    r"""Four balls (:math:`W_l` a trihedral cone at y): Gauss–Bonnet with three
+    corners and three arcs, and :math:`G_{lm}` the chord disk cut by a wedge at y, a
+    triangle plus a circular segment :math:`\tfrac12\rho^2(\varphi - \sin\varphi)`."""
+    m = Z.shape[2]
+    y, _, _ = _engine.orthocenter(Z, W)
+    corner = [None] * 4  # corner n: where the other three spheres meet, on z_n's side
+    for n in range(4):
+        face = [v for v in range(4) if v != n]
+        yf, pf, _ = _engine.orthocenter(Z, W, face)
+        nrm = _engine.unit(cross(Z[face[1]] - Z[face[0]], Z[face[2]] - Z[face[0]]))
+        side = np.sign(dot(Z[n] - Z[face[0]], nrm))
+        corner[n] = yf + (side * np.sqrt(np.maximum(-pf, 0.0))) * nrm
+    G, phi = {}, {}
+    for a, b in combinations(range(4), 2):
+        c, n = [v for v in range(4) if v not in (a, b)]
+        ang = _engine.arc_angle(geo[a, b][2], corner[c], corner[n], _e_dir(Z, geo, a, b, c) + _e_dir(Z, geo, a, b, n))
+        tri = 0.5 * _engine.norm(cross(corner[c] - y, corner[n] - y))
+        G[a, b] = G[b, a] = tri + 0.5 * geo[a, b][3] * (ang - np.sin(ang))
+        phi[a, b] = phi[b, a] = ang
+    P, S = np.empty((4, m)), np.empty((4, m))
+    for l in range(4):
+        others = [v for v in range(4) if v != l]
+        r = R[l]
+        ext = np.zeros(m)
+        for n in others:  # corner n lies on sphere l: exterior angle there
+            mm, kk = [v for v in others if v != n]
+            ext += _engine.tangent_angle(geo[l, mm][0], geo[l, kk][0], (corner[n] - Z[l]) / np.where(r > 0, r, 1.0))
+        turn = sum(geo[l, v][1] * phi[l, v] for v in others)
+        S[l] = np.where(r > 0, r * r * (_TWO_PI - ext) - r * turn, 0.0)
+        P[l] = (r * S[l] - sum(geo[l, v][1] * G[l, v] for v in others)) / 3
+    return P, S
 
 
 def _pieces(Z, W, R, d, k, exact=True):
-    """Pieces of k-simplices.  A simplex in which two balls only touch has an
-    intersection of measure zero (it lies in their lens): its pieces are 0.  With
-    ``exact``, rounding-level chords are tangencies and flat top simplices take the
-    engine's limits; without, the plain closed forms (generic input)."""
+    """Pieces of k-simplices by the closed form for k + 1 balls; 0 where two balls
+    only touch.  ``exact``: rounding-level chords are tangencies, flat top simplices
+    take the engine's limits."""
     if k == 0:
-        return _pieces_vertex(W, R, d)
+        return vertex_pieces(W, R, d)
     geo = _pairs(Z, W, TANGENT_TOL if exact else 0.0)
     if k == 1:
-        return _pieces_edge(Z, W, R, d, geo)
-    touch = np.zeros(Z.shape[2], dtype=bool)
-    for a, b in combinations(range(k + 1), 2):
-        touch |= geo[a, b][3] <= 0.0
+        return edge_pieces(Z, W, R, d, geo)
+    touch = np.any([geo[a, b][3] <= 0.0 for a, b in combinations(range(k + 1), 2)], axis=0)
     with np.errstate(invalid="ignore", divide="ignore"):
-        if k == d:
-            P, S = _pieces_top(Z, W, R, d, geo)
-            flat = _engine.flatness(Z) < FLAT_TOL if exact else np.zeros(Z.shape[2], dtype=bool)
-            if flat.any():
-                P[:, flat], S[:, flat] = _engine.pieces_flat(
-                    Z[..., flat], W[:, flat], R[:, flat], d, _pieces_edge, _pieces_triangle3d
-                )
+        if k < d:
+            P, S = triangle_pieces_3d(Z, W, R, geo)
         else:
-            P, S = _pieces_triangle3d(Z, W, R, geo)
+            P, S = (triangle_pieces_2d if d == 2 else tetrahedron_pieces)(Z, W, R, geo)
+            if exact:
+                _engine.flat_limits(Z, W, R, d, P, S, edge_pieces, triangle_pieces_3d)
     P[:, touch] = 0.0
     S[:, touch] = 0.0
     return P, S
 
 
 # ============================================================ public entry
-#: A simplex with entry time v is in the complex measured at τ iff
-#: ``v + TIE_TOL * |v| < tau``: K is taken just before τ, and a simplex entering
-#: within TIE_TOL of τ *relative to its own entry time* counts as entering after τ
-#: (see union_measure).  The entry times are certified to relative accuracy
-#: ``ENTRY_TIME_RTOL`` (1e-9; exact zeros are exact), which TIE_TOL must exceed so
-#: that simplices whose exact entry times tie at τ are all left out
-#: (``shapelab/_toolkit/tolerances.py``, ``tests/library/test_tolerances.py``).
-TIE_TOL = tol.MEASURE_TIE
-
-
-def _before(values: np.ndarray, tau: float) -> np.ndarray:
-    """Which entry times count as before τ: ``v + TIE_TOL * |v| < tau`` (see
-    :data:`TIE_TOL`).  The left side increases with v, so the selection is closed
-    under faces (a face enters no later than its cofaces)."""
-    return values + TIE_TOL * np.abs(values) < tau
-
-
-_BLOCK = 8192
-
-
-def measure_from_simplices(
-    centers, weights, simplices, *, tau: float = 0.0, precision: str = "exact"
-) -> UnionMeasure:
+def measure_from_simplices(centers, weights, simplices, *, tau: float = 0.0, precision: str = "exact") -> UnionMeasure:
     """The short inclusion–exclusion formula over a given dual complex.
 
-    This is the engine of :func:`union_measure`, exposed so that a complex from
-    elsewhere (e.g. GUDHI) can be measured.
+    The sum of :func:`union_measure`, for a complex from elsewhere (e.g. GUDHI).
 
     Parameters
     ----------
@@ -534,8 +400,7 @@ def measure_from_simplices(
     weights : ndarray, shape (n,)
         Squared radii :math:`r_i^2 + \\tau` of the balls to measure.
     simplices : sequence of ndarray
-        ``simplices[k]`` is a (n_k, k+1) integer array of the k-simplices of the
-        dual complex K of these balls, k = 0, 1, ...
+        ``simplices[k]``: the (n_k, k+1) k-simplices of their dual complex K.
     tau : float
         Only recorded in the result.
     precision : {"exact", "fast"}, default "exact"
@@ -557,56 +422,27 @@ def measure_from_simplices(
     .. [1] H. Edelsbrunner, "The union of balls and its dual shape", *Discrete Comput.
            Geom.* 13:415-440, 1995. doi:10.1007/BF02574053
     """
-    Zall = np.asarray(centers, dtype=np.float64)
-    Wall = np.asarray(weights, dtype=np.float64)
+    Zall, Wall = np.asarray(centers, dtype=np.float64), np.asarray(weights, dtype=np.float64)
     n, d = Zall.shape
-    Rall = np.sqrt(np.maximum(Wall, 0.0))
-    ZT = np.ascontiguousarray(Zall.T)  # (d, n): gathers per coordinate are contiguous
-    Wpos = np.maximum(Wall, 0.0)
-    ball_measure = np.zeros(n)
-    ball_boundary = np.zeros(n)
+    R, W = np.sqrt(np.maximum(Wall, 0.0)), np.maximum(Wall, 0.0)
+    ball_measure, ball_boundary = np.zeros(n), np.zeros(n)
     terms, counts = [], []
     for k in range(d + 1):
-        simp = (
-            np.asarray(simplices[k], dtype=np.int64).reshape(-1, k + 1)
-            if k < len(simplices)
-            else np.zeros((0, k + 1), np.int64)
-        )
-        counts.append(int(simp.shape[0]))
-        if simp.shape[0] == 0:
-            terms.append(0.0)
-            continue
-        st = np.ascontiguousarray(simp.T)  # (k+1, m)
-        P = np.empty(st.shape)
-        S = np.empty(st.shape)
-        # in blocks: the ~100 temporaries of a block stay in cache and are reused
-        # from the heap instead of being mapped (and page-faulted) afresh
-        for a in range(0, st.shape[1], _BLOCK):
-            sb = st[:, a : a + _BLOCK]
-            # relative coordinates, component-first (k+1, d, m): exact for huge offsets
-            Z = np.empty((k + 1, d, sb.shape[1]))
-            for i in range(d):
-                z0 = ZT[i].take(sb[0])
-                for v in range(k + 1):
-                    np.subtract(ZT[i].take(sb[v]), z0, out=Z[v, i])
-            P[:, a : a + _BLOCK], S[:, a : a + _BLOCK] = _pieces(Z, Wpos[sb], Rall[sb], d, k, precision == "exact")
+        simp = simplices[k] if k < len(simplices) else np.zeros((0, k + 1), np.int64)
+        st = np.ascontiguousarray(np.asarray(simp, dtype=np.int64).reshape(-1, k + 1).T)  # (k+1, m)
+        counts.append(int(st.shape[1]))
+        P, S = np.empty(st.shape), np.empty(st.shape)  # per vertex of every k-simplex
+        for cols, Z in _engine.relative_blocks(Zall, st):
+            P[:, cols], S[:, cols] = _pieces(Z, W[st[:, cols]], R[st[:, cols]], d, k, precision == "exact")
+        # (-1)^k vol(intersection), split into one piece per ball
         sign = -1.0 if k % 2 else 1.0
         ball_measure += sign * np.bincount(st.ravel(), weights=P.ravel(), minlength=n)
         ball_boundary += sign * np.bincount(st.ravel(), weights=S.ravel(), minlength=n)
         terms.append(float(P.sum()))
     total = float(sum((-1) ** k * t for k, t in enumerate(terms)))
-    bm = ball_measure
-    for a in (bm, ball_boundary):
-        a.flags.writeable = False
+    boundary = float(ball_boundary.sum())
     return UnionMeasure(
-        dim=d,
-        tau=float(tau),
-        measure=total,
-        boundary=float(ball_boundary.sum()),
-        ball_measure=bm,
-        ball_boundary=ball_boundary,
-        terms=tuple(terms),
-        counts=tuple(counts),
+        d, float(tau), total, boundary, freeze(ball_measure), freeze(ball_boundary), tuple(terms), tuple(counts)
     )
 
 
@@ -616,35 +452,26 @@ def union_measure(F, tau: float = 0.0, *, precision: str = "exact") -> UnionMeas
     Computed exactly with the short inclusion–exclusion formula over the dual complex
     K (Notes §23.1; Edelsbrunner 1995):
     :math:`\\operatorname{vol} \\bigcup B_i = \\sum_{\\sigma\\in K}
-    (-1)^{\\dim\\sigma} \\operatorname{vol} \\bigcap_{i\\in\\sigma} B_i`.  The
-    closed forms are derived in the module docstring.
+    (-1)^{\\dim\\sigma} \\operatorname{vol} \\bigcap_{i\\in\\sigma} B_i` (closed forms: module docstring).
 
     Parameters
     ----------
     F : Filtration or Balls
-        The balls (disks in 2D), or their filtration ``alpha_filtration(balls)`` to
-        measure at many τ.  Given the balls, only the entry times are computed
-        (not the whole :class:`~shapelab.filtration.Filtration`), once per call.
+        The balls (disks in 2D), or ``alpha_filtration(balls)`` to measure at many τ.
     tau : float, optional
-        Growth time (Notes §23.1): measure the union of the balls with radii
-        :math:`\\sqrt{r_i^2 + \\tau}`; balls with :math:`r_i^2 + \\tau < 0` are
-        empty.  Default 0: the balls as given.  ``-inf`` gives the empty union;
-        ``inf`` is refused (every ball would be infinite).
+        Growth time (Notes §23.1): the balls of radii :math:`\\sqrt{r_i^2 + \\tau}`
+        (empty if :math:`r_i^2 + \\tau < 0`).  Default 0: the balls as given;
+        ``-inf``: the empty union; ``inf`` is refused.
     precision : {"exact", "fast"}, default "exact"
-        ``"exact"``: chords of rounding-level size are tangencies and flat top
-        simplices (nearly cospherical centres) are measured as the limits of the
-        closed forms (``shapelab._engine.measure``): portable on degenerate input,
-        today's results bit for bit.  ``"fast"``: the plain closed forms of the
-        module docstring alone, equal to ``"exact"`` on generic input (tested, to
-        1e-12 relative).
+        ``"exact"``: rounding-level chords are tangencies and flat top simplices
+        (nearly cospherical centres) take the limits of the closed forms
+        (``shapelab._engine.measure``): portable on degenerate input.  ``"fast"``:
+        the plain closed forms alone, equal on generic input (tested, to 1e-12).
 
     Returns
     -------
     UnionMeasure
-        ``measure`` (area/volume), ``boundary`` (perimeter/surface area), the
-        per-ball shares ``ball_measure`` = vol(:math:`B_i \\cap \\Pi(B_i)`) and
-        ``ball_boundary`` = area(:math:`\\partial B_i \\cap \\partial U`), and the
-        per-dimension ``terms`` of the formula.
+        The measure and boundary, total, per ball and per dimension of K.
 
     See Also
     --------
@@ -657,13 +484,9 @@ def union_measure(F, tau: float = 0.0, *, precision: str = "exact") -> UnionMeas
     -----
     K is taken just before τ: a simplex entering at v is left out unless
     :math:`v + \\mathrm{TIE\\_TOL}\\,|v| < \\tau` (``counts`` reflects this), a
-    tolerance relative to the simplex's own entry time, so that balls of any size
-    in a scene of any extent are measured.  At exact ties (tangent balls,
-    cospherical centres whose orthosphere has power exactly τ) round-off would
-    otherwise decide their membership one by one; the intersections of the
-    simplices so left out have measure of order
-    :math:`(\\mathrm{TIE\\_TOL}\\,|\\tau|)^{d/2}` or less at τ, and attached pairs,
-    which enter together, are left out together.
+    tolerance relative to the simplex's own entry time, so that at exact ties
+    (tangent balls, cospherical centres) round-off does not decide membership one
+    simplex at a time (``shapelab._engine.measure.TIE_TOL``).
 
     References
     ----------
@@ -684,29 +507,17 @@ def union_measure(F, tau: float = 0.0, *, precision: str = "exact") -> UnionMeas
     if precision not in ("exact", "fast"):
         raise ValueError(f'union_measure: precision must be "exact" or "fast", got {precision!r}')
     if isinstance(F, Balls):
-        balls, F = F, None
+        balls = F
     else:
         F = as_filtration(F, "union_measure")
         balls = F.balls
     if t == np.inf:
         raise ValueError("tau must be finite for union_measure (at tau = inf the union is all of R^d)")
-    n, d = len(balls), balls.dim
-    if n == 0:
-        z = np.zeros(0)
-        z.flags.writeable = False
-        return UnionMeasure(d, t, 0.0, 0.0, z, z, (0.0,) * (d + 1), (0,) * (d + 1))
-    # Simplices entering at or just before tau (relative to their own entry time) are
-    # left out, see TIE_TOL.
-    if F is None:
-        # only K just before tau is needed: the entry times without the Filtration's
-        # ordering and boundary matrices (same values, same comparison)
-        simplices = simplices_up_to(balls, lambda v: _before(v, t))
+    if F is balls:
+        # K just before τ from the entry times alone (those of alpha_filtration), in
+        # the engine's order, without sorting them into a Filtration
+        simplices = _engine.complex_before(balls, t)
     else:
-        # the values are sorted, so each dimension's selection is a prefix
-        simplices = []
-        for k in range(min(F.dimension, d) + 1):
-            c = int(np.count_nonzero(_before(F.values(k), t)))
-            if c == 0:
-                break
-            simplices.append(F.simplices(k)[:c])
+        # K just before τ: the entry times are sorted, so each dimension's is a prefix
+        simplices = [F.simplices(k)[: np.count_nonzero(_engine.before(F.values(k), t))] for k in range(F.dimension + 1)]
     return measure_from_simplices(balls.centers, balls.weights + t, simplices, tau=t, precision=precision)

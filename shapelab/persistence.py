@@ -282,7 +282,9 @@ def boundary_columns(F, field: int = 2) -> list[dict[int, int]]:
     F = as_filtration(F, "boundary_columns")
     dims, rows, _ = filtration_order(F)
     # where each simplex (its sorted vertices) stands in the order
-    simplices = [np.sort(np.asarray(F.simplices(k)).reshape(len(F.values(k)), -1), axis=1) for k in range(int(F.dimension) + 1)]
+    simplices = [
+        np.sort(np.asarray(F.simplices(k)).reshape(len(F.values(k)), -1), axis=1) for k in range(int(F.dimension) + 1)
+    ]
     position = {tuple(simplices[k][r].tolist()): j for j, (k, r) in enumerate(zip(dims.tolist(), rows.tolist()))}
     columns = []
     for k, r in zip(dims.tolist(), rows.tolist()):

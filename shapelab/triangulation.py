@@ -178,8 +178,9 @@ def regular_triangulation(balls: Balls, *, precision: str = "exact") -> np.ndarr
     try:
         hull = ConvexHull(np.vstack([np.column_stack([z, h]), top]))
     except QhullError as exc:
-        raise ValueError(f"precision='fast': Qhull cannot triangulate these centres ({exc}); "
-                         "use precision='exact'") from None
+        raise ValueError(
+            f"precision='fast': Qhull cannot triangulate these centres ({exc}); use precision='exact'"
+        ) from None
     # 3. the lower facets: outward normal pointing down (last component negative)
     lower = (hull.equations[:, d] < 0) & ~np.any(hull.simplices == n, axis=1)
     # 4. they are DT; rows ascending, sorted lexicographically

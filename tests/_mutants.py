@@ -606,6 +606,7 @@ def _betti_mod2(v, ns):
 def _bounds(v, ns):
     return [*_generic(v), ("every cycle called a boundary", list(ns["cycle"])), ("nothing bounds", [False] * len(v))]
 
+
 def _flow_order(v, ns):
     def rho(balls, c, weighted):
         z = balls.centers[c]

@@ -25,9 +25,11 @@ package.
 ``shapelab._engine.hausdorff``     the Hausdorff distance's kernels (KD-tree, early break)
 ``shapelab._engine.icp``           Anderson acceleration of ICP (``accelerate=True``)
 ``shapelab._engine.mouths``        the merge tree's union-find and the certified mouth search
-``shapelab._engine.flow``          the discrete flow's exact signs
+``shapelab._engine.flow``          the discrete flow's exact signs, neighbours, the
+                                   regions' lining and growth-model pair
 ``shapelab._engine.freespace``     the free space's exact area/volume integration
-``shapelab._engine.measure``       flat simplices of the short inclusion-exclusion formula
+``shapelab._engine.measure``       the union measure's complex before τ, blocks, vector
+                                   helpers, flat simplices' limits
 =================================  ===============================================
 
 Modules here import each other and the private toolkit; the names they share are

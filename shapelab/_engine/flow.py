@@ -1,8 +1,15 @@
-"""The discrete flow's exact decisions (not required reading): whether a top simplex
-flows across a facet is the sign of a polynomial in the input, evaluated in floating
-point with a bound on its rounding error and, where the bound cannot decide,
-recomputed exactly on integers.  The definitions and the proof are in
-:mod:`shapelab.cavities.flow`.
+"""The discrete flow's machinery (not required reading).
+
+* its exact decisions: whether a top simplex flows across a facet is the sign of a
+  polynomial in the input, evaluated in floating point with a bound on its rounding
+  error and, where the bound cannot decide, recomputed exactly on integers
+  (:func:`beyond`); with the neighbours across the facets (:func:`neighbours`), kept
+  on the filtration (:func:`static`);
+* the measured quantities of a region that are not its definition: its lining and the
+  growth-model pair ``(closes_at, fills_at)`` of the class rooted in it
+  (:func:`region_measures`).
+
+The definitions and the proof are in :mod:`shapelab.cavities.flow`.
 """
 
 from __future__ import annotations
@@ -12,9 +19,24 @@ from fractions import Fraction
 
 import numpy as np
 
+from .._toolkit.derived import derived
 from .._toolkit.tolerances import FILTER_UNDERFLOW
+from .._toolkit.validate import readonly
+from .mouths import merge_tree_of
+from .persistence import is_roundoff
 
-__all__ = ["exact_values", "gram", "sign", "flow_value", "beyond", "scaled_integers"]
+__all__ = [
+    "exact_values",
+    "gram",
+    "sign",
+    "flow_value",
+    "beyond",
+    "scaled_integers",
+    "neighbours",
+    "static",
+    "empty_flow",
+    "region_measures",
+]
 
 U_ = 2.0**-53
 C_ = 64.0  # generous against the ~24 roundings of the 3D expression (see the module docstring)
@@ -144,3 +166,75 @@ def scaled_integers(z, w, balls):
     Zi = {b: [num << (k - den.bit_length() + 1) for num, den in row] for b, row in zr.items()}
     Wi = {b: num << (2 * k - den.bit_length() + 1) for b, (num, den) in wr.items()}
     return Zi, Wi
+
+
+# ======================================================== bookkeeping of the flow
+def neighbours(F) -> np.ndarray:
+    """``(n, d+1)``: the top simplex across each facet (``-1``: the outside)."""
+    d = F.balls.dim
+    B = np.asarray(F.boundary(d), dtype=np.int64)
+    n = B.shape[0]
+    nf = len(F.values(d - 1))
+    flat = B.ravel()
+    owner = np.repeat(np.arange(n), d + 1)
+    order = np.argsort(flat, kind="stable")
+    fs, ow = flat[order], owner[order]
+    first = np.full(nf, -1, dtype=np.int64)
+    second = np.full(nf, -1, dtype=np.int64)
+    start = np.r_[True, fs[1:] != fs[:-1]]
+    first[fs[start]] = ow[start]
+    dup = ~start
+    second[fs[dup]] = ow[dup]
+    other = np.where(first[flat] == owner, second[flat], first[flat])
+    return other.reshape(n, d + 1)
+
+
+def static(F):
+    """``(beyond(F), neighbours(F))``, computed once and kept on ``F`` (they do not
+    depend on τ)."""
+    st = derived(F, "flow.static", lambda F: {"beyond": beyond(F), "neighbour": neighbours(F)})
+    return st["beyond"], st["neighbour"]
+
+
+def empty_flow(d: int) -> tuple:
+    """The arrays of a :class:`shapelab.DiscreteFlow` with no top simplex: ``empty``,
+    ``neighbour``, ``flows``, ``sink``, ``to_infinity``, ``region``."""
+    e = np.zeros(0, dtype=bool)
+    z = np.zeros((0, d + 1), dtype=np.int64)
+    return (
+        readonly(e),
+        readonly(z),
+        readonly(z.astype(bool)),
+        readonly(e),
+        readonly(e),
+        readonly(np.zeros(0, dtype=np.int64)),
+    )
+
+
+def region_measures(F):
+    """A function ``(cell_ids, cells, tau) -> (lining, closes_at, fills_at)`` for the
+    regions of one flow: the region's lining atoms (the vertices of its cells that
+    exist at ``tau``, as :func:`shapelab.cavities.complement.lining_of`) and the pair
+    ``(born, dies)`` of the most persistent merge-tree class rooted at one of its cells
+    (ties: the earlier birth, then the lower row; no class of positive length beyond
+    round-off: the time its last cell fills, twice; :class:`shapelab.FlowPocket`)."""
+    d = F.balls.dim
+    cv = np.asarray(F.values(d), dtype=np.float64)
+    kill = merge_tree_of(F).kill_value
+    vval = np.full(len(F.balls), np.inf)
+    vval[np.asarray(F.simplices(0), dtype=np.int64).ravel()] = F.values(0)
+
+    def measure(cid, cells, tau):
+        verts = np.unique(cells)
+        lining = readonly(verts[vval[verts] <= tau], np.int64)
+        pers = cv[cid] - kill[cid]
+        ok = (pers > 0) & ~is_roundoff(F, kill[cid], cv[cid])
+        if not ok.any():
+            last = float(cv[cid].max())
+            return lining, last, last
+        c = cid[ok]
+        o = np.lexsort((c, kill[c], -(cv[c] - kill[c])))
+        r = int(c[o[0]])
+        return lining, float(kill[r]), float(cv[r])
+
+    return measure

@@ -15,9 +15,11 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import breadth_first_order, depth_first_order, dijkstra
 
+from .._toolkit.derived import derived
 from .._toolkit.unionfind import elder_merges
+from .persistence import summary
 
-__all__ = ["MergeTree", "build_merge_tree", "leaf_run", "cells_at_closing", "OutsideGraph"]
+__all__ = ["MergeTree", "build_merge_tree", "merge_tree_of", "leaf_run", "cells_at_closing", "OutsideGraph"]
 
 
 # ===================================================================== merge tree
@@ -94,6 +96,12 @@ def build_merge_tree(S) -> MergeTree:
         lo=pos[mh] if mh.size else mh,
         hi=pos[mt] + 1 if mt.size else mt,
     )
+
+
+def merge_tree_of(F) -> MergeTree:
+    """The merge tree of the complement of ``F``, built once and kept on ``F``
+    (:func:`shapelab.cavities.complement.merge_tree`)."""
+    return derived(F, "cavities.merge_tree", lambda F: build_merge_tree(summary(F)))
 
 
 def leaf_run(T: MergeTree, node: int):

@@ -475,4 +475,3 @@ def _flat_rows_guard(fr, S: np.ndarray, idx: np.ndarray, rho: np.ndarray, att: n
         uf, rf = _ortho_generic(x, w, F)
         d = x[F[:, 0]] + uf - x[Sf[:, i]]
         att[idx, i] = np.einsum("mk,mk->m", d, d) - w[Sf[:, i]] < rf
-

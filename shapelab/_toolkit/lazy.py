@@ -83,7 +83,7 @@ class _Alias(importlib.abc.MetaPathFinder, importlib.abc.Loader):
     def target(self, fullname: str):
         for old, new in self.moves.items():
             if fullname == old or fullname.startswith(old + "."):
-                return new + fullname[len(old):]
+                return new + fullname[len(old) :]
         return None
 
     def find_spec(self, fullname, path=None, target=None):

@@ -21,8 +21,6 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
 from .._engine import mouths as _engine
-from .._toolkit.derived import derived
-from .._engine.persistence import summary
 
 __all__ = ["complement_labels", "full_dimensional", "merge_tree", "lining_of", "vertex_values"]
 
@@ -99,7 +97,7 @@ def merge_tree(F) -> _engine.MergeTree:
     complement_labels
         The components at one τ.
     """
-    return derived(F, "cavities.merge_tree", lambda F: _engine.build_merge_tree(summary(F)))
+    return _engine.merge_tree_of(F)
 
 
 def vertex_values(F, n_balls: int) -> np.ndarray:

@@ -58,6 +58,23 @@ and 3D, from the α-filtration (:func:`shapelab.alpha_filtration`) at one growth
   :func:`shapelab.voids` (tested): a component of the complement of
   :math:`K_\\tau` that does not reach the outside cannot flow out of itself.
 
+The pair of a region
+--------------------
+A :class:`FlowPocket`'s ``(closes_at, fills_at)`` is the pair ``(born, dies)`` of the
+most persistent growth-model class rooted in the region: the :math:`H_{d-1}` class of
+the merge tree whose youngest cell (the last to fill) is one of the region's cells.
+For a pocket region that is the most persistent growth-model pocket
+(:func:`shapelab.pockets`) whose void fills last inside it; for a void, the void's own
+pair (:class:`shapelab.Void`).  A pocket region holds a sink, and a sink's facets all
+enter :math:`K` strictly before it (none is attached by its own apex), so it roots a
+class of positive length: a region's persistence is positive, except at a tie, where a
+sink's orthocentre lies on one of its facets (three disks at the corners of a right
+triangle) or within the filtration's round-off of one (a flat tetrahedron of PDB 3THY,
+7e-9 apart in 5.4).  Such a region, whose classes all have zero length up to round-off
+(the growth model lists none of them), has ``closes_at = fills_at`` = the time its last
+cell fills, and persistence 0 (ties: the earlier birth, then the lower row;
+``shapelab._engine.flow.region_measures``).
+
 CASTp goes on to measure pockets, keep only those with a cross section wider than
 their mouth, and rank them; that is not done here.
 
@@ -110,11 +127,8 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import breadth_first_order, connected_components
 
 from .._engine import flow as _engine
-from .._toolkit.derived import derived
 from .._toolkit.validate import as_tau, readonly
-from .._engine.persistence import is_roundoff
 from ..filtration import as_filtration
-from .complement import lining_of, merge_tree, vertex_values
 from .mouths import MeasuredRegion
 
 __all__ = ["DiscreteFlow", "FlowPocket", "discrete_flow", "flow_pockets", "flow_side_exact", "orthocentre_beyond"]
@@ -137,28 +151,15 @@ class FlowPocket(MeasuredRegion):
     mouth, mouth_ids : ndarray
         The open facets through which the region meets simplices that flow to
         infinity, or the outside: ball indices, shape (q, d), and rows of
-        ``F.simplices(d-1)``.  Empty for a void.  These are exactly its openings to the
-        outside in the sense of :class:`shapelab.cavities.Pocket` (a simplex that
-        flows to :math:`\\infty` reaches it through open facets and simplices that
-        flow there too, never through the region), tested.
+        ``F.simplices(d-1)``.  Empty for a void.  The same cut as a
+        :class:`shapelab.cavities.Pocket`'s mouth (module docstring), tested.
     lining : ndarray, int
-        The region's *lining atoms*: the balls at the vertices of its cells that exist
-        at ``tau`` (as :attr:`shapelab.cavities.Pocket.lining`; not the report's wall
-        atoms, :class:`shapelab.cavity_report.CavityRow`).
+        The balls at the vertices of its cells that exist at ``tau`` (as
+        :attr:`shapelab.cavities.Pocket.lining`).
     closes_at, fills_at : float
         The pair ``(born, dies)`` of the most persistent growth-model class rooted in
-        the region: the :math:`H_{d-1}` class of the merge tree whose youngest cell (the
-        last to fill) is one of the region's cells.  For a pocket region that is the
-        most persistent growth-model pocket (:func:`shapelab.pockets`) whose void
-        fills last inside it; for a void, the void's own pair (:class:`Void`).  A
-        pocket region holds a sink, and a sink's facets all enter :math:`K` strictly
-        before it (none is attached by its own apex), so it roots a class of positive
-        length: a region's persistence is positive, except at a tie, where a sink's
-        orthocentre lies on one of its facets (three disks at the corners of a right
-        triangle) or within the filtration's round-off of one (a flat tetrahedron of
-        PDB 3THY, 7e-9 apart in 5.4).  Such a region, whose classes all have zero
-        length up to round-off (the growth model lists none of them), has ``closes_at =
-        fills_at`` = the time its last cell fills, and persistence 0.
+        the region (module docstring, *The pair of a region*); equal, persistence 0,
+        only at a tie.
     tau : float
         The growth time of the complex :math:`K_\\tau` the flow was computed on.
     volume : float
@@ -365,30 +366,6 @@ def flow_side_exact(z_facet, w_facet, z_apex, w_apex) -> int:
     return _engine.sign(_engine.flow_value(Z, W, A, wa))
 
 
-def _neighbours(F) -> np.ndarray:
-    """``(n, d+1)``: the top simplex across each facet (``-1``: the outside)."""
-    d = F.balls.dim
-    B = np.asarray(F.boundary(d), dtype=np.int64)
-    n = B.shape[0]
-    nf = len(F.values(d - 1))
-    flat = B.ravel()
-    owner = np.repeat(np.arange(n), d + 1)
-    order = np.argsort(flat, kind="stable")
-    fs, ow = flat[order], owner[order]
-    first = np.full(nf, -1, dtype=np.int64)
-    second = np.full(nf, -1, dtype=np.int64)
-    start = np.r_[True, fs[1:] != fs[:-1]]
-    first[fs[start]] = ow[start]
-    dup = ~start
-    second[fs[dup]] = ow[dup]
-    other = np.where(first[flat] == owner, second[flat], first[flat])
-    return other.reshape(n, d + 1)
-
-
-def _static(F):
-    return {"beyond": _engine.beyond(F), "neighbour": _neighbours(F)}
-
-
 def orthocentre_beyond(F) -> np.ndarray:
     """``(n, d+1)`` int8, in plain floating point: ``-1`` where top simplex ``i`` flows
     across its facet opposite vertex ``j`` (module docstring, *Flow*), else ``+1``.
@@ -507,42 +484,25 @@ def discrete_flow(F, tau: float = 0.0, *, precision: str = "exact") -> DiscreteF
     d = F.balls.dim
     n = len(F.values(d)) if int(F.dimension) == d else 0
     if n == 0:
-        e = np.zeros(0, dtype=bool)
-        z = np.zeros((0, d + 1), dtype=np.int64)
-        return DiscreteFlow(
-            tau,
-            readonly(e),
-            readonly(z),
-            readonly(z.astype(bool)),
-            readonly(e),
-            readonly(e),
-            readonly(np.zeros(0, dtype=np.int64)),
-            (),
-        )
-    st = (
-        derived(F, "flow.static", _static)
-        if precision == "exact"
-        else {"neighbour": _neighbours(F), "beyond": orthocentre_beyond(F)}
-    )
-    nb, beyond = st["neighbour"], st["beyond"]
+        return DiscreteFlow(tau, *_engine.empty_flow(d), ())
+    # where each top simplex's orthocentre lies beyond a facet, and the simplex
+    # across each facet (-1: the outside); the exact decisions are kept on F
+    beyond, nb = _engine.static(F) if precision == "exact" else (orthocentre_beyond(F), _engine.neighbours(F))
     B = np.asarray(F.boundary(d), dtype=np.int64)
-    empty = np.asarray(F.values(d)) > tau
-    open_f = np.asarray(F.values(d - 1)) > tau
+    empty = np.asarray(F.values(d)) > tau  # top simplices not in K_tau
+    open_f = np.asarray(F.values(d - 1)) > tau  # facets not in K_tau
     flows = (beyond < 0) & open_f[B]  # an open facet has only empty cofaces
     sink = empty & ~flows.any(axis=1)
-    # the flow graph, with node n for infinity
+    # the flow graph, with node n for infinity: which simplices drain to infinity
     src, col = np.nonzero(flows)
-    dst = nb[src, col]
-    dst = np.where(dst < 0, n, dst)
+    dst = np.where(nb[src, col] < 0, n, nb[src, col])
     G = coo_matrix((np.ones(src.size, dtype=np.int8), (src, dst)), shape=(n + 1, n + 1)).tocsr()
-    n_scc, _ = connected_components(G, directed=True, connection="strong")
-    if n_scc != n + 1:
+    if connected_components(G, directed=True, connection="strong")[0] != n + 1:
         raise RuntimeError("discrete_flow: the flow has a cycle; please report this input")
-    reach = breadth_first_order(G.T.tocsr(), n, directed=True, return_predecessors=False)
     to_inf = np.zeros(n + 1, dtype=bool)
-    to_inf[reach] = True
+    to_inf[breadth_first_order(G.T.tocsr(), n, directed=True, return_predecessors=False)] = True
     to_inf = to_inf[:n] & empty
-    # regions: empty cells not reaching infinity, glued along open facets
+    # the pocket regions: empty cells that do not drain to infinity, glued along open facets
     inpk = empty & ~to_inf
     i, j = np.nonzero(open_f[B] & (nb >= 0))
     m = inpk[i] & inpk[np.maximum(nb[i, j], 0)]
@@ -552,21 +512,18 @@ def discrete_flow(F, tau: float = 0.0, *, precision: str = "exact") -> DiscreteF
     ids = np.flatnonzero(inpk)
     pockets = []
     if ids.size:
-        labs = lab[ids]
-        _, first, inv = np.unique(labs, return_index=True, return_inverse=True)
-        rank = np.argsort(np.argsort(ids[first], kind="stable"), kind="stable")
-        region[ids] = rank[inv]
+        _, first, inv = np.unique(lab[ids], return_index=True, return_inverse=True)
+        # regions numbered by their smallest cell row
+        region[ids] = np.argsort(np.argsort(ids[first], kind="stable"), kind="stable")[inv]
         simp = np.asarray(F.simplices(d), dtype=np.int64)
         fsimp = np.asarray(F.simplices(d - 1), dtype=np.int64)
-        cv = np.asarray(F.values(d), dtype=np.float64)
-        kill = merge_tree(F).kill_value
-        vval = vertex_values(F, len(F.balls))
+        measures = _engine.region_measures(F)
         for k in range(first.size):
             cid = np.flatnonzero(region == k)
+            # the mouth: open facets to the outside or to simplices that drain to infinity
             other = nb[cid]
-            on_mouth = open_f[B[cid]] & ((other < 0) | (region[np.maximum(other, 0)] != k))
-            mouth = np.unique(B[cid][on_mouth])
-            closes, fills = _region_pair(F, cid, cv, kill)
+            mouth = np.unique(B[cid][open_f[B[cid]] & ((other < 0) | (region[np.maximum(other, 0)] != k))])
+            lining, closes, fills = measures(cid, simp[cid], tau)
             pockets.append(
                 FlowPocket(
                     cells=readonly(simp[cid], np.int64),
@@ -575,36 +532,20 @@ def discrete_flow(F, tau: float = 0.0, *, precision: str = "exact") -> DiscreteF
                     mouth=readonly(fsimp[mouth].reshape(-1, d), np.int64),
                     mouth_ids=readonly(mouth, np.int64),
                     tau=tau,
-                    lining=readonly(lining_of(simp[cid], tau, vval), np.int64),
+                    lining=lining,
                     closes_at=closes,
                     fills_at=fills,
                     balls=F.balls,
                 )
             )
-    return DiscreteFlow(
-        tau=tau,
-        empty=readonly(empty),
-        neighbour=readonly(nb, np.int64),
-        flows=readonly(flows),
-        sink=readonly(sink),
-        to_infinity=readonly(to_inf),
-        region=readonly(region),
-        pockets=tuple(pockets),
+    nb, flows, sink, to_inf, region = (
+        readonly(nb, np.int64),
+        readonly(flows),
+        readonly(sink),
+        readonly(to_inf),
+        readonly(region),
     )
-
-
-def _region_pair(F, cid, cv, kill):
-    """(closes_at, fills_at) of a flow region: the most persistent merge-tree class
-    rooted at one of its cells (ties: the earlier birth, then the lower row)."""
-    pers = cv[cid] - kill[cid]
-    ok = (pers > 0) & ~is_roundoff(F, kill[cid], cv[cid])
-    if not ok.any():
-        last = float(cv[cid].max())
-        return last, last
-    c = cid[ok]
-    o = np.lexsort((c, kill[c], -(cv[c] - kill[c])))
-    r = int(c[o[0]])
-    return float(kill[r]), float(cv[r])
+    return DiscreteFlow(tau, readonly(empty), nb, flows, sink, to_inf, region, tuple(pockets))
 
 
 def flow_pockets(F, tau: float = 0.0, *, precision: str = "exact") -> tuple:

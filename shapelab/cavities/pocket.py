@@ -10,6 +10,37 @@ component of :math:`\\infty`.  Its *mouth* (:mod:`shapelab.cavities.mouths`) is 
 set of open faces through which it opens to the rest of the outside.  A dent whose
 cells fill before its mouth closes never becomes a void and is no pocket.  Pockets
 nest (the "pocket hierarchy").
+
+Mouths
+------
+The notes only say "a pocket can be roughly viewed as a dent on the surface"; which
+part of the dent is the pocket is left open.  Here it is the part that gets sealed:
+the cells of the void at the moment it closes.  Nested pockets are all reported.
+
+The mouth (Notes §23.1; CASTp's "mouth openings", Liang et al. 1998, Binkowski et
+al. 2003).  At ``tau`` the
+pocket's cells :math:`R` are part of the outside component of the complement of
+:math:`K_\\tau`.  Glue the free cells and :math:`\\infty` along the faces not in
+:math:`K_\\tau` and delete :math:`R`: the component of :math:`\\infty` is the rest of
+the outside, the other components are *crevices*, free cells that reach the outside
+only through :math:`R`.  The mouth is the set of faces not in :math:`K_\\tau`
+between :math:`R` and the rest of the outside: the cut that separates the pocket
+from :math:`\\infty` (every path out leaves :math:`R` for the last time through a
+mouth face), which is what CASTp calls the mouth: the openings through which a
+probe in the pocket reaches the bulk solvent.  Two consequences, tested:
+
+* a face into a crevice of the pocket's wall is no opening: Figure 23.2's flask
+  has one mouth edge, the neck, not the four notches of the chamber's wall whose
+  triangles are not yet in :math:`K_0`;
+* the mouth need not be what seals the pocket.  In a two-chamber flask the inner
+  pocket (the upper chamber, sealed when the neck to the lower chamber closes) opens
+  to the outside through the flask's neck, as the outer pocket does; the neck to
+  the lower chamber leads into a dead end and is no mouth.  ``closes_at`` is when
+  the pocket becomes a void of its own, which is after its mouth has closed.
+
+The discrete flow's pockets (``method="flow"``) have mouths by the same
+definition: a simplex that flows to :math:`\\infty` reaches it without crossing
+the region, so the flow's mouth (open faces to simplices that flow out) is this cut.
 """
 
 from __future__ import annotations
@@ -19,8 +50,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._engine.mouths import cells_at_closing
-from .._toolkit.validate import as_finite_scalar, as_tau, readonly
 from .._engine.persistence import is_roundoff, summary
+from .._toolkit.validate import as_finite_scalar, as_tau, readonly
 from ..filtration import as_filtration
 from .complement import complement_labels, full_dimensional, lining_of, merge_tree, vertex_values
 from .mouths import MeasuredRegion, mouth_finder
@@ -39,10 +70,8 @@ class Pocket(MeasuredRegion):
         closes (ball indices, and rows of ``F.simplices(d)``).
     mouth, mouth_ids : ndarray
         The openings to the outside at ``tau``: the :math:`(d-1)`-simplices not in
-        :math:`K_\\tau` with one side in the cells and the other in the outside
-        beyond them (the component of :math:`\\infty` of the complement without the
-        cells); not the faces into crevices of the pocket's wall (see
-        :func:`pockets`).  Ball indices, shape (q, d), and rows of ``F.simplices(d-1)``.
+        :math:`K_\\tau` between the cells and the rest of the outside (module
+        docstring).  Ball indices, shape (q, d), and rows of ``F.simplices(d-1)``.
     mouth_size : float
         Total size of the mouth simplices: length in 2D, area in 3D.
     lining : ndarray, int
@@ -113,23 +142,17 @@ def pockets(
     tau : float, default 0.0
         Growth time at which the pockets are reported (mouths and volumes refer to it).
     min_persistence : float, default 0.0
-        Keep pockets with ``fills_at - closes_at >= min_persistence`` (zero-length
-        classes never count in the growth model; a flow pocket of persistence 0, whose
-        classes all have zero length up to round-off, is kept at 0.0: see
-        :class:`shapelab.FlowPocket`).
+        Keep pockets with ``fills_at - closes_at >= min_persistence`` (a flow pocket of
+        persistence 0, a tie, is kept at 0.0: :class:`shapelab.FlowPocket`).
     method : {"growth", "flow"}, default "growth"
         ``"growth"``: the notes' growth-model pockets (:class:`Pocket`).  ``"flow"``:
-        CASTp's pockets, the regions of the discrete flow on the same regular
-        triangulation that have a mouth (:func:`shapelab.flow_pockets` without its
-        voids), as :class:`shapelab.FlowPocket`.  Both kinds have the same
-        measured attributes (``cells``, ``cell_ids``, ``lining``, ``mouth``,
-        ``mouth_ids``, ``mouth_size``, ``volume``, ``closes_at``, ``fills_at``,
-        ``persistence``) and satisfy the :class:`Cavity` protocol.
+        CAST's pockets, the regions of the discrete flow that have a mouth
+        (:func:`shapelab.flow_pockets` without its voids), :class:`shapelab.FlowPocket`;
+        the same measured attributes, and both satisfy the :class:`Cavity` protocol.
     precision : {"exact", "fast"}, default "exact"
-        ``"exact"``: the mouths by the engine's certified search and, for
-        ``method="flow"``, the flow's exact decisions (today's path).  ``"fast"``: the
-        plain definitions (:func:`shapelab.cavities.mouths.mouth`, the flow's
-        floating-point test).  The same pockets on generic input (tested).
+        ``"exact"``: the mouths by the engine's certified search and the flow's exact
+        decisions.  ``"fast"``: the plain definitions (:func:`shapelab.cavities.mouths.mouth`,
+        the flow's floating-point test); the same pockets on generic input (tested).
 
     Returns
     -------
@@ -153,33 +176,8 @@ def pockets(
 
     Notes
     -----
-    The notes only say "a pocket can be roughly viewed as a dent on the surface"; which
-    part of the dent is the pocket is left open.  Here it is the part that gets sealed:
-    the cells of the void at the moment it closes.  Nested pockets are all reported.
-
-    **Mouths** (Notes §23.1; CASTp's "mouth openings" [2]_, [3]_).  At ``tau`` the
-    pocket's cells :math:`R` are part of the outside component of the complement of
-    :math:`K_\\tau`.  Glue the free cells and :math:`\\infty` along the faces not in
-    :math:`K_\\tau` and delete :math:`R`: the component of :math:`\\infty` is the rest of
-    the outside, the other components are *crevices*, free cells that reach the outside
-    only through :math:`R`.  The mouth is the set of faces not in :math:`K_\\tau`
-    between :math:`R` and the rest of the outside: the cut that separates the pocket
-    from :math:`\\infty` (every path out leaves :math:`R` for the last time through a
-    mouth face), which is what CASTp calls the mouth: the openings through which a
-    probe in the pocket reaches the bulk solvent.  Two consequences, tested:
-
-    * a face into a crevice of the pocket's wall is no opening: Figure 23.2's flask
-      has one mouth edge, the neck, not the four notches of the chamber's wall whose
-      triangles are not yet in :math:`K_0`;
-    * the mouth need not be what seals the pocket.  In a two-chamber flask the inner
-      pocket (the upper chamber, sealed when the neck to the lower chamber closes) opens
-      to the outside through the flask's neck, as the outer pocket does; the neck to
-      the lower chamber leads into a dead end and is no mouth.  ``closes_at`` is when
-      the pocket becomes a void of its own, which is after its mouth has closed.
-
-    The discrete flow's pockets (``method="flow"``) have mouths by the same
-    definition: a simplex that flows to :math:`\\infty` reaches it without crossing
-    the region, so the flow's mouth (open faces to simplices that flow out) is this cut.
+    Which part of a dent is the pocket, and what its mouth is (a cut, not what seals
+    it; CASTp's "mouth openings" [2]_, [3]_): module docstring, *Mouths*.
 
     References
     ----------

@@ -14,10 +14,10 @@ from functools import cached_property
 
 import numpy as np
 
+from .._engine.persistence import is_roundoff, reduce_h1, summary
 from .._toolkit import tolerances as tol
 from .._toolkit.derived import derived
 from .._toolkit.validate import as_finite_scalar, as_tau, check_balls, readonly
-from .._engine.persistence import is_roundoff, reduce_h1, summary
 from ..filtration import as_filtration
 
 __all__ = ["Tunnel", "tunnels", "grooves", "ChannelProfile", "channel_profile"]

@@ -14,8 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._toolkit.validate import as_tau, readonly
 from .._engine.persistence import summary
+from .._toolkit.validate import as_tau, readonly
 from ..filtration import as_filtration
 from .complement import complement_labels, full_dimensional, lining_of, merge_tree, vertex_values
 from .freespace import void_measure

@@ -116,7 +116,9 @@ def complex_betti(betti: Sequence[int], simplices: Iterable[Sequence[int]]) -> C
     name = "Betti numbers (" + ", ".join(f"β{k}" for k in range(len(expected))) + ")"
     if betti is None or isinstance(betti, (str, bytes)) or not hasattr(betti, "__len__"):
         return value(name, betti, expected)
-    if (isinstance(betti, np.ndarray) and betti.dtype == np.bool_) or any(isinstance(x, (bool, np.bool_)) for x in betti):
+    if (isinstance(betti, np.ndarray) and betti.dtype == np.bool_) or any(
+        isinstance(x, (bool, np.bool_)) for x in betti
+    ):
         msg = f"✗ {name}: not quite: expected numbers (the dimensions of the homology groups), got truth values."
         print(msg)
         return CheckResult(name, False, 1, msg)
@@ -170,7 +172,9 @@ def cycles_and_boundaries(
             continue
         wrong = sum(bool(g) != w for g, w in zip(got, want))
         if wrong:
-            problems.append(f"`{label}`: {wrong} of {len(want)} entries {'is' if wrong == 1 else 'are'} wrong ({hints[label]})")
+            problems.append(
+                f"`{label}`: {wrong} of {len(want)} entries {'is' if wrong == 1 else 'are'} wrong ({hints[label]})"
+            )
     if all(isinstance(x, (list, tuple, np.ndarray)) and np.ndim(x) == 1 for x in (cycle, boundary)):
         if len(cycle) == len(boundary) == len(chains) and any(bool(b) and not bool(c) for c, b in zip(cycle, boundary)):
             problems.append("you call a chain a boundary but not a cycle: every boundary is a cycle (∂∂ = 0)")

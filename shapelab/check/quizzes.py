@@ -1,7 +1,7 @@
 """Quizzes at the end of each part of the course, self-checked without giving answers away.
 
 The course has three parts: I, the union of balls (lessons 00–06); II, voids, pockets,
-tunnels and persistence (06–10); III, shape matching (11–15).  The last lesson of each
+tunnels and persistence (07–12); III, shape matching (13–17).  The last lesson of each
 part ends with its quiz: :func:`show_quiz` renders the questions, the student writes
 ``answers = {1: "b", 2: ...}`` and :func:`quiz` says which are right.
 

@@ -45,7 +45,9 @@ def test_library(seed):
     rng = np.random.default_rng(100 + seed)
     A, B = diagram(rng, 12), diagram(rng, 9)
     assert assignment_distance(A, B, 1) == pytest.approx(sl.wasserstein_distance(A, B, p=1), rel=1e-12)
-    assert assignment_distance(A, B, 2, internal_p=2) == pytest.approx(sl.wasserstein_distance(A, B, p=2, internal_p=2), rel=1e-12)
+    assert assignment_distance(A, B, 2, internal_p=2) == pytest.approx(
+        sl.wasserstein_distance(A, B, p=2, internal_p=2), rel=1e-12
+    )
     assert assignment_distance(A, B, np.inf) == pytest.approx(sl.bottleneck_distance(A, B), rel=1e-12)
 
 

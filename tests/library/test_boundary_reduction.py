@@ -12,10 +12,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from scipy import sparse
+from shapelab.topology import is_roundoff, reduce_boundary
 
 import shapelab as sl
 from shapelab import check
-from shapelab.topology import is_roundoff, reduce_boundary
 
 
 def _filtration(seed, n, dim):

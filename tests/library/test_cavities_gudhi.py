@@ -10,8 +10,8 @@ from hypothesis import strategies as st
 
 import shapelab as sl
 from shapelab import cavities as C
-from shapelab.cavities import freespace as FS
 from shapelab import topology as T
+from shapelab.cavities import freespace as FS
 from tests.library.test_cavities import (  # noqa: E402
     fibonacci_sphere,
     monte_carlo_free,

@@ -9,8 +9,8 @@ import weakref
 import numpy as np
 
 import shapelab as sl
-from shapelab._engine import persistence as topology  # the engine holds summary()
 from shapelab import cavities, filtration
+from shapelab._engine import persistence as topology  # the engine holds summary()
 from shapelab.cavities import complement as _pockets
 
 

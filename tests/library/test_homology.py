@@ -15,8 +15,9 @@ import shapelab as sl
 from shapelab import homology as H
 
 TORUS = sl.closure([t for i in range(7) for t in ((i, (i + 1) % 7, (i + 3) % 7), (i, (i + 2) % 7, (i + 3) % 7))])
-RP2 = sl.closure([(0, 1, 2), (0, 2, 3), (0, 3, 4), (0, 4, 5), (0, 1, 5),
-                  (1, 2, 4), (2, 3, 5), (1, 3, 4), (2, 4, 5), (1, 3, 5)])
+RP2 = sl.closure(
+    [(0, 1, 2), (0, 2, 3), (0, 3, 4), (0, 4, 5), (0, 1, 5), (1, 2, 4), (2, 3, 5), (1, 3, 4), (2, 4, 5), (1, 3, 5)]
+)
 
 
 def sphere(d):
@@ -83,13 +84,15 @@ def test_cycles_and_boundaries_annulus_and_torus():
     assert H.is_boundary(inner + outer, annulus)
     assert not H.is_cycle([(0, 1), (1, 2)])
     assert H.is_boundary([], annulus) and H.is_cycle([])
-    assert H.is_boundary([(0, 1), (0, 1)], annulus)          # 1 + 1 = 0: the zero chain
+    assert H.is_boundary([(0, 1), (0, 1)], annulus)  # 1 + 1 = 0: the zero chain
     loop = [(i, (i + 1) % 7) for i in range(7)]
     assert H.is_cycle(loop, TORUS) and not H.is_boundary(loop, TORUS)
     # a chain is a boundary iff it is the boundary of some chain: brute force over all 2-chains of a small complex
     K = sl.closure([(0, 1, 2), (0, 2, 3), (1, 2, 3)])
     tris = H.k_simplices(K, 2)
-    bounds = {frozenset(H.chain_boundary([t for t, b in zip(tris, bits) if b])) for bits in product((0, 1), repeat=len(tris))}
+    bounds = {
+        frozenset(H.chain_boundary([t for t, b in zip(tris, bits) if b])) for bits in product((0, 1), repeat=len(tris))
+    }
     edges = H.k_simplices(K, 1)
     for bits in product((0, 1), repeat=len(edges)):
         c = [e for e, b in zip(edges, bits) if b]
@@ -125,12 +128,14 @@ def _positive_by_prefixes(order):
 def test_positive_simplices_is_the_prefix_definition(seed):
     rng = np.random.default_rng(seed)
     n = int(rng.integers(2, 8))
-    tops = [tuple(rng.choice(n, size=int(rng.integers(1, min(n, 4) + 1)), replace=False).tolist())
-            for _ in range(int(rng.integers(1, 9)))]
+    tops = [
+        tuple(rng.choice(n, size=int(rng.integers(1, min(n, 4) + 1)), replace=False).tolist())
+        for _ in range(int(rng.integers(1, 9)))
+    ]
     K = H.closure(tops)
     keys = {s: (len(s), rng.random()) for s in K}
     order = sorted(K, key=keys.get)
-    shuffled = [tuple(rng.permutation(s).tolist()) for s in order]      # vertex order inside a tuple is irrelevant
+    shuffled = [tuple(rng.permutation(s).tolist()) for s in order]  # vertex order inside a tuple is irrelevant
     assert H.positive_simplices(shuffled) == _positive_by_prefixes(order)
 
 
@@ -140,7 +145,7 @@ def test_positive_simplices_on_an_alpha_filtration_is_fast_and_matches_its_betti
     B = F.boundary_matrix()
     order = [tuple(int(v) for v in F.simplices(k)[r]) for k, r in zip(B.dims, B.rows)]
     assert len(order) > 700
-    pos = H.positive_simplices(order)                   # once quadratic (a rank per prefix): minutes at this size
+    pos = H.positive_simplices(order)  # once quadratic (a rank per prefix): minutes at this size
     beta = [0, 0, 0]
     for s, p in zip(order, pos):
         beta[len(s) - 1 if p else len(s) - 2] += 1 if p else -1
@@ -148,7 +153,7 @@ def test_positive_simplices_on_an_alpha_filtration_is_fast_and_matches_its_betti
 
 
 def test_rank_mod2_exact_on_other_integer_forms():
-    assert H.rank_mod2(np.array([[2**70, 1], [3, 2**80]], dtype=object)) == 2     # Python ints, reduced exactly
+    assert H.rank_mod2(np.array([[2**70, 1], [3, 2**80]], dtype=object)) == 2  # Python ints, reduced exactly
     assert H.rank_mod2(np.array([[2**64 - 2, 1]], dtype=np.uint64)) == 1
     assert H.rank_mod2([[-1, 1], [1, -1]]) == 1
     assert H.rank_mod2(np.eye(3, dtype=bool)) == 3
@@ -193,12 +198,12 @@ def test_validation_names_the_argument():
 def test_small_and_degenerate_inputs():
     assert H.betti_numbers([]) == () and H.euler_characteristic([]) == 0 and H.closure([]) == []
     assert H.betti_numbers([(0,)]) == (1,)
-    assert H.betti_numbers([(1,), (0,), (1, 0), (0, 1)]) == (1, 0)                  # unsorted and repeated
+    assert H.betti_numbers([(1,), (0,), (1, 0), (0, 1)]) == (1, 0)  # unsorted and repeated
     assert H.betti_numbers(np.array([[0], [1]])) == (2,)
     big = 10**30
     assert H.betti_numbers([(big,), (big + 1,), (big, big + 1)]) == (1, 0)
     assert H.boundary_matrix([(0,)], 5).shape == (0, 0) and H.k_simplices([(0,)], 5) == []
-    assert not H.is_boundary([(0, 1, 2)], sl.closure([(0, 1, 2)]))                    # no tetrahedra
+    assert not H.is_boundary([(0, 1, 2)], sl.closure([(0, 1, 2)]))  # no tetrahedra
     assert H.is_boundary([(0,), (1,)], sl.closure([(0, 1)])) and not H.is_boundary([(0,)], sl.closure([(0, 1)]))
 
 
@@ -250,5 +255,5 @@ def test_agrees_with_the_alpha_filtration(seed):
         K = F.complex_at(tau)
         b = H.betti_numbers(K)
         lib = tuple(int(x) for x in F.betti(tau))
-        assert b == lib[: len(b)] and not any(lib[len(b):])
+        assert b == lib[: len(b)] and not any(lib[len(b) :])
         assert H.euler_characteristic(K) == K.euler_characteristic()

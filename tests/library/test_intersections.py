@@ -13,7 +13,7 @@ from shapelab.intersections import ball_measure, cap_volume, lens_measure
 
 def test_cap_by_sympy():
     r, h, x = sp.symbols("r h x", positive=True)
-    vol = sp.integrate(sp.pi * (r**2 - x**2), (x, r - h, r))   # discs of the cap, by revolution
+    vol = sp.integrate(sp.pi * (r**2 - x**2), (x, r - h, r))  # discs of the cap, by revolution
     assert sp.simplify(vol - sp.pi * h**2 * (3 * r - h) / 3) == 0
     assert cap_volume(1.3, 0.7) == pytest.approx(float(vol.subs({r: 1.3, h: 0.7})), rel=1e-14)
 
@@ -24,12 +24,16 @@ def test_lens_by_sympy(r1, r2, d):
     t = sp.Rational(str(d)) ** 2 + sp.Rational(str(r1)) ** 2 - sp.Rational(str(r2)) ** 2
     t1 = t / (2 * sp.Rational(str(d)))
     R1, R2, D = (sp.Rational(str(v)) for v in (r1, r2, d))
-    vol = sp.integrate(sp.pi * (R1**2 - x**2), (x, t1, R1)) + sp.integrate(sp.pi * (R2**2 - (x - D) ** 2), (x, D - R2, t1))
+    vol = sp.integrate(sp.pi * (R1**2 - x**2), (x, t1, R1)) + sp.integrate(
+        sp.pi * (R2**2 - (x - D) ** 2), (x, D - R2, t1)
+    )
     assert lens_measure(r1, r2, d) == pytest.approx(float(vol), rel=1e-12)
 
 
 @pytest.mark.parametrize("dim", [2, 3])
-@pytest.mark.parametrize("r1,r2,d", [(1.0, 1.2, 1.5), (1.0, 1.0, 2.0), (2.0, 0.5, 0.3), (1.0, 0.8, 0.5), (1.0, 1.0, 3.0)])
+@pytest.mark.parametrize(
+    "r1,r2,d", [(1.0, 1.2, 1.5), (1.0, 1.0, 2.0), (2.0, 0.5, 0.3), (1.0, 0.8, 0.5), (1.0, 1.0, 3.0)]
+)
 def test_union_measure(dim, r1, r2, d):
     b = sl.Balls([[0.0] * dim, [d] + [0.0] * (dim - 1)], [r1, r2])
     m = sl.union_measure(b)

@@ -30,8 +30,8 @@ def test_score_test_accepts_exactly_inside(k, n):
 @pytest.mark.parametrize("k,n", [(8, 10), (3, 17)])
 def test_clopper_pearson_tails(k, n):
     lo, hi = clopper_pearson_interval(k, n)
-    assert binom.sf(k - 1, n, lo) == pytest.approx(0.025, rel=1e-7)   # P(X >= k | lo)
-    assert binom.cdf(k, n, hi) == pytest.approx(0.025, rel=1e-7)       # P(X <= k | hi)
+    assert binom.sf(k - 1, n, lo) == pytest.approx(0.025, rel=1e-7)  # P(X >= k | lo)
+    assert binom.cdf(k, n, hi) == pytest.approx(0.025, rel=1e-7)  # P(X <= k | hi)
 
 
 def test_known_value():

@@ -506,8 +506,9 @@ def test_low_dimensional_balls(centers):
 
 
 def test_tangent_angle_is_the_angle_of_the_projections():
+    from shapelab._engine.measure import angle as _angle
+    from shapelab._engine.measure import tangent_angle as _tangent_angle
     from shapelab._toolkit.geometry import dot as _dot
-    from shapelab.measure import _angle, _tangent_angle
 
     rng = np.random.default_rng(3)
     um, uk, p = (rng.normal(size=(3, 500)) for _ in range(3))

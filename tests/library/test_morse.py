@@ -55,7 +55,11 @@ def test_maximum_is_a_grid_maximum():
     s = np.linspace(0, 1, 301)
     u, v = np.meshgrid(s, s)
     keep = (u + v <= 1).ravel()
-    P = (b.centers[0] + np.outer(u.ravel(), b.centers[1] - b.centers[0]) + np.outer(v.ravel(), b.centers[2] - b.centers[0]))[keep]
+    P = (
+        b.centers[0]
+        + np.outer(u.ravel(), b.centers[1] - b.centers[0])
+        + np.outer(v.ravel(), b.centers[2] - b.centers[0])
+    )[keep]
     f = np.min(((P[:, None, :] - b.centers[None]) ** 2).sum(-1) - b.radii**2, axis=1)
     top = cp.values[cp.index == 2][0]
     assert top - 0.05 < f.max() <= top + 1e-12  # f has a kink at its maximum: grid error ~ slope × spacing

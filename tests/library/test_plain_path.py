@@ -34,7 +34,9 @@ def as_set(T) -> set:
 
 
 def entry_times(F) -> dict:
-    return {tuple(int(v) for v in s): float(t) for k in range(F.dimension + 1) for s, t in zip(F.simplices(k), F.values(k))}
+    return {
+        tuple(int(v) for v in s): float(t) for k in range(F.dimension + 1) for s, t in zip(F.simplices(k), F.values(k))
+    }
 
 
 def assert_same_filtration(balls: Balls) -> None:

@@ -147,9 +147,11 @@ def test_measure_tie_rule_covers_the_certified_accuracy():
     v' >= τ (1 + RTOL), and v' (1 - TIE) >= τ needs TIE >= RTOL / (1 + RTOL)."""
     assert T.MEASURE_TIE >= RTOL / (1.0 - RTOL)
     # and it does so for the worst rounding, in floating point
+    from shapelab._engine.measure import before
+
     for tau in (1.0, -1.0, 3.7e5, -2.5e-7):
         worst = tau * (1.0 - RTOL) if tau > 0 else tau * (1.0 + RTOL)
-        assert not measure._before(np.array([worst]), tau)[0]
+        assert not before(np.array([worst]), tau)[0]
 
 
 def test_persistence_roundoff_covers_the_certified_accuracy():

@@ -11,8 +11,9 @@ import shapelab as sl
 from shapelab import check
 
 TORUS = sl.closure([t for i in range(7) for t in ((i, (i + 1) % 7, (i + 3) % 7), (i, (i + 2) % 7, (i + 3) % 7))])
-RP2 = sl.closure([(0, 1, 2), (0, 2, 3), (0, 3, 4), (0, 4, 5), (0, 1, 5),
-                  (1, 2, 4), (2, 3, 5), (1, 3, 4), (2, 4, 5), (1, 3, 5)])
+RP2 = sl.closure(
+    [(0, 1, 2), (0, 2, 3), (0, 3, 4), (0, 4, 5), (0, 1, 5), (1, 2, 4), (2, 3, 5), (1, 3, 4), (2, 4, 5), (1, 3, 5)]
+)
 LOOP = [(i, (i + 1) % 7) for i in range(7)]
 CHAINS = [LOOP, [(0, 1), (1, 3), (0, 3)], [(0, 1), (1, 2)], [(i, (i + s) % 7) for s in (1, 2, 3) for i in range(7)]]
 CYCLE = [True, True, False, True]
@@ -51,8 +52,18 @@ def test_rank_right_answer_passes(capsys):
     assert "✓" in capsys.readouterr().out
 
 
-@pytest.mark.parametrize("wrong", [rank_reals, rank_no_swap, rank_nonzero_rows, rank_crashes_on_empty,
-                                   lambda M: min(np.shape(M)), lambda M: True, lambda M: None])
+@pytest.mark.parametrize(
+    "wrong",
+    [
+        rank_reals,
+        rank_no_swap,
+        rank_nonzero_rows,
+        rank_crashes_on_empty,
+        lambda M: min(np.shape(M)),
+        lambda M: True,
+        lambda M: None,
+    ],
+)
 def test_rank_mistakes_fail(wrong, capsys):
     assert not check.rank_mod2(wrong).passed
     assert "✗" in capsys.readouterr().out
@@ -62,7 +73,12 @@ def test_rank_mistakes_fail(wrong, capsys):
 def test_betti_right_answer_passes(capsys):
     assert check.complex_betti((1, 1, 1), RP2).passed
     assert check.complex_betti([1, 2, 1], TORUS).passed
-    for form in (np.array([1, 1, 1]), np.array([1, 1, 1], dtype=np.uint8), tuple(np.int64(1) for _ in range(3)), (1.0, 1.0, 1.0)):
+    for form in (
+        np.array([1, 1, 1]),
+        np.array([1, 1, 1], dtype=np.uint8),
+        tuple(np.int64(1) for _ in range(3)),
+        (1.0, 1.0, 1.0),
+    ):
         assert check.complex_betti(form, RP2).passed
     assert "β0, β1)" in check.complex_betti((1, 1), sl.closure([(0, 1), (1, 2), (0, 2)])).message
 
@@ -77,9 +93,26 @@ def _cycles_only(K):  # dim Z_k, forgetting the boundaries
     return tuple(len(sl.k_simplices(K, k)) - sl.rank_mod2(sl.boundary_matrix(K, k)) for k in range(3))
 
 
-@pytest.mark.parametrize("wrong", [(1, 0, 0), (2, 1, 1), (1, 1, 2), (1, 1, 0), (1, 1), None, 0, "111", (1.5, 1, 1),
-                                   (True, True, True), np.array([True, True, True]), (1, 1, 1, 0), (1, 2, 1),
-                                   _betti_over_the_reals_unsigned(RP2), _cycles_only(RP2)])
+@pytest.mark.parametrize(
+    "wrong",
+    [
+        (1, 0, 0),
+        (2, 1, 1),
+        (1, 1, 2),
+        (1, 1, 0),
+        (1, 1),
+        None,
+        0,
+        "111",
+        (1.5, 1, 1),
+        (True, True, True),
+        np.array([True, True, True]),
+        (1, 1, 1, 0),
+        (1, 2, 1),
+        _betti_over_the_reals_unsigned(RP2),
+        _cycles_only(RP2),
+    ],
+)
 def test_betti_mistakes_fail(wrong, capsys):
     assert not check.complex_betti(wrong, RP2).passed
     out = capsys.readouterr().out
@@ -96,14 +129,14 @@ def test_cycles_right_answer_passes(capsys):
 @pytest.mark.parametrize(
     "cycle, bounds",
     [
-        (CYCLE, [True, True, False, True]),      # the loop around the torus claimed a boundary
-        (CYCLE, CYCLE),                          # every cycle a boundary
-        (CYCLE, [False, True, False, False]),    # the three loops' sum claimed not to bound
-        ([True, True, True, True], BOUNDS),      # the path claimed a cycle
+        (CYCLE, [True, True, False, True]),  # the loop around the torus claimed a boundary
+        (CYCLE, CYCLE),  # every cycle a boundary
+        (CYCLE, [False, True, False, False]),  # the three loops' sum claimed not to bound
+        ([True, True, True, True], BOUNDS),  # the path claimed a cycle
         ([False, True, False, True], BOUNDS),
         (CYCLE, BOUNDS[:3]),
         (CYCLE, None),
-        ([1, 1, 0, 1], [0, 1, 0, 1]),            # numbers, not truth values
+        ([1, 1, 0, 1], [0, 1, 0, 1]),  # numbers, not truth values
     ],
 )
 def test_cycles_mistakes_fail(cycle, bounds, capsys):
@@ -112,12 +145,23 @@ def test_cycles_mistakes_fail(cycle, bounds, capsys):
 
 
 def test_right_answers_in_other_forms_pass(capsys):
-    for c, b in ((tuple(CYCLE), tuple(BOUNDS)), (np.array(CYCLE), np.array(BOUNDS)), ([np.bool_(x) for x in CYCLE], BOUNDS)):
+    for c, b in (
+        (tuple(CYCLE), tuple(BOUNDS)),
+        (np.array(CYCLE), np.array(BOUNDS)),
+        ([np.bool_(x) for x in CYCLE], BOUNDS),
+    ):
         assert check.cycles_and_boundaries(c, b, CHAINS, TORUS).passed
 
 
-@pytest.mark.parametrize("cycle, bounds", [(CYCLE, [True, True, False, True]), ([True, True, True, True], BOUNDS),
-                                           (np.array(True), np.array(False)), ([CYCLE], [BOUNDS])])
+@pytest.mark.parametrize(
+    "cycle, bounds",
+    [
+        (CYCLE, [True, True, False, True]),
+        ([True, True, True, True], BOUNDS),
+        (np.array(True), np.array(False)),
+        ([CYCLE], [BOUNDS]),
+    ],
+)
 def test_cycles_messages_do_not_name_the_chain(cycle, bounds, capsys):
     """With two possible answers per chain, naming the wrong chain would give its answer away."""
     r = check.cycles_and_boundaries(cycle, bounds, CHAINS, TORUS)

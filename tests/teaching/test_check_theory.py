@@ -31,10 +31,10 @@ def test_morse_maximum(capsys):
     a = 2 * (z[1:] - z[0])
     circumcentre = np.linalg.solve(a, (z[1:] ** 2).sum(1) - (z[0] ** 2).sum())
     wrong = [
-        (circumcentre, v),                                           # radii ignored
-        (z.mean(axis=0), v),                                         # the centroid
-        (y, float(((circumcentre - z[0]) ** 2).sum())),             # the circumradius squared
-        (y, v + THREE.radii[0] ** 2),                               # |y - z|^2 without the weight
+        (circumcentre, v),  # radii ignored
+        (z.mean(axis=0), v),  # the centroid
+        (y, float(((circumcentre - z[0]) ** 2).sum())),  # the circumradius squared
+        (y, v + THREE.radii[0] ** 2),  # |y - z|^2 without the weight
         (y, None),
         (None, v),
     ]
@@ -53,8 +53,8 @@ def _fan(balls, first):
 
 def test_tie_break(capsys):
     assert check.tie_break(_fan(HEXAGON, 0), HEXAGON)
-    assert check.tie_break([t[::-1] for t in _fan(HEXAGON, 0)][::-1], HEXAGON)   # any order
-    for k in range(1, 6):                                   # a fan from another ball
+    assert check.tie_break([t[::-1] for t in _fan(HEXAGON, 0)][::-1], HEXAGON)  # any order
+    for k in range(1, 6):  # a fan from another ball
         assert not check.tie_break(_fan(HEXAGON, k), HEXAGON)
     right = _fan(HEXAGON, 0)
     for wrong in (right[:3], right + [right[0]], [[0, 1]] * 4, "0 1 2", None, 0):
@@ -69,9 +69,9 @@ def test_chain_volume(capsys):
 
     balls = sum(ball_measure(r) for r in CHAIN.radii)
     wrong = [
-        balls,                                              # no lenses
-        balls - lens_measure(1.0, 1.2, 1.6),                # one lens forgotten
-        balls - 2 * lens_measure(1.0, 1.2, 1.6) + 0.0,      # the same lens twice
+        balls,  # no lenses
+        balls - lens_measure(1.0, 1.2, 1.6),  # one lens forgotten
+        balls - 2 * lens_measure(1.0, 1.2, 1.6) + 0.0,  # the same lens twice
         balls - lens_measure(1.0, 1.2, 1.6) - lens_measure(1.2, 0.9, 1.4) * 0.5,
         v * 1.1,
     ]
@@ -83,7 +83,7 @@ def test_chain_volume(capsys):
 
 def test_wasserstein_by_hand(capsys):
     assert check.wasserstein_by_hand(1.5, D1, D2)
-    for w in (1.0, 3.0, 4.0, np.sqrt(1.25), 2.0, None):    # bottleneck, other matchings, W2, ...
+    for w in (1.0, 3.0, 4.0, np.sqrt(1.25), 2.0, None):  # bottleneck, other matchings, W2, ...
         capsys.readouterr()
         assert not check.wasserstein_by_hand(w, D1, D2)
         assert "1.5" not in capsys.readouterr().out
@@ -93,14 +93,14 @@ def test_wilson(capsys):
     k, n = 46, 61
     lo, hi = wilson_interval(k, n)
     assert check.wilson((lo, hi), k, n)
-    assert check.wilson((round(lo, 3), round(hi, 3)), k, n)          # three decimals are enough
+    assert check.wilson((round(lo, 3), round(hi, 3)), k, n)  # three decimals are enough
     p = k / n
     half = norm.ppf(0.975) * np.sqrt(p * (1 - p) / n)
     wrong = [
-        (p - half, p + half),                                        # Wald
-        clopper_pearson_interval(k, n),                              # exact, not Wilson
-        wilson_interval(k, n, 0.9),                                  # the 90 % interval
-        (hi, lo),                                                    # ends swapped
+        (p - half, p + half),  # Wald
+        clopper_pearson_interval(k, n),  # exact, not Wilson
+        wilson_interval(k, n, 0.9),  # the 90 % interval
+        (hi, lo),  # ends swapped
         (lo, hi + 0.01),
         lo,
         None,

@@ -34,7 +34,8 @@ def test_the_named_module_exists_is_public_and_defines_the_functions(stem):
 @pytest.mark.parametrize("stem", sorted(rtc.CODE))
 def test_the_cell_is_current(stem):
     assert rtc.refresh(ROOT / "lessons" / f"{stem}.ipynb", check=True), (
-        f"{stem}: its Read the code cell is missing or out of date: python -m course.read_the_code")
+        f"{stem}: its Read the code cell is missing or out of date: python -m course.read_the_code"
+    )
 
 
 def test_the_cell_states_the_length(tmp_path):
