@@ -29,10 +29,15 @@ compute the same distances faster and handle points at infinity.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
 from ._toolkit.validate import as_float_array
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = ["augmented_cost_matrix", "assignment_distance"]
 
@@ -53,7 +58,7 @@ def _ground(P, Q, q: float) -> np.ndarray:
     return (diff**q).sum(axis=2) ** (1.0 / q)
 
 
-def augmented_cost_matrix(D1, D2, *, internal_p=np.inf) -> np.ndarray:
+def augmented_cost_matrix(D1: ArrayLike, D2: ArrayLike, *, internal_p: float = np.inf) -> np.ndarray:
     """The square cost matrix of the matching problem between two finite diagrams.
 
     Parameters
@@ -101,7 +106,7 @@ def augmented_cost_matrix(D1, D2, *, internal_p=np.inf) -> np.ndarray:
     return C
 
 
-def assignment_distance(D1, D2, p=1, *, internal_p=np.inf) -> float:
+def assignment_distance(D1: ArrayLike, D2: ArrayLike, p: float = 1, *, internal_p: float = np.inf) -> float:
     """The p-Wasserstein or bottleneck distance of two finite diagrams by assignment.
 
     Parameters

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import numbers
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -32,6 +33,9 @@ from ._toolkit.validate import (
     check_balls,
     readonly,
 )
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = ["Balls", "power_distance"]
 
@@ -199,7 +203,7 @@ class Balls(BallsBase):
         return Balls(self.centers * s, self.radii * s)
 
 
-def power_distance(x, balls: Balls) -> np.ndarray:
+def power_distance(x: ArrayLike, balls: Balls) -> np.ndarray:
     """Power distance :math:`\\pi_i(x) = \\lVert x - z_i\\rVert^2 - r_i^2` (Notes §23.1).
 
     Parameters

@@ -40,11 +40,15 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ._toolkit import tolerances as tol
 from ._toolkit.validate import as_finite_scalar, as_point, as_points, as_positive_int
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = [
     "CriticalPoints",
@@ -440,7 +444,7 @@ def _check_closed_manifold(faces: np.ndarray, n_vertices: int) -> tuple[int, int
     return nE, n_vertices
 
 
-def euler_characteristic(vertices, faces) -> int:
+def euler_characteristic(vertices: ArrayLike, faces: ArrayLike) -> int:
     """χ = V - E + F of a closed triangulated surface (2 for a sphere, 0 for a torus).
 
     An independent check of the critical-point count of :func:`critical_points`.
@@ -454,6 +458,17 @@ def euler_characteristic(vertices, faces) -> int:
     ----------
     .. [1] H. Edelsbrunner and J. L. Harer, *Computational Topology: An Introduction*,
            American Mathematical Society, 2010. doi:10.1090/mbk/069
+
+    Examples
+    --------
+    >>> from shapelab.datasets import torus
+    >>> V, T = torus(24, 12)
+    >>> euler_characteristic(V, T)
+    0
+    >>> import numpy as np
+    >>> # the boundary of a tetrahedron, a sphere
+    >>> euler_characteristic(np.eye(4)[:, :3], [[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]])
+    2
     """
     V = as_points(vertices, "vertices", dim=3, min_points=4)
     Fc = _as_faces(faces, V.shape[0])
@@ -497,7 +512,14 @@ def _surface_critical(vertices, faces, S: np.ndarray) -> CriticalPoints:
 # --------------------------------------------------------------------------- #
 # Public entry point                                                           #
 # --------------------------------------------------------------------------- #
-def critical_points(curve, viewpoint, *, faces=None, close: bool = False, n_samples: int = 4096) -> CriticalPoints:
+def critical_points(
+    curve: ArrayLike | Callable[[np.ndarray], ArrayLike],
+    viewpoint: ArrayLike,
+    *,
+    faces: ArrayLike | None = None,
+    close: bool = False,
+    n_samples: int = 4096,
+) -> CriticalPoints:
     """Minima and maxima (and saddles) of F(x) = |x - S| (notes §23.2, Figure 23.3).
 
     Parameters
@@ -567,6 +589,15 @@ def critical_points(curve, viewpoint, *, faces=None, close: bool = False, n_samp
            University Press, 1963.
     .. [2] H. Edelsbrunner and J. L. Harer, *Computational Topology: An Introduction*,
            American Mathematical Society, 2010. doi:10.1090/mbk/069
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from shapelab.datasets import ellipse_curve
+    >>> # seen from its centre, an ellipse has two minima (the ends of the minor axis) and two maxima
+    >>> cp = critical_points(ellipse_curve(2.0, 1.0), [0.0, 0.0])
+    >>> cp.n_min, cp.n_max, np.round(np.sort(cp.values), 6).tolist()
+    (2, 2, [1.0, 1.0, 2.0, 2.0])
     """
     if faces is not None:
         S = as_point(viewpoint, "viewpoint")
@@ -579,7 +610,9 @@ def critical_points(curve, viewpoint, *, faces=None, close: bool = False, n_samp
     return _polyline_critical(curve, S, bool(close))
 
 
-def distance_along(curve, viewpoint, *, n: int = 1000, close: bool = False):
+def distance_along(
+    curve: ArrayLike | Callable[[np.ndarray], ArrayLike], viewpoint: ArrayLike, *, n: int = 1000, close: bool = False
+) -> tuple[np.ndarray, np.ndarray]:
     """F along the curve, for plots of F against the parameter.
 
     Returns ``(parameters, values)``: for a polyline, arc-length fractions in
@@ -590,6 +623,14 @@ def distance_along(curve, viewpoint, *, n: int = 1000, close: bool = False):
     --------
     critical_points
         The extrema of this function.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from shapelab.datasets import ellipse_curve
+    >>> t, F = distance_along(ellipse_curve(2.0, 1.0), [0.0, 0.0], n=8)
+    >>> np.round(t[:3], 4).tolist(), np.round(F[:3], 4).tolist()
+    ([0.0, 0.7854, 1.5708], [2.0, 1.5811, 1.0])
     """
     n = as_positive_int(n, "n", minimum=2)
     if callable(curve):
@@ -686,6 +727,13 @@ def signature(result: CriticalPoints, *, tolerance: float = 0.0) -> Signature:
     ----------
     .. [1] H. Edelsbrunner and J. L. Harer, *Computational Topology: An Introduction*,
            American Mathematical Society, 2010. doi:10.1090/mbk/069
+
+    Examples
+    --------
+    >>> from shapelab.datasets import ellipse_curve
+    >>> s = signature(critical_points(ellipse_curve(2.0, 1.0), [0.0, 0.0]))
+    >>> [str(k) for k in s.kinds], s.values.round(3).tolist()
+    (['max', 'min', 'max', 'min'], [1.0, 0.5, 1.0, 0.5])
     """
     if not isinstance(result, CriticalPoints):
         raise TypeError(f"result must be a CriticalPoints, got {type(result).__name__}")
@@ -704,7 +752,7 @@ def signature(result: CriticalPoints, *, tolerance: float = 0.0) -> Signature:
     return Signature(tuple(np.array(kinds)[order]), vals[order], True)
 
 
-def compare(a, b) -> float:
+def compare(a: CriticalPoints | Signature, b: CriticalPoints | Signature) -> float:
     """Compare two shapes by their critical points: 0 for identical signatures.
 
     Parameters
@@ -725,6 +773,15 @@ def compare(a, b) -> float:
         What is compared.
     shapelab.diagrams.bottleneck_distance
         A stable comparison of persistence diagrams instead.
+
+    Examples
+    --------
+    >>> from shapelab.datasets import ellipse_curve
+    >>> a = critical_points(ellipse_curve(2.0, 1.0), [0.0, 0.0])
+    >>> b = critical_points(ellipse_curve(4.0, 2.0), [0.0, 0.0])  # the same shape, twice as large
+    >>> c = critical_points(ellipse_curve(3.0, 1.0), [0.0, 0.0])
+    >>> round(compare(a, b), 9), compare(a, c) > 0
+    (0.0, True)
     """
     sa = a if isinstance(a, Signature) else signature(a)
     sb = b if isinstance(b, Signature) else signature(b)
@@ -763,6 +820,15 @@ def polyline(fn: Callable, n: int = 200) -> np.ndarray:
     --------
     critical_points
         Takes the polyline.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> P = polyline(lambda t: np.c_[np.cos(t), np.sin(t)], 4)
+    >>> P.shape, bool(np.array_equal(P[0], P[-1]))
+    ((5, 2), True)
+    >>> np.round(P[1], 6).tolist()
+    [0.0, 1.0]
     """
     n = as_positive_int(n, "n", minimum=3)
     t = np.arange(n) * (_TWO_PI / n)

@@ -40,10 +40,16 @@ problem, on a sparse graph when most points lie near the diagonal.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ._toolkit.validate import as_float_array
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    from numpy.typing import ArrayLike
 
 __all__ = ["DiagramMatching", "bottleneck_distance", "wasserstein_distance", "distance_matrix"]
 
@@ -329,7 +335,7 @@ def _cover(n, m, ii, jj, need_p, need_q):
     return sorted(out)
 
 
-def bottleneck_distance(D1, D2, *, matching: bool = False):
+def bottleneck_distance(D1: ArrayLike, D2: ArrayLike, *, matching: bool = False) -> float | DiagramMatching:
     """The bottleneck distance between two persistence diagrams, exact.
 
     Parameters
@@ -419,7 +425,9 @@ def bottleneck_distance(D1, D2, *, matching: bool = False):
     return DiagramMatching(dist, np.array(pairs, dtype=np.int64).reshape(-1, 2))
 
 
-def wasserstein_distance(D1, D2, p=2, *, internal_p=np.inf, matching: bool = False):
+def wasserstein_distance(
+    D1: ArrayLike, D2: ArrayLike, p: float = 2, *, internal_p: float = np.inf, matching: bool = False
+) -> float | DiagramMatching:
     """The p-Wasserstein distance between two persistence diagrams, exact.
 
     :math:`W_p = \\min_\\pi (\\sum \\lVert x - \\pi(x)\\rVert_q^p)^{1/p}` over the
@@ -508,7 +516,7 @@ def wasserstein_distance(D1, D2, p=2, *, internal_p=np.inf, matching: bool = Fal
     return DiagramMatching(dist, np.array(pairs, dtype=np.int64).reshape(-1, 2))
 
 
-def distance_matrix(diagrams, *, p=np.inf) -> np.ndarray:
+def distance_matrix(diagrams: Sequence[ArrayLike], *, p: float = np.inf) -> np.ndarray:
     """Pairwise distances between persistence diagrams: a family compared at once.
 
     Parameters

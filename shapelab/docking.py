@@ -26,10 +26,14 @@ two stages (§23.2): a coarse alignment of the ligand to a site from features
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ._toolkit.validate import as_finite_scalar, check_balls
+
+if TYPE_CHECKING:
+    from .balls import Balls
 
 __all__ = ["DockingScore", "docking_score", "Docking", "DockedPose"]
 
@@ -214,7 +218,9 @@ class Docking:
     True
     """
 
-    def __init__(self, receptor, ligand, *, probe: float = 0.0, penalty: float = 10.0, tolerance: float = 0.5):
+    def __init__(
+        self, receptor: Balls, ligand: Balls, *, probe: float = 0.0, penalty: float = 10.0, tolerance: float = 0.5
+    ):
         from scipy.spatial import cKDTree
 
         from .balls import Balls

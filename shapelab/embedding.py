@@ -16,11 +16,15 @@ distance is from Euclidean.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ._toolkit.tolerances import DISTANCE_MATRIX_SYMMETRY
 from ._toolkit.validate import as_float_array, as_positive_int
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = ["Embedding", "classical_mds"]
 
@@ -55,7 +59,7 @@ class Embedding:
         return float(kept[kept > 0].sum() / pos.sum()) if pos.size else 1.0
 
 
-def classical_mds(D, dim: int = 2) -> Embedding:
+def classical_mds(D: ArrayLike, dim: int = 2) -> Embedding:
     """Classical multidimensional scaling of a distance matrix.
 
     Parameters

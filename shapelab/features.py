@@ -26,10 +26,16 @@ from __future__ import annotations
 
 import itertools
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ._toolkit.validate import as_points
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    from numpy.typing import ArrayLike
 
 __all__ = ["Candidate", "coarse_align"]
 
@@ -58,7 +64,7 @@ def _frame(X):
     return c, V[:, ::-1], w[::-1]  # axes by decreasing variance
 
 
-def coarse_align(R, G, *, features=("axes", "critical")) -> list:
+def coarse_align(R: ArrayLike, G: ArrayLike, *, features: str | Sequence[str] = ("axes", "critical")) -> list:
     """Candidate rigid motions taking ``R`` near ``G``, from pose-independent features.
 
     Parameters

@@ -45,7 +45,7 @@ def _det(M) -> Fraction:
     return sign * out
 
 
-def cospherical_subsets(balls) -> np.ndarray:
+def cospherical_subsets(balls: Balls) -> np.ndarray:
     """The sets of :math:`d + 2` balls with a common orthogonal sphere, exactly.
 
     Parameters

@@ -22,8 +22,14 @@ from __future__ import annotations
 
 from collections import Counter
 from itertools import combinations
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from collections.abc import Iterable, Sequence
+
+    from numpy.typing import ArrayLike
 
 __all__ = [
     "closure",
@@ -88,7 +94,7 @@ def _chain(chain, name: str = "chain") -> set:
     return c
 
 
-def closure(simplices) -> list:
+def closure(simplices: Iterable[Sequence[int]]) -> list:
     """The smallest complex that holds the given simplices: each with all its faces.
 
     Parameters
@@ -128,7 +134,7 @@ def closure(simplices) -> list:
     return sorted(faces, key=lambda f: (len(f), f))
 
 
-def k_simplices(simplices, k: int) -> list:
+def k_simplices(simplices: Iterable[Sequence[int]], k: int) -> list:
     """The k-simplices of a complex, as sorted vertex tuples in lexicographic order.
 
     This is the order of the rows and columns of :func:`boundary_matrix`.
@@ -171,7 +177,7 @@ def _dimension(k) -> int:
     return int(k)
 
 
-def boundary_matrix(simplices, k: int) -> np.ndarray:
+def boundary_matrix(simplices: Iterable[Sequence[int]], k: int) -> np.ndarray:
     """The boundary matrix :math:`\\partial_k` of a complex over :math:`\\mathbb{Z}/2`.
 
     Entry ``[i, j]`` is 1 when the i-th (k−1)-simplex is a facet of the j-th k-simplex,
@@ -224,7 +230,7 @@ def boundary_matrix(simplices, k: int) -> np.ndarray:
     return M
 
 
-def rank_mod2(M) -> int:
+def rank_mod2(M: ArrayLike) -> int:
     """The rank of a 0/1 matrix over :math:`\\mathbb{Z}/2`, by Gaussian elimination.
 
     Entries are taken mod 2. Column by column, a row with a 1 in that column becomes the
@@ -286,7 +292,7 @@ def rank_mod2(M) -> int:
     return rank
 
 
-def chain_boundary(chain) -> set:
+def chain_boundary(chain: Iterable[Sequence[int]]) -> set:
     """The boundary of a chain over :math:`\\mathbb{Z}/2`: the facets met an odd number of times.
 
     Parameters
@@ -323,7 +329,7 @@ def chain_boundary(chain) -> set:
     return {f for f, n in count.items() if n % 2}
 
 
-def is_cycle(chain, simplices=None) -> bool:
+def is_cycle(chain: Iterable[Sequence[int]], simplices: Iterable[Sequence[int]] | None = None) -> bool:
     """Whether a chain is a cycle: its boundary is zero over :math:`\\mathbb{Z}/2`.
 
     Parameters
@@ -366,7 +372,7 @@ def _inside(c: set, K: set) -> None:
         raise ValueError(f"chain: the simplex {outside[0]} is not in simplices")
 
 
-def is_boundary(chain, simplices) -> bool:
+def is_boundary(chain: Iterable[Sequence[int]], simplices: Iterable[Sequence[int]]) -> bool:
     """Whether a k-chain is a boundary in a complex: :math:`c = \\partial c'` for a (k+1)-chain :math:`c'`.
 
     Over :math:`\\mathbb{Z}/2` this is a linear system :math:`\\partial_{k+1} x = c`; it has a
@@ -419,7 +425,7 @@ def is_boundary(chain, simplices) -> bool:
     return rank_mod2(np.hstack([D, v])) == rank_mod2(D)
 
 
-def betti_numbers(simplices) -> tuple:
+def betti_numbers(simplices: Iterable[Sequence[int]]) -> tuple:
     """The Betti numbers :math:`(\\beta_0, \\dots, \\beta_d)` of a complex over :math:`\\mathbb{Z}/2`.
 
     :math:`\\beta_k = (n_k - \\operatorname{rank}\\partial_k) - \\operatorname{rank}\\partial_{k+1}`:
@@ -462,7 +468,7 @@ def betti_numbers(simplices) -> tuple:
     return tuple(int(n[k] - ranks[k] - ranks[k + 1]) for k in range(d + 1))
 
 
-def euler_characteristic(simplices) -> int:
+def euler_characteristic(simplices: Iterable[Sequence[int]]) -> int:
     """The Euler characteristic :math:`\\chi = \\sum_k (-1)^k n_k` of a complex.
 
     By the Euler–Poincaré formula it is also :math:`\\sum_k (-1)^k \\beta_k`, over any field.
@@ -495,7 +501,7 @@ def euler_characteristic(simplices) -> int:
     return int(sum((-1) ** (len(s) - 1) for s in K))
 
 
-def positive_simplices(order) -> list:
+def positive_simplices(order: Sequence[Sequence[int]]) -> list:
     """For simplices added one at a time, whether each creates a class or kills one.
 
     Adding a k-simplex :math:`\\sigma` to a complex either raises :math:`\\beta_k` by one

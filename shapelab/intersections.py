@@ -40,7 +40,7 @@ def _dim(dim) -> int:
     return int(dim)
 
 
-def ball_measure(r, dim=3) -> float:
+def ball_measure(r: float, dim: int = 3) -> float:
     """The area (2D) or volume (3D) of a ball of radius ``r``.
 
     Parameters
@@ -108,7 +108,7 @@ def cap_volume(r, h) -> float:
     return math.pi * h * h * (3 * r - h) / 3
 
 
-def lens_measure(r1, r2, d, dim=3) -> float:
+def lens_measure(r1: float, r2: float, d: float, dim: int = 3) -> float:
     """The area (2D) or volume (3D) of the intersection of two balls.
 
     Parameters

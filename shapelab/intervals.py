@@ -42,7 +42,7 @@ def _check(k, n, confidence):
     return k, n, float(confidence)
 
 
-def wilson_interval(k, n, confidence=0.95) -> tuple:
+def wilson_interval(k: int, n: int, confidence: float = 0.95) -> tuple:
     """Wilson's score interval for a binomial proportion.
 
     Parameters
@@ -85,7 +85,7 @@ def wilson_interval(k, n, confidence=0.95) -> tuple:
     return (max(0.0, lo), min(1.0, hi))
 
 
-def clopper_pearson_interval(k, n, confidence=0.95) -> tuple:
+def clopper_pearson_interval(k: int, n: int, confidence: float = 0.95) -> tuple:
     """The Clopper–Pearson ("exact") interval for a binomial proportion.
 
     Parameters

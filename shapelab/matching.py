@@ -11,6 +11,7 @@ The Hausdorff distance itself is in :mod:`shapelab.hausdorff`.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -19,10 +20,13 @@ from ._toolkit.tolerances import MATCHING_FATOL, MATCHING_GAP_ABS, MATCHING_STEP
 from ._toolkit.validate import as_finite_scalar, as_point_pair, as_points, as_positive_int
 from .hausdorff import hausdorff
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 __all__ = ["reference_point", "TranslationMatch", "hausdorff_under_translation"]
 
 
-def reference_point(points, kind: str = "centroid") -> np.ndarray:
+def reference_point(points: ArrayLike, kind: str = "centroid") -> np.ndarray:
     """A reference point of a point set (notes §23.2, "reference points").
 
     Parameters
@@ -66,6 +70,15 @@ def reference_point(points, kind: str = "centroid") -> np.ndarray:
     ----------
     .. [1] H. Alt, B. Behrends and J. Blömer, "Approximate matching of polygonal shapes",
            *Ann. Math. Artif. Intell.* 13:251-265, 1995. doi:10.1007/BF01530830
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> square = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]])
+    >>> reference_point(square)
+    array([1., 1.])
+    >>> reference_point(np.vstack([square, [[10.0, 0.0]]]), "bbox")
+    array([5., 1.])
     """
     P = as_points(points, "points")
     if kind == "centroid":
@@ -165,7 +178,7 @@ def _translated_values(A: np.ndarray, B: np.ndarray, T: np.ndarray) -> np.ndarra
 
 
 def hausdorff_under_translation(
-    A, B, *, tol: float = 1e-3, max_evaluations: int = 20000, polish: bool = True
+    A: ArrayLike, B: ArrayLike, *, tol: float = 1e-3, max_evaluations: int = 20000, polish: bool = True
 ) -> TranslationMatch:
     """Match B to A by a translation: reference points against the optimum (§23.2).
 
@@ -226,6 +239,16 @@ def hausdorff_under_translation(
     .. [2] D. P. Huttenlocher, G. A. Klanderman and W. J. Rucklidge, "Comparing images
            using the Hausdorff distance", *IEEE Trans. Pattern Anal. Mach. Intell.*
            15(9):850-863, 1993. doi:10.1109/34.232073
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> A = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
+    >>> m = hausdorff_under_translation(A, A + [3.0, -2.0])
+    >>> np.round(m.centroid_translation, 6).tolist(), round(m.centroid_distance, 9)
+    ([-3.0, 2.0], 0.0)
+    >>> round(m.optimal_distance, 6), m.ratio <= 1.0
+    (0.0, True)
     """
     A, B = as_point_pair(A, B)
     tol = as_finite_scalar(tol, "tol", positive=True)

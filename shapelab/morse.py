@@ -43,11 +43,15 @@ from __future__ import annotations
 from dataclasses import dataclass
 from fractions import Fraction
 from itertools import combinations
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .balls import Balls
 from .filtration import as_filtration
+
+if TYPE_CHECKING:
+    from .filtration import Filtration
 
 __all__ = ["PowerCriticalPoints", "power_critical_points", "critical_points_by_subsets"]
 
@@ -152,7 +156,7 @@ def _result(found, dim: int) -> PowerCriticalPoints:
     )
 
 
-def power_critical_points(F) -> PowerCriticalPoints:
+def power_critical_points(F: Filtration | Balls) -> PowerCriticalPoints:
     """The critical points of the power distance, read off the α-filtration.
 
     A simplex :math:`\\sigma` of the regular triangulation is critical when it is
@@ -220,7 +224,7 @@ def power_critical_points(F) -> PowerCriticalPoints:
     return _result(found, balls.dim)
 
 
-def critical_points_by_subsets(balls) -> PowerCriticalPoints:
+def critical_points_by_subsets(balls: Balls) -> PowerCriticalPoints:
     """The critical points of the power distance from the definition, by brute force.
 
     For every set :math:`\\sigma` of at most :math:`d + 1` balls with affinely

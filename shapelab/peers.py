@@ -25,10 +25,14 @@ from __future__ import annotations
 import json
 from dataclasses import dataclass
 from importlib import resources
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ._toolkit.validate import as_finite_scalar, as_points
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = ["PeerDiagrams", "delaunay_cech_diagrams", "voxel_diagrams", "distance_grid", "REFERENCE_FILE"]
 
@@ -105,7 +109,7 @@ def _from_tree(st, **kw) -> dict:
     return _as_diagrams({p: st.persistence_intervals_in_dimension(p) for p in (0, 1, 2)})
 
 
-def delaunay_cech_diagrams(points) -> PeerDiagrams:
+def delaunay_cech_diagrams(points: ArrayLike) -> PeerDiagrams:
     """The diagrams of the Delaunay–Čech filtration of ``points``, by GUDHI, over Z/2.
 
     Each simplex of the Delaunay triangulation enters at the radius of the smallest
@@ -191,7 +195,7 @@ def distance_grid(points, side: float, pad: float) -> np.ndarray:
     return cKDTree(X).query(corners.reshape(-1, X.shape[1]))[0].reshape(corners.shape[:-1])
 
 
-def voxel_diagrams(points, side: float, pad: float) -> PeerDiagrams:
+def voxel_diagrams(points: ArrayLike, side: float, pad: float) -> PeerDiagrams:
     """The diagrams of the distance function sampled on voxels, by GUDHI, over Z/2.
 
     :func:`distance_grid` gives :math:`d_X` at the corners of voxels of side ``side``;
@@ -229,6 +233,16 @@ def voxel_diagrams(points, side: float, pad: float) -> PeerDiagrams:
        "Proximity of persistence modules and their diagrams", Proc. 25th Annu. Sympos.
        Comput. Geom., 237–246, 2009.
     .. [2] The GUDHI Project, *GUDHI User and Reference Manual*, "Cubical complex".
+
+    Examples
+    --------
+    >>> from shapelab.datasets import sample_shape
+    >>> from shapelab.peers import voxel_diagrams
+    >>> # the lesson's torus (lesson 19), with or without GUDHI
+    >>> vox = voxel_diagrams(sample_shape("torus", 400, seed=5), side=0.05, pad=0.7)
+    >>> life = vox[1][:, 1] - vox[1][:, 0]
+    >>> int((life > 0.2).sum())  # the torus's two loops
+    2
     """
     X = as_points(points, "points")
     gudhi = _gudhi()

@@ -61,6 +61,7 @@ from __future__ import annotations
 import math
 import numbers
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -68,6 +69,9 @@ from ._toolkit.tolerances import QLOG_SMALL_VECTOR, ROTVEC_SERIES_ANGLE
 from ._toolkit.validate import as_finite_scalar, as_point, as_vector
 from ._toolkit.validate import as_float_array as _as_float_array
 from ._toolkit.validate import check_finite as _check_finite
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = [
     "Quaternion",
@@ -98,7 +102,7 @@ def _as_quats(q, name: str) -> np.ndarray:
     return arr
 
 
-def qmul(a, b) -> np.ndarray:
+def qmul(a: ArrayLike, b: ArrayLike) -> np.ndarray:
     """Hamilton product of quaternion arrays, broadcast over leading axes.
 
     Parameters
@@ -125,6 +129,13 @@ def qmul(a, b) -> np.ndarray:
     .. [1] B. K. P. Horn, "Closed-form solution of absolute orientation using unit
            quaternions", *J. Opt. Soc. Am. A* 4(4):629-642, 1987.
            doi:10.1364/JOSAA.4.000629
+
+    Examples
+    --------
+    >>> qmul([0, 1, 0, 0], [0, 0, 1, 0])  # i j = k
+    array([0., 0., 0., 1.])
+    >>> qmul([0, 0, 1, 0], [0, 1, 0, 0])  # j i = -k
+    array([ 0.,  0.,  0., -1.])
     """
     a = _as_quats(a, "a")
     b = _as_quats(b, "b")
@@ -411,7 +422,7 @@ def _right(q: np.ndarray) -> np.ndarray:
     return m.reshape(m.shape[:-1] + (4, 4))
 
 
-def left_matrices(q) -> np.ndarray:
+def left_matrices(q: ArrayLike) -> np.ndarray:
     """The matrices :math:`Q` with :math:`q\\cdot r = Q r`, shape (..., 4, 4) (Notes §23.2).
 
     A pure 3-vector (shape (..., 3)) is read as the quaternion :math:`0 + r`.
@@ -428,6 +439,13 @@ def left_matrices(q) -> np.ndarray:
     .. [1] B. K. P. Horn, "Closed-form solution of absolute orientation using unit
            quaternions", *J. Opt. Soc. Am. A* 4(4):629-642, 1987.
            doi:10.1364/JOSAA.4.000629
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> q, r = np.array([1.0, 2.0, 3.0, 4.0]), np.array([0.5, -1.0, 0.0, 2.0])
+    >>> bool(np.allclose(left_matrices(q) @ r, qmul(q, r)))
+    True
     """
     q = np.asarray(q, dtype=np.float64)
     if q.ndim >= 1 and q.shape[-1] == 3:
@@ -435,7 +453,7 @@ def left_matrices(q) -> np.ndarray:
     return _left(_as_quats(q, "q"))
 
 
-def right_matrices(q) -> np.ndarray:
+def right_matrices(q: ArrayLike) -> np.ndarray:
     """The matrices :math:`\\bar Q` with :math:`r\\cdot q = \\bar Q r`, shape (..., 4, 4).
 
     :math:`\\bar Q` is :math:`Q` with its lower-right 3×3 block transposed (Notes §23.2).
@@ -453,6 +471,13 @@ def right_matrices(q) -> np.ndarray:
     .. [1] B. K. P. Horn, "Closed-form solution of absolute orientation using unit
            quaternions", *J. Opt. Soc. Am. A* 4(4):629-642, 1987.
            doi:10.1364/JOSAA.4.000629
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> q, r = np.array([1.0, 2.0, 3.0, 4.0]), np.array([0.5, -1.0, 0.0, 2.0])
+    >>> bool(np.allclose(right_matrices(q) @ r, qmul(r, q)))
+    True
     """
     q = np.asarray(q, dtype=np.float64)
     if q.ndim >= 1 and q.shape[-1] == 3:
@@ -483,7 +508,7 @@ def rotation_angle(a, b) -> np.ndarray:
     return 2.0 * np.arctan2(np.linalg.norm(c[..., 1:], axis=-1), np.abs(c[..., 0]))
 
 
-def to_scipy_order(q) -> np.ndarray:
+def to_scipy_order(q: ArrayLike) -> np.ndarray:
     """``(w, x, y, z)`` → ``(x, y, z, w)``, the order of SciPy's ``Rotation.from_quat``.
 
     See Also
@@ -492,6 +517,11 @@ def to_scipy_order(q) -> np.ndarray:
         The inverse.
     scipy.spatial.transform.Rotation
         SciPy's rotations.
+
+    Examples
+    --------
+    >>> to_scipy_order([1.0, 2.0, 3.0, 4.0])  # (w, x, y, z) -> SciPy's (x, y, z, w)
+    array([2., 3., 4., 1.])
     """
     q = _as_quats(q, "q")
     return np.concatenate([q[..., 1:], q[..., :1]], -1)

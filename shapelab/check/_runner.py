@@ -144,6 +144,19 @@ def run_check(
     time_limit : float or None
         Seconds one case may take before the check stops it and reports a loop that
         never ends (POSIX main thread only); None for no limit.
+
+    Examples
+    --------
+    >>> cases = [(0.0,), (2.0,), (-3.0,)]
+    >>> ok = run_check("square", lambda x: x * x, cases, lambda x: x**2)
+    ✓ square: correct on all 3 cases.
+    >>> bad = run_check("square", lambda x: 2 * x, cases, lambda x: x**2)
+    ✗ square: not quite. First failing input (case 3):
+      -3.0
+      expected: 9.0
+      received: -6.0
+    >>> ok.passed, bad.passed, bad.n_cases
+    (True, False, 3)
     """
     compare = compare or allclose()
     if not callable(student):
@@ -216,7 +229,9 @@ def _hint(received, expected, rtol: float, atol: float) -> str | None:
     return f"{int(np.count_nonzero(~close))} of {e.size} entries differ, the first at index {first[0] if len(first) == 1 else first}"
 
 
-def value(name: str, received, expected, *, rtol: float = 1e-6, atol: float = 1e-9, quiet: bool = False) -> CheckResult:
+def value(
+    name: str, received: Any, expected: Any, *, rtol: float = 1e-6, atol: float = 1e-9, quiet: bool = False
+) -> CheckResult:
     """Check a computed answer against the library's value, without revealing it.
 
     For exercises whose answer is a value (a number, an array, a truth value) rather
@@ -236,6 +251,15 @@ def value(name: str, received, expected, *, rtol: float = 1e-6, atol: float = 1e
         Tolerances for numbers.
     quiet : bool
         Do not print; only return the result.
+
+    Examples
+    --------
+    >>> ok = value("the answer", 0.5, 0.5)
+    ✓ the answer: correct.
+    >>> low = value("the answer", 0.4, 0.5)
+    ✗ the answer: not quite: yours is too small.
+    >>> shape = value("the answer", [1, 2], [1, 2, 3])
+    ✗ the answer: not quite: expected shape (3,), got shape (2,).
     """
     hint = _hint(received, expected, rtol, atol)
     if hint is None:

@@ -8,9 +8,19 @@ then the lesson's objects the reference needs.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ._runner import CheckResult, value
+
+if TYPE_CHECKING:
+    from ..balls import Balls
+    from ..cavities import Pocket
+    from ..filtration import Filtration
+    from ..io import PDBStructure
 
 __all__ = [
     "connected_time",
@@ -36,7 +46,7 @@ __all__ = [
 ]
 
 
-def connected_time(tau_connected, F, *, atol: float = 2e-3) -> CheckResult:
+def connected_time(tau_connected: float, F: Filtration, *, atol: float = 2e-3) -> CheckResult:
     """Lesson 03: the growth time from which the union of disks is connected.
 
     The reference is the last merge of two components: the largest finite death of
@@ -46,6 +56,16 @@ def connected_time(tau_connected, F, *, atol: float = 2e-3) -> CheckResult:
     --------
     shapelab.persistence.betti
         β₀ at a growth time.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> F = sl.alpha_filtration(sl.Balls([[0.0, 0.0], [4.0, 0.0]], [1.0, 1.0]))
+    >>> # two unit disks 4 apart touch when (4/2)^2 - 1 = 3
+    >>> ok = connected_time(3.0, F)
+    ✓ τ at which the union becomes connected (to 0.002): correct.
+    >>> bad = connected_time(2.0, F)
+    ✗ τ at which the union becomes connected (to 0.002): not quite: yours is too small.
     """
     h0 = np.asarray(F.persistence()[0], dtype=float)
     finite = h0[np.isfinite(h0[:, 1]), 1]
@@ -53,7 +73,7 @@ def connected_time(tau_connected, F, *, atol: float = 2e-3) -> CheckResult:
     return value("τ at which the union becomes connected (to 0.002)", tau_connected, expected, atol=atol, rtol=0.0)
 
 
-def distinct_complexes(n_complexes, F, lo: float = 0.0, hi: float = 1.0) -> CheckResult:
+def distinct_complexes(n_complexes: int, F: Filtration, lo: float = 0.0, hi: float = 1.0) -> CheckResult:
     """Lesson 04: how many distinct complexes :math:`K_\\tau` there are for τ in [lo, hi].
 
     The complexes grow by inclusion, so distinct complexes have distinct sizes: the
@@ -63,13 +83,23 @@ def distinct_complexes(n_complexes, F, lo: float = 0.0, hi: float = 1.0) -> Chec
     --------
     shapelab.alpha_filtration
         The filtration whose complexes are counted.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> F = sl.alpha_filtration(sl.Balls([[0.0, 0.0], [4.0, 0.0]], [1.0, 1.0]))
+    >>> # for tau in [0, 5]: the two disks, then the edge from tau = 3
+    >>> ok = distinct_complexes(2, F, 0.0, 5.0)
+    ✓ number of distinct complexes: correct.
+    >>> bad = distinct_complexes(3, F, 0.0, 5.0)
+    ✗ number of distinct complexes: not quite: yours is too large.
     """
     values = np.unique(np.r_[lo, np.concatenate([F.values(k) for k in range(F.dimension + 1)])])
     sizes = {len(F.complex_at(t)) for t in values[(values >= lo) & (values <= hi)]}
     return value("number of distinct complexes", n_complexes, len(sizes))
 
 
-def standard_error_factor(shrink, balls, *, seed: int = 0) -> CheckResult:
+def standard_error_factor(shrink: float, balls: Balls, *, seed: int = 0) -> CheckResult:
     """Lesson 05: by what factor Monte Carlo's standard error falls with 100 times more
     samples (measured on ``balls`` with 10⁴ and 10⁶ samples, to 5 %).
 
@@ -77,6 +107,12 @@ def standard_error_factor(shrink, balls, *, seed: int = 0) -> CheckResult:
     --------
     shapelab.oracles.monte_carlo_union_measure
         The estimate whose error shrinks.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> bad = standard_error_factor(100.0, sl.Balls([[0.0, 0.0], [1.0, 0.0]], [1.0, 1.0]))
+    ✗ the standard error's factor per 100 times more samples: not quite: yours is too large.
     """
     from ..oracles import monte_carlo_union_measure
 
@@ -86,7 +122,7 @@ def standard_error_factor(shrink, balls, *, seed: int = 0) -> CheckResult:
     return value("the standard error's factor per 100 times more samples", shrink, ratio, rtol=0.05)
 
 
-def neck_closing(neck_closes, F) -> CheckResult:
+def neck_closing(neck_closes: float, F: Filtration) -> CheckResult:
     """Lesson 08: when the neck between the two chambers of ``datasets.nested_pockets``
     closes: the second pocket's ``closes_at``.
 
@@ -94,6 +130,13 @@ def neck_closing(neck_closes, F) -> CheckResult:
     --------
     shapelab.pockets
         The pocket whose neck closes.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> F = sl.alpha_filtration(sl.datasets.nested_pockets())
+    >>> bad = neck_closing(-1.0, F)
+    ✗ when the neck closes: not quite: yours is too small.
     """
     from ..cavities import pockets
 
@@ -115,7 +158,7 @@ def _torus_kind(S, R: float, r: float) -> str | None:
 
 
 def torus_viewpoints(
-    viewpoints, counts, *, n_major: int = 24, n_minor: int = 12, R: float = 1.0, r: float = 0.4
+    viewpoints: ArrayLike, counts: ArrayLike, *, n_major: int = 24, n_minor: int = 12, R: float = 1.0, r: float = 0.4
 ) -> CheckResult:
     """Lesson 13: three viewpoints on ``torus(24, 12)`` (far outside, in the hole,
     inside the tube) and the student's ``(#min, #saddles, #max)`` from each.
@@ -127,6 +170,12 @@ def torus_viewpoints(
     --------
     shapelab.critical_points
         The critical points seen from a viewpoint.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> bad = torus_viewpoints([[5.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 5.0, 0.0]], np.zeros((3, 3), dtype=int))
+    ✗ critical points of the torus from three viewpoints: the viewpoints must be one far outside (more than 2 from the centre), one in the hole (within 0.45 of the centre) and one inside the tube (within 0.2 of its core circle); yours are: far outside, in the hole, far outside.
     """
     from ..critical import critical_points
     from ..datasets import torus
@@ -158,7 +207,7 @@ def torus_viewpoints(
     return value(name, C, np.array(expected, dtype=float), rtol=0.0, atol=0.0)
 
 
-def mouth_closing(student) -> CheckResult:
+def mouth_closing(student: Callable[[Pocket, Balls], float]) -> CheckResult:
     """Lesson 08: ``student(pocket, balls)`` returns the time at which the pocket's mouth
     closes, from its mouth edges; checked against the entry time in the filtration of
     its last mouth edge (``pocket.closes_at`` for a pocket that is not nested; the
@@ -175,6 +224,13 @@ def mouth_closing(student) -> CheckResult:
     --------
     shapelab.pockets
         The pocket whose mouth closes.
+
+    Examples
+    --------
+    >>> result = mouth_closing(lambda pocket, balls: pocket.closes_at)  # doctest: +ELLIPSIS
+    ✗ when a pocket's mouth closes: not quite. First failing input (case 3):...
+    >>> result.passed
+    False
     """
     from ..balls import Balls
     from ..cavities import pockets
@@ -202,7 +258,7 @@ def mouth_closing(student) -> CheckResult:
     )
 
 
-def flow_sinks(student) -> CheckResult:
+def flow_sinks(student: Callable[[Filtration, float], Sequence[int]]) -> CheckResult:
     """Lesson 08: ``student(F, tau)`` returns the rows of ``F.simplices(2)`` that are the
     sinks of the discrete flow at ``tau`` (disks of one radius), as a list; compared as
     sets with :func:`shapelab.discrete_flow` on a ring of disks with a gap and on seeded
@@ -216,6 +272,16 @@ def flow_sinks(student) -> CheckResult:
     --------
     shapelab.discrete_flow
         The flow whose sinks are checked.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import shapelab as sl
+    >>> ok = flow_sinks(lambda F, tau: np.flatnonzero(sl.discrete_flow(F, tau).sink).tolist())
+    ✓ the sinks of the discrete flow: correct on all 6 cases.
+    >>> # every empty triangle is not a sink
+    >>> bad = flow_sinks(lambda F, tau: list(range(len(F.simplices(2)))))  # doctest: +ELLIPSIS
+    ✗ the sinks of the discrete flow: not quite. First failing input (case 1):...
     """
     from ..balls import Balls
     from ..cavities.flow import discrete_flow
@@ -257,7 +323,7 @@ def flow_sinks(student) -> CheckResult:
     )
 
 
-def radical_center(student) -> CheckResult:
+def radical_center(student: Callable[[Balls], ArrayLike]) -> CheckResult:
     """Lesson 01: ``student(balls)`` returns the point with equal power distance from three
     disks (their radical centre), checked against the vertex of their power diagram.
 
@@ -265,6 +331,16 @@ def radical_center(student) -> CheckResult:
     --------
     shapelab.power_diagram
         The diagram whose vertex it is.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import shapelab as sl
+    >>> ok = radical_center(lambda balls: sl.power_diagram(balls).vertices[0])
+    ✓ radical centre of three disks: correct on all 6 cases.
+    >>> # the centroid of the centres is no radical centre
+    >>> bad = radical_center(lambda balls: balls.centers.mean(axis=0))  # doctest: +ELLIPSIS
+    ✗ radical centre of three disks: not quite. First failing input (case 1):...
     """
     from ..balls import Balls
     from ..power import power_diagram
@@ -290,7 +366,7 @@ def radical_center(student) -> CheckResult:
     )
 
 
-def void_count(student) -> CheckResult:
+def void_count(student: Callable[[Filtration, float], int]) -> CheckResult:
     """Lesson 07: ``student(F, tau)`` returns the number of voids from the Betti numbers
     alone (:math:`\\beta_{d-1}` of :math:`K_\\tau`), checked against :func:`shapelab.voids`.
 
@@ -298,6 +374,14 @@ def void_count(student) -> CheckResult:
     --------
     shapelab.voids
         The voids counted.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> ok = void_count(lambda F, tau: len(sl.voids(F, tau)))
+    ✓ voids from the Betti numbers: correct on all 7 cases.
+    >>> bad = void_count(lambda F, tau: 1)  # doctest: +ELLIPSIS
+    ✗ voids from the Betti numbers: not quite. First failing input (case 2):...
     """
     from ..cavities import voids
     from ..datasets import fullerene_c60, ring, swiss_cheese
@@ -317,7 +401,7 @@ def void_count(student) -> CheckResult:
     )
 
 
-def ring_tunnel(student) -> CheckResult:
+def ring_tunnel(student: Callable[[int, float, float], ArrayLike]) -> CheckResult:
     """Lesson 10: ``student(n, R, r)`` returns ``(birth, death)`` of the tunnel of
     ``datasets.ring(n, radius=R, disk_radius=r, dim=3)``, checked against the most
     persistent pair of :math:`H_1` of its α-filtration.
@@ -326,6 +410,19 @@ def ring_tunnel(student) -> CheckResult:
     --------
     shapelab.tunnels
         The tunnel of the ring.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import shapelab as sl
+    >>> def tunnel(n, R, r):
+    ...     F = sl.alpha_filtration(sl.datasets.ring(n, radius=R, disk_radius=r, dim=3))
+    ...     P = np.asarray(F.persistence()[1])
+    ...     return P[np.argmax(P[:, 1] - P[:, 0])]
+    >>> ok = ring_tunnel(tunnel)
+    ✓ birth and death of a ring's tunnel: correct on all 5 cases.
+    >>> bad = ring_tunnel(lambda n, R, r: tunnel(n, R, r)[::-1])  # doctest: +ELLIPSIS
+    ✗ birth and death of a ring's tunnel: not quite. First failing input (case 1):...
     """
     from ..datasets import ring
     from ..filtration import alpha_filtration
@@ -346,7 +443,7 @@ def ring_tunnel(student) -> CheckResult:
     )
 
 
-def curve_pairs(student) -> CheckResult:
+def curve_pairs(student: Callable[[np.ndarray], ArrayLike]) -> CheckResult:
     """Lesson 11: ``student(f)`` returns the ``(birth, death)`` pairs (persistence > 0) of
     the sublevel sets of ``f`` along a path, checked against
     :func:`shapelab.curve_persistence` (any order of the rows).
@@ -355,6 +452,19 @@ def curve_pairs(student) -> CheckResult:
     --------
     shapelab.curve_persistence
         The pairs of a curve.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import shapelab as sl
+    >>> def pairs(f):
+    ...     D = sl.curve_persistence(f, closed=False).diagram()
+    ...     return D[D[:, 1] > D[:, 0]]
+    >>> ok = curve_pairs(pairs)
+    ✓ persistence pairs along a path: correct on all 7 cases.
+    >>> # the pairs of the closed curve are refused
+    >>> bad = curve_pairs(lambda f: sl.curve_persistence(f, closed=True).diagram())  # doctest: +ELLIPSIS
+    ✗ persistence pairs along a path: not quite. First failing input (case 4):...
     """
     from ..simplification import curve_persistence
     from ._runner import run_check
@@ -383,7 +493,7 @@ def curve_pairs(student) -> CheckResult:
     return run_check("persistence pairs along a path", student, cases, reference, compare=compare)
 
 
-def euler_poincare(chis, betti_sums, F, taus) -> CheckResult:
+def euler_poincare(chis: Sequence[int], betti_sums: Sequence[int], F: Filtration, taus: Sequence[float]) -> CheckResult:
     """Lesson 06: the Euler characteristic of :math:`K_\\tau` at each τ of ``taus``,
     from its simplex counts, and the alternating sum of its Betti numbers.
 
@@ -418,6 +528,17 @@ def euler_poincare(chis, betti_sums, F, taus) -> CheckResult:
     .. [1] Lecture notes, §23.1 (the dual complex and the growth model).
     .. [2] H. Edelsbrunner and J. Harer, *Computational Topology*, AMS, 2010, §IV.1
            (the Euler–Poincaré formula).
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> F = sl.alpha_filtration(sl.Balls([[0.0, 0.0], [4.0, 0.0]], [1.0, 1.0]))
+    >>> ok = euler_poincare([2, 1], [2, 1], F, [0.0, 5.0])
+    ✓ χ of K_τ from its counts, at each τ: correct.
+    ✓ β0 − β1 + β2 at each τ: correct.
+    >>> bad = euler_poincare([2, 2], [2, 1], F, [0.0, 5.0])
+    ✗ χ of K_τ from its counts, at each τ: not quite: 1 of 2 entries differ, the first at index 1.
+    ✓ β0 − β1 + β2 at each τ: correct.
     """
     taus = [float(t) for t in taus]
     chi = [int(F.complex_at(t).euler_characteristic()) for t in taus]
@@ -428,7 +549,7 @@ def euler_poincare(chis, betti_sums, F, taus) -> CheckResult:
     return CheckResult("the Euler–Poincaré formula", passed, 2, first.message + "\n" + second.message)
 
 
-def most_exposed_residue(answer, structure, probe: float = 1.4) -> CheckResult:
+def most_exposed_residue(answer: str, structure: PDBStructure, probe: float = 1.4) -> CheckResult:
     """Lesson 12: the residue (``"NAME NUMBER"``) with the largest solvent-accessible
     area, the sum of its atoms' shares of the union's boundary with radii grown by ``probe``.
 
@@ -436,6 +557,18 @@ def most_exposed_residue(answer, structure, probe: float = 1.4) -> CheckResult:
     --------
     shapelab.union_measure
         The per-ball areas summed by residue.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> import numpy as np
+    >>> import shapelab as sl
+    >>> mol = SimpleNamespace(balls=sl.Balls([[0.0, 0.0, 0.0], [10.0, 0.0, 0.0]], [1.5, 1.0]),
+    ...                       residue_names=np.array(["LEU", "GLY"]), residue_numbers=np.array([1, 2]))
+    >>> ok = most_exposed_residue("leu 1", mol)
+    ✓ the most exposed residue: correct.
+    >>> bad = most_exposed_residue("GLY 2", mol)
+    ✗ the most exposed residue: not quite: that residue's solvent-accessible area is 31.5 % below the largest (radii grown by the 1.4 Å probe, atoms' shares of the boundary summed per residue).
     """
     from ..balls import Balls
     from ..measure import union_measure
@@ -475,7 +608,7 @@ def _label(text) -> str:
     return " ".join(str(text).split()).upper()
 
 
-def pocket_residues(answer, structure, pocket) -> CheckResult:
+def pocket_residues(answer: Sequence[str], structure: PDBStructure, pocket: Pocket) -> CheckResult:
     """Lesson 12: the residues lining ``pocket``, as labels ``"NAME NUMBER"``.
 
     Compared as sets with the residues of the atoms in ``pocket.lining`` (Notes §23.3,
@@ -555,7 +688,7 @@ def pocket_residues(answer, structure, pocket) -> CheckResult:
     return _fail(name, "; ".join(parts))
 
 
-def void_radii(r_low, r_high, *, bond_length: float = 1.4, rtol: float = 1e-8) -> CheckResult:
+def void_radii(r_low: float, r_high: float, *, bond_length: float = 1.4, rtol: float = 1e-8) -> CheckResult:
     """Lesson 07: the carbon radii r with a void inside C60 at τ = 0, as ``[r_low, r_high)``.
 
     The reference comes from the α-filtration of ``datasets.fullerene_c60(atom_radius=0)``:
@@ -587,6 +720,11 @@ def void_radii(r_low, r_high, *, bond_length: float = 1.4, rtol: float = 1e-8) -
     References
     ----------
     .. [1] Lecture notes, §23.1 (the growth model) and §23.3 (voids).
+
+    Examples
+    --------
+    >>> bad = void_radii(0.5, 1.0)
+    ✗ the radii with a void at τ = 0 (r_low, r_high): not quite: 2 of 2 entries differ, the first at index 0.
     """
     from ..datasets import fullerene_c60
     from ..filtration import alpha_filtration
@@ -604,7 +742,7 @@ def void_radii(r_low, r_high, *, bond_length: float = 1.4, rtol: float = 1e-8) -
     )
 
 
-def void_components(counts, balls, taus) -> CheckResult:
+def void_components(counts: Sequence[int], balls: Balls, taus: Sequence[float]) -> CheckResult:
     """Lesson 07: the number of bounded components of the complement of the union of
     ``balls`` grown to each τ of ``taus``, counted by the student on voxels.
 
@@ -635,6 +773,15 @@ def void_components(counts, balls, taus) -> CheckResult:
     ----------
     .. [1] Lecture notes, §23.1 ("Voids and pockets").
     .. [2] A. Hatcher, *Algebraic Topology*, 2002, Theorem 3.44.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> one = sl.Balls([[0.0, 0.0, 0.0]], [1.0])
+    >>> ok = void_components([0, 0], one, [0.0, 1.0])
+    ✓ the bounded components of the complement at each τ: correct.
+    >>> bad = void_components([1, 0], one, [0.0, 1.0])
+    ✗ the bounded components of the complement at each τ: not quite: 1 of 2 counts differ, at τ = 0 (too many). Check that a voxel is in the union when its centre lies in a ball grown to τ (radius √(r² + τ)), that the unbounded component (the one touching the grid's border) is left out, and that voxels meeting only at an edge or a corner are neighbours (26-connectivity).
     """
     from ..filtration import alpha_filtration
 
@@ -666,7 +813,7 @@ def void_components(counts, balls, taus) -> CheckResult:
     return _fail(name, hint)
 
 
-def buried_area(answer, receptor, ligand, probe: float = 0.0) -> CheckResult:
+def buried_area(answer: float, receptor: Balls, ligand: Balls, probe: float = 0.0) -> CheckResult:
     """Lesson 18: the area buried when ``ligand`` binds ``receptor`` as given,
     :math:`|\\partial A| + |\\partial B| - |\\partial(A\\cup B)|` with radii grown by ``probe``
     (to 1e-6 relative).
@@ -675,6 +822,17 @@ def buried_area(answer, receptor, ligand, probe: float = 0.0) -> CheckResult:
     --------
     shapelab.docking_score
         The buried area of a pose.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import shapelab as sl
+    >>> A, B = sl.Balls([[0.0, 0.0, 0.0]], [1.0]), sl.Balls([[1.0, 0.0, 0.0]], [1.0])
+    >>> # each unit sphere loses a cap of height 1/2, of area 2 pi r h = pi
+    >>> ok = buried_area(2 * np.pi, A, B)
+    ✓ the buried area (Å²): correct.
+    >>> bad = buried_area(np.pi, A, B)
+    ✗ the buried area (Å²): not quite: yours is too small.
     """
     from ..balls import Balls
     from ..measure import union_measure
@@ -692,7 +850,9 @@ def buried_area(answer, receptor, ligand, probe: float = 0.0) -> CheckResult:
     return value("the buried area (Å²)", answer, expected, rtol=1e-6)
 
 
-def most_spread_class(answer, distances, labels, *, spread) -> CheckResult:
+def most_spread_class(
+    answer: str, distances: ArrayLike, labels: Sequence[str], *, spread: dict[str, float]
+) -> CheckResult:
     """Lesson 19: the class with the largest distance between two of its members, and
     that largest distance for every class.
 
@@ -725,6 +885,16 @@ def most_spread_class(answer, distances, labels, *, spread) -> CheckResult:
     References
     ----------
     .. [1] Lecture notes, §23.2 (protein shape classification).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> D = np.array([[0, 1, 5, 5], [1, 0, 5, 5], [5, 5, 0, 3], [5, 5, 3, 0]], dtype=float)
+    >>> labels = ["alpha", "alpha", "beta", "beta"]
+    >>> ok = most_spread_class("beta", D, labels, spread={"alpha": 1.0, "beta": 3.0})
+    ✓ the most spread-out class: correct.
+    >>> bad = most_spread_class("beta", D, labels, spread={"alpha": 1.0, "beta": 5.0})
+    ✗ the largest distance within each class: not quite: yours differs for 'beta'.
     """
     D = np.asarray(distances, dtype=float)
     labels = [str(s) for s in labels]
@@ -750,7 +920,7 @@ def most_spread_class(answer, distances, labels, *, spread) -> CheckResult:
     return value("the most spread-out class", received, expected)
 
 
-def rips_not_nerve(count, points, rho) -> CheckResult:
+def rips_not_nerve(count: int, points: ArrayLike, rho: float) -> CheckResult:
     """Lesson 19: how many triangles of the Vietoris–Rips complex of ``points`` at radius
     ``rho`` are not in the Čech complex, the nerve of the balls of radius ``rho``.
 
@@ -790,6 +960,16 @@ def rips_not_nerve(count, points, rho) -> CheckResult:
     .. [1] Lecture notes, §23.1 (the dual complex as a nerve).
     .. [2] H. Edelsbrunner and J. Harer, *Computational Topology*, AMS, 2010, §III.2
        (Čech and Vietoris–Rips complexes).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> triangle = [[0.0, 0.0], [2.0, 0.0], [1.0, np.sqrt(3.0)]]
+    >>> # sides 2 <= 2 rho, but the enclosing radius 2/sqrt(3) > rho = 1.1
+    >>> ok = rips_not_nerve(1, triangle, 1.1)
+    ✓ the Rips triangles outside the nerve: correct.
+    >>> bad = rips_not_nerve(0, triangle, 1.1)
+    ✗ the Rips triangles outside the nerve: not quite: yours is too small.
     """
     from .._toolkit.validate import as_finite_scalar, as_points
 
@@ -830,7 +1010,13 @@ def rips_not_nerve(count, points, rho) -> CheckResult:
 
 
 def first_site_rank(
-    answer, structure, ligand, *, method: str = "growth", probe: float = 1.4, dca: float = 4.0
+    answer: int,
+    structure: PDBStructure | Balls,
+    ligand: ArrayLike,
+    *,
+    method: str = "growth",
+    probe: float = 1.4,
+    dca: float = 4.0,
 ) -> CheckResult:
     """Lesson 20: the rank of the first cavity of the default ranked report whose centre
     lies within ``dca`` Å of a ligand atom (the DCA criterion), or 0 when none does.
@@ -871,6 +1057,12 @@ def first_site_rank(
     .. [2] R. Krivák and D. Hoksza, "P2Rank: machine learning based tool for rapid and
        accurate prediction of ligand binding sites from protein structure",
        *J. Cheminform.* 10:39, 2018 (the DCA criterion).
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> bad = first_site_rank(1.5, sl.datasets.fullerene_c60(), [[0.0, 0.0, 0.0]])
+    ✗ the rank of the first cavity at the ligand: not quite: expected a whole number (a rank), got a float.
     """
     from ..report import report
 

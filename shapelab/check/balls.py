@@ -16,6 +16,9 @@ and compares with the library (:func:`shapelab.power_distance`,
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
 
 from ._runner import CheckResult, allclose, run_check
@@ -23,7 +26,7 @@ from ._runner import CheckResult, allclose, run_check
 __all__ = ["power_distance", "orthogonal_radius", "union_area", "dual_edge", "attached_edge"]
 
 
-def power_distance(student_fn, *, quiet: bool = False) -> CheckResult:
+def power_distance(student_fn: Callable[..., Any], *, quiet: bool = False) -> CheckResult:
     """Check ``student_fn(x, center, radius) -> float``, the power distance
     :math:`\\lVert x - z\\rVert^2 - r^2` of the point x from the ball (z, r).
 
@@ -35,6 +38,16 @@ def power_distance(student_fn, *, quiet: bool = False) -> CheckResult:
     --------
     shapelab.power_distance
         The reference.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> mine = lambda x, z, r: float(np.sum((np.asarray(x) - z) ** 2) - r**2)
+    >>> power_distance(mine).passed
+    ✓ power distance: correct on all 9 cases.
+    True
+    >>> power_distance(lambda x, z, r: float(np.sum((np.asarray(x) - z) ** 2)), quiet=True).passed
+    False
     """
     from ..balls import Balls
     from ..balls import power_distance as lib
@@ -56,7 +69,7 @@ def power_distance(student_fn, *, quiet: bool = False) -> CheckResult:
     return run_check("power distance", student_fn, cases, reference, allclose(atol=1e-9, rtol=1e-9), quiet=quiet)
 
 
-def orthogonal_radius(student_fn, *, quiet: bool = False) -> CheckResult:
+def orthogonal_radius(student_fn: Callable[..., Any], *, quiet: bool = False) -> CheckResult:
     """Check ``student_fn(centers, radii) -> float``: for three disks (centres (3, 2),
     radii (3,)), the squared radius :math:`R^2` of the circle orthogonal to all three.
 
@@ -74,6 +87,17 @@ def orthogonal_radius(student_fn, *, quiet: bool = False) -> CheckResult:
     --------
     shapelab.power_diagram
         Where the orthogonal circle's centre is a vertex.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> def mine(centers, radii):
+    ...     return float(sl.alpha_filtration(sl.Balls(centers, radii)).values(2)[0])
+    >>> orthogonal_radius(mine).passed
+    ✓ orthogonal circle (squared radius): correct on all 10 cases.
+    True
+    >>> orthogonal_radius(lambda centers, radii: 0.0, quiet=True).passed
+    False
     """
     from ..balls import Balls
     from ..filtration import alpha_filtration
@@ -102,7 +126,7 @@ def orthogonal_radius(student_fn, *, quiet: bool = False) -> CheckResult:
     )
 
 
-def union_area(student_fn, *, quiet: bool = False) -> CheckResult:
+def union_area(student_fn: Callable[..., Any], *, quiet: bool = False) -> CheckResult:
     """Check ``student_fn(c1, r1, c2, r2) -> float``, the area of the union of two
     disks: :math:`\\pi r_1^2 + \\pi r_2^2 - \\operatorname{area}(B_1 \\cap B_2)`.
 
@@ -114,6 +138,18 @@ def union_area(student_fn, *, quiet: bool = False) -> CheckResult:
     --------
     shapelab.union_measure
         The reference.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import shapelab as sl
+    >>> def mine(c1, r1, c2, r2):
+    ...     return sl.union_measure(sl.Balls([c1, c2], [r1, r2])).area
+    >>> union_area(mine).passed
+    ✓ area of the union of two disks: correct on all 14 cases.
+    True
+    >>> union_area(lambda c1, r1, c2, r2: np.pi * (r1**2 + r2**2), quiet=True).passed
+    False
     """
     from ..balls import Balls
     from ..measure import union_measure
@@ -143,7 +179,7 @@ def union_area(student_fn, *, quiet: bool = False) -> CheckResult:
     )
 
 
-def dual_edge(student_fn, *, quiet: bool = False) -> CheckResult:
+def dual_edge(student_fn: Callable[..., Any], *, quiet: bool = False) -> CheckResult:
     """Check ``student_fn(c1, r1, c2, r2) -> bool``: whether the dual complex of two
     disks with centres :math:`c_1 \\ne c_2` has the edge (Notes §23.1, the
     definition of K).
@@ -167,6 +203,19 @@ def dual_edge(student_fn, *, quiet: bool = False) -> CheckResult:
     ----------
     .. [1] H. Edelsbrunner, "The union of balls and its dual shape", *Discrete Comput.
            Geom.* 13:415-440, 1995.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> def mine(c1, r1, c2, r2):
+    ...     d = np.linalg.norm(np.subtract(c1, c2))
+    ...     return bool(abs(r1 - r2) <= d <= r1 + r2)
+    >>> dual_edge(mine).passed
+    ✓ edge of the dual complex of two disks: correct on all 16 cases.
+    True
+    >>> # forgetting a disk inside the other is refused
+    >>> dual_edge(lambda c1, r1, c2, r2: bool(np.linalg.norm(np.subtract(c1, c2)) <= r1 + r2), quiet=True).passed
+    False
     """
     from ..balls import Balls
     from ..filtration import dual_complex
@@ -200,7 +249,7 @@ def dual_edge(student_fn, *, quiet: bool = False) -> CheckResult:
     return run_check("edge of the dual complex of two disks", student_fn, cases, reference, compare, quiet=quiet)
 
 
-def attached_edge(student_fn, *, quiet: bool = False) -> CheckResult:
+def attached_edge(student_fn: Callable[..., Any], *, quiet: bool = False) -> CheckResult:
     """Check ``student_fn(centers, radii, edge) -> bool``: whether the edge ``(i, j)``
     of the regular triangulation of the balls is *attached* (Notes §23.1; lesson 04).
 
@@ -224,6 +273,19 @@ def attached_edge(student_fn, *, quiet: bool = False) -> CheckResult:
     --------
     shapelab.filtration.Filtration.attached
         The reference.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> def mine(centers, radii, edge):
+    ...     F = sl.alpha_filtration(sl.Balls(centers, radii))
+    ...     row = [tuple(s) for s in F.simplices(1).tolist()].index(tuple(sorted(edge)))
+    ...     return bool(F.attached(1)[row])
+    >>> attached_edge(mine).passed
+    ✓ attached edge: correct on all 16 cases.
+    True
+    >>> attached_edge(lambda centers, radii, edge: False, quiet=True).passed
+    False
     """
     from ..balls import Balls
     from ..filtration import alpha_filtration

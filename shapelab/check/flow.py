@@ -2,9 +2,16 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from ._runner import CheckResult, run_check
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Sequence
+
+    from ..balls import Balls
 
 __all__ = ["flow_order"]
 
@@ -35,7 +42,7 @@ class _Arrows:
         )
 
 
-def flow_order(student) -> CheckResult:
+def flow_order(student: Callable[[Balls, np.ndarray], Sequence[int]]) -> CheckResult:
     """Lesson 09: ``student(balls, cells)`` returns an order of the empty top
     simplices ``cells`` (an ``(m, d+1)`` array of ball indices, in random order: the
     top simplices of the regular triangulation not in :math:`K_\\tau`) in which every
@@ -53,6 +60,14 @@ def flow_order(student) -> CheckResult:
     --------
     shapelab.discrete_flow
         The flow whose arrows the order must respect.
+
+    Examples
+    --------
+    >>> # the order of the rows as given is no order of the flow
+    >>> result = flow_order(lambda balls, cells: list(range(len(cells))))  # doctest: +ELLIPSIS
+    ✗ an order of the discrete flow: not quite. First failing input (case 1):...
+    >>> result.passed
+    False
     """
     from ..balls import Balls
     from ..filtration import alpha_filtration

@@ -7,6 +7,9 @@ lesson shows neither the answer nor the code that finds it.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable, Sequence
+from typing import Any
+
 import numpy as np
 
 from ._runner import CheckResult, run_check, value
@@ -51,7 +54,7 @@ def _rank_cases():
         yield (((A @ B) % 2).astype(np.uint8),)
 
 
-def rank_mod2(student_fn, *, quiet: bool = False) -> CheckResult:
+def rank_mod2(student_fn: Callable[..., Any], *, quiet: bool = False) -> CheckResult:
     """Check ``student_fn(M) -> int``, the rank of a 0/1 matrix over Z/2.
 
     Cases: empty and zero matrices, a matrix whose rank differs over Z/2 and over the
@@ -61,6 +64,17 @@ def rank_mod2(student_fn, *, quiet: bool = False) -> CheckResult:
     See Also
     --------
     shapelab.homology.rank_mod2 : the reference.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> rank_mod2(sl.rank_mod2).passed
+    ✓ rank over Z/2: correct on all 63 cases.
+    True
+    >>> # the rank over the rationals is refused
+    >>> import numpy as np
+    >>> rank_mod2(lambda M: int(np.linalg.matrix_rank(np.asarray(M, dtype=float))) if np.size(M) else 0, quiet=True).passed
+    False
     """
     from .. import homology
 
@@ -80,13 +94,21 @@ def rank_mod2(student_fn, *, quiet: bool = False) -> CheckResult:
     )
 
 
-def complex_betti(betti, simplices) -> CheckResult:
+def complex_betti(betti: Sequence[int], simplices: Iterable[Sequence[int]]) -> CheckResult:
     """Lesson 02: the Betti numbers :math:`(\\beta_0, \\dots, \\beta_d)` over Z/2 of the
     complex ``simplices``, compared entry by entry without showing them.
 
     See Also
     --------
     shapelab.homology.betti_numbers : the reference.
+
+    Examples
+    --------
+    >>> circle = [[0], [1], [2], [0, 1], [1, 2], [0, 2]]
+    >>> ok = complex_betti([1, 1], circle)
+    ✓ Betti numbers (β0, β1): correct.
+    >>> bad = complex_betti([1, 0], circle)
+    ✗ Betti numbers (β0, β1): not quite: 1 of 2 entries differ, the first at index 1.
     """
     from .. import homology
 
@@ -103,7 +125,12 @@ def complex_betti(betti, simplices) -> CheckResult:
     return value(name, list(betti), list(expected))
 
 
-def cycles_and_boundaries(cycle, boundary, chains, simplices) -> CheckResult:
+def cycles_and_boundaries(
+    cycle: Sequence[bool],
+    boundary: Sequence[bool],
+    chains: Sequence[Iterable[Sequence[int]]],
+    simplices: Iterable[Sequence[int]],
+) -> CheckResult:
     """Lesson 02: for each chain of ``chains``, is it a cycle (``cycle[i]``) and is it
     a boundary in ``simplices`` (``boundary[i]``; the lesson's list ``bounds``)?  Both
     lists are compared entry by entry. A message says how many entries of each list are
@@ -115,6 +142,15 @@ def cycles_and_boundaries(cycle, boundary, chains, simplices) -> CheckResult:
     --------
     shapelab.homology.is_cycle : the reference for ``cycle``.
     shapelab.homology.is_boundary : the reference for ``boundary``.
+
+    Examples
+    --------
+    >>> disk = [[0], [1], [2], [0, 1], [1, 2], [0, 2], [0, 1, 2]]
+    >>> chains = [[[0, 1], [1, 2], [0, 2]], [[0, 1]]]
+    >>> ok = cycles_and_boundaries([True, False], [True, False], chains, disk)
+    ✓ cycles and boundaries: correct.
+    >>> bad = cycles_and_boundaries([True, False], [False, False], chains, disk)
+    ✗ cycles and boundaries: not quite: `bounds`: 1 of 2 entries is wrong (a chain c is a boundary when ∂x = c has a solution x one dimension up: c as an extra column leaves the rank of that boundary matrix unchanged).
     """
     from .. import homology
 

@@ -14,6 +14,7 @@ that nothing prints the answer by accident.)
 from __future__ import annotations
 
 import hashlib
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 from ._runner import CheckResult
@@ -242,13 +243,20 @@ def quiz_markdown(part: str) -> str:
     return "\n".join(lines)
 
 
-def show_quiz(part: str):
+def show_quiz(part: str) -> None:
     """Display the questions of ``part`` (Markdown in a notebook, text elsewhere).
 
     See Also
     --------
     quiz
         Checks the answers.
+
+    Examples
+    --------
+    >>> quiz_markdown("I").splitlines()[0]
+    '**Quiz, Part I: the union of balls (lessons 00–06).** Answer with a dict `{number: letter}`.'
+    >>> show_quiz("I")  # in a notebook: the questions as Markdown
+    <IPython.core.display.Markdown object>
     """
     text = quiz_markdown(part)
     try:
@@ -259,7 +267,7 @@ def show_quiz(part: str):
         print(text)
 
 
-def quiz(part: str, answers, *, quiet: bool = False) -> CheckResult:
+def quiz(part: str, answers: Mapping[int, str], *, quiet: bool = False) -> CheckResult:
     """Check the answers to the quiz of ``part`` without revealing the right options.
 
     Parameters
@@ -282,6 +290,13 @@ def quiz(part: str, answers, *, quiet: bool = False) -> CheckResult:
         Shows a quiz without checking.
     quiz_markdown
         A quiz as Markdown.
+
+    Examples
+    --------
+    >>> result = quiz("I", {1: "a"})
+    ✗ quiz, part I: 0 of 6 correct; look again at question 1; no answer to 2, 3, 4, 5, 6.
+    >>> result.passed
+    False
     """
     part = _part(part)
     name = f"quiz, part {part}"

@@ -8,6 +8,9 @@ Quaternions are 4-arrays ``(w, x, y, z)``, scalar part first, as in the notes.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
 
 from ..quaternion import qfrom_axis_angle, qmatrix, qmul
@@ -30,7 +33,7 @@ def _product_cases():
     return cases
 
 
-def quaternion_product(fn, *, quiet: bool = False) -> CheckResult:
+def quaternion_product(fn: Callable[..., Any], *, quiet: bool = False) -> CheckResult:
     """Check ``fn(q, r) -> 4-array``, the Hamilton product :math:`q\\cdot r` (Notes §23.2).
 
     Starts with the table :math:`\\mathbf{ij} = \\mathbf k`, :math:`\\mathbf{ji} =
@@ -41,6 +44,17 @@ def quaternion_product(fn, *, quiet: bool = False) -> CheckResult:
     --------
     shapelab.Quaternion
         The reference product.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import shapelab as sl
+    >>> quaternion_product(lambda q, r: (sl.Quaternion(*q) * sl.Quaternion(*r)).as_array()).passed
+    ✓ quaternion product: correct on all 16 cases.
+    True
+    >>> # the product in the other order is refused
+    >>> quaternion_product(lambda q, r: (sl.Quaternion(*r) * sl.Quaternion(*q)).as_array(), quiet=True).passed
+    False
     """
     return run_check(
         "quaternion product", fn, _product_cases(), lambda q, r: qmul(q, r), allclose(1e-10, 1e-9), quiet=quiet
@@ -58,7 +72,7 @@ def _unit_cases():
     return [(q,) for q in cases]
 
 
-def rotation_matrix(fn, *, quiet: bool = False) -> CheckResult:
+def rotation_matrix(fn: Callable[..., Any], *, quiet: bool = False) -> CheckResult:
     """Check ``fn(q) -> 3×3``, the rotation matrix of a **unit** quaternion.
 
     The matrix :math:`M` with :math:`M r = q r q^*` (Notes §23.2, :math:`I_q`): the
@@ -68,6 +82,17 @@ def rotation_matrix(fn, *, quiet: bool = False) -> CheckResult:
     --------
     shapelab.quaternion.qmatrix
         The reference.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import shapelab as sl
+    >>> rotation_matrix(lambda q: sl.Quaternion(*q).to_matrix()).passed
+    ✓ rotation matrix: correct on all 10 cases.
+    True
+    >>> # the transpose, the inverse rotation, is refused
+    >>> rotation_matrix(lambda q: sl.Quaternion(*q).to_matrix().T, quiet=True).passed
+    False
     """
     return run_check("rotation matrix", fn, _unit_cases(), lambda q: qmatrix(q), allclose(1e-10, 1e-9), quiet=quiet)
 
@@ -116,7 +141,7 @@ def _rotation_cases():
     return cases
 
 
-def optimal_rotation(fn, *, quiet: bool = False) -> CheckResult:
+def optimal_rotation(fn: Callable[..., Any], *, quiet: bool = False) -> CheckResult:
     """Check ``fn(R, G) -> unit quaternion (4-array)`` rotating centred ``R`` onto ``G``.
 
     Horn's solution of the notes: the eigenvector of :math:`A = \\sum_j\\bar R_j^TG_j`
@@ -127,6 +152,15 @@ def optimal_rotation(fn, *, quiet: bool = False) -> CheckResult:
     --------
     shapelab.optimal_rotation
         The reference.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> optimal_rotation(lambda R, G: sl.optimal_rotation(R, G).as_array()).passed
+    ✓ optimal rotation: correct on all 10 cases.
+    True
+    >>> optimal_rotation(lambda R, G: sl.optimal_rotation(G, R).as_array(), quiet=True).passed
+    False
     """
     return run_check(
         "optimal rotation",
@@ -151,7 +185,7 @@ def _centroid_cases():
     return cases
 
 
-def centroid_alignment(fn, *, quiet: bool = False) -> CheckResult:
+def centroid_alignment(fn: Callable[..., Any], *, quiet: bool = False) -> CheckResult:
     """Check ``fn(R, G) -> translation (3,)`` moving the centroid of ``R`` onto that of ``G``.
 
     The reference-point alignment of the notes (§23.2, "For the translation only
@@ -162,6 +196,15 @@ def centroid_alignment(fn, *, quiet: bool = False) -> CheckResult:
     --------
     shapelab.register
         The least-squares motion.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> centroid_alignment(lambda R, G: np.mean(G, axis=0) - np.mean(R, axis=0)).passed
+    ✓ centroid alignment: correct on all 6 cases.
+    True
+    >>> centroid_alignment(lambda R, G: np.mean(R, axis=0) - np.mean(G, axis=0), quiet=True).passed
+    False
     """
     return run_check(
         "centroid alignment",

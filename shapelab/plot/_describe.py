@@ -27,6 +27,13 @@ The same text reaches every place the figure is shown:
 from __future__ import annotations
 
 import sys
+from typing import TYPE_CHECKING, TypeVar
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 __all__ = ["describe", "alt_text", "register"]
 
@@ -49,6 +56,10 @@ _TEX = {
 }
 
 
+#: a Figure or an Axes: :func:`describe` returns what it is given
+_Target = TypeVar("_Target", bound="Figure | Axes")
+
+
 def _plain(text: str) -> str:
     """Text without matplotlib's mathtext: ``$K_\\tau$`` reads "K_τ"."""
     if "$" not in text:
@@ -63,12 +74,25 @@ def _sentence(text: str) -> str:
     return text if not text or text[-1] in ".!?" else text + "."
 
 
-def describe(target, text: str, *, append: bool = False):
+def describe(target: _Target, text: str, *, append: bool = False) -> _Target:
     """Set what ``target`` (a matplotlib Figure or Axes) shows to ``text``; with
     ``append``, add ``text`` after what it already says.  Returns ``target``.
 
     A description on the figure takes precedence over its axes' ones
-    (:func:`alt_text`)."""
+    (:func:`alt_text`).
+
+    Examples
+    --------
+    >>> from shapelab.plot import alt_text, new_figure
+    >>> fig, ax = new_figure()
+    >>> describe(ax, "A line through the origin") is ax
+    True
+    >>> alt_text(fig)
+    'A line through the origin.'
+    >>> _ = describe(ax, "Its slope is 1", append=True)
+    >>> alt_text(fig)
+    'A line through the origin. Its slope is 1.'
+    """
     if not isinstance(text, str) or not text.strip():
         raise ValueError("a figure's description must be a non-empty string")
     old = getattr(target, _ATTR, None) if append else None
@@ -76,7 +100,7 @@ def describe(target, text: str, *, append: bool = False):
     return target
 
 
-def alt_text(fig) -> str | None:
+def alt_text(fig: Figure | Axes) -> str | None:
     """What ``fig`` shows: its own description, else its axes' descriptions (one axes:
     its text; several: "2 panels. Left: ...; right: ..." in reading order), else None."""
     own = getattr(fig, _ATTR, None)
@@ -145,7 +169,7 @@ def _wrap_png(ip) -> None:
         fmt.for_type(Figure, _with_alt(png))
 
 
-def register(ip=None) -> bool:
+def register(ip: Any | None = None) -> bool:
     """Make a figure's PNG output in the IPython kernel ``ip`` (default: the running one,
     if any) carry :func:`alt_text` as ``metadata["image/png"]["alt"]``.  True if done.
 

@@ -12,9 +12,16 @@ Universal Design*, 2008); sequential data uses ``viridis``/``cividis``.
 from __future__ import annotations
 
 from contextlib import contextmanager
+from typing import TYPE_CHECKING
 
 import matplotlib
 from matplotlib.figure import Figure
+
+if TYPE_CHECKING:
+    from collections.abc import Iterator
+    from typing import Any
+
+    from matplotlib.axes import Axes
 
 __all__ = ["PALETTE", "COLORS", "SEQUENTIAL", "SLIDE", "PAGE", "RC", "new_figure", "style", "thin_3d_ticks"]
 
@@ -71,19 +78,34 @@ RC = {
 
 
 @contextmanager
-def style():
+def style() -> Iterator[None]:
     """Context manager applying the course style to figures created inside it."""
     with matplotlib.rc_context(RC):
         yield
 
 
-def new_figure(nrows: int = 1, ncols: int = 1, *, size=PAGE, projection=None, **subplot_kw):
+def new_figure(
+    nrows: int = 1,
+    ncols: int = 1,
+    *,
+    size: tuple[float, float] = PAGE,
+    projection: str | None = None,
+    **subplot_kw: Any,
+) -> tuple[Figure, Any]:
     """Create a styled figure with a grid of axes.
 
     Returns
     -------
     fig : matplotlib.figure.Figure
     axes : Axes or ndarray of Axes (squeezed like ``plt.subplots``)
+
+    Examples
+    --------
+    >>> fig, axes = new_figure(1, 2, size=SLIDE)
+    >>> type(fig).__name__, len(axes)
+    ('Figure', 2)
+    >>> tuple(round(float(x), 2) for x in fig.get_size_inches())
+    (10.0, 5.62)
     """
     with style():
         fig = Figure(figsize=size, layout="constrained")
@@ -97,7 +119,7 @@ def new_figure(nrows: int = 1, ncols: int = 1, *, size=PAGE, projection=None, **
     return fig, axes
 
 
-def thin_3d_ticks(ax, nbins: int = 4) -> None:
+def thin_3d_ticks(ax: Axes, nbins: int = 4) -> None:
     """At most ``nbins + 1`` labelled ticks per axis of a 3D axes: matplotlib's default
     crowds a slide-size 3D plot with overlapping numbers."""
     from matplotlib.ticker import MaxNLocator

@@ -20,6 +20,8 @@ cells :math:`B_i \\cap \\Pi(B_i)` come from :func:`shapelab.triangulation.clippe
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 from matplotlib.cm import ScalarMappable
 from matplotlib.collections import EllipseCollection, LineCollection, PolyCollection
@@ -38,6 +40,15 @@ from ..filtration import as_filtration
 from ._common import axes, grown_radii, set_3d_view
 from ._describe import describe
 from ._style import COLORS, PALETTE, new_figure, style
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from matplotlib.typing import ColorType
+    from numpy.typing import ArrayLike
+
+    from ..filtration import Complex, Filtration
+    from ..power import PowerDiagram
 
 __all__ = [
     "disks",
@@ -123,7 +134,16 @@ def _segments(centers, edges):
 
 
 # ---------------------------------------------------------------- disks
-def disks(balls, *, tau=0.0, ax=None, labels=False, title=None, color=None, show_centers=True):
+def disks(
+    balls: Balls,
+    *,
+    tau: float = 0.0,
+    ax: Axes | None = None,
+    labels: bool = False,
+    title: str | None = None,
+    color: ColorType | None = None,
+    show_centers: bool = True,
+) -> Figure:
     """Draw a union of disks, grown to time ``tau`` (Notes §23.1).
 
     Parameters
@@ -151,6 +171,15 @@ def disks(balls, *, tau=0.0, ax=None, labels=False, title=None, color=None, show
         With cells and the dual complex.
     Balls.grow
         The grown disks.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> fig = disks(sl.Balls([[0.0, 0.0], [3.0, 0.0]], [1.0, 1.5]), tau=0.5, labels=True)
+    >>> type(fig).__name__
+    'Figure'
+    >>> print(sl.plot.alt_text(fig))
+    2 disks grown to τ = 0.5 (2 born), radii from 1.22 to 1.66, centres marked, each labelled with its index.
     """
     _check_balls(balls, dim=2)
     tau = as_tau(tau, finite=True)
@@ -184,7 +213,15 @@ def disks(balls, *, tau=0.0, ax=None, labels=False, title=None, color=None, show
 
 
 # -------------------------------------------------------- power diagram
-def power_diagram(balls_or_diagram, *, bbox=None, ax=None, show_disks=True, labels=False, title=None):
+def power_diagram(
+    balls_or_diagram: Balls | PowerDiagram,
+    *,
+    bbox: ArrayLike | None = None,
+    ax: Axes | None = None,
+    show_disks: bool = True,
+    labels: bool = False,
+    title: str | None = None,
+) -> Figure:
     """Draw the power diagram :math:`\\Pi(\\mathbb{P})` of disks (Notes §23.1).
 
     Cells are clipped to a box; hidden disks (whose cell is empty) are dashed.
@@ -209,6 +246,15 @@ def power_diagram(balls_or_diagram, *, bbox=None, ax=None, show_disks=True, labe
         The diagram drawn.
     lifting
         The lifting map behind it.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> fig = power_diagram(sl.Balls([[0.0, 0.0], [3.0, 0.0], [1.0, 2.5]], [1.0, 1.5, 0.8]))
+    >>> type(fig).__name__
+    'Figure'
+    >>> print(sl.plot.alt_text(fig))
+    Power diagram of 3 disks: 3 power cells outlined, no hidden disk.
     """
     from ..power import PowerDiagram
     from ..power import power_diagram as _pd
@@ -494,7 +540,17 @@ class DualComplexView:
         return self
 
 
-def dual_complex(F, tau=0.0, *, ax=None, show_cells=True, show_disks=True, bbox=None, labels=False, title=None):
+def dual_complex(
+    F: Filtration | Balls,
+    tau: float = 0.0,
+    *,
+    ax: Axes | None = None,
+    show_cells: bool = True,
+    show_disks: bool = True,
+    bbox: ArrayLike | None = None,
+    labels: bool = False,
+    title: str | None = None,
+) -> Figure:
     """Figure 23.1 (i): disks, clipped cells :math:`B_i \\cap \\Pi(B_i)` and the dual
     complex K on top (Notes §23.1).
 
@@ -521,6 +577,16 @@ def dual_complex(F, tau=0.0, *, ax=None, show_cells=True, show_disks=True, bbox=
         The complex drawn.
     filtration
         All simplices by entry time.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> F = sl.alpha_filtration(sl.datasets.figure_23_1())
+    >>> fig = dual_complex(F, tau=0.0)
+    >>> type(fig).__name__
+    'Figure'
+    >>> print(sl.plot.alt_text(fig))
+    The dual complex of the 13 disks at τ = 0: 13 vertices, 10 edges, 2 triangles, drawn over the disks and their clipped power cells.
     """
     return DualComplexView(
         F, tau, ax=ax, show_cells=show_cells, show_disks=show_disks, bbox=bbox, labels=labels, title=title
@@ -528,7 +594,15 @@ def dual_complex(F, tau=0.0, *, ax=None, show_cells=True, show_disks=True, bbox=
 
 
 # ------------------------------------------------------------ filtration
-def filtration(F, *, tau=None, ax=None, cmap="cividis", show_disks=False, title=None):
+def filtration(
+    F: Filtration | Balls,
+    *,
+    tau: float | None = None,
+    ax: Axes | None = None,
+    cmap: str = "cividis",
+    show_disks: bool = False,
+    title: str | None = None,
+) -> Figure:
     """Figure 23.1 (ii): the simplices of DT shaded by entry time (Notes §23.1).
 
     Early simplices are dark and drawn thick, late ones light and thin, as in the
@@ -558,6 +632,16 @@ def filtration(F, *, tau=None, ax=None, cmap="cividis", show_disks=False, title=
         The filtration drawn.
     dual_complex
         One time.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> F = sl.alpha_filtration(sl.datasets.figure_23_1())
+    >>> fig = filtration(F, tau=0.5)
+    >>> type(fig).__name__
+    'Figure'
+    >>> print(sl.plot.alt_text(fig))
+    The α-filtration of 13 disks (τ = 0.5, α = √τ = 0.707): 13 vertices, 12 edges, 2 triangles, shaded by entry time in deciles, early simplices dark and thick, late ones light and thin; entry times from -0.489 to 0.482.
     """
     from ..filtration import Filtration
 
@@ -661,7 +745,18 @@ def _shade(color, normals, alpha):
     return np.column_stack([rgb, np.full(len(k), alpha)])
 
 
-def balls3d(balls, *, tau=0.0, ax=None, resolution=10, alpha=0.35, color=None, elev=20.0, azim=35.0, title=None):
+def balls3d(
+    balls: Balls,
+    *,
+    tau: float = 0.0,
+    ax: Axes | None = None,
+    resolution: int = 10,
+    alpha: float = 0.35,
+    color: ColorType | None = None,
+    elev: float = 20.0,
+    azim: float = 35.0,
+    title: str | None = None,
+) -> Figure:
     """Draw 3D balls as shaded low-resolution spheres (Notes §23.1).
 
     Parameters
@@ -690,6 +785,15 @@ def balls3d(balls, *, tau=0.0, ax=None, resolution=10, alpha=0.35, color=None, e
         The dual complex in 3D.
     shapelab.plot.view3d
         An interactive view.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> fig = balls3d(sl.Balls([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]], [1.0, 1.2]), resolution=6)
+    >>> type(fig).__name__
+    'Figure'
+    >>> print(sl.plot.alt_text(fig))
+    3D view of 2 balls as shaded spheres, seen from elevation 20°, azimuth 35°.
     """
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
@@ -724,17 +828,17 @@ def balls3d(balls, *, tau=0.0, ax=None, resolution=10, alpha=0.35, color=None, e
 
 
 def complex3d(
-    complex_or_filtration,
+    complex_or_filtration: Complex | Filtration | Balls,
     *,
-    tau=None,
-    ax=None,
-    show_balls=False,
-    cmap="cividis",
-    elev=20.0,
-    azim=35.0,
-    resolution=8,
-    title=None,
-):
+    tau: float | None = None,
+    ax: Axes | None = None,
+    show_balls: bool = False,
+    cmap: str = "cividis",
+    elev: float = 20.0,
+    azim: float = 35.0,
+    resolution: int = 8,
+    title: str | None = None,
+) -> Figure:
     """Draw a 3D dual complex: vertices, edges (lines), triangles (Notes §23.1).
 
     Parameters
@@ -765,6 +869,16 @@ def complex3d(
         The balls.
     shapelab.dual_complex
         The complex drawn.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> F = sl.alpha_filtration(sl.Balls([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 1.7, 0.0], [1.0, 0.6, 1.6]], 1.0))
+    >>> fig = complex3d(F, tau=0.5)
+    >>> type(fig).__name__
+    'Figure'
+    >>> print(sl.plot.alt_text(fig))
+    3D view of the dual complex of 4 balls at τ = 0.5: 4 vertices, 6 edges, 4 triangles, 1 tetrahedron, simplices shaded by entry time.
     """
     from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
@@ -844,7 +958,9 @@ def complex3d(
 
 
 # --------------------------------------------------------------- lifting map
-def lifting(balls, *, ax=None, elev=18.0, azim=-60.0, title=None):
+def lifting(
+    balls: Balls, *, ax: Axes | None = None, elev: float = 18.0, azim: float = -60.0, title: str | None = None
+) -> Figure:
     """The lifting map of disks (Notes §23.1, the power diagram and DT).
 
     The disk :math:`(z_i, r_i)` is lifted to the point
@@ -877,6 +993,15 @@ def lifting(balls, *, ax=None, elev=18.0, azim=-60.0, title=None):
         The projected lower hull.
     shapelab.regular_triangulation
         The triangulation.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> fig = lifting(sl.Balls([[0.0, 0.0], [3.0, 0.0], [1.0, 2.5]], [1.0, 1.5, 0.8]))
+    >>> type(fig).__name__
+    'Figure'
+    >>> print(sl.plot.alt_text(fig))
+    The lifting map of 3 disks: each disk lifted to a point on or below the paraboloid; the lower convex hull of the lifted points (1 triangle) projects to the regular triangulation drawn in the plane below; no disk is hidden.
     """
     from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
@@ -958,7 +1083,15 @@ def lifting(balls, *, ax=None, elev=18.0, azim=-60.0, title=None):
 
 
 # ------------------------------------------------------- method comparison
-def method_comparison(sizes, seconds, errors=None, *, xlabel="number of disks n", ax=None, title=None):
+def method_comparison(
+    sizes: ArrayLike,
+    seconds: dict[str, ArrayLike],
+    errors: dict[str, ArrayLike] | None = None,
+    *,
+    xlabel: str = "number of disks n",
+    ax: Axes | None = None,
+    title: str | None = None,
+) -> Figure:
     """Times (and errors) of several methods against the input size, on log axes.
 
     Parameters
@@ -980,6 +1113,18 @@ def method_comparison(sizes, seconds, errors=None, *, xlabel="number of disks n"
     --------
     shapelab.plot.matching.timings
         A bar chart of times.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> import numpy as np
+    >>> sizes = np.array([10, 100, 1000])
+    >>> fig = method_comparison(sizes, {"exact": 1e-5 * sizes, "Monte Carlo": 1e-3 * np.ones(3)},
+    ...                         {"exact": np.full(3, 1e-12), "Monte Carlo": 1e-2 / np.sqrt(sizes)})
+    >>> type(fig).__name__
+    'Figure'
+    >>> print(sl.plot.alt_text(fig))
+    2 panels. Left: Log-scale time in seconds of 2 methods against number of disks n, one line and marker shape per method: exact 0.0001 at 10 to 0.01 at 1000; Monte Carlo 0.001 at 10 to 0.001 at 1000. Right: Log-scale absolute error of 2 methods against number of disks n, one line and marker shape per method: exact 1e-12 at 10 to 1e-12 at 1000; Monte Carlo 0.0032 at 10 to 0.00032 at 1000.
     """
     n = np.asarray(sizes, dtype=float)
     if errors is not None and ax is not None:

@@ -18,6 +18,7 @@ import csv
 import math
 import os
 from collections.abc import Mapping
+from typing import TYPE_CHECKING
 
 import numpy as np
 from matplotlib.figure import Figure
@@ -27,6 +28,12 @@ from matplotlib.patches import Patch
 from ._common import axes
 from ._describe import describe
 from ._style import COLORS, PALETTE, SLIDE, style
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from typing import Any
+
+    from matplotlib.axes import Axes
 
 __all__ = ["batch_summary", "trajectory_volumes"]
 
@@ -76,7 +83,9 @@ def _name(r) -> str:
     return str(stem)
 
 
-def batch_summary(summary, *, log=None, max_labels=25, ax=None, title=None):
+def batch_summary(
+    summary: Any, *, log: bool | None = None, max_labels: int = 25, ax: Axes | None = None, title: str | None = None
+) -> Figure:
     """The summary of a batch as a figure: largest pocket and void of each structure.
 
     One row per structure, sorted by the volume of its largest pocket (largest at the
@@ -243,7 +252,14 @@ def _track_key(t):
     return (-len(t.frames), -max(t.volumes), t.id)
 
 
-def trajectory_volumes(measures, *, tracks=5, time=True, ax=None, title=None):
+def trajectory_volumes(
+    measures: Any,
+    *,
+    tracks: int | Sequence[int] = 5,
+    time: bool = True,
+    ax: Axes | None = None,
+    title: str | None = None,
+) -> Figure:
     """The volume of the union and of the tracked cavities against time along a trajectory.
 
     Two panels sharing the time axis: above, the volume (Å³) of the union of the
@@ -289,6 +305,22 @@ def trajectory_volumes(measures, *, tracks=5, time=True, ax=None, title=None):
     .. [1] J. Liang, H. Edelsbrunner, P. Fu, P. V. Sudhakar, S. Subramaniam, "Analytical
        shape computation of macromolecules: II. Inaccessible cavities in proteins",
        *Proteins* **33**, 18–29 (1998), doi:10.1002/(SICI)1097-0134(19981001)33:1<18::AID-PROT2>3.0.CO;2-H.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import shapelab as sl
+    >>> from shapelab.trajectory import CavityTrack, TrajectoryMeasures
+    >>> z = np.zeros(3)
+    >>> track = CavityTrack(0, (0, 1, 2), ("pocket", "void", "pocket"), (50.0, 40.0, 55.0), (0.9, 0.8))
+    >>> m = TrajectoryMeasures(frame=np.arange(3), time=2.0 * np.arange(3), area=z, volume=np.array([1000.0, 990.0, 1010.0]),
+    ...                        n_voids=z.astype(int), largest_void=z, n_pockets=z.astype(int), cavities=(), tracks=(track,),
+    ...                        probe=1.4, min_overlap=0.5, n_atoms=100)
+    >>> fig = trajectory_volumes(m)
+    >>> type(fig).__name__
+    'Figure'
+    >>> print(sl.plot.alt_text(fig))
+    2 panels. Top: Volume along the trajectory (SA model): the volume of the union over 3 frames, from 990 to 1010 Å³. Bottom: The volume of 1 tracked cavities against time (ps), one line style per track. track 0: 3 frames, 40 to 55 Å³, 2 as a pocket (dots), 1 as a void (squares).
     """
     if not all(hasattr(measures, a) for a in ("frame", "time", "volume", "tracks")):
         raise TypeError(f"measures must be a TrajectoryMeasures, got {type(measures).__name__}")

@@ -216,7 +216,7 @@ def critical_surface(
     azim: float = -60.0,
     title: str | None = None,
     colorbar: bool = True,
-):
+) -> Figure:
     """A closed surface shaded by F = |x − S| with its minima, saddles and maxima.
 
     Parameters

@@ -2,12 +2,21 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 from matplotlib.collections import LineCollection, PatchCollection, PolyCollection
 from matplotlib.patches import Circle
 
 from ._describe import describe
 from ._style import COLORS, PAGE, PALETTE, new_figure, style
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+    from ..balls import Balls
+    from ..filtration import Filtration
 
 __all__ = ["discrete_flow"]
 
@@ -16,7 +25,15 @@ def _n(k: int, word: str) -> str:
     return f"{k} {word}" + ("" if k == 1 else "s")
 
 
-def discrete_flow(F, tau=0.0, *, ax=None, title=None, legend=True, arrows=True):
+def discrete_flow(
+    F: Filtration | Balls,
+    tau: float = 0.0,
+    *,
+    ax: Axes | None = None,
+    title: str | None = None,
+    legend: bool = True,
+    arrows: bool = True,
+) -> Figure:
     """Draw Edelsbrunner's discrete flow of 2D disks at ``tau`` (Notes §23.1).
 
     The triangles of :math:`K_\\tau` are grey; each empty triangle is coloured by its
@@ -48,6 +65,15 @@ def discrete_flow(F, tau=0.0, *, ax=None, title=None, legend=True, arrows=True):
     ----------
     .. [1] H. Edelsbrunner, M. Facello and J. Liang, "On the definition and the
        construction of pockets in macromolecules", Discrete Appl. Math. 88 (1998) 83-102.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> fig = discrete_flow(sl.alpha_filtration(sl.datasets.figure_23_2()[0]), tau=0.0)
+    >>> type(fig).__name__
+    'Figure'
+    >>> print(sl.plot.alt_text(fig))
+    discrete flow at τ = 0: 1 pocket(s), 0 void(s): the discrete flow of 112 disks at τ = 0 over 203 triangles, 174 of them in K (grey); 1 pocket (orange, hatched //), 0 voids (vermillion, hatched xx), the other empty triangles flowing to the outside (white); 2 sinks (black dots), 1 mouth edge (thick reddish purple), arrows across the edges the flow crosses.
     """
     from ..cavities.flow import discrete_flow as compute_flow
     from ..filtration import as_filtration

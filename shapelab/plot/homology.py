@@ -2,11 +2,20 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 from matplotlib.collections import LineCollection, PolyCollection
 
 from ._describe import describe
 from ._style import COLORS, PAGE, new_figure, style
+
+if TYPE_CHECKING:
+    from collections.abc import Iterable, Mapping, Sequence
+
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from numpy.typing import ArrayLike
 
 __all__ = ["simplicial_complex", "boundary_matrix"]
 
@@ -15,7 +24,15 @@ def _n(k: int, word: str) -> str:
     return f"{k} {word}" + ("" if k == 1 else "s")
 
 
-def simplicial_complex(simplices, positions, *, chain=None, ax=None, title=None, labels=True):
+def simplicial_complex(
+    simplices: Iterable[Sequence[int]],
+    positions: Mapping[int, ArrayLike] | ArrayLike,
+    *,
+    chain: Iterable[Sequence[int]] | None = None,
+    ax: Axes | None = None,
+    title: str | None = None,
+    labels: bool = True,
+) -> Figure:
     """Draw an abstract simplicial complex at given vertex positions in the plane.
 
     Triangles are filled (translucent, so overlapping ones, as in a drawing of a
@@ -49,6 +66,16 @@ def simplicial_complex(simplices, positions, *, chain=None, ax=None, title=None,
     ----------
     .. [1] H. Edelsbrunner and J. Harer, *Computational Topology: An Introduction*,
        American Mathematical Society, 2010, §III.1.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> square = sl.closure([(0, 1, 2), (0, 2, 3)])
+    >>> fig = simplicial_complex(square, [(0, 0), (1, 0), (1, 1), (0, 1)], chain=[(0, 1), (1, 2)])
+    >>> type(fig).__name__
+    'Figure'
+    >>> print(sl.plot.alt_text(fig))
+    a simplicial complex of 4 vertices, 5 edges, 2 triangles, triangles shaded green; a chain of 2 simplices drawn thick in vermillion.
     """
     S = sorted({tuple(sorted(int(v) for v in s)) for s in simplices}, key=lambda s: (len(s), s))
     pos = {
@@ -104,7 +131,14 @@ def simplicial_complex(simplices, positions, *, chain=None, ax=None, title=None,
     return fig
 
 
-def boundary_matrix(M, rows, columns, *, ax=None, title=None):
+def boundary_matrix(
+    M: ArrayLike,
+    rows: Sequence[Sequence[int]],
+    columns: Sequence[Sequence[int]],
+    *,
+    ax: Axes | None = None,
+    title: str | None = None,
+) -> Figure:
     """Draw a 0/1 boundary matrix as a grid, a filled square for each 1, rows and
     columns labelled by their simplices.
 
@@ -131,6 +165,17 @@ def boundary_matrix(M, rows, columns, *, ax=None, title=None):
     ----------
     .. [1] H. Edelsbrunner and J. Harer, *Computational Topology: An Introduction*,
        American Mathematical Society, 2010, §IV.2 (matrix reduction).
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> triangle = sl.closure([(0, 1, 2)])
+    >>> M = sl.boundary_matrix(triangle, 1)
+    >>> fig = boundary_matrix(M, sl.k_simplices(triangle, 0), sl.k_simplices(triangle, 1))
+    >>> type(fig).__name__
+    'Figure'
+    >>> print(sl.plot.alt_text(fig))
+    a 3 by 3 boundary matrix over Z/2, 6 ones (column 01 has ones in rows 0, 1; column 02 has ones in rows 0, 2; column 12 has ones in rows 1, 2).
     """
     from matplotlib.colors import ListedColormap
 

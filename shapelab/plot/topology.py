@@ -13,6 +13,8 @@ returns its figure) and computes nothing itself beyond calling the library.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 from matplotlib.collections import LineCollection, PatchCollection, PolyCollection
 from matplotlib.lines import Line2D
@@ -25,6 +27,16 @@ from ..filtration import as_filtration
 from ._common import axes, grown_radii, set_3d_view
 from ._describe import describe
 from ._style import COLORS, PALETTE, SLIDE, new_figure, style
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from numpy.typing import ArrayLike
+
+    from ..cavities import ChannelProfile, Pocket, Tunnel, Void
+    from ..filtration import Filtration
 
 __all__ = [
     "persistence_diagram",
@@ -152,17 +164,17 @@ def _check_tau(tau, name="tau"):
 
 # ------------------------------------------------------------- persistence
 def persistence_diagram(
-    pairs_or_filtration,
+    pairs_or_filtration: Filtration | Balls | dict[int, ArrayLike],
     *,
-    dims=None,
-    tau=None,
-    min_persistence=None,
-    ax=None,
-    title="Persistence diagram",
-    dim=None,
+    dims: int | Sequence[int] | None = None,
+    tau: float | None = None,
+    min_persistence: float | None = None,
+    ax: Axes | None = None,
+    title: str = "Persistence diagram",
+    dim: int | None = None,
     scale: str = "τ",
     unit: str | None = None,
-):
+) -> Figure:
     """The persistence diagram: one point (birth, death) per feature (Notes §23.1).
 
     Parameters
@@ -207,6 +219,15 @@ def persistence_diagram(
     ----------
     .. [1] H. Edelsbrunner and J. L. Harer, *Computational Topology: An Introduction*,
            American Mathematical Society, 2010. doi:10.1090/mbk/069
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> fig = persistence_diagram(sl.alpha_filtration(sl.datasets.figure_23_1()))
+    >>> type(fig).__name__
+    'Figure'
+    >>> print(sl.plot.alt_text(fig))
+    Persistence diagram: birth against death τ, one marker shape per dimension. H₀ components: 13 pairs, 1 never dying, the most persistent finite one born at -0.64 and dead at 0.89; H₁ holes: 8 pairs, the most persistent finite one born at 0.482 and dead at 1.18.
     """
     P, d = _pairs_of(pairs_or_filtration, dim)
     dims = _select(P, dims, d)
@@ -287,8 +308,16 @@ def persistence_diagram(
 
 
 def barcode(
-    pairs_or_filtration, *, dims=None, tau=None, min_persistence=0.0, max_bars=60, ax=None, title="Barcode", dim=None
-):
+    pairs_or_filtration: Filtration | Balls | dict[int, ArrayLike],
+    *,
+    dims: int | Sequence[int] | None = None,
+    tau: float | None = None,
+    min_persistence: float = 0.0,
+    max_bars: int = 60,
+    ax: Axes | None = None,
+    title: str = "Barcode",
+    dim: int | None = None,
+) -> Figure:
     """The barcode: one horizontal bar [birth, death) per feature (Notes §23.1).
 
     Bars are grouped by homology dimension, longest first within a group is not
@@ -322,6 +351,15 @@ def barcode(
     ----------
     .. [1] H. Edelsbrunner and J. L. Harer, *Computational Topology: An Introduction*,
            American Mathematical Society, 2010. doi:10.1090/mbk/069
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> fig = barcode(sl.alpha_filtration(sl.datasets.figure_23_1()), tau=0.0)
+    >>> type(fig).__name__
+    'Figure'
+    >>> print(sl.plot.alt_text(fig))
+    Barcode: one horizontal bar per feature along the growth time τ, grouped and labelled by dimension. H₀ components: 13 pairs, 1 never dying, the most persistent finite one born at -0.64 and dead at 0.89; H₁ holes: 8 pairs, the most persistent finite one born at 0.482 and dead at 1.18; a dashed line at τ = 0.
     """
     P, d = _pairs_of(pairs_or_filtration, dim)
     dims = _select(P, dims, d)
@@ -386,7 +424,15 @@ def barcode(
     return fig
 
 
-def betti_curve(F_or_curve, *, taus=None, tau=None, log=None, ax=None, title="Betti numbers as the balls grow"):
+def betti_curve(
+    F_or_curve: Filtration | Balls | tuple[ArrayLike, ArrayLike],
+    *,
+    taus: ArrayLike | None = None,
+    tau: float | None = None,
+    log: bool | None = None,
+    ax: Axes | None = None,
+    title: str = "Betti numbers as the balls grow",
+) -> Figure:
     """:math:`\\beta_k(\\tau)` against the growth time τ, one step curve per k.
 
     Parameters
@@ -414,6 +460,15 @@ def betti_curve(F_or_curve, *, taus=None, tau=None, log=None, ax=None, title="Be
     --------
     shapelab.persistence.betti_curve
         The numbers drawn.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> fig = betti_curve(sl.alpha_filtration(sl.datasets.ring(12)))
+    >>> type(fig).__name__
+    'Figure'
+    >>> print(sl.plot.alt_text(fig))
+    Betti numbers as the balls grow: step curves of the Betti numbers against the growth time τ from -1.72 to 8.72, one line style per dimension. β₀ peaks at 12 (τ = -1) and ends at 1; β₁ peaks at 5 (τ = 8) and ends at 0.
     """
     if isinstance(F_or_curve, Balls):
         F_or_curve = as_filtration(F_or_curve, "plot.betti_curve")
@@ -620,8 +675,18 @@ def _features_or_compute(F, features, tau, fn_name, **kw):
 
 
 def voids(
-    F, tau=0.0, *, voids=None, ax=None, show_complex=False, elev=20, azim=35, title=None, show_volumes=None, legend=True
-):
+    F: Filtration | Balls,
+    tau: float = 0.0,
+    *,
+    voids: Sequence[Void] | None = None,
+    ax: Axes | None = None,
+    show_complex: bool = False,
+    elev: float = 20,
+    azim: float = 35,
+    title: str | None = None,
+    show_volumes: bool | None = None,
+    legend: bool = True,
+) -> Figure:
     """Draw the voids of the union of balls grown to τ (holes in 2D, Notes §23.1).
 
     A void is a bounded component of :math:`\\mathbb{R}^d \\setminus \\bigcup B_i`; it is
@@ -664,6 +729,15 @@ def voids(
     In 3D the free space is shown as a cloud of points: uniform samples of the
     void's cells kept where no grown ball covers them.  The cells themselves would
     draw the void of :math:`K_\\tau`, which is much larger than the void of the union.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> fig = voids(sl.alpha_filtration(sl.datasets.ring(12)), tau=0.0)
+    >>> type(fig).__name__
+    'Figure'
+    >>> print(sl.plot.alt_text(fig))
+    1 hole at τ = 0: the 12 disks grown to τ = 0; hole V1 (10 cells, area 13.60), each hole named in the legend and on the figure, lining balls highlighted.
     """
     F = as_filtration(F, "plot.voids")
     balls = F.balls
@@ -688,23 +762,23 @@ def voids(
 
 
 def pockets(
-    F,
-    tau=0.0,
+    F: Filtration | Balls,
+    tau: float = 0.0,
     *,
-    pockets=None,
-    voids=None,
-    show_voids=True,
-    ax=None,
-    show_complex=False,
-    min_persistence=1e-9,
-    elev=20,
-    azim=35,
-    title=None,
-    show_volumes=None,
-    legend=True,
-    focus=False,
-    numbers=None,
-):
+    pockets: Sequence[Pocket] | None = None,
+    voids: Sequence[Void] | None = None,
+    show_voids: bool = True,
+    ax: Axes | None = None,
+    show_complex: bool = False,
+    min_persistence: float = 1e-9,
+    elev: float = 20,
+    azim: float = 35,
+    title: str | None = None,
+    show_volumes: bool | None = None,
+    legend: bool = True,
+    focus: bool = False,
+    numbers: bool | None = None,
+) -> Figure:
     """Draw the pockets of the growth model at τ with their mouths (Notes §23.1, Fig. 23.2).
 
     A pocket is a region of the complement still connected to the outside at τ that
@@ -747,6 +821,15 @@ def pockets(
         The pockets drawn.
     pocket_gallery
         In 3D.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> fig = pockets(sl.alpha_filtration(sl.datasets.figure_23_2()[0]), tau=0.0)
+    >>> type(fig).__name__
+    'Figure'
+    >>> print(sl.plot.alt_text(fig))
+    1 pocket, 0 holes at τ = 0: the 112 disks grown to τ = 0; pocket P1 (9 cells, area 10.75, a mouth of 1 edge), each pocket named in the legend and on the figure, lining balls highlighted.
     """
     F = as_filtration(F, "plot.pockets")
     balls = F.balls
@@ -777,7 +860,17 @@ def pockets(
     )
 
 
-def pocket_gallery(F, tau=0.0, *, pockets=None, voids=None, min_persistence=1e-9, elev=20, azim=35, title=None):
+def pocket_gallery(
+    F: Filtration | Balls,
+    tau: float = 0.0,
+    *,
+    pockets: Sequence[Pocket] | None = None,
+    voids: Sequence[Void] | None = None,
+    min_persistence: float = 1e-9,
+    elev: float = 20,
+    azim: float = 35,
+    title: str | None = None,
+) -> Figure:
     """The pockets of a 3D molecule: an overview beside a close-up of each (Notes §23.1).
 
     Pockets of a protein often sit side by side in one groove, and in one 3D view
@@ -853,7 +946,18 @@ def pocket_gallery(F, tau=0.0, *, pockets=None, voids=None, min_persistence=1e-9
     return fig
 
 
-def tunnels(F, tau=0.0, *, tunnels=None, ax=None, show_complex=False, elev=20, azim=35, title=None, legend=True):
+def tunnels(
+    F: Filtration | Balls,
+    tau: float = 0.0,
+    *,
+    tunnels: Sequence[Tunnel] | None = None,
+    ax: Axes | None = None,
+    show_complex: bool = False,
+    elev: float = 20,
+    azim: float = 35,
+    title: str | None = None,
+    legend: bool = True,
+) -> Figure:
     """Draw the tunnels alive at τ: a representative cycle of each H₁ class (Notes §23.1).
 
     Parameters
@@ -876,6 +980,15 @@ def tunnels(F, tau=0.0, *, tunnels=None, ax=None, show_complex=False, elev=20, a
     --------
     shapelab.tunnels
         The tunnels drawn.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> fig = tunnels(sl.alpha_filtration(sl.datasets.ring(12, dim=3)), tau=0.0)
+    >>> type(fig).__name__
+    'Figure'
+    >>> print(sl.plot.alt_text(fig))
+    3D view of 1 tunnel at τ = 0: the 12 balls grown to τ = 0; tunnel 1: a cycle of 12 edges.
     """
     F = as_filtration(F, "plot.tunnels")
     tau = _check_tau(tau)
@@ -1112,7 +1225,9 @@ def _tag(ax, balls, cells, text):
     ax.annotate(text, x, ha="center", va="center", fontsize=8, zorder=6, color="white", fontweight="bold")
 
 
-def channel_profile(profile, *, reference: dict | None = None, ax=None, title: str | None = None):
+def channel_profile(
+    profile: ChannelProfile, *, reference: dict | None = None, ax: Axes | None = None, title: str | None = None
+) -> Figure:
     """The free radius along a channel (:func:`shapelab.channel_profile`), bottleneck marked.
 
     Parameters
@@ -1129,6 +1244,18 @@ def channel_profile(profile, *, reference: dict | None = None, ax=None, title: s
     --------
     shapelab.channel_profile
         The profile drawn.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import shapelab as sl
+    >>> balls = sl.datasets.ring(8, radius=3.0, disk_radius=1.0, dim=3)
+    >>> profile = sl.channel_profile(balls, [0.0, 0.0, 0.0], [0.0, 0.0, 1.0], np.linspace(-2.0, 2.0, 5))
+    >>> fig = channel_profile(profile)
+    >>> type(fig).__name__
+    'Figure'
+    >>> print(sl.plot.alt_text(fig))
+    Free radius along the channel: the free radius against the position along the axis, from -2.0 to 2.0 Å; the bottleneck, 2.00 Å at 0.0 Å, marked with a dot.
     """
     if not all(hasattr(profile, a) for a in ("offsets", "radius", "bottleneck")):
         raise TypeError(f"profile must be a ChannelProfile, got {type(profile).__name__}")
@@ -1166,7 +1293,9 @@ def channel_profile(profile, *, reference: dict | None = None, ax=None, title: s
 
 
 # ==================================================== boundary matrix, voxel slices
-def reduced_matrix(D, R, names, low=None, *, title=None):
+def reduced_matrix(
+    D: ArrayLike, R: ArrayLike, names: Sequence[str], low: ArrayLike | None = None, *, title: str | None = None
+) -> Figure:
     """The boundary matrix :math:`D` and its reduction :math:`R` side by side, with the
     lowest ones of :math:`R` in red and crossed (Notes §23.1; the persistence algorithm
     of Edelsbrunner, Letscher and Zomorodian 2002).
@@ -1255,7 +1384,13 @@ def reduced_matrix(D, R, names, low=None, *, title=None):
     return fig
 
 
-def voxel_slice(labels, grid, *, title=None, ax=None):
+def voxel_slice(
+    labels: np.ndarray,
+    grid: tuple[np.ndarray, np.ndarray, np.ndarray],
+    *,
+    title: str | None = None,
+    ax: Axes | None = None,
+) -> Figure:
     """A slice of a voxelized complement (:func:`shapelab.oracles.voxel_complement`):
     the union grey, the unbounded component white, each bounded component (a void) in
     a colour of the palette, in the :math:`z`-slice that cuts most void voxels

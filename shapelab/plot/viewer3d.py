@@ -36,10 +36,19 @@ import json
 import os
 import re
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ._style import COLORS, PALETTE
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    from ..balls import Balls
+    from ..cavities import Pocket, Tunnel, Void
+    from ..filtration import Filtration
+    from ..io import PDBStructure
 
 __all__ = ["View3D", "view3d", "library_path", "without_library", "FEATURE_COLORS", "SITE_PATH"]
 
@@ -486,7 +495,16 @@ class View3D:
         return f"View3D({self.id}: {kinds or 'atoms only'})"
 
 
-def view3d(structure_or_balls, features=(), *, style="auto", opacity=None, width=640, height=480, library=None):
+def view3d(
+    structure_or_balls: PDBStructure | Balls | Filtration,
+    features: Void | Pocket | Tunnel | Sequence[Void | Pocket | Tunnel] = (),
+    *,
+    style: str = "auto",
+    opacity: float | None = None,
+    width: int = 640,
+    height: int = 480,
+    library: bool | None = None,
+) -> View3D:
     """An interactive 3D view of a molecule and its voids, pockets, mouths and tunnels.
 
     Drawn in the browser by 3Dmol.js (WebGL), from a local copy only: it works in

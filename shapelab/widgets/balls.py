@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import ipywidgets as W
 import numpy as np
 
@@ -13,6 +15,12 @@ from .._toolkit.validate import (
 from ..plot import alt_text
 from . import _frame
 from .static import StaticFallback
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from ..balls import Balls
+    from ..filtration import Filtration
 
 __all__ = [
     "alpha_explorer",
@@ -51,7 +59,16 @@ def _default_range(F):
     return lo, hi
 
 
-def alpha_explorer(F, *, tau=0.0, tau_range=None, steps=100, show_cells=True, show_measure=True, bbox=None):
+def alpha_explorer(
+    F: Filtration | Balls,
+    *,
+    tau: float = 0.0,
+    tau_range: tuple[float, float] | None = None,
+    steps: int = 100,
+    show_cells: bool = True,
+    show_measure: bool = True,
+    bbox: ArrayLike | None = None,
+) -> AlphaExplorer:
     """A slider in the growth time τ over the disks grown to :math:`\\sqrt{r_i^2+\\tau}`
     and their dual complex :math:`K_\\tau` (Notes §23.1, Figure 23.1).
 
@@ -91,6 +108,16 @@ def alpha_explorer(F, *, tau=0.0, tau_range=None, steps=100, show_cells=True, sh
         The filtration explored.
     shapelab.plot.dual_complex
         One frame.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> w = alpha_explorer(sl.alpha_filtration(sl.datasets.figure_23_1()), steps=10)
+    >>> type(w).__name__
+    'AlphaExplorer'
+    >>> w.slider.value = 0.5  # the figure and the status line follow the slider
+    >>> print(w.status.value)
+    τ = 0.500 · α = √τ = 0.707 · K: 13 vertices, 12 edges, 2 triangles · Betti (β₀, β₁) = (4, 1) · area 38.98, perimeter 52.52
     """
     from ..filtration import as_filtration
     from ._frame import check_balls, value_range
@@ -203,7 +230,16 @@ class AlphaExplorer(StaticFallback, W.VBox):
 
 
 # --------------------------------------------------------------------------- power
-def power_explorer(balls, *, index=0, radius=None, radius_range=None, steps=100, mode="diagram", bbox=None):
+def power_explorer(
+    balls: Balls,
+    *,
+    index: int = 0,
+    radius: float | None = None,
+    radius_range: tuple[float, float] | None = None,
+    steps: int = 100,
+    mode: str = "diagram",
+    bbox: ArrayLike | None = None,
+) -> PowerExplorer:
     """Change one disk's radius and watch its power cell (Notes §23.1).
 
     The power distance :math:`\\pi_i(x) = \\|x - z_i\\|^2 - r_i^2` makes a larger disk
@@ -242,6 +278,15 @@ def power_explorer(balls, *, index=0, radius=None, radius_range=None, steps=100,
         The diagram recomputed.
     shapelab.plot.power_diagram
         One frame.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> w = power_explorer(sl.Balls([[0.0, 0.0], [3.0, 0.0], [1.0, 2.5]], [1.0, 1.5, 0.8]), steps=10)
+    >>> type(w).__name__
+    'PowerExplorer'
+    >>> print(w.status.value)
+    disk 0: r = 1.000 · 2 neighbouring cells · no hidden disks
     """
     from .._toolkit.validate import as_bbox, default_bbox
     from ..balls import Balls
@@ -393,7 +438,17 @@ class PowerExplorer(StaticFallback, W.VBox):
 
 
 # --------------------------------------------------------------------------- 3D
-def complex3d_explorer(F, *, tau=0.0, tau_range=None, steps=60, azim=35.0, elev=20.0, show_balls=True, resolution=8):
+def complex3d_explorer(
+    F: Filtration | Balls,
+    *,
+    tau: float = 0.0,
+    tau_range: tuple[float, float] | None = None,
+    steps: int = 60,
+    azim: float = 35.0,
+    elev: float = 20.0,
+    show_balls: bool = True,
+    resolution: int = 8,
+) -> Complex3DExplorer:
     """The growth model in 3D: a slider in τ and one for the view angle (Notes §23.1).
 
     Draws the balls grown to :math:`\\sqrt{r_i^2+\\tau}` (translucent) and the dual
@@ -429,6 +484,16 @@ def complex3d_explorer(F, *, tau=0.0, tau_range=None, steps=60, azim=35.0, elev=
         One frame.
     alpha_explorer
         The same in 2D.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> F = sl.alpha_filtration(sl.Balls([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 1.7, 0.0], [1.0, 0.6, 1.6]], 1.0))
+    >>> w = complex3d_explorer(F, steps=10, show_balls=False)
+    >>> type(w).__name__
+    'Complex3DExplorer'
+    >>> print(w.status.value)
+    τ = 0.000 · α = √τ = 0.000 · K: 4 vertices, 6 edges, 0 triangles, 0 tetrahedra · β₀ = 1 components, β₁ = 3 tunnels, β₂ = 0 voids
     """
     from ..filtration import as_filtration
     from ._frame import check_balls, value_range

@@ -4,6 +4,7 @@ F(x) = |x − S| move, appear and cancel (notes §23.2, Figure 23.3)."""
 from __future__ import annotations
 
 import io
+from typing import TYPE_CHECKING
 
 import ipywidgets as W
 import numpy as np
@@ -13,6 +14,11 @@ from ..plot import alt_text
 from . import _frame
 from .static import StaticFallback
 
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from numpy.typing import ArrayLike
+
 __all__ = ["critical_points_explorer", "CriticalPointsExplorer"]
 
 _SIZE = (10.0, 4.6)
@@ -20,8 +26,14 @@ _DPI = 80
 
 
 def critical_points_explorer(
-    curve, *, viewpoint=None, x_range=None, y_range=None, steps: int = 60, close: bool = False
-):
+    curve: ArrayLike | Callable[[np.ndarray], ArrayLike],
+    *,
+    viewpoint: ArrayLike | None = None,
+    x_range: tuple[float, float] | None = None,
+    y_range: tuple[float, float] | None = None,
+    steps: int = 60,
+    close: bool = False,
+) -> CriticalPointsExplorer:
     """Two sliders move the viewpoint S; the figure of Figure 23.3 follows.
 
     Parameters
@@ -50,6 +62,15 @@ def critical_points_explorer(
         What is recomputed.
     shapelab.plot.critical_points
         One frame.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> w = critical_points_explorer(sl.datasets.blob_curve, viewpoint=(0.1, 0.05), steps=10)
+    >>> type(w).__name__
+    'CriticalPointsExplorer'
+    >>> print(w.status.value)
+    3 minima, 3 maxima
     """
     from ..critical import closed_vertices, polyline
 

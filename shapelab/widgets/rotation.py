@@ -8,6 +8,7 @@ moving the slider only redraws (:func:`shapelab.plot.icp_step` and
 from __future__ import annotations
 
 import io
+from typing import TYPE_CHECKING
 
 import ipywidgets as W
 import numpy as np
@@ -17,6 +18,11 @@ from ..plot import alt_text
 from . import _frame
 from .static import StaticFallback
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from ..registration import RigidMotion
+
 __all__ = ["icp_explorer", "ICPExplorer"]
 
 _SIZE = (11.0, 4.6)  # inches
@@ -24,17 +30,17 @@ _DPI = 90
 
 
 def icp_explorer(
-    source,
-    target,
+    source: ArrayLike,
+    target: ArrayLike,
     *,
     max_iter: int = 30,
     tol: float = 0.0,
     accelerate: bool = False,
-    init=None,
-    max_distance=None,
-    truth=None,
+    init: RigidMotion | None = None,
+    max_distance: float | None = None,
+    truth: RigidMotion | None = None,
     max_lines: int = 200,
-):
+) -> ICPExplorer:
     """A slider over the iterations of ICP, with the step and the convergence plot.
 
     Parameters
@@ -60,6 +66,19 @@ def icp_explorer(
         The iterations.
     shapelab.plot.icp_step
         One frame.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import shapelab as sl
+    >>> rng = np.random.default_rng(0)
+    >>> target = rng.normal(size=(30, 3))
+    >>> source = sl.Quaternion.from_axis_angle([0, 0, 1], 0.3).rotate(target) + rng.normal(0, 0.05, (30, 3))
+    >>> w = icp_explorer(source, target, max_iter=5)
+    >>> type(w).__name__
+    'ICPExplorer'
+    >>> print(w.status.value)
+    iteration 0 of 4: MSE 0.1651
     """
     from ..registration import RigidMotion, icp
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import io
+from typing import TYPE_CHECKING
 
 import ipywidgets as W
 import numpy as np
@@ -11,6 +12,12 @@ from .._toolkit.validate import as_finite_scalar, as_tau
 from ..plot import alt_text
 from . import _frame
 from .static import StaticFallback
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    from ..balls import Balls
+    from ..filtration import Filtration
 
 __all__ = ["pocket_explorer", "PocketExplorer", "persistence_explorer", "PersistenceExplorer"]
 
@@ -29,7 +36,15 @@ def _default_range(balls, F):
     return lo, hi + 0.1 * (hi - lo)
 
 
-def pocket_explorer(F, *, tau=0.0, tau_range=None, steps=100, min_persistence=1e-9, show_complex=False):
+def pocket_explorer(
+    F: Filtration | Balls,
+    *,
+    tau: float = 0.0,
+    tau_range: tuple[float, float] | None = None,
+    steps: int = 100,
+    min_persistence: float = 1e-9,
+    show_complex: bool = False,
+) -> PocketExplorer:
     """A slider in τ over the disks grown to :math:`\\sqrt{r^2+\\tau}`, with the holes
     (voids) and the pockets with their mouths at that τ (Notes §23.1, Figure 23.2).
 
@@ -66,6 +81,15 @@ def pocket_explorer(F, *, tau=0.0, tau_range=None, steps=100, min_persistence=1e
         The pockets.
     shapelab.plot.pockets
         One frame.
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> w = pocket_explorer(sl.alpha_filtration(sl.datasets.figure_23_2()[0]), steps=10)
+    >>> type(w).__name__
+    'PocketExplorer'
+    >>> print(w.status.value)
+    &nbsp;1 pocket, 0 holes
     """
     from ..filtration import as_filtration
     from ._frame import check_balls, value_range
@@ -156,7 +180,14 @@ class PocketExplorer(StaticFallback, W.VBox):
 
 
 # --------------------------------------------------------------------------- persistence
-def persistence_explorer(F, *, threshold=0.0, threshold_range=None, steps=100, dims=None):
+def persistence_explorer(
+    F: Filtration | Balls,
+    *,
+    threshold: float = 0.0,
+    threshold_range: tuple[float, float] | None = None,
+    steps: int = 100,
+    dims: int | Sequence[int] | None = None,
+) -> PersistenceExplorer:
     """Topological simplification with a slider (Notes §23.1, "big voids against small ones").
 
     Features whose persistence (death − birth) is below the threshold are what
@@ -196,6 +227,15 @@ def persistence_explorer(F, *, threshold=0.0, threshold_range=None, steps=100, d
     .. [1] H. Edelsbrunner, D. Letscher and A. Zomorodian, "Topological persistence and
            simplification", *Discrete Comput. Geom.* 28:511-533, 2002.
            doi:10.1007/s00454-002-2885-2
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> w = persistence_explorer(sl.alpha_filtration(sl.datasets.figure_23_1()), steps=10)
+    >>> type(w).__name__
+    'PersistenceExplorer'
+    >>> print(w.status.value)
+    persistence ≥ 0.000 keeps 13 of 13 in H0, 8 of 8 in H1
     """
     from ..balls import Balls
     from ..filtration import Filtration, as_filtration
