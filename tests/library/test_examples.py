@@ -23,48 +23,44 @@ import pytest
 from course import lesson_calls
 
 # being rewritten in issue 33's other branches; the lead removes this after the merge.
-# Module paths relative to ``shapelab`` (a package covers its modules); the new names of
-# the moved modules (triangulation, persistence, hausdorff, rotation, icp, report, tools,
-# _engine) stand beside the old ones so that the set still holds right after the merge.
-REWRITTEN = {
-    "power",
-    "filtration",
-    "exact",
-    "measure",
-    "cavities",
-    "_pockets",
-    "flow",
-    "freespace",
-    "cavity_report",
-    "topology",
-    "_topology",
-    "distance",
-    "registration",
-    "batch",
-    "cli",
-    "trajectory",
-    "io",
-    "datasets",
-    "simplification",
-    "plot.matching",
-    # their new names
-    "triangulation",
-    "persistence",
-    "hausdorff",
-    "rotation",
-    "icp",
-    "report",
-    "tools",
-    "_engine",
+# Issue 33 left these for its next stop: names the lessons call that still lack an
+# Examples section or an annotation.  Named one by one, so that a new name a lesson
+# calls is held to the rule at once; remove a name when it is done.
+LEFT = {
+    "shapelab._engine.predicates.WeightedPoints",
+    "shapelab.cavities.flow.discrete_flow",
+    "shapelab.cavities.flow.flow_pockets",
+    "shapelab.cavities.freespace.free_points",
+    "shapelab.cavities.pocket.pockets",
+    "shapelab.cavities.tunnel.channel_profile",
+    "shapelab.cavities.tunnel.grooves",
+    "shapelab.cavities.tunnel.tunnels",
+    "shapelab.cavities.void.voids",
+    "shapelab.filtration.dual_complex",
+    "shapelab.hausdorff.directed_hausdorff",
+    "shapelab.hausdorff.hausdorff",
+    "shapelab.icp.icp",
+    "shapelab.io._pdb.read_pdb",
+    "shapelab.io._writers.write_pdb",
+    "shapelab.measure.union_measure",
+    "shapelab.persistence.reduce_boundary",
+    "shapelab.report.report",
+    "shapelab.rotation.DegenerateRotationWarning",
+    "shapelab.rotation.cross_covariance",
+    "shapelab.rotation.horn_matrix",
+    "shapelab.rotation.kabsch",
+    "shapelab.rotation.optimal_rotation",
+    "shapelab.rotation.register",
+    "shapelab.simplification.curve_persistence",
+    "shapelab.simplification.simplify",
+    "shapelab.tools.trajectory.trajectory_measures",
+    "shapelab.triangulation.clipped_cells",
+    "shapelab.triangulation.power_diagram",
+    "shapelab.triangulation.triangulation_report",
 }
 
 CALLS = lesson_calls.calls()
 _EXAMPLES = re.compile(r"^Examples\n-{3,}\n(.*?)(?=^\S[^\n]*\n-{3,}\n|\Z)", re.S | re.M)
-
-
-def _rewritten(module: str) -> bool:
-    rel = module.removeprefix("shapelab").removeprefix(".")
-    return any(rel == m or rel.startswith(m + ".") for m in REWRITTEN)
 
 
 def _object(call: lesson_calls.Call) -> object:
@@ -76,8 +72,7 @@ def _callable(obj: object) -> bool:
 
 
 def _owned_elsewhere(call: lesson_calls.Call) -> bool:
-    obj = _object(call)
-    return _rewritten(call.module) or _rewritten(getattr(obj, "__module__", "") or "")
+    return call.qualname in LEFT
 
 
 def has_examples(obj: object) -> bool:
@@ -120,6 +115,15 @@ def _ids(c: lesson_calls.Call) -> str:
 
 
 CHECKED = [c for c in CALLS if _callable(_object(c)) and not _owned_elsewhere(c)]
+
+
+def test_the_names_left_are_still_called_and_still_short_of_the_rule():
+    """A name done (or no longer called) leaves LEFT, so that the list only shrinks."""
+    called = {c.qualname: c for c in CALLS}
+    for name in sorted(LEFT):
+        assert name in called, f"{name} is no longer called by a lesson: remove it from LEFT"
+        obj = _object(called[name])
+        assert not has_examples(obj) or missing_annotations(obj), f"{name} now meets the rule: remove it from LEFT"
 
 
 def test_the_lessons_call_many_names():
