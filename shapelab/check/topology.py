@@ -363,7 +363,7 @@ def boundary_reduction(student_fn: Callable[..., Any], *, quiet: bool = False) -
 
     Examples
     --------
-    >>> from shapelab.topology import reduce_boundary
+    >>> from shapelab.persistence import reduce_boundary
     >>> boundary_reduction(lambda D: reduce_boundary(D)[0]).passed
     ✓ boundary matrix reduction over Z/2: correct on all 14 cases.
     True

@@ -310,7 +310,7 @@ def trajectory_volumes(
     --------
     >>> import numpy as np
     >>> import shapelab as sl
-    >>> from shapelab.trajectory import CavityTrack, TrajectoryMeasures
+    >>> from shapelab.tracking import CavityTrack, TrajectoryMeasures
     >>> z = np.zeros(3)
     >>> track = CavityTrack(0, (0, 1, 2), ("pocket", "void", "pocket"), (50.0, 40.0, 55.0), (0.9, 0.8))
     >>> m = TrajectoryMeasures(frame=np.arange(3), time=2.0 * np.arange(3), area=z, volume=np.array([1000.0, 990.0, 1010.0]),
