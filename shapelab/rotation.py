@@ -48,6 +48,7 @@ import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
+import numpy.typing as npt
 
 from ._toolkit.tolerances import ROTATION_EIGEN_GAP
 from ._toolkit.validate import as_float_array as _as_float_array
@@ -89,13 +90,24 @@ class DegenerateRotationWarning(UserWarning):
     .. [1] B. K. P. Horn, "Closed-form solution of absolute orientation using unit
            quaternions", *J. Opt. Soc. Am. A* 4(4):629-642, 1987.
            doi:10.1364/JOSAA.4.000629
+
+    Examples
+    --------
+    A single pair fixes no spin about its line:
+
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     _ = optimal_rotation([[1.0, 0, 0]], [[1.0, 0, 0]])
+    >>> [w.category.__name__ for w in caught]
+    ['DegenerateRotationWarning']
     """
 
 
 # --------------------------------------------------------------------------- Horn
 
 
-def cross_covariance(R, G) -> np.ndarray:
+def cross_covariance(R: npt.ArrayLike, G: npt.ArrayLike) -> np.ndarray:
     """The 3×3 matrix :math:`M = \\sum_j r_j g_j^T` of paired point sets (no centring).
 
     Computed as one matrix product, O(n).
@@ -114,6 +126,11 @@ def cross_covariance(R, G) -> np.ndarray:
            doi:10.1364/JOSAA.4.000629
     .. [2] W. Kabsch, "A solution for the best rotation to relate two sets of vectors",
            *Acta Cryst. A* 32:922-923, 1976. doi:10.1107/S0567739476001873
+
+    Examples
+    --------
+    >>> cross_covariance([[1.0, 0, 0], [0, 2, 0]], [[0, 1.0, 0], [0, 0, 1]]).tolist()
+    [[0.0, 1.0, 0.0], [0.0, 0.0, 2.0], [0.0, 0.0, 0.0]]
     """
     R, G = _paired(R, G)
     return _covariance(R, G)
@@ -131,7 +148,7 @@ def _horn_from_m(m: np.ndarray) -> np.ndarray:
     )
 
 
-def horn_matrix(R, G) -> np.ndarray:
+def horn_matrix(R: npt.ArrayLike, G: npt.ArrayLike) -> np.ndarray:
     """Horn's symmetric 4×4 matrix :math:`A = \\sum_j \\bar R_j^T G_j` (Notes §23.2).
 
     :math:`\\bar R_j` is the right-multiplication matrix of the pure quaternion
@@ -163,6 +180,14 @@ def horn_matrix(R, G) -> np.ndarray:
     .. [1] B. K. P. Horn, "Closed-form solution of absolute orientation using unit
            quaternions", *J. Opt. Soc. Am. A* 4(4):629-642, 1987.
            doi:10.1364/JOSAA.4.000629
+
+    Examples
+    --------
+    The identity pairing: the top eigenvector is :math:`1`, the identity rotation.
+
+    >>> A = horn_matrix(np.eye(3), np.eye(3))
+    >>> A.tolist()[0], float(np.trace(A))
+    ([3.0, 0.0, 0.0, 0.0], 0.0)
     """
     return _horn_from_m(cross_covariance(R, G))
 
@@ -302,7 +327,9 @@ def _rotation_from_m(m: np.ndarray, *, caller: str, sensitivity: float | None = 
     return rot, _sensitivity(m, sensitivity)
 
 
-def optimal_rotation(R, G, weights=None, *, return_sensitivity: bool = False):
+def optimal_rotation(
+    R: npt.ArrayLike, G: npt.ArrayLike, weights: npt.ArrayLike | None = None, *, return_sensitivity: bool = False
+) -> Quaternion | tuple[Quaternion, np.ndarray]:
     """Horn's closed-form optimal rotation of paired point sets (Notes §23.2).
 
     Returns the unit quaternion :math:`q` maximising :math:`q^TAq` with
@@ -419,7 +446,7 @@ def optimal_rotation(R, G, weights=None, *, return_sensitivity: bool = False):
     )
 
 
-def kabsch(R, G, *, proper: bool = True) -> np.ndarray:
+def kabsch(R: npt.ArrayLike, G: npt.ArrayLike, *, proper: bool = True) -> np.ndarray:
     """The SVD solution (Kabsch/Umeyama) for the rotation matrix taking ``R`` onto ``G``.
 
     Independent of the quaternion route; used by the tests and the lesson on the
@@ -449,6 +476,15 @@ def kabsch(R, G, *, proper: bool = True) -> np.ndarray:
     .. [2] S. Umeyama, "Least-squares estimation of transformation parameters between two
            point patterns", *IEEE Trans. Pattern Anal. Mach. Intell.* 13(4):376-380,
            1991. doi:10.1109/34.88573
+
+    Examples
+    --------
+    A mirror image: the naive SVD answer is the reflection, the det fix a rotation.
+
+    >>> R = np.array([[1.0, 0, 0], [0, 1, 0], [0, 0, 1]])
+    >>> G = R * [1, 1, -1]
+    >>> round(float(np.linalg.det(kabsch(R, G, proper=False)))), round(float(np.linalg.det(kabsch(R, G))))
+    (-1, 1)
     """
     R = as_points(R, "R", dim=3)
     G = as_points(G, "G", dim=3)
@@ -627,7 +663,9 @@ def fit_motion(R: np.ndarray, G: np.ndarray, *, caller: str = "register", weight
     return (motion, out[1]) if sensitivity else motion
 
 
-def register(R, G, weights=None, *, return_sensitivity: bool = False):
+def register(
+    R: npt.ArrayLike, G: npt.ArrayLike, weights: npt.ArrayLike | None = None, *, return_sensitivity: bool = False
+) -> RigidMotion | tuple[RigidMotion, np.ndarray]:
     """The least-squares rigid motion taking paired points ``R`` onto ``G``.
 
     Minimises :math:`\\sum_j w_j\\lVert R(q)\\,r_j + t - g_j\\rVert^2`.  The optimal
