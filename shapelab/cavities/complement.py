@@ -11,7 +11,11 @@ triangulation not in :math:`K_\\tau` (the *free cells*) and the outside
 :math:`\\infty` is a void; the component of :math:`\\infty` is the outside.
 
 Running τ backwards the complement only grows, so its whole history is one merge tree
-(the dual :math:`H_0`): :func:`merge_tree` says when each void is sealed and filled.
+(the dual :math:`H_0`), read by the elder rule: :func:`sealed_at` says when each void
+is sealed, :func:`cells_when_sealed` which cells it has then.  :func:`merge_tree` is
+the same history kept compact, so that a pocket's cells are read without recomputing
+the components (a fast kernel, ``shapelab._engine.mouths``; equal to the two plain
+functions, tested).
 """
 
 from __future__ import annotations
@@ -21,8 +25,19 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
 from .._engine import mouths as _engine
+from .._engine.persistence import summary
+from .._toolkit.derived import derived
+from .._toolkit.unionfind import elder_merges
 
-__all__ = ["complement_labels", "full_dimensional", "merge_tree", "lining_of", "vertex_values"]
+__all__ = [
+    "complement_labels",
+    "full_dimensional",
+    "sealed_at",
+    "cells_when_sealed",
+    "merge_tree",
+    "lining_of",
+    "vertex_values",
+]
 
 
 def full_dimensional(F) -> bool:
@@ -85,12 +100,100 @@ def complement_labels(F, S, tau: float) -> tuple[np.ndarray, np.ndarray]:
     return labels, free
 
 
+def sealed_at(F) -> np.ndarray:
+    """When the void of every cell is sealed: the elder rule run backwards (Notes §23.1).
+
+    Run τ from :math:`+\\infty` down.  Every top simplex (*cell*) leaves
+    :math:`K_\\tau` at its entry time and joins the complement; every facet that leaves
+    joins the two parts on its sides.  When two parts join, the *younger* one dies and
+    the elder lives on: the outside :math:`\\infty` is the eldest, then the cells that
+    fill last.  Forwards in τ, a part that dies at facet :math:`f` is sealed off by
+    :math:`f`: it is a void from then until its last-filled cell ``r`` (its *root*)
+    fills.  ``sealed_at(F)[r]`` is the value of :math:`f`; when it equals the entry
+    time of ``r`` the part was never a void.  Only facets that seal a void (the
+    positive ones of Notes §23.1, ``S.pos_facets``) can join two parts.
+
+    Returns
+    -------
+    ndarray of float, shape (n_cells,)
+        Per cell ``r``, when the part of the complement rooted at ``r`` is sealed off.
+        Kept on ``F``.
+
+    See Also
+    --------
+    cells_when_sealed
+        The void's cells at that moment.
+    shapelab.voids
+        The voids at one τ, born at ``sealed_at`` of their root.
+
+    Examples
+    --------
+    >>> import numpy as np, shapelab as sl
+    >>> t = np.linspace(0, 2 * np.pi, 12, endpoint=False)
+    >>> F = sl.alpha_filtration(sl.Balls(3 * np.c_[np.cos(t), np.sin(t)], 0.9))
+    >>> sealed, fills = sealed_at(F), F.values(2)
+    >>> r = int(np.argmax(fills - sealed))  # the root of the ring's hole
+    >>> round(float(sealed[r]), 6), round(float(fills[r]), 6)
+    (-0.207114, 8.19)
+    """
+    return derived(F, "cavities.sealed_at", _sealed_at)
+
+
+def _sealed_at(F) -> np.ndarray:
+    S = summary(F)
+    k = S.k
+    n = S.values[k].shape[0]
+    u, v = S.cell_dual  # per facet: the cells on its two sides (n: the outside)
+    age = np.r_[np.arange(n, 0, -1), 0]  # smaller is elder: the outside, then late cells
+    sealed = np.full(n, -np.inf)
+
+    def seal(facet, elder, younger, oldest):
+        sealed[oldest[younger]] = S.values[k - 1][facet]
+
+    elder_merges(n + 1, u, v, S.pos_facets[::-1], age, seal)
+    return sealed
+
+
+def cells_when_sealed(F, r: int) -> np.ndarray:
+    """The cells of the void rooted at cell ``r`` at the moment it is sealed.
+
+    At :math:`\\tau = ` ``sealed_at(F)[r]`` the sealing facet is in :math:`K_\\tau`,
+    so the void is the part of the complement that holds ``r``: the facets with a
+    larger value are open (facets sealed at the same time close together).
+
+    Returns
+    -------
+    ndarray of int
+        The cell rows, ascending.
+
+    See Also
+    --------
+    sealed_at
+        When the void is sealed.
+    merge_tree
+        The same sets without recomputing the components (a fast kernel).
+
+    Examples
+    --------
+    >>> import numpy as np, shapelab as sl
+    >>> t = np.linspace(0, 2 * np.pi, 12, endpoint=False)
+    >>> F = sl.alpha_filtration(sl.Balls(3 * np.c_[np.cos(t), np.sin(t)], 0.9))
+    >>> r = int(np.argmax(F.values(2) - sealed_at(F)))  # the root of the ring's hole
+    >>> len(cells_when_sealed(F, r))  # the hole's ten triangles
+    10
+    """
+    labels, _ = complement_labels(F, summary(F), float(sealed_at(F)[r]))
+    return np.flatnonzero(labels[:-1] == labels[r])
+
+
 def merge_tree(F) -> _engine.MergeTree:
     """The merge tree of the complement of ``F`` run backwards in τ (kept on ``F``).
 
-    ``kill_value[c]`` is the time the void whose last-filled cell is ``c`` is sealed
-    (its ``born``); the tree's leaf runs list a void's cells at every moment.  One
-    union–find pass in reverse filtration order (``shapelab._engine.mouths``).
+    A fast kernel for :func:`sealed_at` and :func:`cells_when_sealed` together
+    (``shapelab._engine.mouths``): the same elder-rule pass, which also keeps every
+    part's cells as one run of a leaf order, so that
+    ``shapelab._engine.mouths.cells_at_closing(tree, r)`` reads a void's cells in
+    time proportional to their number.  ``kill_value`` is :func:`sealed_at`.
 
     See Also
     --------

@@ -17,7 +17,7 @@ import numpy as np
 from .._engine.persistence import summary
 from .._toolkit.validate import as_tau, readonly
 from ..filtration import as_filtration
-from .complement import complement_labels, full_dimensional, lining_of, merge_tree, vertex_values
+from .complement import complement_labels, full_dimensional, lining_of, sealed_at, vertex_values
 from .freespace import void_measure
 
 __all__ = ["Void", "voids"]
@@ -140,7 +140,7 @@ def voids(F, tau=0.0) -> tuple:
     if not full_dimensional(F):
         return ()
     S = summary(F)
-    T = merge_tree(F)
+    born = sealed_at(F)  # the time each cell's void is sealed
     k = S.k
     n = S.values[k].shape[0]
     lab, free = complement_labels(F, S, tau)
@@ -166,7 +166,7 @@ def voids(F, tau=0.0) -> tuple:
                 cells=readonly(cv, np.int64),
                 cell_ids=readonly(cid, np.int64),
                 lining=readonly(lining_of(cv, tau, vval), np.int64),
-                born=float(T.kill_value[root]),
+                born=float(born[root]),
                 dies=float(S.values[k][root]),
                 volume=float(max(csum[e] - csum[s], 0.0)),
                 tau=tau,
