@@ -121,6 +121,7 @@ not depend on τ and are kept on the filtration.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.sparse import coo_matrix
@@ -130,6 +131,10 @@ from .._engine import flow as _engine
 from .._toolkit.validate import as_tau, readonly
 from ..filtration import as_filtration
 from .mouths import MeasuredRegion
+
+if TYPE_CHECKING:
+    from ..balls import Balls
+    from ..filtration import Filtration
 
 __all__ = ["DiscreteFlow", "FlowPocket", "discrete_flow", "flow_pockets", "flow_side_exact", "orthocentre_beyond"]
 
@@ -411,7 +416,7 @@ def orthocentre_beyond(F) -> np.ndarray:
 
 
 # ======================================================================= the flow
-def discrete_flow(F, tau: float = 0.0, *, precision: str = "exact") -> DiscreteFlow:
+def discrete_flow(F: Filtration | Balls, tau: float = 0.0, *, precision: str = "exact") -> DiscreteFlow:
     """Edelsbrunner's discrete flow on the empty simplices of :math:`K_\\tau`
     (Notes §23.1; [1]_).
 
@@ -548,7 +553,7 @@ def discrete_flow(F, tau: float = 0.0, *, precision: str = "exact") -> DiscreteF
     return DiscreteFlow(tau, readonly(empty), nb, flows, sink, to_inf, region, tuple(pockets))
 
 
-def flow_pockets(F, tau: float = 0.0, *, precision: str = "exact") -> tuple:
+def flow_pockets(F: Filtration | Balls, tau: float = 0.0, *, precision: str = "exact") -> tuple:
     """The pockets and voids of the discrete flow at ``tau`` (Notes §23.1; [1]_, [2]_).
 
     Shorthand for ``discrete_flow(F, tau).pockets``: the empty top simplices that do

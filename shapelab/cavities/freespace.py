@@ -26,14 +26,19 @@ The integration itself (vectorised, threaded) is in the private engine
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+import numpy.typing as npt
 
 from .._engine import freespace as _engine
 from .._toolkit.validate import check_balls
 from ..balls import Balls, power_distance
 from ..filtration import as_filtration
 from .complement import vertex_values
+
+if TYPE_CHECKING:
+    from ..filtration import Filtration
 
 __all__ = ["free_area", "free_measure", "free_space", "FreeSpace", "void_measure", "vertex_values", "free_points"]
 
@@ -221,7 +226,9 @@ def _balls_of(F, who):
     return F.balls, F
 
 
-def free_points(F, tau, cells, n_points, rng) -> np.ndarray:
+def free_points(
+    F: Filtration | Balls, tau: float, cells: npt.ArrayLike, n_points: int, rng: np.random.Generator
+) -> np.ndarray:
     """Points of the free space inside ``cells`` (uniform in the cells, then kept where
     no ball grown to τ covers them, by :func:`shapelab.power_distance`): a picture of a
     void's shape for :func:`shapelab.plot.voids`, not a measurement.
@@ -245,6 +252,16 @@ def free_points(F, tau, cells, n_points, rng) -> np.ndarray:
     --------
     free_measure
         The exact measure these points sample.
+
+    Examples
+    --------
+    >>> import numpy as np, shapelab as sl
+    >>> t = np.linspace(0, 2 * np.pi, 12, endpoint=False)
+    >>> ring = sl.Balls(3 * np.c_[np.cos(t), np.sin(t)], 0.9)
+    >>> (v,) = sl.voids(ring)
+    >>> pts = sl.cavities.free_points(ring, 0.0, v.cells, 1000, np.random.default_rng(0))
+    >>> pts.shape[1], 400 < len(pts) < 800, bool((sl.power_distance(pts, ring) > 0).all())
+    (2, True, True)
     """
     balls = check_balls(_balls_of(F, "free_points")[0], "F")
     X = balls.centers[cells]  # (m, d+1, d)

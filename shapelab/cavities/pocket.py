@@ -46,6 +46,7 @@ the region, so the flow's mouth (open faces to simplices that flow out) is this 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -57,6 +58,10 @@ from .complement import complement_labels, full_dimensional, lining_of, merge_tr
 from .mouths import MeasuredRegion, mouth_finder
 
 __all__ = ["Pocket", "pockets"]
+
+if TYPE_CHECKING:
+    from ..balls import Balls
+    from ..filtration import Filtration
 
 
 @dataclass(frozen=True, eq=False)
@@ -124,7 +129,12 @@ class Pocket(MeasuredRegion):
 
 
 def pockets(
-    F, tau: float = 0.0, *, min_persistence: float = 0.0, method: str = "growth", precision: str = "exact"
+    F: Filtration | Balls,
+    tau: float = 0.0,
+    *,
+    min_persistence: float = 0.0,
+    method: str = "growth",
+    precision: str = "exact",
 ) -> tuple:
     """Pockets by the growth model of Notes §23.1 (Figure 23.2), or by the discrete flow.
 

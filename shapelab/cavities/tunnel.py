@@ -11,14 +11,20 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
+import numpy.typing as npt
 
 from .._engine.persistence import is_roundoff, reduce_h1, summary
 from .._toolkit import tolerances as tol
 from .._toolkit.derived import derived
 from .._toolkit.validate import as_finite_scalar, as_tau, check_balls, readonly
 from ..filtration import as_filtration
+
+if TYPE_CHECKING:
+    from ..balls import Balls
+    from ..filtration import Filtration
 
 __all__ = ["Tunnel", "tunnels", "grooves", "ChannelProfile", "channel_profile"]
 
@@ -134,7 +140,7 @@ def _h1_classes(F, tau, select, fname):
     return tuple(out)
 
 
-def tunnels(F, tau: float = 0.0) -> tuple:
+def tunnels(F: Filtration | Balls, tau: float = 0.0) -> tuple:
     """The tunnels of the union of balls grown to ``tau``, in 3D (Notes §23.1).
 
     The :math:`H_1` classes alive at ``tau`` (``birth <= tau < death``); their number is
@@ -172,13 +178,22 @@ def tunnels(F, tau: float = 0.0) -> tuple:
     ----------
     .. [1] H. Edelsbrunner and J. L. Harer, *Computational Topology: An Introduction*,
            American Mathematical Society, 2010. doi:10.1090/mbk/069
+
+    Examples
+    --------
+    A ring of 12 balls in 3D has one tunnel, a cycle through all of them:
+
+    >>> import shapelab as sl
+    >>> F = sl.alpha_filtration(sl.datasets.ring(12, dim=3))
+    >>> sl.tunnels(F)
+    (Tunnel(birth=-0.397114, death=8, cycle=12 edges, tau=0),)
     """
     F = as_filtration(F, "tunnels")
     tau = as_tau(tau)
     return _h1_classes(F, tau, lambda b, d: (b <= tau) & (d > tau), "tunnels")
 
 
-def grooves(F, tau: float = 0.0, *, min_persistence: float = 0.0) -> tuple:
+def grooves(F: Filtration | Balls, tau: float = 0.0, *, min_persistence: float = 0.0) -> tuple:
     """Grooves at ``tau``: :math:`H_1` classes born later, ``birth > tau`` (3D).
 
     Notes §23.1: "a groove on the surface of a molecule can be transformed into a
@@ -208,6 +223,15 @@ def grooves(F, tau: float = 0.0, *, min_persistence: float = 0.0) -> tuple:
     ----------
     .. [1] H. Edelsbrunner and J. L. Harer, *Computational Topology: An Introduction*,
            American Mathematical Society, 2010. doi:10.1090/mbk/069
+
+    Examples
+    --------
+    Before the ring's tunnel is born (at τ = -0.397114) it is a groove:
+
+    >>> import shapelab as sl
+    >>> F = sl.alpha_filtration(sl.datasets.ring(12, dim=3))
+    >>> sl.grooves(F, -2.0)
+    (Tunnel(birth=-0.397114, death=8, cycle=12 edges, tau=-2),)
     """
     F = as_filtration(F, "grooves")
     tau = as_tau(tau)
@@ -245,7 +269,9 @@ class ChannelProfile:
         return float(self.radius.min())
 
 
-def channel_profile(balls, point, direction, offsets, *, search: float = 3.0) -> ChannelProfile:
+def channel_profile(
+    balls: Balls, point: npt.ArrayLike, direction: npt.ArrayLike, offsets: npt.ArrayLike, *, search: float = 3.0
+) -> ChannelProfile:
     """The free radius along a channel, slice by slice (in the manner of the HOLE program).
 
     In the plane through ``point + s * direction`` perpendicular to ``direction``, for
@@ -283,6 +309,17 @@ def channel_profile(balls, point, direction, offsets, *, search: float = 3.0) ->
     .. [1] O. S. Smart, J. M. Goodfellow and B. A. Wallace, "The pore dimensions of
            gramicidin A", *Biophys. J.* 65(6):2455-2460, 1993.
            doi:10.1016/S0006-3495(93)81293-1
+
+    Examples
+    --------
+    Through a ring of balls of radius 1 on a circle of radius 3 the channel is
+    narrowest in the ring's plane, where the free radius is 3 - 1:
+
+    >>> import shapelab as sl
+    >>> balls = sl.datasets.ring(8, radius=3.0, disk_radius=1.0, dim=3)
+    >>> prof = sl.channel_profile(balls, [0, 0, 0], [0, 0, 1], [-1.0, 0.0, 1.0])
+    >>> prof.radius.round(3).tolist(), round(prof.bottleneck, 3)
+    ([2.162, 2.0, 2.162], 2.0)
     """
     from scipy.optimize import minimize
     from scipy.spatial import cKDTree

@@ -11,6 +11,7 @@ free-space integration its volume (:mod:`shapelab.cavities.freespace`).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -21,6 +22,10 @@ from .complement import complement_labels, full_dimensional, lining_of, sealed_a
 from .freespace import void_measure
 
 __all__ = ["Void", "voids"]
+
+if TYPE_CHECKING:
+    from ..balls import Balls
+    from ..filtration import Filtration
 
 
 @dataclass(frozen=True, eq=False)
@@ -82,7 +87,7 @@ class Void:
         )
 
 
-def voids(F, tau=0.0) -> tuple:
+def voids(F: Filtration | Balls, tau: float = 0.0) -> tuple:
     """The voids (holes in 2D) of the union of the balls grown to ``tau``.
 
     Notes §23.1: "A void of :math:`\\mathbb{P}` is a bounded connected component of
