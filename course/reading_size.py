@@ -37,7 +37,7 @@ ALGORITHMS = {
     "α-filtration": "alpha_filtration",
     "union area and volume": "union_measure",
     "voids": "voids",
-    "pockets": "pockets",
+    "pockets (growth model)": "cavities.pocket.growth_pockets",
     "tunnels": "tunnels",
     "discrete flow": "discrete_flow",
     "persistence": "persistence.persistence",

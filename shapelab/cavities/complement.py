@@ -189,11 +189,8 @@ def cells_when_sealed(F, r: int) -> np.ndarray:
 def merge_tree(F) -> _engine.MergeTree:
     """The merge tree of the complement of ``F`` run backwards in τ (kept on ``F``).
 
-    A fast kernel for :func:`sealed_at` and :func:`cells_when_sealed` together
-    (``shapelab._engine.mouths``): the same elder-rule pass, which also keeps every
-    part's cells as one run of a leaf order, so that
-    ``shapelab._engine.mouths.cells_at_closing(tree, r)`` reads a void's cells in
-    time proportional to their number.  ``kill_value`` is :func:`sealed_at`.
+    The fast kernel of :func:`sealed_at` and :func:`cells_when_sealed`: the same pass,
+    keeping every part's cells as a run of one leaf order (``shapelab._engine.mouths``).
 
     See Also
     --------

@@ -220,18 +220,57 @@ def pockets(
         raise ValueError(f'pockets: method must be "growth" or "flow", got {method!r}')
     if precision not in ("exact", "fast"):
         raise ValueError(f'pockets: precision must be "exact" or "fast", got {precision!r}')
+    if method == "flow":
+        from .flow import flow_pockets
+
+        F = as_filtration(F, "pockets")
+        tau = as_tau(tau)
+        mp = as_finite_scalar(min_persistence, "min_persistence", nonnegative=True)
+        if not full_dimensional(F):
+            return ()
+        kept = [p for p in flow_pockets(F, tau, precision=precision) if not p.is_void and p.persistence >= mp]
+        kept.sort(key=lambda p: (-p.persistence, p.closes_at, int(p.cell_ids[0])))
+        return tuple(kept)
+    return growth_pockets(F, tau, min_persistence=min_persistence, precision=precision)
+
+
+def growth_pockets(
+    F: Filtration | Balls, tau: float = 0.0, *, min_persistence: float = 0.0, precision: str = "exact"
+) -> tuple[Pocket, ...]:
+    """The growth model's pockets (Notes §23.1): :func:`pockets` with its default method.
+
+    Every cell ``r`` roots a part of the complement sealed off at ``sealed_at(F)[r]``,
+    filled when ``r`` enters; a pocket is one sealed after ``tau``, outside at ``tau``.
+
+    Parameters
+    ----------
+    F, tau, min_persistence, precision
+        As for :func:`pockets`.
+
+    Returns
+    -------
+    tuple of Pocket
+        Sorted by persistence, largest first.
+
+    See Also
+    --------
+    pockets
+        The same, or the discrete flow's pockets (``method="flow"``).
+
+    Examples
+    --------
+    >>> import shapelab as sl
+    >>> growth_pockets(sl.datasets.figure_23_2()[0])  # Figure 23.2's flask
+    (Pocket(cells=9, mouth=1, lining=11, closes_at=0.5775, fills_at=4.3275, tau=0),)
+    """
+    if precision not in ("exact", "fast"):
+        raise ValueError(f'pockets: precision must be "exact" or "fast", got {precision!r}')
     F = as_filtration(F, "pockets")
     balls = F.balls
     tau = as_tau(tau)
     mp = as_finite_scalar(min_persistence, "min_persistence", nonnegative=True)
     if not full_dimensional(F):
         return ()
-    if method == "flow":
-        from .flow import flow_pockets
-
-        kept = [p for p in flow_pockets(F, tau, precision=precision) if not p.is_void and p.persistence >= mp]
-        kept.sort(key=lambda p: (-p.persistence, p.closes_at, int(p.cell_ids[0])))
-        return tuple(kept)
     S = summary(F)
     k = S.k
     n = S.values[k].shape[0]
