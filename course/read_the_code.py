@@ -30,7 +30,7 @@ CODE = {
     "05_union_measure": ("shapelab/measure.py", ("union_measure",)),
     "06_dual_complex_3d": ("shapelab/triangulation.py", ("regular_triangulation",)),
     "07_voids": ("shapelab/cavities/void.py", ("voids",)),
-    "08_pockets": ("shapelab/cavities/pocket.py", ("pockets",)),
+    "08_pockets": ("shapelab/cavities/pocket.py", ("pockets", "growth_pockets")),
     "09_pocket_flow": ("shapelab/cavities/flow.py", ("discrete_flow", "flow_pockets")),
     "10_tunnels": ("shapelab/cavities/tunnel.py", ("tunnels",)),
     "11_persistence": ("shapelab/persistence.py", ("reduce_boundary", "persistence")),

@@ -46,6 +46,16 @@ ALGORITHMS = {
     "optimal rotation (Horn)": "optimal_rotation",
 }
 _CTORS = {"__init__", "__post_init__", "__new__", "__call__"}
+#: an operator calls its method on a reached class: ``a @ b`` is ``a.__matmul__(b)``
+_OPERATORS = {
+    ast.MatMult: "__matmul__",
+    ast.Mult: "__mul__",
+    ast.Add: "__add__",
+    ast.Sub: "__sub__",
+    ast.Div: "__truediv__",
+    ast.USub: "__neg__",
+    ast.Invert: "__invert__",
+}
 
 
 def _module_name(path: Path) -> str:
@@ -184,14 +194,19 @@ class Reader:
                         found = self._lookup(module, sub.id)
                         if found:
                             todo.append(found)
-                    elif isinstance(sub, ast.Attribute):
-                        if sub.attr not in attrs:
-                            attrs.add(sub.attr)
+                    elif isinstance(sub, ast.Attribute) or type(getattr(sub, "op", None)) in _OPERATORS:
+                        name = sub.attr if isinstance(sub, ast.Attribute) else _OPERATORS[type(sub.op)]
+                        if name not in attrs:
+                            attrs.add(name)
                             for cmod, cls in classes:
                                 for m in cls.body:
-                                    if isinstance(m, (ast.FunctionDef, ast.AsyncFunctionDef)) and m.name == sub.attr:
+                                    if isinstance(m, (ast.FunctionDef, ast.AsyncFunctionDef)) and m.name == name:
                                         todo.append((cmod, m))
-                        if isinstance(sub.value, ast.Name) and sub.value.id in mod.imports:
+                        if (
+                            isinstance(sub, ast.Attribute)
+                            and isinstance(sub.value, ast.Name)
+                            and sub.value.id in mod.imports
+                        ):
                             target, attr = mod.imports[sub.value.id]
                             if attr is None:
                                 found = self._lookup(target, sub.attr)

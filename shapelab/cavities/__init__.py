@@ -13,7 +13,7 @@ Where the computation lives
   :math:`U_\\tau` of the grown balls and :math:`U_\\tau` deformation-retracts onto it
   (Edelsbrunner 1995), so by Alexander duality the components of
   :math:`\\mathbb{R}^d \\setminus U_\\tau` correspond one to one to the components of
-  :math:`\\mathbb{R}^d \\setminus |K_\\tau|`: the top simplices of the Delaunay
+  :math:`\\mathbb{R}^d \\setminus |K_\\tau|`: the top simplices of the regular
   triangulation not in :math:`K_\\tau`, glued along :math:`(d-1)`-simplices not in
   :math:`K_\\tau`, plus the outside.  A void is such a component that avoids the
   outside; its *cells* are those top simplices and the free space of the void is

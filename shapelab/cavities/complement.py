@@ -20,6 +20,8 @@ functions, tested).
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
@@ -28,6 +30,12 @@ from .._engine import mouths as _engine
 from .._engine.persistence import summary
 from .._toolkit.derived import derived
 from .._toolkit.unionfind import elder_merges
+from .._toolkit.validate import as_positive_int
+from ..filtration import as_filtration
+
+if TYPE_CHECKING:
+    from ..balls import Balls
+    from ..filtration import Filtration
 
 __all__ = [
     "complement_labels",
@@ -60,9 +68,8 @@ def complement_labels(F, S, tau: float) -> tuple[np.ndarray, np.ndarray]:
     F : Filtration
         The α-filtration.
     S : object
-        Its summary (``shapelab._engine.persistence.summary(F)``): the values per dimension and
-        ``cell_dual``, the two cells on either side of every facet (``n`` for
-        :math:`\\infty`).
+        ``shapelab._engine.persistence.summary(F)``: the values per dimension, and
+        ``cell_dual``, the cells on the two sides of every facet (``n``: :math:`\\infty`).
     tau : float
         The growth time.
 
@@ -100,24 +107,27 @@ def complement_labels(F, S, tau: float) -> tuple[np.ndarray, np.ndarray]:
     return labels, free
 
 
-def sealed_at(F) -> np.ndarray:
+def sealed_at(F: Filtration | Balls) -> np.ndarray:
     """When the void of every cell is sealed: the elder rule run backwards (Notes §23.1).
 
-    Run τ from :math:`+\\infty` down.  Every top simplex (*cell*) leaves
-    :math:`K_\\tau` at its entry time and joins the complement; every facet that leaves
-    joins the two parts on its sides.  When two parts join, the *younger* one dies and
-    the elder lives on: the outside :math:`\\infty` is the eldest, then the cells that
-    fill last.  Forwards in τ, a part that dies at facet :math:`f` is sealed off by
-    :math:`f`: it is a void from then until its last-filled cell ``r`` (its *root*)
-    fills.  ``sealed_at(F)[r]`` is the value of :math:`f`; when it equals the entry
-    time of ``r`` the part was never a void.  Only facets that seal a void (the
-    positive ones of Notes §23.1, ``S.pos_facets``) can join two parts.
+    Run τ from :math:`+\\infty` down: a top simplex (*cell*) joins the complement at
+    its entry time, a facet joins the two parts on its sides.  When two parts join,
+    the *younger* dies and the elder lives on (the outside :math:`\\infty` is eldest,
+    then the cells that fill last).  Forwards, a part that dies at facet :math:`f` is
+    sealed off by :math:`f`: a void until its last-filled cell ``r`` fills (never one
+    when the two times are equal).  Only facets that seal a void can join two parts
+    (the *positive* facets of lesson 11 [1]_; the notes do not name them).
+
+    Parameters
+    ----------
+    F : Filtration or Balls
+        The α-filtration (Balls are filtered first, as for :func:`shapelab.voids`).
 
     Returns
     -------
     ndarray of float, shape (n_cells,)
-        Per cell ``r``, when the part of the complement rooted at ``r`` is sealed off.
-        Kept on ``F``.
+        Per cell ``r``, when the part of the complement rooted at ``r`` is sealed off;
+        empty when ``F`` has no top simplices.  Kept on ``F``.
 
     See Also
     --------
@@ -125,6 +135,12 @@ def sealed_at(F) -> np.ndarray:
         The void's cells at that moment.
     shapelab.voids
         The voids at one τ, born at ``sealed_at`` of their root.
+
+    References
+    ----------
+    .. [1] H. Edelsbrunner, D. Letscher and A. Zomorodian, "Topological persistence and
+           simplification", *Discrete Comput. Geom.* 28:511-533, 2002.
+           doi:10.1007/s00454-002-2885-2
 
     Examples
     --------
@@ -136,6 +152,9 @@ def sealed_at(F) -> np.ndarray:
     >>> round(float(sealed[r]), 6), round(float(fills[r]), 6)
     (-0.207114, 8.19)
     """
+    F = as_filtration(F, "sealed_at")
+    if not full_dimensional(F):
+        return np.empty(0)
     return derived(F, "cavities.sealed_at", _sealed_at)
 
 
@@ -154,17 +173,29 @@ def _sealed_at(F) -> np.ndarray:
     return sealed
 
 
-def cells_when_sealed(F, r: int) -> np.ndarray:
+def cells_when_sealed(F: Filtration | Balls, r: int) -> np.ndarray:
     """The cells of the void rooted at cell ``r`` at the moment it is sealed.
 
     At :math:`\\tau = ` ``sealed_at(F)[r]`` the sealing facet is in :math:`K_\\tau`,
     so the void is the part of the complement that holds ``r``: the facets with a
     larger value are open (facets sealed at the same time close together).
 
+    Parameters
+    ----------
+    F : Filtration or Balls
+        The α-filtration.
+    r : int
+        A cell (a row of ``F.simplices(d)``), ``0 <= r < n_cells``.
+
     Returns
     -------
     ndarray of int
         The cell rows, ascending.
+
+    Raises
+    ------
+    ValueError
+        If ``r`` is not a cell of ``F``.
 
     See Also
     --------
@@ -182,7 +213,12 @@ def cells_when_sealed(F, r: int) -> np.ndarray:
     >>> len(cells_when_sealed(F, r))  # the hole's ten triangles
     10
     """
-    labels, _ = complement_labels(F, summary(F), float(sealed_at(F)[r]))
+    F = as_filtration(F, "cells_when_sealed")
+    sealed = sealed_at(F)
+    r = as_positive_int(r, "r", minimum=0)
+    if r >= sealed.shape[0]:
+        raise ValueError(f"r must be a cell of F, 0 <= r < {sealed.shape[0]}, got {r}")
+    labels, _ = complement_labels(F, summary(F), float(sealed[r]))
     return np.flatnonzero(labels[:-1] == labels[r])
 
 

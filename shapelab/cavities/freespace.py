@@ -1,8 +1,8 @@
 """Free space of a union of balls: the exact area or volume of cells the balls miss.
 
 Notes §23.1, "Voids and pockets": the free space of a void or pocket is the part of
-its Delaunay cells that no grown ball covers.  :mod:`shapelab.cavities` finds the
-cells; this module measures them.
+its cells (the regular triangulation's top simplices) that no grown ball covers.
+:mod:`shapelab.cavities` finds the cells; this module measures them.
 
 ``void_measure`` (behind ``Void.volume``) is the fractional inclusion–exclusion over a
 void's cells (Edelsbrunner & Fu; Liang et al. 1998): for every cell :math:`t`,
@@ -87,7 +87,7 @@ def free_measure(F, tau, cells) -> np.ndarray:
         on molecules, where many balls overlap each one.  The result is the same.
     tau : float
     cells : array_like, shape (m, d+1), int
-        Simplices as ball indices (any simplices, not only Delaunay ones).
+        Simplices as ball indices (any simplices, not only those of the regular triangulation).
 
     Returns
     -------
@@ -156,7 +156,7 @@ def free_space(F, tau, cells) -> FreeSpace:
         As for :func:`free_measure`.
     tau : float
     cells : array_like, shape (m, d+1), int
-        Simplices as ball indices (any simplices, not only Delaunay ones).
+        Simplices as ball indices (any simplices, not only those of the regular triangulation).
 
     Returns
     -------

@@ -109,7 +109,7 @@ def mouth_finder(F, tau: float, precision: str = "exact") -> Callable[[np.ndarra
 
 class MeasuredRegion:
     """What :class:`shapelab.Pocket` and :class:`shapelab.FlowPocket` both measure of a
-    region of Delaunay cells at ``tau``: the times of the :class:`shapelab.Cavity`
+    region of cells at ``tau``: the times of the :class:`shapelab.Cavity`
     protocol, the free volume and the size of the mouth (Notes §23.1).
 
     The subclass is a dataclass with ``cells``, ``mouth``, ``closes_at``, ``fills_at``,

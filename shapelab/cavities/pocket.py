@@ -71,19 +71,16 @@ class Pocket(MeasuredRegion):
     Attributes
     ----------
     cells, cell_ids : ndarray
-        The Delaunay top simplices of the void the pocket becomes, at the moment it
-        closes (ball indices, and rows of ``F.simplices(d)``).
+        The cells (top simplices of the regular triangulation) of the void the pocket
+        becomes, when it closes (ball indices, and rows of ``F.simplices(d)``).
     mouth, mouth_ids : ndarray
-        The openings to the outside at ``tau``: the :math:`(d-1)`-simplices not in
-        :math:`K_\\tau` between the cells and the rest of the outside (module
-        docstring).  Ball indices, shape (q, d), and rows of ``F.simplices(d-1)``.
+        The openings at ``tau`` to the rest of the outside (module docstring): ball
+        indices, shape (q, d), and rows of ``F.simplices(d-1)``.
     mouth_size : float
         Total size of the mouth simplices: length in 2D, area in 3D.
     lining : ndarray, int
         The pocket's *lining atoms*: the balls at the vertices of its cells that exist
-        at ``tau``.  Not the report's ``lining_atoms`` (:class:`shapelab.report.CavityRow`),
-        its *wall atoms*: the balls whose sphere bounds the free space inside the cells,
-        which a ball can do without being a vertex of them (lesson 09).
+        at ``tau`` (the report's ``lining_atoms`` are its wall atoms, lesson 09).
     closes_at : float
         The τ′ > τ at which the mouth closes and the pocket becomes a void.
     fills_at : float
@@ -91,8 +88,7 @@ class Pocket(MeasuredRegion):
     tau : float
         The growth time the pocket was computed at.
     volume : float
-        Free space in the pocket's cells not covered by any ball grown to ``tau``
-        (area in 2D); exact, computed on first access.
+        Free space in the cells at ``tau`` (area in 2D), exact, on first access.
 
     See Also
     --------
@@ -106,9 +102,6 @@ class Pocket(MeasuredRegion):
     .. [1] H. Edelsbrunner, M. Facello and J. Liang, "On the definition and the
            construction of pockets in macromolecules", *Discrete Appl. Math.* 88:83-102,
            1998. doi:10.1016/S0166-218X(98)00067-5
-    .. [2] J. Liang, H. Edelsbrunner and C. Woodward, "Anatomy of protein pockets and
-           cavities: measurement of binding site geometry and implications for ligand
-           design", *Protein Sci.* 7(9):1884-1897, 1998. doi:10.1002/pro.5560070905
     """
 
     cells: np.ndarray
@@ -239,9 +232,6 @@ def growth_pockets(
 ) -> tuple[Pocket, ...]:
     """The growth model's pockets (Notes §23.1): :func:`pockets` with its default method.
 
-    Every cell ``r`` roots a part of the complement sealed off at ``sealed_at(F)[r]``,
-    filled when ``r`` enters; a pocket is one sealed after ``tau``, outside at ``tau``.
-
     Parameters
     ----------
     F, tau, min_persistence, precision
@@ -274,8 +264,7 @@ def growth_pockets(
     S = summary(F)
     k = S.k
     n = S.values[k].shape[0]
-    # the H_{d-1} classes of the complement, one per cell r (the last of its void to
-    # fill): sealed at b[r] (its void closes), filled at cv[r]
+    # every cell r roots a part of the complement: sealed off at b[r], filled at cv[r]
     cv = S.values[k]
     b = sealed_at(F)
     # a pocket at tau: a class sealed later than tau, of positive length ...

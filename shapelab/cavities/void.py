@@ -35,7 +35,7 @@ class Void:
     Attributes
     ----------
     cells : ndarray, shape (m, d+1), int
-        The top simplices of the Delaunay triangulation that form the void, as ball
+        The top simplices of the regular triangulation that form the void, as ball
         indices (rows sorted ascending).
     cell_ids : ndarray, shape (m,), int
         The same cells as row indices into ``F.simplices(d)``.
@@ -94,7 +94,7 @@ def voids(F: Filtration | Balls, tau: float = 0.0) -> tuple:
     :math:`\\mathbb{R}^3 \\setminus \\bigcup B_i`"; the notes add that each void of the
     union has a corresponding void of :math:`K` "much more amiable to computation".
     Here they are found as the components of the complement of :math:`K_\\tau` in the
-    Delaunay triangulation that do not reach the outside.
+    regular triangulation that do not reach the outside.
 
     Parameters
     ----------

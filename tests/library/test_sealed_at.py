@@ -73,3 +73,19 @@ def test_the_plain_functions_meet_the_definition(F):
 def test_voids_are_born_when_sealed(F):
     for v in sl.voids(F, 0.0):
         assert v.born == sealed_at(F)[int(v.cell_ids.max())]
+
+
+def test_every_cell_not_only_the_roots_of_voids(F):
+    T = merge_tree(F)
+    n = sealed_at(F).shape[0]
+    for r in range(0, n, max(1, n // 40)):
+        np.testing.assert_array_equal(cells_when_sealed(F, r), cells_at_closing(T, r))
+
+
+def test_bad_input_is_refused_by_name():
+    ring = sl.datasets.ring(12)
+    assert sealed_at(ring).shape == (10,)  # Balls are filtered first, as for voids
+    assert sealed_at(sl.Balls([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]], 0.3)).shape == (0,)  # no cells
+    for r, err in ((-1, ValueError), (10, ValueError), (1.5, TypeError), (True, TypeError)):
+        with pytest.raises(err, match="^r must"):
+            cells_when_sealed(ring, r)
