@@ -26,9 +26,14 @@ import os
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ._toolkit.tolerances import LINING_AREA_RTOL
 from ._toolkit.validate import as_finite_scalar, as_positive_int
+
+if TYPE_CHECKING:
+    from .balls import Balls
+    from .io import PDBStructure
 
 __all__ = ["CavityRow", "CavityReport", "report", "check_output"]
 
@@ -578,16 +583,16 @@ def _contacts_of(rows, first, by_cell):
 
 
 def report(
-    structure,
-    probe=1.4,
+    structure: PDBStructure | Balls,
+    probe: float = 1.4,
     *,
-    tau=0.0,
-    min_persistence=None,
-    name=None,
-    rank="score",
-    min_volume=None,
-    top=None,
-    method="growth",
+    tau: float = 0.0,
+    min_persistence: float | None = None,
+    name: str | None = None,
+    rank: str = "score",
+    min_volume: float | None = None,
+    top: int | None = None,
+    method: str = "growth",
 ) -> CavityReport:
     """Voids and pockets of a molecule, measured as CASTp does (Notes §23.1).
 
@@ -735,6 +740,13 @@ def report(
     .. [3] W. Tian, C. Chen, X. Lei, J. Zhao and J. Liang, "CASTp 3.0: computed atlas of
            surface topography of proteins", *Nucleic Acids Res.* 46(W1):W363-W367, 2018.
            doi:10.1093/nar/gky473
+
+    Examples
+    --------
+    >>> from shapelab.datasets import bowl
+    >>> rep = report(bowl(), 0.0, name="bowl")  # the bowl's dent is one pocket
+    >>> len(rep), rep.rows[0].kind, rep.rows[0].mouths, round(rep.rows[0].volume_sa, 1)
+    (1, 'pocket', 1, 367.8)
     """
     import math
 

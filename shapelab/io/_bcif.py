@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import os
 import re
+from typing import Any
 
 import numpy as np
 
@@ -238,7 +239,7 @@ class _Columns:
         return out
 
 
-def read_bcif(path, options: ReadOptions | None = None, **keywords) -> PDBStructure:
+def read_bcif(path: str | os.PathLike[str], options: ReadOptions | None = None, **keywords: Any) -> PDBStructure:
     """Read the ``atom_site`` category of a BinaryCIF file (plain or gzip) as balls.
 
     The options are those of :func:`~shapelab.io.read_structure`, which documents

@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 import os
 import re
+from typing import Any
 
 import numpy as np
 
@@ -204,7 +205,7 @@ def atom_records(rows, c: dict, where, shown) -> list:
     ]
 
 
-def read_mmcif(path, options: ReadOptions | None = None, **keywords) -> PDBStructure:
+def read_mmcif(path: str | os.PathLike[str], options: ReadOptions | None = None, **keywords: Any) -> PDBStructure:
     """Read the ``_atom_site`` table of an mmCIF file (plain or gzip) as balls.
 
     The options are those of :func:`~shapelab.io.read_structure`, which documents

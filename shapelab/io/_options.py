@@ -89,7 +89,7 @@ class ReadOptions:
     @classmethod
     def checked(
         cls,
-        path: str | os.PathLike,
+        path: str | os.PathLike[str],
         format: str,
         *,
         probe: float = 0.0,
@@ -145,7 +145,7 @@ class ReadOptions:
             format=format,
         )
 
-    def selection(self, path: str | os.PathLike) -> dict:
+    def selection(self, path: str | os.PathLike[str]) -> dict:
         """The keywords of :func:`~shapelab.io._selection.kept_structure` these options
         give (the selection, the radii and the probe), for the file ``path``.
 

@@ -13,6 +13,7 @@ import contextlib
 import math
 import os
 import re
+from collections.abc import Collection, Mapping
 
 from ._options import MAX_PDB_BYTES, ReadOptions
 from ._radii import ELEMENT_SYMBOLS
@@ -190,17 +191,17 @@ _TEXT_FIELDS = (
 
 
 def read_pdb(
-    path,
+    path: str | os.PathLike[str],
     *,
-    probe=0.0,
-    default_radius=None,
-    model=None,
-    chain=None,
-    hetatm=True,
-    water=False,
-    hydrogens=False,
-    radii=None,
-    max_bytes=MAX_PDB_BYTES,
+    probe: float = 0.0,
+    default_radius: float | None = None,
+    model: int | None = None,
+    chain: str | Collection[str] | None = None,
+    hetatm: bool | Collection[str] = True,
+    water: bool = False,
+    hydrogens: bool = False,
+    radii: Mapping | None = None,
+    max_bytes: int = MAX_PDB_BYTES,
 ) -> PDBStructure:
     """Read the atoms of a PDB file as balls (Notes §23.1: a molecule is a union of balls).
 
@@ -357,7 +358,7 @@ def read_pdb(
     return read_pdb_with(path, options)
 
 
-def read_pdb_with(path: str | os.PathLike, options: ReadOptions) -> PDBStructure:
+def read_pdb_with(path: str | os.PathLike[str], options: ReadOptions) -> PDBStructure:
     """:func:`read_pdb` with its keywords already checked (the PDB branch of
     :func:`~shapelab.io.read_structure`).
 

@@ -13,6 +13,7 @@ from __future__ import annotations
 import gzip
 import os
 import zlib
+from collections.abc import Collection, Mapping
 
 from ._bcif import read_bcif
 from ._mmcif import read_mmcif
@@ -106,18 +107,18 @@ def detect_format(path) -> str:
 
 
 def read_structure(
-    path,
+    path: str | os.PathLike[str],
     *,
-    probe=0.0,
-    default_radius=None,
-    model=None,
-    chain=None,
-    hetatm=True,
-    water=False,
-    hydrogens=False,
-    radii=None,
-    max_bytes=MAX_PDB_BYTES,
-    format=None,
+    probe: float = 0.0,
+    default_radius: float | None = None,
+    model: int | None = None,
+    chain: str | Collection[str] | None = None,
+    hetatm: bool | Collection[str] = True,
+    water: bool = False,
+    hydrogens: bool = False,
+    radii: Mapping | None = None,
+    max_bytes: int = MAX_PDB_BYTES,
+    format: str | None = None,
 ) -> PDBStructure:
     """Read the atoms of a PDB, mmCIF or BinaryCIF file as balls (Notes §23.1: a
     molecule is a union of balls).

@@ -9,12 +9,17 @@ from __future__ import annotations
 import os
 import re
 import tempfile
+from collections.abc import Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING, TextIO
 
 import numpy as np
 
 from .._toolkit.validate import check_balls
 from ..balls import Balls
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = ["write_pdb", "write_mmcif"]
 
@@ -110,20 +115,20 @@ def _write_text(path, text: str):
 
 
 def write_pdb(
-    path,
+    path: str | os.PathLike[str] | TextIO,
     balls: Balls,
-    elements,
+    elements: str | Sequence[str] | np.ndarray,
     *,
-    atom_names=None,
-    residue_names=None,
-    residue_numbers=None,
-    chains=None,
-    hetero=None,
-    title=None,
-    b_factors=None,
-    insertion_codes=None,
-    altlocs=None,
-):
+    atom_names: str | Sequence[str] | np.ndarray | None = None,
+    residue_names: str | Sequence[str] | np.ndarray | None = None,
+    residue_numbers: ArrayLike | None = None,
+    chains: str | Sequence[str] | np.ndarray | None = None,
+    hetero: ArrayLike | None = None,
+    title: str | None = None,
+    b_factors: ArrayLike | None = None,
+    insertion_codes: str | Sequence[str] | np.ndarray | None = None,
+    altlocs: str | Sequence[str] | np.ndarray | None = None,
+) -> Path | TextIO:
     """Write 3D balls as ATOM/HETATM records of a PDB file.
 
     The PDB format stores no radii: :func:`read_pdb` recovers them from the elements,
@@ -176,6 +181,16 @@ def write_pdb(
     References
     ----------
     wwPDB, *Atomic Coordinate Entry Format Description*, v3.3, ATOM record.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from shapelab.io import read_pdb
+    >>> with tempfile.TemporaryDirectory() as d:  # removed with what was written in it
+    ...     out = write_pdb(Path(d) / "co.pdb", Balls([[0.0, 0.0, 0.0], [1.2, 0.0, 0.0]], 1.5), ["C", "O"])
+    ...     s = read_pdb(out)
+    >>> len(s), s.balls.radii.tolist()  # the radii come back from the elements
+    (2, [1.7, 1.52])
     """
     widths = {"atom": 4, "residue": 3, "chain": 2}
     cols = _labels(

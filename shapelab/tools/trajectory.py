@@ -22,6 +22,8 @@ from __future__ import annotations
 
 import os
 import sys
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -35,6 +37,10 @@ from ..tracking import (
     track_cavities,
     tracked_measures,
 )
+
+if TYPE_CHECKING:
+    from dask.distributed import Client
+    from MDAnalysis import Universe
 
 __all__ = [
     "trajectory_measures",
@@ -78,21 +84,21 @@ def _worker_block(topology, trajectory, select, default_radius, frames, probe, m
 
 # ============================================================================ the API
 def trajectory_measures(
-    topology,
-    trajectory=None,
+    topology: str | os.PathLike[str] | Universe,
+    trajectory: str | os.PathLike[str] | Sequence[str | os.PathLike[str]] | None = None,
     *,
-    select="protein and not name H*",
-    probe=1.4,
-    start=0,
-    stop=None,
-    step=1,
-    jobs=1,
-    min_overlap=0.5,
-    min_persistence=0.0,
-    default_radius=None,
-    progress=True,
-    client=None,
-    scheduler=None,
+    select: str = "protein and not name H*",
+    probe: float = 1.4,
+    start: int = 0,
+    stop: int | None = None,
+    step: int = 1,
+    jobs: int = 1,
+    min_overlap: float = 0.5,
+    min_persistence: float = 0.0,
+    default_radius: float | None = None,
+    progress: bool = True,
+    client: Client | None = None,
+    scheduler: str | None = None,
 ) -> TrajectoryMeasures:
     """Area, volume, voids and pockets of every frame of an MD trajectory (Notes §23.1).
 
@@ -182,6 +188,14 @@ def trajectory_measures(
     .. [3] J. Liang, H. Edelsbrunner, P. Fu, P. V. Sudhakar, S. Subramaniam, "Analytical
        shape computation of macromolecules: II. Inaccessible cavities in proteins",
        *Proteins* **33**, 18–29 (1998), doi:10.1002/(SICI)1097-0134(19981001)33:1<18::AID-PROT2>3.0.CO;2-H.
+
+    Examples
+    --------
+    >>> from shapelab.datasets import trajectory_files
+    >>> top, traj = trajectory_files("adk-dims")
+    >>> m = trajectory_measures(top, traj, select="resid 1:10", stop=2, progress=False)
+    >>> m.n_atoms, m.frame.tolist(), [round(v) for v in m.volume.tolist()]
+    (71, [0, 1], [2546, 2559])
     """
     if not isinstance(select, str):
         raise TypeError(f"select must be an MDAnalysis selection string, got {type(select).__name__}")
