@@ -51,9 +51,11 @@ from ._toolkit.validate import (
     as_bbox,
     as_positive_int,
     as_precision,
+    as_simplex_balls,
     as_tau,
     check_balls,
     default_bbox,
+    flat_simplex,
 )
 from .balls import Balls
 
@@ -248,17 +250,19 @@ def orthosphere(centers, weights) -> tuple[np.ndarray, np.ndarray]:
     >>> c.tolist(), float(rho)
     ([2.0, 0.0], 3.0)
     """
-    z = np.asarray(centers, dtype=np.float64)
-    w = np.asarray(weights, dtype=np.float64)
+    z, w = as_simplex_balls(centers, weights)
     if z.shape[-2] == 1:  # a vertex: its own centre, power -w
         return z[..., 0, :].copy(), -w[..., 0]
     A = z[..., 1:, :] - z[..., :1, :]  # the edges a_i as rows, (..., j, d)
     beta = 0.5 * (np.einsum("...ik,...ik->...i", A, A) - w[..., 1:] + w[..., :1])
-    if A.shape[-2] == A.shape[-1]:  # a top simplex: d equations, d unknowns
-        u = np.linalg.solve(A, beta[..., None])[..., 0]
-    else:  # a face: u in the span of the edges, A^T = QR, u = Q y, R^T y = beta
-        Q, R = np.linalg.qr(np.swapaxes(A, -1, -2))
-        u = (Q @ np.linalg.solve(np.swapaxes(R, -1, -2), beta[..., None]))[..., 0]
+    try:
+        if A.shape[-2] == A.shape[-1]:  # a top simplex: d equations, d unknowns
+            u = np.linalg.solve(A, beta[..., None])[..., 0]
+        else:  # a face: u in the span of the edges, A^T = QR, u = Q y, R^T y = beta
+            Q, R = np.linalg.qr(np.swapaxes(A, -1, -2))
+            u = (Q @ np.linalg.solve(np.swapaxes(R, -1, -2), beta[..., None]))[..., 0]
+    except np.linalg.LinAlgError:
+        raise flat_simplex("orthosphere") from None
     return z[..., 0, :] + u, np.einsum("...k,...k->...", u, u) - w[..., 0]
 
 

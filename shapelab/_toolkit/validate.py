@@ -63,6 +63,27 @@ def check_finite(arr: np.ndarray, name: str) -> None:
         raise ValueError(f"{name} must be finite; found {float(arr[tuple(bad)])!r} at index {where}")
 
 
+def as_simplex_balls(centers, weights) -> tuple[np.ndarray, np.ndarray]:
+    """``centers`` (..., j + 1, d) with ``j + 1 <= d + 1`` and ``weights`` (..., j + 1),
+    finite float64: the balls of one simplex, or of many along the leading axes."""
+    z = as_float_array(centers, "centers")
+    w = as_float_array(weights, "weights")
+    if z.ndim < 2 or z.shape[-1] < 1 or not 1 <= z.shape[-2] <= z.shape[-1] + 1:
+        raise ValueError(
+            f"centers must have shape (..., j + 1, d) with 1 <= j + 1 <= d + 1 (a simplex's balls), got {z.shape}"
+        )
+    if w.shape != z.shape[:-1]:
+        raise ValueError(f"weights must have shape {z.shape[:-1]} (one per centre), got {w.shape}")
+    check_finite(z, "centers")
+    check_finite(w, "weights")
+    return z, w
+
+
+def flat_simplex(who: str) -> ValueError:
+    """The error for affinely dependent centres (``numpy.linalg`` found them singular)."""
+    return ValueError(f"{who}: the centres are affinely dependent (a flat simplex has no orthosphere)")
+
+
 def as_points(x, name: str = "points", *, dim=None, min_points: int = 1) -> np.ndarray:
     """Return ``x`` as a finite float64 array of shape (n, d).
 

@@ -265,7 +265,8 @@ def read_structure(
     >>> from shapelab.datasets import structure_path
     >>> from shapelab.io import read_pdb, write_mmcif
     >>> s = read_structure(structure_path("1hvr"), chain="A", hetatm={"CSO"})  # PDB
-    >>> path = os.path.join(tempfile.mkdtemp(), "1hvr_A.cif")
+    >>> tmp = tempfile.TemporaryDirectory()  # removed at the end
+    >>> path = os.path.join(tmp.name, "1hvr_A.cif")
     >>> _ = write_mmcif(path, s.balls, s.elements, atom_names=s.atom_names,
     ...                 residue_names=s.residue_names, residue_numbers=s.residue_numbers,
     ...                 chains=s.chains, hetero=s.hetero)
@@ -274,6 +275,7 @@ def read_structure(
     >>> t = read_structure(path)
     >>> len(t), t.residue_label(0), bool((t.balls.centers == s.balls.centers).all())
     (757, 'A:PRO1', True)
+    >>> tmp.cleanup()
     """
     if isinstance(path, (bytes, bytearray)) or not isinstance(path, (str, os.PathLike)):
         raise TypeError(f"path must be a str or os.PathLike, got {type(path).__name__}")
