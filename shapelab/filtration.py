@@ -712,5 +712,14 @@ def dual_complex(balls: Balls) -> Complex:
     ----------
     .. [1] H. Edelsbrunner, "The union of balls and its dual shape", *Discrete Comput.
            Geom.* 13:415-440, 1995. doi:10.1007/BF02574053
+
+    Examples
+    --------
+    Three disks that overlap pairwise around a hole: a cycle, no triangle.
+
+    >>> import shapelab as sl
+    >>> K = dual_complex(sl.Balls([[0, 0], [1.8, 0], [0.9, 1.5]], 1.0))
+    >>> K.counts(), K.euler_characteristic()
+    ((3, 3, 0), 0)
     """
     return alpha_filtration(balls).complex_at(0.0)

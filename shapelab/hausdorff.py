@@ -46,6 +46,7 @@ from dataclasses import dataclass
 from typing import Literal, NamedTuple
 
 import numpy as np
+import numpy.typing as npt
 
 from ._engine import hausdorff as _engine
 from ._toolkit import tolerances as tol
@@ -138,7 +139,7 @@ def directed_plain(A: np.ndarray, B: np.ndarray) -> tuple[float, int, int]:
 # --------------------------------------------------------------------------- #
 # Public API                                                                   #
 # --------------------------------------------------------------------------- #
-def directed_hausdorff(A, B, *, method: Method = "auto") -> DirectedHausdorff:
+def directed_hausdorff(A: npt.ArrayLike, B: npt.ArrayLike, *, method: Method = "auto") -> DirectedHausdorff:
     """The directed Hausdorff distance h(A, B) and a witness pair (notes §23.2).
 
     .. math:: h(A, B) = \\max_{a \\in A} \\min_{b \\in B} |a - b|
@@ -211,7 +212,7 @@ def directed_hausdorff(A, B, *, method: Method = "auto") -> DirectedHausdorff:
     return DirectedHausdorff(float(np.sqrt(d2)), i, j)
 
 
-def hausdorff(A, B, *, method: Method = "auto") -> float:
+def hausdorff(A: npt.ArrayLike, B: npt.ArrayLike, *, method: Method = "auto") -> float:
     """The Hausdorff distance H(A, B) of the notes (§23.2).
 
     .. math:: H(A, B) = \\max\\{h(A, B),\\, h(B, A)\\}

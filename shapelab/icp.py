@@ -32,6 +32,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+import numpy.typing as npt
 
 from ._engine.icp import Anderson
 from ._toolkit.geometry import morton_order
@@ -168,8 +169,8 @@ def _accelerated(anderson: Anderson, motion: RigidMotion, plain: RigidMotion, co
 
 
 def icp(
-    source,
-    target,
+    source: npt.ArrayLike,
+    target: npt.ArrayLike,
     *,
     tol: float = 1e-6,
     max_iter: int = 50,

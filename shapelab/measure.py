@@ -107,6 +107,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from itertools import combinations
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -116,6 +117,9 @@ from ._toolkit.geometry import cross, dot
 from ._toolkit.validate import as_tau, freeze
 from .balls import Balls
 from .filtration import as_filtration
+
+if TYPE_CHECKING:
+    from .filtration import Filtration
 
 __all__ = [
     "UnionMeasure",
@@ -446,7 +450,7 @@ def measure_from_simplices(centers, weights, simplices, *, tau: float = 0.0, pre
     )
 
 
-def union_measure(F, tau: float = 0.0, *, precision: str = "exact") -> UnionMeasure:
+def union_measure(F: Filtration | Balls, tau: float = 0.0, *, precision: str = "exact") -> UnionMeasure:
     """Area and perimeter (2D) or volume and surface area (3D) of a union of balls.
 
     Computed exactly with the short inclusion–exclusion formula over the dual complex

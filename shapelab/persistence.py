@@ -56,13 +56,17 @@ Notes); Betti numbers, :math:`H_0` and the voids never do.  Compare with GUDHI i
 
 from __future__ import annotations
 
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
+import numpy.typing as npt
 
 from ._engine import persistence as _impl
 from ._toolkit.derived import derived
 from .filtration import as_filtration
+
+if TYPE_CHECKING:
+    from scipy.sparse import csc_matrix, sparray, spmatrix
 
 __all__ = [
     "betti",
@@ -373,7 +377,7 @@ def reduce_columns(columns: list[dict[int, int]], field: int = 2) -> np.ndarray:
     return low
 
 
-def reduce_boundary(D):
+def reduce_boundary(D: npt.ArrayLike | spmatrix | sparray) -> tuple[csc_matrix, np.ndarray]:
     """The standard persistence algorithm on a boundary matrix over :math:`\\mathbb{Z}/2`
     (Notes §23.1, "Voids and pockets"): :func:`reduce_columns` on the columns of ``D``.
 

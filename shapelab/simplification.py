@@ -30,6 +30,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
 from ._toolkit.unionfind import elder_merges
 from ._toolkit.validate import as_finite_scalar
@@ -149,7 +150,7 @@ def _critical(rank: np.ndarray, closed: bool) -> tuple[np.ndarray, np.ndarray]:
     return idx[(rank < left) & (rank < right)], idx[(rank > left) & (rank > right)]
 
 
-def curve_persistence(values, *, closed: bool = True) -> CurvePersistence:
+def curve_persistence(values: npt.ArrayLike, *, closed: bool = True) -> CurvePersistence:
     """Persistence of the sublevel sets of ``f`` along a path or a closed curve.
 
     Parameters
@@ -230,7 +231,7 @@ def curve_persistence(values, *, closed: bool = True) -> CurvePersistence:
     return CurvePersistence(P, f[P[:, 0]].copy(), f[P[:, 1]].copy(), essential_min, essential_max, closed)
 
 
-def simplify(values, epsilon, *, closed: bool = True) -> Simplification:
+def simplify(values: npt.ArrayLike, epsilon: float, *, closed: bool = True) -> Simplification:
     """ε-simplification of a function along a curve (Edelsbrunner, Letscher and
     Zomorodian 2002): the nearby function with only the persistent critical points.
 

@@ -43,6 +43,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 from scipy.spatial import ConvexHull, QhullError
 
 from ._engine import triangulation as engine
@@ -333,7 +334,7 @@ def _clip_polygon(poly: list, a0: float, a1: float, c: float) -> list:
     return out
 
 
-def power_diagram(balls: Balls, *, bbox=None, precision: str = "exact") -> PowerDiagram:
+def power_diagram(balls: Balls, *, bbox: npt.ArrayLike | None = None, precision: str = "exact") -> PowerDiagram:
     """The power diagram of the balls (Notes §23.1): cells, hidden balls, adjacency.
 
     Parameters
@@ -536,7 +537,9 @@ def _clip_convex_by_disk(poly, cx, cy, r, step):
     return np.array(out)
 
 
-def clipped_cells(balls: Balls, *, tau=0.0, diagram=None, arc_resolution: int = 96):
+def clipped_cells(
+    balls: Balls, *, tau: float = 0.0, diagram: PowerDiagram | None = None, arc_resolution: int = 96
+) -> tuple[np.ndarray, ...]:
     """The cells :math:`B_i(\\tau) \\cap \\Pi(B_i)` of disks as polygons (Notes §23.1).
 
     The power diagram partitions the union into these convex pieces, "the cells
@@ -572,6 +575,15 @@ def clipped_cells(balls: Balls, *, tau=0.0, diagram=None, arc_resolution: int = 
     ----------
     .. [1] H. Edelsbrunner, "The union of balls and its dual shape", *Discrete Comput.
            Geom.* 13:415-440, 1995. doi:10.1007/BF02574053
+
+    Examples
+    --------
+    Two overlapping unit disks: their cells meet on the bisector x = 0.5.
+
+    >>> import shapelab as sl
+    >>> cells = clipped_cells(sl.Balls([[0, 0], [1, 0]], 1.0))
+    >>> len(cells), round(float(cells[0][:, 0].max()), 6), round(float(cells[1][:, 0].min()), 6)
+    (2, 0.5, 0.5)
     """
     check_balls(balls)
     if balls.dim != 2:
@@ -618,6 +630,15 @@ def triangulation_report(balls: Balls) -> TriangulationReport:
     .. [2] H. Edelsbrunner and E. P. Mücke, "Simulation of Simplicity: a technique to
            cope with degenerate cases in geometric algorithms", *ACM Trans. Graph.*
            9(1):66-104, 1990. doi:10.1145/77635.77639
+
+    Examples
+    --------
+    The corners of a square are co-circular: one tie, broken by Simulation of Simplicity.
+
+    >>> import shapelab as sl
+    >>> r = triangulation_report(sl.Balls([[0, 0], [1, 0], [1, 1], [0, 1]], 0.5))
+    >>> r.method, r.counts["power_ties"]
+    ('qhull', 1)
     """
     check_balls(balls)
     return engine.triangulate_local(balls, report=True)[3]

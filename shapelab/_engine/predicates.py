@@ -59,8 +59,10 @@ them and :mod:`shapelab._engine.incremental` builds one with them.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
+import numpy.typing as npt
 
 from .._toolkit.tolerances import FILTER_UNDERFLOW
 
@@ -290,7 +292,13 @@ class WeightedPoints:
     [1, -1]
     """
 
-    def __init__(self, coords, radii, axes=None, priority=None):
+    def __init__(
+        self,
+        coords: npt.ArrayLike,
+        radii: npt.ArrayLike,
+        axes: Sequence[int] | None = None,
+        priority: npt.ArrayLike | None = None,
+    ) -> None:
         x = np.ascontiguousarray(coords, dtype=np.float64)
         r = np.ascontiguousarray(radii, dtype=np.float64)
         n, d = x.shape
