@@ -64,7 +64,7 @@ import numpy as np
 
 from ._engine import alpha as engine
 from ._engine import persistence as _topology
-from ._toolkit.validate import as_bbox, as_precision, as_tau, check_balls, freeze
+from ._toolkit.validate import FlatSimplexError, as_bbox, as_precision, as_tau, check_balls, freeze
 from .balls import Balls
 from .triangulation import clipped_cells, orthosphere, power_diagram, regular_triangulation
 
@@ -614,7 +614,7 @@ def alpha_filtration(balls: Balls, *, precision: str = "exact") -> Filtration:
     z, w = balls.centers, balls.weights
     try:
         ortho = {j: orthosphere(z[faces[j]], w[faces[j]]) for j in range(dim + 1)}
-    except np.linalg.LinAlgError:  # a flat simplex left by Qhull: no orthosphere
+    except FlatSimplexError:  # a flat simplex left by Qhull: no orthosphere
         raise ValueError(
             "precision='fast': Qhull left a flat simplex (degenerate centres, "
             "e.g. a grid or co-spherical); use precision='exact'"

@@ -49,6 +49,7 @@ from scipy.spatial import ConvexHull, QhullError
 from ._engine import triangulation as engine
 from ._engine.triangulation import TriangulationReport
 from ._toolkit.validate import (
+    FlatSimplexError,
     as_bbox,
     as_positive_int,
     as_precision,
@@ -172,6 +173,8 @@ def regular_triangulation(balls: Balls, *, precision: str = "exact") -> np.ndarr
     if as_precision(precision) == "exact":
         return engine.triangulate(balls)[1]
     n, d = balls.centers.shape
+    if n == 0:  # no ball, no simplex (as "exact" says)
+        return np.empty((0, 1), dtype=np.int64)
     # 1. lift each ball to (z, |z|^2 - r^2), one dimension up (centred at the mean and
     #    scaled to unit size: z -> z/s, r^2 -> r^2/s^2 keeps the triangulation)
     z = balls.centers - balls.centers.mean(axis=0)
@@ -395,6 +398,8 @@ def power_diagram(balls: Balls, *, bbox: npt.ArrayLike | None = None, precision:
     exact = as_precision(precision) == "exact"
     d = balls.dim
     n = len(balls)
+    if n == 0:
+        raise ValueError("power_diagram: balls is empty; a power diagram needs at least one ball")
     box = default_bbox(balls) if bbox is None else as_bbox(bbox, d)
     tri = engine.triangulate(balls)[1] if exact else regular_triangulation(balls, precision="fast")
     present = np.zeros(n, dtype=bool)
@@ -420,7 +425,7 @@ def power_diagram(balls: Balls, *, bbox: npt.ArrayLike | None = None, precision:
     else:
         try:
             vertices = orthosphere(balls.centers[tri], balls.weights[tri])[0]
-        except np.linalg.LinAlgError:  # a flat simplex left by Qhull: no orthosphere
+        except FlatSimplexError:  # a flat simplex left by Qhull: no orthosphere
             raise ValueError(
                 "precision='fast': Qhull left a flat simplex (degenerate centres, "
                 "e.g. a grid or co-spherical); use precision='exact'"

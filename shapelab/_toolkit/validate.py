@@ -79,9 +79,13 @@ def as_simplex_balls(centers, weights) -> tuple[np.ndarray, np.ndarray]:
     return z, w
 
 
-def flat_simplex(who: str) -> ValueError:
+class FlatSimplexError(ValueError):
+    """Affinely dependent centres: a flat simplex has no orthosphere."""
+
+
+def flat_simplex(who: str) -> FlatSimplexError:
     """The error for affinely dependent centres (``numpy.linalg`` found them singular)."""
-    return ValueError(f"{who}: the centres are affinely dependent (a flat simplex has no orthosphere)")
+    return FlatSimplexError(f"{who}: the centres are affinely dependent (a flat simplex has no orthosphere)")
 
 
 def as_points(x, name: str = "points", *, dim=None, min_points: int = 1) -> np.ndarray:

@@ -52,7 +52,7 @@ import numpy as np
 
 from .._engine.mouths import cells_at_closing
 from .._engine.persistence import is_roundoff, summary
-from .._toolkit.validate import as_finite_scalar, as_tau, readonly
+from .._toolkit.validate import as_finite_scalar, as_precision, as_tau, readonly
 from ..filtration import as_filtration
 from .complement import complement_labels, full_dimensional, lining_of, merge_tree, sealed_at, vertex_values
 from .mouths import MeasuredRegion, mouth_finder
@@ -253,8 +253,7 @@ def growth_pockets(
     >>> growth_pockets(sl.datasets.figure_23_2()[0])  # Figure 23.2's flask
     (Pocket(cells=9, mouth=1, lining=11, closes_at=0.5775, fills_at=4.3275, tau=0),)
     """
-    if precision not in ("exact", "fast"):
-        raise ValueError(f'pockets: precision must be "exact" or "fast", got {precision!r}')
+    precision = as_precision(precision)
     F = as_filtration(F, "pockets")
     balls = F.balls
     tau = as_tau(tau)
@@ -270,8 +269,6 @@ def growth_pockets(
     # a pocket at tau: a class sealed later than tau, of positive length ...
     cand = np.flatnonzero((b > tau) & (cv > b) & (cv - b >= mp))
     cand = cand[~is_roundoff(F, b[cand], cv[cand])]
-    if cand.size == 0:
-        return ()
     # ... whose cells are, at tau, still part of the outside
     lab, _ = complement_labels(F, S, tau)
     cand = cand[lab[cand] == lab[n]]

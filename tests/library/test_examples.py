@@ -22,25 +22,6 @@ import pytest
 
 from course import lesson_calls
 
-# being rewritten in issue 33's other branches; the lead removes this after the merge.
-# Issue 33 left these for its next stop: names the lessons call that still lack an
-# Examples section or an annotation.  Named one by one, so that a new name a lesson
-# calls is held to the rule at once; remove a name when it is done.
-LEFT = {
-    "shapelab._engine.predicates.WeightedPoints",
-    "shapelab.filtration.dual_complex",
-    "shapelab.hausdorff.directed_hausdorff",
-    "shapelab.hausdorff.hausdorff",
-    "shapelab.icp.icp",
-    "shapelab.measure.union_measure",
-    "shapelab.persistence.reduce_boundary",
-    "shapelab.simplification.curve_persistence",
-    "shapelab.simplification.simplify",
-    "shapelab.triangulation.clipped_cells",
-    "shapelab.triangulation.power_diagram",
-    "shapelab.triangulation.triangulation_report",
-}
-
 CALLS = lesson_calls.calls()
 _EXAMPLES = re.compile(r"^Examples\n-{3,}\n(.*?)(?=^\S[^\n]*\n-{3,}\n|\Z)", re.S | re.M)
 
@@ -51,10 +32,6 @@ def _object(call: lesson_calls.Call) -> object:
 
 def _callable(obj: object) -> bool:
     return callable(obj) and not inspect.ismodule(obj)
-
-
-def _owned_elsewhere(call: lesson_calls.Call) -> bool:
-    return call.qualname in LEFT
 
 
 def has_examples(obj: object) -> bool:
@@ -96,16 +73,7 @@ def _ids(c: lesson_calls.Call) -> str:
     return c.qualname
 
 
-CHECKED = [c for c in CALLS if _callable(_object(c)) and not _owned_elsewhere(c)]
-
-
-def test_the_names_left_are_still_called_and_still_short_of_the_rule():
-    """A name done (or no longer called) leaves LEFT, so that the list only shrinks."""
-    called = {c.qualname: c for c in CALLS}
-    for name in sorted(LEFT):
-        assert name in called, f"{name} is no longer called by a lesson: remove it from LEFT"
-        obj = _object(called[name])
-        assert not has_examples(obj) or missing_annotations(obj), f"{name} now meets the rule: remove it from LEFT"
+CHECKED = [c for c in CALLS if _callable(_object(c))]
 
 
 def test_the_lessons_call_many_names():

@@ -319,3 +319,31 @@ def test_filtration_clipped_cells_reuse_one_diagram_per_box():
     assert all(np.array_equal(a, b) for a, b in zip(default, ref))
     with pytest.raises(ValueError, match="2"):
         alpha_filtration(Balls(np.eye(3), [1.0, 1.0, 1.0])).clipped_cells(0.0)
+
+
+def test_empty_and_flat_input_are_refused_or_answered_plainly():
+    """Review of issue 33: no numpy reduction error, no LinAlgError, no silent NaN."""
+    import pytest
+
+    import shapelab as sl
+
+    empty = Balls(np.zeros((0, 2)), [])
+    assert regular_triangulation(empty, precision="fast").shape == (0, 1)  # as "exact"
+    for bbox in (None, [[0.0, 0.0], [1.0, 1.0]]):
+        with pytest.raises(ValueError, match="balls is empty"):
+            sl.power_diagram(empty, bbox=bbox)
+    bad = {
+        "weights must have shape": ([[0.0, 0.0], [1.0, 0.0]], [1.0, 1.0, 1.0]),
+        "centers must have shape": ([0.0, 1.0], [1.0, 1.0]),
+        "centers must be finite": ([[0.0, np.nan], [1.0, 0.0]], [1.0, 1.0]),
+        "affinely dependent": ([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]], [1.0, 1.0, 1.0]),
+    }
+    for message, (c, w) in bad.items():
+        with pytest.raises(ValueError, match=message):
+            sl.orthosphere(c, w)
+    with pytest.raises(ValueError, match="affinely dependent"):
+        sl.orthosphere([[0.0, 0.0], [0.0, 0.0]], [1.0, 1.0])  # duplicate centres
+    with pytest.raises(ValueError, match="centers must have shape"):
+        sl.orthosphere([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]], [1.0] * 4)  # 4 in 2D
+    c, rho = sl.orthosphere([[0.0, 0.0], [4.0, 0.0]], [1.0, 1.0])  # a closed form
+    assert c.tolist() == [2.0, 0.0] and float(rho) == 3.0
