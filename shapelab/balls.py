@@ -89,11 +89,9 @@ class Balls(BallsBase):
     def derived(self, key: str, build):
         """A result derived from these balls, built on first use and kept with them.
 
-        The one input rule of the library: every function of a filtration takes Balls
-        or a Filtration alike, and Balls are turned into their filtration
-        (:func:`shapelab.alpha_filtration`) once, here, so that ``voids(balls)`` then
-        ``pockets(balls)`` build it once.  The balls are immutable, so what is kept
-        stays right; it lives as long as the balls, and is not pickled or copied.
+        The one input rule: every function of a filtration takes Balls or a Filtration,
+        and Balls are filtered (:func:`shapelab.alpha_filtration`) once, here.  The
+        balls are immutable, so what is kept stays right; it is not pickled or copied.
 
         Parameters
         ----------

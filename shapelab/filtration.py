@@ -229,11 +229,9 @@ class Filtration(_SimplicialMixin):
     def derived(self, key: str, build):
         """A result derived from this filtration, built on first use and kept on it.
 
-        The filtration owns what is computed from it (Notes §23.1: one filtration,
-        many questions -- Betti numbers at every τ, persistence, voids, pockets and
-        tunnels), so the modules that answer them (:mod:`shapelab.persistence`,
-        :mod:`shapelab.cavities`) store their intermediate results here instead of
-        in module-level caches: they live exactly as long as the filtration.
+        One filtration, many questions (Betti numbers, persistence, voids, pockets,
+        tunnels): their modules keep intermediate results here, not in module-level
+        caches, so that they live exactly as long as the filtration.
 
         Parameters
         ----------

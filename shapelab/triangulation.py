@@ -50,6 +50,7 @@ from ._engine import triangulation as engine
 from ._engine.triangulation import TriangulationReport
 from ._toolkit.validate import (
     FlatSimplexError,
+    affinely_independent,
     as_bbox,
     as_positive_int,
     as_precision,
@@ -259,14 +260,13 @@ def orthosphere(centers, weights) -> tuple[np.ndarray, np.ndarray]:
         return z[..., 0, :].copy(), -w[..., 0]
     A = z[..., 1:, :] - z[..., :1, :]  # the edges a_i as rows, (..., j, d)
     beta = 0.5 * (np.einsum("...ik,...ik->...i", A, A) - w[..., 1:] + w[..., :1])
-    try:
-        if A.shape[-2] == A.shape[-1]:  # a top simplex: d equations, d unknowns
-            u = np.linalg.solve(A, beta[..., None])[..., 0]
-        else:  # a face: u in the span of the edges, A^T = QR, u = Q y, R^T y = beta
-            Q, R = np.linalg.qr(np.swapaxes(A, -1, -2))
-            u = (Q @ np.linalg.solve(np.swapaxes(R, -1, -2), beta[..., None]))[..., 0]
-    except np.linalg.LinAlgError:
-        raise flat_simplex("orthosphere") from None
+    if not affinely_independent(A):  # a flat simplex: no sphere, or no single one
+        raise flat_simplex("orthosphere")
+    if A.shape[-2] == A.shape[-1]:  # a top simplex: d equations, d unknowns
+        u = np.linalg.solve(A, beta[..., None])[..., 0]
+    else:  # a face: u in the span of the edges, A^T = QR, u = Q y, R^T y = beta
+        Q, R = np.linalg.qr(np.swapaxes(A, -1, -2))
+        u = (Q @ np.linalg.solve(np.swapaxes(R, -1, -2), beta[..., None]))[..., 0]
     return z[..., 0, :] + u, np.einsum("...k,...k->...", u, u) - w[..., 0]
 
 
@@ -398,8 +398,8 @@ def power_diagram(balls: Balls, *, bbox: npt.ArrayLike | None = None, precision:
     exact = as_precision(precision) == "exact"
     d = balls.dim
     n = len(balls)
-    if n == 0:
-        raise ValueError("power_diagram: balls is empty; a power diagram needs at least one ball")
+    if n == 0 and bbox is None:
+        raise ValueError("power_diagram: balls is empty, so there is no default bbox; give one")
     box = default_bbox(balls) if bbox is None else as_bbox(bbox, d)
     tri = engine.triangulate(balls)[1] if exact else regular_triangulation(balls, precision="fast")
     present = np.zeros(n, dtype=bool)
@@ -432,7 +432,7 @@ def power_diagram(balls: Balls, *, bbox: npt.ArrayLike | None = None, precision:
             ) from None
     vertices.flags.writeable = False
     if d == 2:
-        origin = balls.centers.mean(axis=0)
+        origin = balls.centers.mean(axis=0) if n else np.zeros(d)
         z = balls.centers - origin
         w = balls.weights
         zz = np.einsum("ij,ij->i", z, z) - w

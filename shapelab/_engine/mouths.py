@@ -84,6 +84,7 @@ def build_merge_tree(S) -> MergeTree:
     kill_value = np.where(kf >= 0, S.values[k - 1][np.maximum(kf, 0)], -np.inf) if k >= 1 else np.full(n, -np.inf)
     mh = np.asarray(m_head, dtype=np.int64)
     mt = np.asarray(m_tail, dtype=np.int64)
+    kill_value.flags.writeable = False  # kept on F: read-only, as sealed_at
     return MergeTree(
         n_cells=n,
         kill_value=kill_value,

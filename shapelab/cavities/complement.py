@@ -30,7 +30,7 @@ from .._engine import mouths as _engine
 from .._engine.persistence import summary
 from .._toolkit.derived import derived
 from .._toolkit.unionfind import elder_merges
-from .._toolkit.validate import as_positive_int
+from .._toolkit.validate import as_positive_int, freeze
 from ..filtration import as_filtration
 
 if TYPE_CHECKING:
@@ -170,7 +170,7 @@ def _sealed_at(F) -> np.ndarray:
         sealed[oldest[younger]] = S.values[k - 1][facet]
 
     elder_merges(n + 1, u, v, S.pos_facets[::-1], age, seal)
-    return sealed
+    return freeze(sealed)  # kept on F and read by voids and pockets: read-only
 
 
 def cells_when_sealed(F: Filtration | Balls, r: int) -> np.ndarray:

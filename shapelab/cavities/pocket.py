@@ -57,7 +57,7 @@ from ..filtration import as_filtration
 from .complement import complement_labels, full_dimensional, lining_of, merge_tree, sealed_at, vertex_values
 from .mouths import MeasuredRegion, mouth_finder
 
-__all__ = ["Pocket", "pockets"]
+__all__ = ["Pocket", "pockets", "growth_pockets"]
 
 if TYPE_CHECKING:
     from ..balls import Balls
@@ -253,7 +253,7 @@ def growth_pockets(
     >>> growth_pockets(sl.datasets.figure_23_2()[0])  # Figure 23.2's flask
     (Pocket(cells=9, mouth=1, lining=11, closes_at=0.5775, fills_at=4.3275, tau=0),)
     """
-    precision = as_precision(precision)
+    precision = as_precision(precision, "pockets: precision")
     F = as_filtration(F, "pockets")
     balls = F.balls
     tau = as_tau(tau)

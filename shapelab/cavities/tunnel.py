@@ -230,8 +230,8 @@ def grooves(F: Filtration | Balls, tau: float = 0.0, *, min_persistence: float =
 
     >>> import shapelab as sl
     >>> F = sl.alpha_filtration(sl.datasets.ring(12, dim=3))
-    >>> sl.grooves(F, -2.0)
-    (Tunnel(birth=-0.397114, death=8, cycle=12 edges, tau=-2),)
+    >>> sl.grooves(F, -0.5)  # balls of radius about 0.71: the ring not yet closed
+    (Tunnel(birth=-0.397114, death=8, cycle=12 edges, tau=-0.5),)
     """
     F = as_filtration(F, "grooves")
     tau = as_tau(tau)

@@ -24,7 +24,7 @@ def test_a_used_filtration_leaves_nothing_behind():
     F.persistence(), F.betti(0.0), sl.voids(F, 0.0)
     sl.pockets(F, 0.0), sl.tunnels(F, 0.0)
     F.balls  # the balls come from the filtration
-    assert {"topology.summary", "topology.pairs", "cavities.merge_tree"} <= set(F._derived)
+    assert {"topology.summary", "topology.pairs", "cavities.sealed_at"} <= set(F._derived)
     ref = weakref.ref(F)
     del F
     gc.collect()

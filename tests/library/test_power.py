@@ -329,9 +329,18 @@ def test_empty_and_flat_input_are_refused_or_answered_plainly():
 
     empty = Balls(np.zeros((0, 2)), [])
     assert regular_triangulation(empty, precision="fast").shape == (0, 1)  # as "exact"
-    for bbox in (None, [[0.0, 0.0], [1.0, 1.0]]):
-        with pytest.raises(ValueError, match="balls is empty"):
-            sl.power_diagram(empty, bbox=bbox)
+    with pytest.raises(ValueError, match="balls is empty"):
+        sl.power_diagram(empty)  # no default box
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no "mean of empty slice"
+        for precision in ("exact", "fast"):
+            D = sl.power_diagram(empty, bbox=[[0.0, 0.0], [1.0, 1.0]], precision=precision)
+            assert D.cells == () and D.vertices.shape == (0, 2) and D.adjacency.shape == (0, 2)
+        from shapelab.triangulation import clipped_cells
+
+        assert clipped_cells(empty) == () and sl.alpha_filtration(empty).clipped_cells(0.0) == ()
     bad = {
         "weights must have shape": ([[0.0, 0.0], [1.0, 0.0]], [1.0, 1.0, 1.0]),
         "centers must have shape": ([0.0, 1.0], [1.0, 1.0]),
@@ -345,5 +354,16 @@ def test_empty_and_flat_input_are_refused_or_answered_plainly():
         sl.orthosphere([[0.0, 0.0], [0.0, 0.0]], [1.0, 1.0])  # duplicate centres
     with pytest.raises(ValueError, match="centers must have shape"):
         sl.orthosphere([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]], [1.0] * 4)  # 4 in 2D
+    # exactly collinear / coplanar integer centres in 3D: numpy's solve does not see
+    # them singular (it returned c ~ 1e16 before); the rank test does
+    with pytest.raises(ValueError, match="affinely dependent"):
+        sl.orthosphere([[-5, -4, 3], [-4, -1, 3], [-2, 5, 3]], [0, 0, 0])
+    with pytest.raises(ValueError, match="affinely dependent"):
+        sl.orthosphere([[0, 0, 0], [1, 2, 3], [2, 4, 6], [5, 1, 0]], [0, 0, 0, 0])
+    rng = np.random.default_rng(0)
+    z = rng.normal(size=(500, 3, 3))
+    z[:, 2] = z[:, 0] + rng.integers(-3, 4, (500, 1)) * (z[:, 1] - z[:, 0])  # collinear
+    with pytest.raises(ValueError, match="affinely dependent"):
+        sl.orthosphere(z, np.zeros((500, 3)))
     c, rho = sl.orthosphere([[0.0, 0.0], [4.0, 0.0]], [1.0, 1.0])  # a closed form
     assert c.tolist() == [2.0, 0.0] and float(rho) == 3.0
