@@ -354,7 +354,8 @@ def radical_center(student: Callable[[Balls], ArrayLike]) -> CheckResult:
     while len(cases) < 6:
         b = Balls(rng.uniform(-3, 3, size=(3, 2)), rng.uniform(0.3, 1.5, size=3))
         d = power_diagram(b)
-        area2 = np.cross(b.centers[1] - b.centers[0], b.centers[2] - b.centers[0])
+        (ux, uy), (vx, vy) = b.centers[1] - b.centers[0], b.centers[2] - b.centers[0]
+        area2 = ux * vy - uy * vx  # twice the signed area (np.cross of 2-vectors is deprecated)
         if abs(area2) > 1.0 and len(d.vertices) == 1 and not np.any(d.hidden):
             cases.append((b,))
     return run_check(
