@@ -125,9 +125,12 @@ class Reader:
             mod = _Module(_module_name(path), path)
             self.modules[mod.name] = mod
 
-    def exports(self) -> dict[str, str]:
-        tree = self.modules["shapelab"].tree
-        for node in tree.body:
+    def exports(self, package: str = "shapelab") -> dict[str, str]:
+        """A package's lazy exports (its ``_EXPORTS``: name -> submodule, relative)."""
+        mod = self.modules.get(package)
+        if mod is None or mod.path.name != "__init__.py":
+            return {}
+        for node in mod.tree.body:
             if isinstance(node, ast.Assign) and getattr(node.targets[0], "id", "") == "_EXPORTS":
                 return ast.literal_eval(node.value)
         return {}
@@ -143,8 +146,9 @@ class Reader:
             target, attr = mod.imports[name]
             if attr is not None:
                 return self._lookup(target, attr, depth + 1)
-        if module == "shapelab" and name in self.exports():
-            return self._lookup(f"shapelab.{self.exports()[name]}", name, depth + 1)
+        exports = self.exports(module)  # a package's lazy exports (shapelab, cavities, ...)
+        if name in exports:
+            return self._lookup(f"{module}.{exports[name]}", name, depth + 1)
         return None
 
     def entry(self, public_name: str):

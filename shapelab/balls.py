@@ -89,9 +89,8 @@ class Balls(BallsBase):
     def derived(self, key: str, build):
         """A result derived from these balls, built on first use and kept with them.
 
-        The one input rule: every function of a filtration takes Balls or a Filtration,
-        and Balls are filtered (:func:`shapelab.alpha_filtration`) once, here.  The
-        balls are immutable, so what is kept stays right; it is not pickled or copied.
+        Every function of a filtration takes Balls or a Filtration; Balls (immutable)
+        are filtered once, here.  What is kept is not pickled or copied.
 
         Parameters
         ----------

@@ -244,12 +244,8 @@ class Filtration(_SimplicialMixin):
         Returns
         -------
         object
-            ``build(self)``, computed once per filtration.
-
-        Notes
-        -----
-        A copy with nothing derived yet (to time a computation from scratch) is
-        ``dataclasses.replace(F)``: it shares the simplices and entry times.
+            ``build(self)``, computed once per filtration (``dataclasses.replace(F)``
+            is a copy with nothing derived yet, to time a computation from scratch).
         """
         try:
             return self._derived[key]
@@ -508,17 +504,12 @@ def alpha_filtration(balls: Balls, *, precision: str = "exact") -> Filtration:
     ----------
     balls : Balls
     precision : {"exact", "fast"}
-        ``"exact"`` (default): the certified triangulation
-        (:func:`regular_triangulation`), and every entry time within relative
-        1e-9 (typically a few ulp) of the exact value for the float64 input, exact
-        zeros exact and the attached test exact: computed with an error bound per
-        simplex and long-double and rational fallbacks where the bound does not
-        decide (:mod:`shapelab._engine.orthospheres`).  The same on every machine.
-        ``"fast"``: the steps below in floating point.  On generic input the same
-        simplices with the same entry times to about 1e-12 (tested); on degenerate
-        input (co-circular or co-spherical centres, right angles: orthocentres on a
-        facet, duplicates) the triangulation, the attached test and so the times may
-        differ.
+        ``"exact"`` (default): the certified triangulation, each entry time within
+        relative 1e-9 (typically a few ulp) of the exact one for the float64 input
+        and the attached test exact (:mod:`shapelab._engine.orthospheres`): the same
+        on every machine.  ``"fast"``: the steps below in floating point; on generic
+        input the same simplices and times to about 1e-12 (tested), on degenerate
+        input (co-spherical centres, right angles, duplicates) they may differ.
 
     Returns
     -------

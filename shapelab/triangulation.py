@@ -47,10 +47,10 @@ import numpy.typing as npt
 from scipy.spatial import ConvexHull, QhullError
 
 from ._engine import triangulation as engine
+from ._engine.predicates import affine_basis, flat_simplices
 from ._engine.triangulation import TriangulationReport
 from ._toolkit.validate import (
     FlatSimplexError,
-    affinely_independent,
     as_bbox,
     as_positive_int,
     as_precision,
@@ -105,8 +105,9 @@ def regular_triangulation(balls: Balls, *, precision: str = "exact") -> np.ndarr
     Raises
     ------
     ValueError
-        With ``precision="fast"``, when Qhull cannot build the hull (fewer than
-        ``d + 1`` balls, or centres on a hyperplane).
+        With ``precision="fast"``, when Qhull cannot build the hull of centres in
+        general dimension.  Fewer than ``d + 1`` balls, or centres on a line or plane,
+        have no hull to take: ``"fast"`` returns the exact triangulation of them.
 
     See Also
     --------
@@ -189,6 +190,8 @@ def regular_triangulation(balls: Balls, *, precision: str = "exact") -> np.ndarr
     try:
         hull = ConvexHull(np.vstack([np.column_stack([z, h]), top]))
     except QhullError as exc:
+        if len(affine_basis(balls.centers)) <= d:  # fewer than d + 1 balls, or all on a
+            return engine.triangulate(balls)[1]  # line or plane: no hull; the exact path
         raise ValueError(
             f"precision='fast': Qhull cannot triangulate these centres ({exc}); use precision='exact'"
         ) from None
@@ -239,8 +242,7 @@ def orthosphere(centers, weights) -> tuple[np.ndarray, np.ndarray]:
     :math:`Au = \\beta` for :math:`u`, square for a top simplex (solved directly),
     else solved in the span of the :math:`a_i` (a QR factorisation of the edge matrix,
     :math:`A^T = QR`, :math:`u = Qy`, :math:`R^T y = \\beta`), and
-    :math:`\\rho = |u|^2 - w_0` [1]_.  Floating point: the engine solves the same
-    system with an error bound and exact fallbacks (:mod:`shapelab._engine.orthospheres`).
+    :math:`\\rho = |u|^2 - w_0` [1]_.  Whether a simplex is flat is decided exactly.
 
     References
     ----------
@@ -258,16 +260,24 @@ def orthosphere(centers, weights) -> tuple[np.ndarray, np.ndarray]:
     z, w = as_simplex_balls(centers, weights)
     if z.shape[-2] == 1:  # a vertex: its own centre, power -w
         return z[..., 0, :].copy(), -w[..., 0]
-    A = z[..., 1:, :] - z[..., :1, :]  # the edges a_i as rows, (..., j, d)
-    beta = 0.5 * (np.einsum("...ik,...ik->...i", A, A) - w[..., 1:] + w[..., :1])
-    if not affinely_independent(A):  # a flat simplex: no sphere, or no single one
+    if flat_simplices(z.reshape(-1, *z.shape[-2:])).any():  # decided exactly
         raise flat_simplex("orthosphere")
+    A = z[..., 1:, :] - z[..., :1, :]  # the edges a_i as rows, (..., j, d)
+    # in units of s, a power of two near the longest edge: exact, and no |a|^2 overflows
+    s = np.ldexp(1.0, np.frexp(np.abs(A).max(axis=(-2, -1), initial=0.0))[1])
+    A, w = A / s[..., None, None], w / s[..., None] / s[..., None]
+    beta = 0.5 * (np.einsum("...ik,...ik->...i", A, A) - w[..., 1:] + w[..., :1])
     if A.shape[-2] == A.shape[-1]:  # a top simplex: d equations, d unknowns
         u = np.linalg.solve(A, beta[..., None])[..., 0]
     else:  # a face: u in the span of the edges, A^T = QR, u = Q y, R^T y = beta
         Q, R = np.linalg.qr(np.swapaxes(A, -1, -2))
         u = (Q @ np.linalg.solve(np.swapaxes(R, -1, -2), beta[..., None]))[..., 0]
-    return z[..., 0, :] + u, np.einsum("...k,...k->...", u, u) - w[..., 0]
+    with np.errstate(over="ignore"):  # refused just below (rho is infinite if c is)
+        c = z[..., 0, :] + s[..., None] * u
+        rho = s * s * (np.einsum("...k,...k->...", u, u) - w[..., 0])
+    if not np.all(np.isfinite(rho)):
+        raise ValueError("orthosphere: the sphere is beyond float64's range (a simplex nearly flat, or too large)")
+    return c, rho
 
 
 # ----------------------------------------------------------------------------------

@@ -9,6 +9,8 @@ tests the reduction independently of the geometry.
 
 from __future__ import annotations
 
+from fractions import Fraction  # noqa: F401  (the oracles' number type)
+
 import numpy as np
 
 import shapelab as sl
@@ -219,3 +221,32 @@ def compare(F) -> dict:
     ours = F.persistence()
     theirs = gudhi_diagrams(F)
     return {k: bottleneck(ours.get(k, np.empty((0, 2))), theirs[k]) for k in theirs}
+
+
+# ----------------------------------------------------------------- exact orthospheres
+def exact_solve(G, b):
+    """Exact Gaussian elimination of the square system ``G x = b`` (Fractions)."""
+    n = len(b)
+    M = [list(G[i]) + [b[i]] for i in range(n)]
+    for c in range(n):
+        p = next(r for r in range(c, n) if M[r][c] != 0)
+        M[c], M[p] = M[p], M[c]
+        for r in range(n):
+            if r != c and M[r][c] != 0:
+                f = M[r][c] / M[c][c]
+                M[r] = [a - f * q for a, q in zip(M[r], M[c])]
+    return [M[i][n] / M[i][i] for i in range(n)]
+
+
+def exact_orthosphere(Z, W, s):
+    """Centre and power of the smallest orthogonal sphere of the simplex ``s`` (rows of
+    ``Z``, ``W``: Fractions), exactly (Notes §23.1: ``u`` in the span of the edges)."""
+    z0, w0 = Z[s[0]], W[s[0]]
+    A = [[a - b for a, b in zip(Z[i], z0)] for i in s[1:]]
+    if not A:
+        return list(z0), -w0
+    G = [[sum(p * q for p, q in zip(a, b)) for b in A] for a in A]
+    beta = [(sum(p * p for p in a) - W[i] + w0) / 2 for a, i in zip(A, s[1:])]
+    lam = exact_solve(G, beta)
+    u = [sum(lam[t] * A[t][k] for t in range(len(A))) for k in range(len(z0))]
+    return [p + q for p, q in zip(z0, u)], sum(q * q for q in u) - w0

@@ -9,7 +9,7 @@ the positive facets ``S.pos_facets``) and the filtration ``F`` by duck typing.
 from __future__ import annotations
 
 from array import array
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 from scipy.sparse import coo_matrix
@@ -17,6 +17,7 @@ from scipy.sparse.csgraph import breadth_first_order, depth_first_order, dijkstr
 
 from .._toolkit.derived import derived
 from .._toolkit.unionfind import elder_merges
+from .._toolkit.validate import freeze
 from .persistence import summary
 
 __all__ = ["MergeTree", "build_merge_tree", "merge_tree_of", "leaf_run", "cells_at_closing", "OutsideGraph"]
@@ -84,8 +85,7 @@ def build_merge_tree(S) -> MergeTree:
     kill_value = np.where(kf >= 0, S.values[k - 1][np.maximum(kf, 0)], -np.inf) if k >= 1 else np.full(n, -np.inf)
     mh = np.asarray(m_head, dtype=np.int64)
     mt = np.asarray(m_tail, dtype=np.int64)
-    kill_value.flags.writeable = False  # kept on F: read-only, as sealed_at
-    return MergeTree(
+    tree = MergeTree(
         n_cells=n,
         kill_value=kill_value,
         pos=pos,
@@ -97,6 +97,10 @@ def build_merge_tree(S) -> MergeTree:
         lo=pos[mh] if mh.size else mh,
         hi=pos[mt] + 1 if mt.size else mt,
     )
+    for f in fields(tree):  # kept on F and read by pockets: read-only, as sealed_at
+        if isinstance(a := getattr(tree, f.name), np.ndarray):
+            freeze(a)
+    return tree
 
 
 def merge_tree_of(F) -> MergeTree:

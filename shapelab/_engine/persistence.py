@@ -43,7 +43,7 @@ from scipy.sparse.csgraph import minimum_spanning_tree
 from .._toolkit.derived import derived
 from .._toolkit.tolerances import PERSISTENCE_ROUNDOFF
 from .._toolkit.unionfind import elder_merges
-from .._toolkit.validate import as_float_array, as_tau
+from .._toolkit.validate import as_float_array, as_tau, freeze
 
 __all__ = [
     "Summary",
@@ -168,7 +168,9 @@ def _build_summary(F) -> Summary:
     else:
         pos = np.empty(0, dtype=np.int64)
         dual = (np.empty(0, np.int64), np.empty(0, np.int64))
-    return Summary(ambient, k, values, neg, pos, dual)
+    # kept on F and read by every question asked of it: read-only
+    neg, pos, dual = freeze(neg), freeze(pos), tuple(freeze(a) for a in dual)
+    return Summary(ambient, k, tuple(freeze(np.asarray(a)) for a in values), neg, pos, dual)
 
 
 def summary(F) -> Summary:

@@ -66,7 +66,7 @@ import numpy.typing as npt
 
 from .._toolkit.tolerances import FILTER_UNDERFLOW
 
-__all__ = ["WeightedPoints", "affine_basis", "det", "permanent", "projection_axes"]
+__all__ = ["WeightedPoints", "affine_basis", "det", "flat_simplices", "permanent", "projection_axes"]
 
 _U = 2.0**-53
 _TINY = FILTER_UNDERFLOW  # below this a float bound may be spoilt by underflow: decide exactly
@@ -795,6 +795,61 @@ def affine_basis(coords) -> list:
                 break
             basis.append(int(np.argmax(off)))
     return basis
+
+
+def flat_simplices(z) -> np.ndarray:
+    """Which simplices have affinely dependent vertices, decided exactly (Notes §23.1).
+
+    Parameters
+    ----------
+    z : array_like, shape (m, j + 1, d), j <= d <= 3
+        ``m`` simplices of ``j + 1`` vertices each; their float64 values are the exact
+        input.
+
+    Returns
+    -------
+    ndarray of bool, shape (m,)
+        True where the ``j`` edges :math:`z_i - z_0` have rank below ``j`` (two equal
+        vertices, three collinear, four coplanar): no orthosphere, or no single one.
+
+    Notes
+    -----
+    A simplex is flat exactly when every ``j x j`` minor of its edge matrix is zero.
+    Each minor is evaluated in floating point with the error bound of
+    :func:`affine_basis`; a simplex with a minor certified non-zero is not flat, and
+    the rest are decided with Python integers from the input's binary values.  No
+    rank threshold is involved: a simplex thin to 1e-15 but not flat is not flat.
+
+    See Also
+    --------
+    affine_basis : the exact affine dimension of a point set.
+
+    Examples
+    --------
+    >>> flat_simplices([[[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]], [[0.0, 0.0], [1e14, 0.0], [0.0, 1.0]]]).tolist()
+    [True, False]
+    """
+    x = np.asarray(z, dtype=np.float64)
+    m, k1, d = x.shape
+    r = k1 - 1
+    if r == 0 or m == 0:
+        return np.zeros(m, dtype=bool)
+    with np.errstate(all="ignore"):
+        rows = [[x[:, i, c] - x[:, 0, c] for c in range(d)] for i in range(1, k1)]
+        certain = np.zeros(m, dtype=bool)
+        for Dm, Pm in zip(_minors(rows, r, d), _minors([[np.abs(e) for e in row] for row in rows], r, d, permanent)):
+            bound = _C_ORIENT.get(r, np.inf) * _U * Pm  # 4 x 4 (4D): decided exactly
+            certain |= (np.abs(Dm) > bound) & (bound > _TINY) & np.isfinite(Dm) & np.isfinite(bound)
+    flat = ~certain
+    todo = np.flatnonzero(flat)
+    if todo.size:
+        e = _exact_ints(x[todo])[0]  # (t, j + 1, d) Python integers at one scale
+        erows = [[e[:, i, c] - e[:, 0, c] for c in range(d)] for i in range(1, k1)]
+        off = np.zeros(todo.size, dtype=bool)
+        for Dm in _minors(erows, r, d):
+            off |= np.asarray(Dm != 0, dtype=bool)
+        flat[todo[off]] = False
+    return flat
 
 
 def projection_axes(coords, basis) -> tuple:

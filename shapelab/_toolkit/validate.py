@@ -79,22 +79,12 @@ def as_simplex_balls(centers, weights) -> tuple[np.ndarray, np.ndarray]:
     return z, w
 
 
-def affinely_independent(A: np.ndarray) -> bool:
-    """Whether every edge matrix ``A`` (..., j, d) has rank j, relative to its size: the
-    smallest singular value above 64 ulp of the largest (a flat simplex, as Qhull can
-    leave on co-spherical input, has one of about 1 ulp, or 0)."""
-    if A.size == 0:
-        return True
-    s = np.linalg.svd(A, compute_uv=False)
-    return bool(np.all(s[..., -1] > 64 * np.finfo(np.float64).eps * s[..., 0]))
-
-
 class FlatSimplexError(ValueError):
     """Affinely dependent centres: a flat simplex has no orthosphere."""
 
 
 def flat_simplex(who: str) -> FlatSimplexError:
-    """The error for affinely dependent centres (``numpy.linalg`` found them singular)."""
+    """The error for affinely dependent centres (a flat simplex)."""
     return FlatSimplexError(f"{who}: the centres are affinely dependent (a flat simplex has no orthosphere)")
 
 

@@ -145,12 +145,11 @@ def sealed_at(F: Filtration | Balls) -> np.ndarray:
     Examples
     --------
     >>> import numpy as np, shapelab as sl
-    >>> t = np.linspace(0, 2 * np.pi, 12, endpoint=False)
-    >>> F = sl.alpha_filtration(sl.Balls(3 * np.c_[np.cos(t), np.sin(t)], 0.9))
+    >>> F = sl.alpha_filtration(sl.datasets.ring(12))  # twelve disks on a circle
     >>> sealed, fills = sealed_at(F), F.values(2)
     >>> r = int(np.argmax(fills - sealed))  # the root of the ring's hole
     >>> round(float(sealed[r]), 6), round(float(fills[r]), 6)
-    (-0.207114, 8.19)
+    (-0.397114, 8.0)
     """
     F = as_filtration(F, "sealed_at")
     if not full_dimensional(F):

@@ -144,6 +144,8 @@ def pockets(
         ``alpha_filtration(balls)`` (or the :class:`~shapelab.Balls`, as for :func:`voids`).
     tau : float, default 0.0
         Growth time at which the pockets are reported (mouths and volumes refer to it).
+        A growth-model pocket is lined by a ball of the union at ``tau``: before the
+        first ball enters (``-inf``) there is none.
     min_persistence : float, default 0.0
         Keep pockets with ``fills_at - closes_at >= min_persistence`` (a flow pocket of
         persistence 0, a tie, is kept at 0.0: :class:`shapelab.FlowPocket`).
@@ -280,18 +282,20 @@ def growth_pockets(
     vval = vertex_values(F, len(balls))
     out = []
     for r in cand.tolist():
-        # the pocket's cells: those of the void rooted at r at the moment it closes,
-        # cells_when_sealed(F, r), read from the merge tree (a fast kernel, tested equal)
+        # the void's cells when it closes, cells_when_sealed(F, r), by the merge tree (tested equal)
         cid = cells_at_closing(merge_tree(F), r)
-        mouth = mouth_of(cid)
         cverts = simp[cid]
+        lining = lining_of(cverts, tau, vval)
+        if lining.size == 0:  # no ball of the union at tau lines it: not yet a dent
+            continue
+        mouth = mouth_of(cid)
         out.append(
             Pocket(
                 cells=readonly(cverts, np.int64),
                 cell_ids=readonly(cid, np.int64),
                 mouth=readonly(fsimp[mouth].reshape(-1, k), np.int64),
                 mouth_ids=readonly(mouth, np.int64),
-                lining=readonly(lining_of(cverts, tau, vval), np.int64),
+                lining=readonly(lining, np.int64),
                 closes_at=float(b[r]),
                 fills_at=float(cv[r]),
                 tau=tau,

@@ -26,34 +26,9 @@ import pytest
 
 from shapelab import Balls, alpha_filtration
 
+from .._oracles import exact_orthosphere as orthosphere
+
 gudhi = pytest.importorskip("gudhi")
-
-
-def _solve(G, b):
-    """Exact Gaussian elimination of the square system G x = b (Fractions)."""
-    n = len(b)
-    M = [list(G[i]) + [b[i]] for i in range(n)]
-    for c in range(n):
-        p = next(r for r in range(c, n) if M[r][c] != 0)
-        M[c], M[p] = M[p], M[c]
-        for r in range(n):
-            if r != c and M[r][c] != 0:
-                f = M[r][c] / M[c][c]
-                M[r] = [a - f * q for a, q in zip(M[r], M[c])]
-    return [M[i][n] / M[i][i] for i in range(n)]
-
-
-def orthosphere(Z, W, s):
-    """Centre and power of the smallest orthogonal sphere of the simplex ``s``, exactly."""
-    z0, w0 = Z[s[0]], W[s[0]]
-    A = [[a - b for a, b in zip(Z[i], z0)] for i in s[1:]]
-    if not A:
-        return list(z0), -w0
-    G = [[sum(p * q for p, q in zip(a, b)) for b in A] for a in A]
-    beta = [(sum(p * p for p in a) - W[i] + w0) / 2 for a, i in zip(A, s[1:])]
-    lam = _solve(G, beta)
-    u = [sum(lam[t] * A[t][k] for t in range(len(A))) for k in range(len(z0))]
-    return [p + q for p, q in zip(z0, u)], sum(q * q for q in u) - w0
 
 
 def power(Z, W, v, c):

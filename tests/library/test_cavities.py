@@ -436,8 +436,10 @@ def test_infinite_growth_times_are_the_ends_of_the_filtration():
     F = sl.alpha_filtration(ring(8, 3.0, 1.2))
     assert sl.voids(F, float("inf")) == sl.voids(F, -np.inf) == ()
     assert sl.pockets(F, np.inf) == ()
-    (p,) = sl.pockets(F, -np.inf)  # before any ball exists, the hole is a dent to be
-    assert p.lining.size == 0 and p.volume > 0  # (every cell free)
+    # before any ball exists there is no union to dent: a pocket is lined by a ball at tau
+    assert sl.pockets(F, -np.inf) == ()
+    (p,) = sl.pockets(F, float(np.min(F.values(0))))  # the first balls: the hole, lined
+    assert p.lining.size > 0 and p.volume > 0
     C60 = sl.alpha_filtration(sl.datasets.fullerene_c60())
     assert sl.tunnels(C60, np.inf) == sl.tunnels(C60, -np.inf) == ()
     assert FS.free_measure(F.balls, np.inf, F.simplices(2)).sum() == 0.0

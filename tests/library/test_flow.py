@@ -19,22 +19,10 @@ import shapelab as sl
 from shapelab import datasets
 from shapelab.cavities.flow import flow_side_exact
 
+from .._oracles import exact_solve
+
 
 # ----------------------------------------------------------------------------- oracle
-def _solve(M, b):
-    """Exact Gaussian elimination (Fractions)."""
-    n = len(M)
-    A = [list(row) + [bb] for row, bb in zip(M, b)]
-    for c in range(n):
-        p = next(r for r in range(c, n) if A[r][c] != 0)
-        A[c], A[p] = A[p], A[c]
-        for r in range(n):
-            if r != c and A[r][c] != 0:
-                f = A[r][c] / A[c][c]
-                A[r] = [x - f * y for x, y in zip(A[r], A[c])]
-    return [A[i][n] / A[i][i] for i in range(n)]
-
-
 def _barycentric_orthocentre(z, w):
     """Barycentric coordinates of the orthocentre of the simplex with centres ``z``
     (d+1 rows) and weights ``w``, exactly."""
@@ -43,10 +31,10 @@ def _barycentric_orthocentre(z, w):
     d = len(Z[0])
     M = [[2 * (Z[i][k] - Z[0][k]) for k in range(d)] for i in range(1, d + 1)]
     b = [sum(c * c for c in Z[i]) - W[i] - sum(c * c for c in Z[0]) + W[0] for i in range(1, d + 1)]
-    y = _solve(M, b)
+    y = exact_solve(M, b)
     # sum_i lam_i z_i = y, sum_i lam_i = 1
     A = [[Z[i][k] for i in range(d + 1)] for k in range(d)] + [[Fraction(1)] * (d + 1)]
-    return _solve(A, y + [Fraction(1)])
+    return exact_solve(A, y + [Fraction(1)])
 
 
 def _weights(balls):

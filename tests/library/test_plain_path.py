@@ -161,11 +161,11 @@ def test_degenerate_input_may_differ_and_the_docstrings_say_so():
         assert "degenerate input" in doc and "differ" in doc
 
 
-def test_fast_path_needs_full_dimensional_centres():
-    with pytest.raises(ValueError, match="precision='exact'"):
-        regular_triangulation(Balls([[0, 0], [1, 1], [2, 2]], 0.5), precision="fast")
-    # the exact path handles them (a path of edges)
-    assert regular_triangulation(Balls([[0, 0], [1, 1], [2, 2]], 0.5)).tolist() == [[0, 1], [1, 2]]
+def test_fast_path_on_collinear_centres_is_the_exact_path():
+    # no hull to take: "fast" returns the exact triangulation (a path of edges)
+    balls = Balls([[0, 0], [1, 1], [2, 2]], 0.5)
+    assert regular_triangulation(balls, precision="fast").tolist() == [[0, 1], [1, 2]]
+    assert regular_triangulation(balls).tolist() == [[0, 1], [1, 2]]
 
 
 @pytest.mark.parametrize("bad", ["Exact", "float", None, 1])
