@@ -605,7 +605,7 @@ def alpha_filtration(balls: Balls, *, precision: str = "exact") -> Filtration:
         ortho = {j: orthosphere(z[faces[j]], w[faces[j]]) for j in range(dim + 1)}
     except FlatSimplexError:  # a flat simplex left by Qhull: no orthosphere
         raise ValueError(
-            "precision='fast': Qhull left a flat simplex (degenerate centres, "
+            "precision='fast': Qhull left a (nearly) flat simplex (degenerate centres, "
             "e.g. a grid or co-spherical); use precision='exact'"
         ) from None
     # 3. top down: the facet opposite vertex v of a coface is attached if

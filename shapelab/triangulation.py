@@ -59,6 +59,7 @@ from ._toolkit.validate import (
     check_balls,
     default_bbox,
     flat_simplex,
+    nearly_flat,
 )
 from .balls import Balls
 
@@ -193,7 +194,7 @@ def regular_triangulation(balls: Balls, *, precision: str = "exact") -> np.ndarr
         if len(affine_basis(balls.centers)) <= d:  # fewer than d + 1 balls, or all on a
             return engine.triangulate(balls)[1]  # line or plane: no hull; the exact path
         raise ValueError(
-            f"precision='fast': Qhull cannot triangulate these centres ({exc}); use precision='exact'"
+            f"precision='fast': Qhull cannot triangulate them ({str(exc).splitlines()[0]}); use precision='exact'"
         ) from None
     # 3. the lower facets: outward normal pointing down (last component negative)
     lower = (hull.equations[:, d] < 0) & ~np.any(hull.simplices == n, axis=1)
@@ -263,8 +264,10 @@ def orthosphere(centers, weights) -> tuple[np.ndarray, np.ndarray]:
     if flat_simplices(z.reshape(-1, *z.shape[-2:])).any():  # decided exactly
         raise flat_simplex("orthosphere")
     A = z[..., 1:, :] - z[..., :1, :]  # the edges a_i as rows, (..., j, d)
-    # in units of s, a power of two near the longest edge: exact, and no |a|^2 overflows
-    s = np.ldexp(1.0, np.frexp(np.abs(A).max(axis=(-2, -1), initial=0.0))[1])
+    if nearly_flat(A):  # not flat, but float64 would keep few digits of its sphere
+        raise flat_simplex("orthosphere", nearly=True)
+    size = np.maximum(np.abs(A).max(axis=(-2, -1), initial=0.0), np.sqrt(np.abs(w).max(axis=-1, initial=0.0)))
+    s = np.ldexp(1.0, np.frexp(size)[1])  # in units of s, a power of two: exact, and no overflow
     A, w = A / s[..., None, None], w / s[..., None] / s[..., None]
     beta = 0.5 * (np.einsum("...ik,...ik->...i", A, A) - w[..., 1:] + w[..., :1])
     if A.shape[-2] == A.shape[-1]:  # a top simplex: d equations, d unknowns
@@ -437,7 +440,7 @@ def power_diagram(balls: Balls, *, bbox: npt.ArrayLike | None = None, precision:
             vertices = orthosphere(balls.centers[tri], balls.weights[tri])[0]
         except FlatSimplexError:  # a flat simplex left by Qhull: no orthosphere
             raise ValueError(
-                "precision='fast': Qhull left a flat simplex (degenerate centres, "
+                "precision='fast': Qhull left a (nearly) flat simplex (degenerate centres, "
                 "e.g. a grid or co-spherical); use precision='exact'"
             ) from None
     vertices.flags.writeable = False

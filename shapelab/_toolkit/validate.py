@@ -80,12 +80,33 @@ def as_simplex_balls(centers, weights) -> tuple[np.ndarray, np.ndarray]:
 
 
 class FlatSimplexError(ValueError):
-    """Affinely dependent centres: a flat simplex has no orthosphere."""
+    """Affinely dependent centres (a flat simplex has no orthosphere), or centres so
+    nearly so that float64 cannot place its orthosphere."""
 
 
-def flat_simplex(who: str) -> FlatSimplexError:
-    """The error for affinely dependent centres (a flat simplex)."""
+#: a float64 solve of ``A u = beta`` keeps about ``16 - log10(cond)`` digits: refused
+#: when fewer than about 6 would be left (the exact path computes those spheres)
+NEARLY_FLAT = 1e10
+
+
+def flat_simplex(who: str, *, nearly: bool = False) -> FlatSimplexError:
+    """The error for a flat simplex, or one too nearly flat for float64."""
+    if nearly:
+        return FlatSimplexError(
+            f"{who}: the simplex is nearly flat (its edges' condition number exceeds {NEARLY_FLAT:.0e}): "
+            "float64 cannot place its orthosphere; precision='exact' computes it exactly"
+        )
     return FlatSimplexError(f"{who}: the centres are affinely dependent (a flat simplex has no orthosphere)")
+
+
+def nearly_flat(A: np.ndarray) -> bool:
+    """Whether some edge matrix ``A`` (..., j, d) of a simplex known not to be flat has,
+    with its rows scaled to unit size, a condition number above :data:`NEARLY_FLAT`."""
+    if A.size == 0:
+        return False
+    An = A / np.abs(A).max(axis=-1, keepdims=True)
+    s = np.linalg.svd(An, compute_uv=False)
+    return bool(np.any(s[..., -1] * NEARLY_FLAT < s[..., 0]))
 
 
 def as_points(x, name: str = "points", *, dim=None, min_points: int = 1) -> np.ndarray:

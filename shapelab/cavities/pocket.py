@@ -144,8 +144,8 @@ def pockets(
         ``alpha_filtration(balls)`` (or the :class:`~shapelab.Balls`, as for :func:`voids`).
     tau : float, default 0.0
         Growth time at which the pockets are reported (mouths and volumes refer to it).
-        A growth-model pocket is lined by a ball of the union at ``tau``: before the
-        first ball enters (``-inf``) there is none.
+        Before the first ball enters (``tau`` below every entry time, ``-inf``) the
+        union is empty: no growth-model pockets.
     min_persistence : float, default 0.0
         Keep pockets with ``fills_at - closes_at >= min_persistence`` (a flow pocket of
         persistence 0, a tie, is kept at 0.0: :class:`shapelab.FlowPocket`).
@@ -260,7 +260,7 @@ def growth_pockets(
     balls = F.balls
     tau = as_tau(tau)
     mp = as_finite_scalar(min_persistence, "min_persistence", nonnegative=True)
-    if not full_dimensional(F):
+    if not full_dimensional(F) or tau < F.values(0)[0]:  # no balls yet: no union to dent
         return ()
     S = summary(F)
     k = S.k
@@ -286,8 +286,6 @@ def growth_pockets(
         cid = cells_at_closing(merge_tree(F), r)
         cverts = simp[cid]
         lining = lining_of(cverts, tau, vval)
-        if lining.size == 0:  # no ball of the union at tau lines it: not yet a dent
-            continue
         mouth = mouth_of(cid)
         out.append(
             Pocket(

@@ -25,21 +25,58 @@ def _exact_orthosphere(z, w):
 
 
 @pytest.mark.parametrize(
-    "z, rtol",
+    "z",
     [
-        ([[0, 0], [1e14, 0], [0, 1]], 1e-12),  # a right triangle 1e14 long: not flat
-        ([[0, 0], [10**7, 1], [2 * 10**7 + 1, 2]], 1e-8),  # integer, det -1: condition ~1e14
-        ([[0, 0], [1, 0], [0.5, 1e-14]], 1e-12),  # thin, not flat
-        # meant collinear, but the floats are not: condition ~1e12, a float64 solve keeps
-        # about 4 digits (the exact path is the engine's, behind precision="exact")
-        ([[1000, 1000], [1000.1, 1000.2], [1000.3, 1000.6]], 1e-3),
+        [[0, 0], [1e14, 0], [0, 1]],  # a right triangle 1e14 long: well conditioned
+        [[0, 0], [1, 0], [0.5, 1e-6]],  # thin, not nearly flat
+        [[0.0, 0.0, 0.0], [1e-150, 0.0, 0.0], [0.0, 3e-150, 1e-150]],  # tiny
     ],
 )
-def test_thin_simplices_are_not_refused_and_agree_with_rationals(z, rtol):
-    c, rho = sl.orthosphere(z, [0.0, 0.0, 0.0])
-    ce, rhoe = _exact_orthosphere(z, [0, 0, 0])
-    np.testing.assert_allclose(c, [float(x) for x in ce], rtol=rtol)
-    np.testing.assert_allclose(rho, float(rhoe), rtol=rtol)
+def test_well_conditioned_simplices_agree_with_rationals(z):
+    c, rho = sl.orthosphere(z, [0.0] * len(z))
+    ce, rhoe = _exact_orthosphere(z, [0] * len(z))
+    np.testing.assert_allclose(c, [float(x) for x in ce], rtol=1e-12)
+    np.testing.assert_allclose(rho, float(rhoe), rtol=1e-12)
+
+
+@pytest.mark.parametrize(
+    "z",
+    [
+        [[0, 0], [10**7, 1], [2 * 10**7 + 1, 2]],  # integer, determinant -1: condition ~1e14
+        [[0, 0], [1, 0], [0.5, 1e-14]],  # 1e-14 thin
+        [[1000, 1000], [1000.1, 1000.2], [1000.3, 1000.6]],  # meant collinear; the floats are not
+        # a float t: not exactly collinear; numpy's LU met an exact zero pivot here
+        [
+            [0.9775674511260357, -0.31055654665915255],
+            [-0.3288239040579627, -0.7921467553588982],
+            [-0.28628251390590065, -0.7764642289242195],
+        ],
+    ],
+)
+def test_nearly_flat_simplices_are_refused_for_what_they_are(z):
+    with pytest.raises(ValueError, match="nearly flat") as err:
+        sl.orthosphere(z, [0.683, 0.3916, 0.1873])
+    assert "affinely dependent" not in str(err.value)
+
+
+def test_nearly_flat_refusal_is_where_float64_loses_its_digits():
+    """Every simplex orthosphere answers is within 1e-5 of the rationals (the threshold
+    leaves about 6 digits); near-collinear triples z0 + t (z1 - z0), float t."""
+    rng = np.random.default_rng(3)
+    answered = 0
+    for _ in range(300):
+        z0, z1 = rng.normal(size=(2, 2))
+        t = rng.uniform(-2, 2)
+        z2 = z0 + t * (z1 - z0) + rng.choice([0.0, 1e-13, 1e-9, 1e-6, 1e-3]) * rng.normal(size=2)
+        z, w = np.array([z0, z1, z2]), rng.uniform(0, 1, 3)
+        try:
+            c, rho = sl.orthosphere(z, w)
+        except ValueError:
+            continue
+        answered += 1
+        ce, rhoe = _exact_orthosphere(z, w)
+        np.testing.assert_allclose(c, [float(x) for x in ce], rtol=1e-5, atol=1e-5 * np.abs(z).max())
+    assert answered > 100
 
 
 def test_flatness_is_exact_on_random_integer_simplices():
@@ -64,6 +101,12 @@ def test_extreme_scales_neither_underflow_nor_overflow_silently():
     for s in (4e-170, 4e-300, 4e150):
         c, rho = sl.orthosphere([[0.0, 0.0], [s, 0.0]], [0.0, 0.0])
         assert c.tolist() == [s / 2, 0.0] and float(rho) == (s / 2) ** 2
+    # weights large beside tiny edges: the unit is the larger of the two (no w / s^2 overflow)
+    c, rho = sl.orthosphere([[0.0, 0.0], [1e-160, 0.0]], [1.0, 1.0])
+    assert float(rho) == -1.0  # exactly -1 + 2.5e-321; c to round-off of the sphere's size 1
+    np.testing.assert_allclose(c, [5e-161, 0.0], atol=1e-16)
+    c, rho = sl.orthosphere([[0.0], [1e-200]], [1e10, 1e10])
+    assert float(rho) == -1e10
     with pytest.raises(ValueError, match="beyond float64"):
         sl.orthosphere([[0.0, 0.0], [4e160, 0.0]], [0.0, 0.0])  # rho = 4e320
 
@@ -111,4 +154,11 @@ def test_no_growth_pocket_before_the_first_ball():
     first = float(np.min(F.values(0)))
     for tau in (-np.inf, -1e308, first - 1e-9):
         assert sl.pockets(F, tau) == ()
-    assert all(p.lining.size > 0 for p in sl.pockets(F, first))
+    assert sl.pockets(F, first)  # the first balls: pockets
+    # one big ball far away enters first: the union is not empty, and the flask's pocket,
+    # not yet lined, is a pocket by the definition (a class sealed later, still outside)
+    B0 = sl.datasets.figure_23_2()[0]
+    B = sl.Balls(np.vstack([B0.centers, [[36.0, 0.0]]]), np.sqrt(np.r_[B0.weights, 16.0]))
+    G = sl.alpha_filtration(B)
+    early = sl.pockets(G, -2.0)
+    assert any(len(p.cell_ids) == 9 and p.closes_at == pytest.approx(0.5775) for p in early)
