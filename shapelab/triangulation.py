@@ -243,7 +243,7 @@ def orthosphere(centers, weights) -> tuple[np.ndarray, np.ndarray]:
     :math:`Au = \\beta` for :math:`u`, square for a top simplex (solved directly),
     else solved in the span of the :math:`a_i` (a QR factorisation of the edge matrix,
     :math:`A^T = QR`, :math:`u = Qy`, :math:`R^T y = \\beta`), and
-    :math:`\\rho = |u|^2 - w_0` [1]_.  Whether a simplex is flat is decided exactly.
+    :math:`\\rho = |u|^2 - w_0` [1]_.  Flatness is decided exactly; a nearly flat simplex (condition > 1e10) is refused.
 
     References
     ----------
