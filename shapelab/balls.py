@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ._toolkit.bases import BallsBase
+from ._toolkit.derived import KeepsDerived
 from ._toolkit.validate import (
     as_finite_scalar,
     as_point,
@@ -41,7 +42,7 @@ __all__ = ["Balls", "power_distance"]
 
 
 @dataclass(frozen=True, eq=False)
-class Balls(BallsBase):
+class Balls(BallsBase, KeepsDerived):
     """A finite set of balls (disks in 2D) with centres and radii.
 
     Parameters
@@ -85,35 +86,6 @@ class Balls(BallsBase):
         object.__setattr__(self, "centers", readonly(c))
         object.__setattr__(self, "radii", readonly(r))
         object.__setattr__(self, "_derived", {})
-
-    def derived(self, key: str, build):
-        """A result derived from these balls, built on first use and kept with them.
-
-        Every function of a filtration takes Balls or a Filtration; Balls (immutable)
-        are filtered once, here.  What is kept is not pickled or copied.
-
-        Parameters
-        ----------
-        key : str
-            Names the result; one key, one builder.
-        build : callable
-            ``build(balls)`` computes it.
-
-        Returns
-        -------
-        object
-            ``build(self)``, computed once per Balls object.
-
-        See Also
-        --------
-        shapelab.filtration.Filtration.derived
-            The same for results derived from a filtration.
-        """
-        cache = self._derived
-        try:
-            return cache[key]
-        except KeyError:
-            return cache.setdefault(key, build(self))
 
     def __getstate__(self):
         return {"centers": self.centers, "radii": self.radii}

@@ -64,6 +64,7 @@ import numpy as np
 
 from ._engine import alpha as engine
 from ._engine import persistence as _topology
+from ._toolkit.derived import KeepsDerived
 from ._toolkit.validate import FlatSimplexError, as_bbox, as_precision, as_tau, check_balls, freeze
 from .balls import Balls
 from .triangulation import clipped_cells, orthosphere, power_diagram, regular_triangulation
@@ -194,7 +195,7 @@ class BoundaryMatrix(NamedTuple):
 
 
 @dataclass(frozen=True, eq=False, repr=False)
-class Filtration(_SimplicialMixin):
+class Filtration(_SimplicialMixin, KeepsDerived):
     """The α-filtration (Notes §23.1, "the dual-complex") of a set of balls.
 
     Every simplex of the regular triangulation DT with the growth time τ at which it
@@ -225,32 +226,6 @@ class Filtration(_SimplicialMixin):
     #: Results derived from the filtration (persistence pairs, merge tree, cycles,
     #: edge lookups), by key; filled on first use by :meth:`derived`.
     _derived: dict = field(default_factory=dict, init=False, repr=False, compare=False)
-
-    def derived(self, key: str, build):
-        """A result derived from this filtration, built on first use and kept on it.
-
-        One filtration, many questions (Betti numbers, persistence, voids, pockets,
-        tunnels): their modules keep intermediate results here, not in module-level
-        caches, so that they live exactly as long as the filtration.
-
-        Parameters
-        ----------
-        key : str
-            Names the result (e.g. ``"topology.summary"``); one key, one builder.
-        build : callable
-            ``build(F)`` computes the result from this filtration.  Results must be
-            treated as read-only: every later caller gets the same object.
-
-        Returns
-        -------
-        object
-            ``build(self)``, computed once per filtration (``dataclasses.replace(F)``
-            is a copy with nothing derived yet, to time a computation from scratch).
-        """
-        try:
-            return self._derived[key]
-        except KeyError:
-            return self._derived.setdefault(key, build(self))
 
     def clipped_cells(self, tau=0.0, *, bbox=None, arc_resolution: int = 96) -> tuple:
         """The cells :math:`B_i(\\tau) \\cap \\Pi(B_i)` of 2D balls as polygons (Notes
