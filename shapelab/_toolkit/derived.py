@@ -20,7 +20,7 @@ class KeepsDerived:
         One filtration, many questions (Betti numbers, persistence, voids, pockets,
         tunnels): their modules keep intermediate results on the filtration; and every
         function of a filtration takes Balls or a Filtration, the Balls filtered once
-        and the filtration kept on them.  What is kept is not pickled or copied.
+        and the filtration kept on them (Balls do not pickle or copy it; a Filtration does).
 
         Parameters
         ----------
